@@ -1,0 +1,9 @@
+//! Rays, box clipping, and the watertight two-triangle cell test.
+
+mod clip;
+mod ray;
+mod triangle;
+
+pub use clip::clip_to_box;
+pub use ray::{Ray, RayError};
+pub use triangle::{CellTriangles, RaySpace, TriangleHit};

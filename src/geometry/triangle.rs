@@ -1,0 +1,170 @@
+//! The watertight ray/triangle test of Woop, Benthin & Wald (2013), over any [`Scalar`].
+//!
+//! Why it is watertight: each vertex is moved into ray space (the ray becomes the +z axis)
+//! once per vertex, by the same operations whichever triangle it belongs to, so neighbouring
+//! triangles see bit-identical 2D vertices. The edge functions are 2D orientations of those
+//! vertices against the origin, and [`Scalar::det2`] gives their sign exactly. So the hit
+//! decision is an exact predicate on one consistent planar mesh: a ray through a shared edge
+//! or vertex is inside (edges count) of at least one triangle around it, never none. In exact
+//! arithmetic the test is the exact definition itself (DESIGN 2): closed triangles, and a ray
+//! lying in a triangle's plane hits where it first touches the triangle.
+
+use crate::traverse::scalar::{max, min, Scalar};
+
+/// A ray prepared for many triangle tests: the axis permutation and shear of Woop et al.
+#[derive(Clone, Debug)]
+pub struct RaySpace<S> {
+    axes: [usize; 3],
+    shear: [S; 3],
+    origin: [S; 3],
+    dir: [S; 3],
+}
+
+/// Where a ray touches a triangle: `t_first` is the first touch (the hit); `t_last` differs
+/// only when the ray lies in the triangle's plane and runs across it (`None`: unbounded).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TriangleHit<S> {
+    pub t_first: S,
+    pub t_last: Option<S>,
+}
+
+impl<S: Scalar> RaySpace<S> {
+    /// `dir_f64` picks the axes the same way in every arithmetic.
+    pub fn new(origin: [S; 3], dir: [S; 3], dir_f64: [f64; 3]) -> Self {
+        // Permute components so the ray direction's largest is z.
+        let kz = (0..3)
+            .max_by(|&a, &b| dir_f64[a].abs().total_cmp(&dir_f64[b].abs()))
+            .unwrap_or(2);
+        let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
+        // Shear so the direction becomes (0, 0, 1).
+        let dz = dir[kz].clone();
+        let shear = [
+            dir[kx].clone() / dz.clone(),
+            dir[ky].clone() / dz.clone(),
+            S::one() / dz,
+        ];
+        RaySpace {
+            axes: [kx, ky, kz],
+            shear,
+            origin,
+            dir,
+        }
+    }
+
+    /// A vertex in ray space.
+    pub fn vertex(&self, p: [S; 3]) -> [S; 3] {
+        let [kx, ky, kz] = self.axes;
+        let rel = |k: usize| p[k].clone() - self.origin[k].clone();
+        let (x, y, z) = (rel(kx), rel(ky), rel(kz));
+        [
+            x - self.shear[0].clone() * z.clone(),
+            y - self.shear[1].clone() * z.clone(),
+            self.shear[2].clone() * z,
+        ]
+    }
+
+    /// Intersects the triangle with vertices `p` (counter-clockwise seen from +z) whose ray-space
+    /// images are `q`. Hits at `t >= 0` only.
+    pub fn intersect(&self, p: [&[S; 3]; 3], q: [&[S; 3]; 3]) -> Option<TriangleHit<S>> {
+        let [a, b, c] = q;
+        // Compute edge functions, signs exact.
+        let u = S::det2(&c[0], &b[1], &c[1], &b[0]);
+        let v = S::det2(&a[0], &c[1], &a[1], &c[0]);
+        let w = S::det2(&b[0], &a[1], &b[1], &a[0]);
+        let zero = S::zero();
+        let any_negative = u < zero || v < zero || w < zero;
+        let any_positive = u > zero || v > zero || w > zero;
+        if any_negative && any_positive {
+            return None;
+        }
+        if !any_negative && !any_positive {
+            return self.intersect_coplanar(p);
+        }
+        // Interpolate the hit distance; det and t_scaled share a sign when t >= 0.
+        let det = u.clone() + v.clone() + w.clone();
+        let t_scaled = u * a[2].clone() + v * b[2].clone() + w * c[2].clone();
+        if t_scaled.is_negative() != det.is_negative() && !t_scaled.is_zero() {
+            return None;
+        }
+        let t = t_scaled / det;
+        Some(TriangleHit {
+            t_first: t,
+            t_last: None,
+        })
+        .map(|mut hit| {
+            hit.t_last = Some(hit.t_first.clone());
+            hit
+        })
+    }
+
+    /// The ray lies in the triangle's plane: clip its xy path to the triangle's three edge
+    /// half-planes (the triangle projects onto xy without degenerating).
+    fn intersect_coplanar(&self, p: [&[S; 3]; 3]) -> Option<TriangleHit<S>> {
+        let (o, d) = (&self.origin, &self.dir);
+        let mut lo = S::zero();
+        let mut hi: Option<S> = None;
+        for k in 0..3 {
+            let (from, to) = (p[k], p[(k + 1) % 3]);
+            let (ex, ey) = (to[0].clone() - from[0].clone(), to[1].clone() - from[1].clone());
+            // Inside the edge where g0 + g1*t >= 0.
+            let g0 = ex.clone() * (o[1].clone() - from[1].clone())
+                - ey.clone() * (o[0].clone() - from[0].clone());
+            let g1 = ex * d[1].clone() - ey * d[0].clone();
+            if g1.is_zero() {
+                if g0.is_negative() {
+                    return None;
+                }
+                continue;
+            }
+            let crossing = -g0 / g1.clone();
+            if g1.is_negative() {
+                hi = Some(match hi {
+                    Some(h) => min(h, crossing),
+                    None => crossing,
+                });
+            } else {
+                lo = max(lo, crossing);
+            }
+        }
+        if hi.as_ref().is_some_and(|h| *h < lo) {
+            return None;
+        }
+        Some(TriangleHit {
+            t_first: lo,
+            t_last: hi,
+        })
+    }
+}
+
+/// The two triangles of cell `(i, j)`: `T0 = (P00, P10, P11)` and `T1 = (P00, P11, P01)`.
+pub struct CellTriangles<S> {
+    corners: [[S; 3]; 4],
+    images: [[S; 3]; 4],
+}
+
+impl<S: Scalar> CellTriangles<S> {
+    /// `heights` are `[z00, z10, z01, z11]` of the cell's corners.
+    pub fn new(ray: &RaySpace<S>, i: usize, j: usize, heights: [S; 4]) -> Self {
+        let (x0, y0) = (S::from_i64(i as i64), S::from_i64(j as i64));
+        let (x1, y1) = (S::from_i64(i as i64 + 1), S::from_i64(j as i64 + 1));
+        let [z00, z10, z01, z11] = heights;
+        let corners = [
+            [x0.clone(), y0.clone(), z00],
+            [x1.clone(), y0, z10],
+            [x0, y1.clone(), z01],
+            [x1, y1, z11],
+        ];
+        let images = corners.clone().map(|c| ray.vertex(c));
+        CellTriangles { corners, images }
+    }
+
+    /// Intersects triangle `k` (0 or 1).
+    pub fn intersect(&self, ray: &RaySpace<S>, k: u8) -> Option<TriangleHit<S>> {
+        // Corner indices: 0 = P00, 1 = P10, 2 = P01, 3 = P11; both counter-clockwise.
+        let [a, b, c] = if k == 0 { [0, 1, 3] } else { [0, 3, 2] };
+        ray.intersect(
+            [&self.corners[a], &self.corners[b], &self.corners[c]],
+            [&self.images[a], &self.images[b], &self.images[c]],
+        )
+    }
+}

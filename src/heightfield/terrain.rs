@@ -1,0 +1,70 @@
+//! A height field with the acceleration data the traversals use.
+
+use super::{CellMaxima, Heightfield, LineMaxima};
+use std::time::{Duration, Instant};
+
+/// A height field ready to be ray traced: cell maxima, row and column range maxima, and the
+/// height range.
+#[derive(Clone, Debug)]
+pub struct Terrain {
+    field: Heightfield,
+    cells: CellMaxima,
+    rows: LineMaxima,
+    columns: LineMaxima,
+    min_sample: u16,
+    max_sample: u16,
+    build_time: Duration,
+}
+
+impl Terrain {
+    /// Builds the acceleration data (timed).
+    pub fn new(field: Heightfield) -> Self {
+        let start = Instant::now();
+        let cells = CellMaxima::build(&field);
+        let rows = LineMaxima::rows(&cells);
+        let columns = LineMaxima::columns(&cells);
+        let min_sample = field.samples().iter().copied().min().unwrap_or(0);
+        let max_sample = field.samples().iter().copied().max().unwrap_or(0);
+        Terrain {
+            field,
+            cells,
+            rows,
+            columns,
+            min_sample,
+            max_sample,
+            build_time: start.elapsed(),
+        }
+    }
+
+    pub fn field(&self) -> &Heightfield {
+        &self.field
+    }
+    /// Highest height of cell `(i, j)`.
+    pub fn cell_max(&self, i: usize, j: usize) -> f64 {
+        self.field.height_of(self.cells.get(i, j))
+    }
+    /// Highest height over cells `lo..=hi` of row `j`.
+    pub fn row_max(&self, j: usize, lo: usize, hi: usize) -> f64 {
+        self.field.height_of(self.rows.max(j, lo, hi))
+    }
+    /// Highest height over cells `lo..=hi` of column `i`.
+    pub fn column_max(&self, i: usize, lo: usize, hi: usize) -> f64 {
+        self.field.height_of(self.columns.max(i, lo, hi))
+    }
+    /// Lowest and highest height of the field.
+    pub fn z_range(&self) -> (f64, f64) {
+        (
+            self.field.height_of(self.min_sample),
+            self.field.height_of(self.max_sample),
+        )
+    }
+    /// Time spent building the acceleration data.
+    pub fn build_time(&self) -> Duration {
+        self.build_time
+    }
+    /// Bytes of acceleration data beyond the samples.
+    pub fn accel_bytes(&self) -> usize {
+        let (nx, ny) = self.cells.size();
+        nx * ny * 2 + self.rows.bytes() + self.columns.bytes()
+    }
+}

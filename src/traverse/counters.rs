@@ -1,0 +1,62 @@
+//! Query counters (DESIGN 3): one struct, summed per frame, kept per pixel.
+
+use serde::Serialize;
+use std::ops::AddAssign;
+
+/// Queries of one kind, split into hits ("exists", E) and misses (N).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct HitMiss {
+    pub hit: u64,
+    pub miss: u64,
+}
+
+impl HitMiss {
+    /// Counts one query and passes its answer through.
+    #[inline]
+    pub fn record(&mut self, hit: bool) -> bool {
+        if hit {
+            self.hit += 1;
+        } else {
+            self.miss += 1;
+        }
+        hit
+    }
+    pub fn total(&self) -> u64 {
+        self.hit + self.miss
+    }
+}
+
+impl AddAssign for HitMiss {
+    fn add_assign(&mut self, rhs: HitMiss) {
+        self.hit += rhs.hit;
+        self.miss += rhs.miss;
+    }
+}
+
+/// What one ray (or a frame of rays) asked of the height field.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Counters {
+    /// Ray against the height field's bounding box.
+    pub bbox: HitMiss,
+    /// A run as a whole: the ray's lowest height over it against its highest sample.
+    pub run: HitMiss,
+    /// A cell: the ray's lowest height over it against its highest sample.
+    pub cell: HitMiss,
+    /// A triangle test.
+    pub triangle: HitMiss,
+    /// Bounded-rational results rounded to the denominator bound.
+    pub rational_rounded: u64,
+    /// Bounded-rational results clamped to the `i64` range.
+    pub rational_saturated: u64,
+}
+
+impl AddAssign for Counters {
+    fn add_assign(&mut self, rhs: Counters) {
+        self.bbox += rhs.bbox;
+        self.run += rhs.run;
+        self.cell += rhs.cell;
+        self.triangle += rhs.triangle;
+        self.rational_rounded += rhs.rational_rounded;
+        self.rational_saturated += rhs.rational_saturated;
+    }
+}

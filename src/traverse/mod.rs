@@ -1,0 +1,253 @@
+//! Traversals of a ray across the grid (runs, cell DDA), the arithmetics they are generic
+//! over, and their query counters.
+
+mod counters;
+mod dda;
+mod degenerate;
+mod exact;
+mod frame;
+mod rational;
+mod runs;
+pub mod scalar;
+mod search;
+
+pub use counters::{Counters, HitMiss};
+pub use exact::Exact;
+pub use rational::{with_bound, Rational, RationalEvents, DEFAULT_BOUND};
+pub use scalar::Scalar;
+
+use crate::geometry::{clip_to_box, RaySpace, Ray};
+use crate::heightfield::Terrain;
+use frame::{Frame, Span};
+use num_rational::BigRational;
+use search::{span_cells, Search};
+use std::fmt;
+use std::ops::ControlFlow;
+use std::str::FromStr;
+
+/// How the grid is walked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// Row by row, run lengths from the intercept recurrence (Henning & Stephenson).
+    Runs,
+    /// Cell by cell (Amanatides & Woo).
+    Dda,
+}
+
+/// The arithmetic a traversal computes in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Arith {
+    F32,
+    F64,
+    /// Fractions with denominators at most `bound` (num-rational `Ratio<i64>` sized).
+    Rational { bound: u32 },
+    /// No rounding at all: the DESIGN 2 answer for the given `f64` inputs.
+    Exact,
+}
+
+/// What a ray asks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Query {
+    /// The least `t >= 0` at which the ray touches the surface.
+    FirstHit,
+    /// Whether the ray touches the surface at some `t > 0` (the start point does not count).
+    Shadow,
+}
+
+/// How to trace.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TraceOptions {
+    pub method: Method,
+    pub arith: Arith,
+    pub query: Query,
+    /// List the cells the walk covered, in order.
+    pub record_cells: bool,
+}
+
+impl TraceOptions {
+    /// A first-hit query without cell recording.
+    pub fn new(method: Method, arith: Arith) -> Self {
+        TraceOptions {
+            method,
+            arith,
+            query: Query::FirstHit,
+            record_cells: false,
+        }
+    }
+}
+
+/// Where a ray hit.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Hit {
+    /// The ray parameter (nearest `f64` of the exact value in exact mode).
+    pub t: f64,
+    /// The exact parameter, in exact mode.
+    pub t_exact: Option<BigRational>,
+    /// `o + t*d`.
+    pub point: [f64; 3],
+    /// The cell `(i, j)` and triangle (0: `P00 P10 P11`, 1: `P00 P11 P01`) hit. Where the
+    /// hit point is shared, the first in visiting order, `T0` before `T1`.
+    pub cell: [usize; 2],
+    pub triangle: u8,
+}
+
+/// The answer for one ray.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Trace {
+    pub hit: Option<Hit>,
+    pub counters: Counters,
+    /// Cells covered, in order (when asked for).
+    pub cells: Vec<[usize; 2]>,
+}
+
+/// Traces one ray.
+pub fn trace(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
+    match options.arith {
+        Arith::F32 => trace_in::<f32>(terrain, ray, options),
+        Arith::F64 => trace_in::<f64>(terrain, ray, options),
+        Arith::Exact => trace_in::<Exact>(terrain, ray, options),
+        Arith::Rational { bound } => {
+            let (mut trace, events) = with_bound(bound, || trace_in::<Rational>(terrain, ray, options));
+            trace.counters.rational_rounded = events.rounded;
+            trace.counters.rational_saturated = events.saturated;
+            trace
+        }
+    }
+}
+
+/// Every cell the walk of `method` covers for the whole clipped ray, in order, with no culling
+/// and no stop at a hit: in exact arithmetic, exactly the cells the projected segment touches.
+pub fn covered_cells(terrain: &Terrain, ray: &Ray, method: Method, arith: Arith) -> Vec<[usize; 2]> {
+    fn cover<S: Scalar>(terrain: &Terrain, ray: &Ray, method: Method) -> Vec<[usize; 2]> {
+        let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
+        let Some(frame) = clip(terrain, &o, &d, ray) else {
+            return Vec::new();
+        };
+        let mut cells = Vec::new();
+        walk(&frame, method, &mut |span: Span<S>| {
+            cells.extend(span_cells(&frame, &span).map(|(i, j)| [i, j]));
+            ControlFlow::Continue(())
+        });
+        cells
+    }
+    match arith {
+        Arith::F32 => cover::<f32>(terrain, ray, method),
+        Arith::F64 => cover::<f64>(terrain, ray, method),
+        Arith::Exact => cover::<Exact>(terrain, ray, method),
+        Arith::Rational { bound } => with_bound(bound, || cover::<Rational>(terrain, ray, method)).0,
+    }
+}
+
+/// The ray clipped to the terrain's box, in the octant frame.
+fn clip<S: Scalar>(terrain: &Terrain, o: &[S; 3], d: &[S; 3], ray: &Ray) -> Option<Frame<S>> {
+    let field = terrain.field();
+    let (w, h) = (field.width(), field.height());
+    let (z_lo, z_hi) = terrain.z_range();
+    let lo = [S::zero(), S::zero(), S::from_f64(z_lo)];
+    let hi = [S::from_i64(w as i64 - 1), S::from_i64(h as i64 - 1), S::from_f64(z_hi)];
+    let range = clip_to_box(o, d, &lo, &hi)?;
+    Some(Frame::new(o, d, ray.dir(), range, (w, h)))
+}
+
+fn walk<S: Scalar>(
+    frame: &Frame<S>,
+    method: Method,
+    visit: &mut impl FnMut(Span<S>) -> ControlFlow<()>,
+) {
+    // Either walk ends by itself or because `visit` broke; both are fine here.
+    let _ = match method {
+        Method::Runs => runs::walk(frame, visit),
+        Method::Dda => dda::walk(frame, visit),
+    };
+}
+
+fn trace_in<S: Scalar>(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
+    let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
+    let mut trace = Trace::default();
+    let frame = clip(terrain, &o, &d, ray);
+    if !trace.counters.bbox.record(frame.is_some()) {
+        return trace;
+    }
+    let Some(frame) = frame else { return trace };
+    let mut search = Search {
+        terrain,
+        frame: &frame,
+        ray: RaySpace::new(o.clone(), d.clone(), ray.dir()),
+        oz: o[2].clone(),
+        dz: d[2].clone(),
+        query: options.query,
+        run_test: options.method == Method::Runs,
+        counters: trace.counters,
+        found: None,
+        cells: options.record_cells.then(Vec::new),
+    };
+    walk(&frame, options.method, &mut |span| search.span(span));
+    trace.counters = search.counters;
+    trace.cells = search.cells.unwrap_or_default();
+    trace.hit = search.found.map(|found| {
+        let point = [0, 1, 2].map(|k| (o[k].clone() + d[k].clone() * found.t.clone()).to_f64());
+        Hit {
+            t: found.t.to_f64(),
+            t_exact: found.t.to_exact(),
+            point,
+            cell: [found.cell.0, found.cell.1],
+            triangle: found.triangle,
+        }
+    });
+    trace
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Method::Runs => "runs",
+            Method::Dda => "dda",
+        })
+    }
+}
+
+impl FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "runs" | "auto" => Ok(Method::Runs),
+            "dda" => Ok(Method::Dda),
+            _ => Err(format!("unknown method '{s}': use runs, dda or auto")),
+        }
+    }
+}
+
+impl fmt::Display for Arith {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Arith::F32 => f.write_str("f32"),
+            Arith::F64 => f.write_str("f64"),
+            Arith::Rational { bound } => write!(f, "rational:{bound}"),
+            Arith::Exact => f.write_str("exact"),
+        }
+    }
+}
+
+impl FromStr for Arith {
+    type Err = String;
+    /// `f32`, `f64`, `exact`, `rational` (bound 2^16) or `rational:BOUND`.
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "f32" => Ok(Arith::F32),
+            "f64" => Ok(Arith::F64),
+            "exact" => Ok(Arith::Exact),
+            "rational" => Ok(Arith::Rational {
+                bound: DEFAULT_BOUND,
+            }),
+            _ => {
+                let bound = s
+                    .strip_prefix("rational:")
+                    .and_then(|b| b.parse::<u32>().ok())
+                    .filter(|&b| (1..=1 << 30).contains(&b));
+                bound.map(|bound| Arith::Rational { bound }).ok_or(format!(
+                    "unknown arithmetic '{s}': use f32, f64, rational, rational:BOUND (1..=2^30) or exact"
+                ))
+            }
+        }
+    }
+}

@@ -1,0 +1,244 @@
+//! The small number trait every traversal is generic over, and its float implementations.
+//!
+//! One traversal, four arithmetics: `f32`, `f64`, bounded rationals and exact rationals all
+//! implement [`Scalar`]. The trait is deliberately small: field operations, comparisons,
+//! floor/ceil to cell indices, and one exact-sign primitive ([`Scalar::det2`]) on which the
+//! watertight triangle test rests.
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{Signed, Zero};
+use std::cmp::Ordering;
+use std::fmt::Debug;
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// A number the traversal can compute with.
+pub trait Scalar:
+    Clone
+    + Debug
+    + PartialOrd
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// Converts an input (a ray component or a height), rounding as this arithmetic must.
+    fn from_f64(x: f64) -> Self;
+    /// Converts a grid coordinate (exact in every arithmetic for the sizes we accept).
+    fn from_i64(n: i64) -> Self;
+    /// The nearest `f64` (for reporting).
+    fn to_f64(&self) -> f64;
+    /// Greatest integer not above `self`, saturating at the `i64` range.
+    fn floor_i64(&self) -> i64;
+    /// Least integer not below `self`, saturating at the `i64` range.
+    fn ceil_i64(&self) -> i64;
+    fn is_zero(&self) -> bool;
+    fn is_negative(&self) -> bool;
+
+    /// `a*b - c*d`, with a sign that is exact even where the value is rounded.
+    ///
+    /// The returned value is zero when the exact sign is zero and never has the wrong sign, so
+    /// callers may test signs on the value. This is what makes the triangle test watertight.
+    fn det2(a: &Self, b: &Self, c: &Self, d: &Self) -> Self;
+
+    /// Rounds an intercept onto the denominator of `slope`, so that a recurrence adding
+    /// multiples of the slope stays exact. Only bounded rationals round; others return `self`.
+    fn align_to(self, _slope: &Self) -> Self {
+        self
+    }
+
+    /// The exact value as a fraction, for arithmetics that have one.
+    fn to_exact(&self) -> Option<BigRational> {
+        None
+    }
+
+    fn zero() -> Self {
+        Self::from_i64(0)
+    }
+    fn one() -> Self {
+        Self::from_i64(1)
+    }
+    /// Whether `self` is an integer (a grid line or lattice coordinate).
+    fn is_integer(&self) -> bool {
+        Self::from_i64(self.floor_i64()) == *self
+    }
+}
+
+/// Smaller of two values (the first on ties).
+pub fn min<S: Scalar>(a: S, b: S) -> S {
+    if b < a {
+        b
+    } else {
+        a
+    }
+}
+
+/// Larger of two values (the first on ties).
+pub fn max<S: Scalar>(a: S, b: S) -> S {
+    if b > a {
+        b
+    } else {
+        a
+    }
+}
+
+/// The exact value of a finite `f64` as a fraction (non-finite values give zero; callers
+/// validate their inputs first).
+pub fn exact_from_f64(x: f64) -> BigRational {
+    if !x.is_finite() || x == 0.0 {
+        return BigRational::zero();
+    }
+    let bits = x.to_bits();
+    let negative = bits >> 63 == 1;
+    let exponent = ((bits >> 52) & 0x7ff) as i64;
+    let fraction = bits & ((1u64 << 52) - 1);
+    // Normal numbers carry an implicit leading 1; subnormals have the minimum exponent.
+    let (mantissa, exp2) = if exponent == 0 {
+        (fraction, -1074)
+    } else {
+        (fraction | (1u64 << 52), exponent - 1075)
+    };
+    let mantissa = if negative {
+        -BigInt::from(mantissa)
+    } else {
+        BigInt::from(mantissa)
+    };
+    if exp2 >= 0 {
+        BigRational::from_integer(mantissa << exp2 as usize)
+    } else {
+        BigRational::new(mantissa, BigInt::from(1u8) << (-exp2) as usize)
+    }
+}
+
+/// Exact sign of `a*b - c*d` for `f64` inputs.
+fn exact_det2_sign(a: f64, b: f64, c: f64, d: f64) -> Ordering {
+    let value = exact_from_f64(a) * exact_from_f64(b) - exact_from_f64(c) * exact_from_f64(d);
+    if value.is_positive() {
+        Ordering::Greater
+    } else if value.is_negative() {
+        Ordering::Less
+    } else {
+        Ordering::Equal
+    }
+}
+
+/// Forces the sign of a rounded value to the exact sign (zero stays zero).
+fn with_sign(value: f64, sign: Ordering) -> f64 {
+    match sign {
+        Ordering::Equal => 0.0,
+        Ordering::Greater if value > 0.0 => value,
+        Ordering::Less if value < 0.0 => value,
+        // The rounded value has the wrong sign or is zero: it is tiny, keep only its sign.
+        Ordering::Greater => f64::MIN_POSITIVE,
+        Ordering::Less => -f64::MIN_POSITIVE,
+    }
+}
+
+impl Scalar for f64 {
+    fn from_f64(x: f64) -> Self {
+        x
+    }
+    fn from_i64(n: i64) -> Self {
+        n as f64
+    }
+    fn to_f64(&self) -> f64 {
+        *self
+    }
+    fn floor_i64(&self) -> i64 {
+        self.floor() as i64
+    }
+    fn ceil_i64(&self) -> i64 {
+        self.ceil() as i64
+    }
+    fn is_zero(&self) -> bool {
+        *self == 0.0
+    }
+    fn is_negative(&self) -> bool {
+        *self < 0.0
+    }
+    fn det2(a: &f64, b: &f64, c: &f64, d: &f64) -> f64 {
+        let (p, q) = (a * b, c * d);
+        let value = p - q;
+        // Error of fl(fl(ab) - fl(cd)) is below 3u(|ab| + |cd|) with u = 2^-53; outside that
+        // band the sign is certain, inside it we decide exactly (rare).
+        let bound = 3.4e-16 * (p.abs() + q.abs()) + 1e-300;
+        if value.abs() > bound {
+            value
+        } else {
+            with_sign(value, exact_det2_sign(*a, *b, *c, *d))
+        }
+    }
+}
+
+impl Scalar for f32 {
+    fn from_f64(x: f64) -> Self {
+        x as f32
+    }
+    fn from_i64(n: i64) -> Self {
+        n as f32
+    }
+    fn to_f64(&self) -> f64 {
+        f64::from(*self)
+    }
+    fn floor_i64(&self) -> i64 {
+        self.floor() as i64
+    }
+    fn ceil_i64(&self) -> i64 {
+        self.ceil() as i64
+    }
+    fn is_zero(&self) -> bool {
+        *self == 0.0
+    }
+    fn is_negative(&self) -> bool {
+        *self < 0.0
+    }
+    fn det2(a: &f32, b: &f32, c: &f32, d: &f32) -> f32 {
+        // Products of two f32 are exact in f64, and the f64 difference of two exact values has
+        // the exact sign: the double-precision fallback of Woop et al., always taken.
+        let value = f64::from(*a) * f64::from(*b) - f64::from(*c) * f64::from(*d);
+        let rounded = value as f32;
+        if rounded == 0.0 && value != 0.0 {
+            // Underflow to zero would lose the sign.
+            (f32::MIN_POSITIVE).copysign(value as f32 + value.signum() as f32)
+        } else {
+            rounded
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exact_from_f64_is_exact() {
+        assert_eq!(exact_from_f64(0.5), BigRational::new(1.into(), 2.into()));
+        assert_eq!(exact_from_f64(-3.0), BigRational::from_integer((-3).into()));
+        let tenth = exact_from_f64(0.1);
+        // 0.1 is 3602879701896397 / 2^55.
+        assert_eq!(
+            tenth,
+            BigRational::new(3602879701896397u64.into(), BigInt::from(1u8) << 55)
+        );
+        assert_eq!(exact_from_f64(5e-324), BigRational::new(1.into(), BigInt::from(1u8) << 1074));
+    }
+
+    #[test]
+    fn f64_det2_sign_is_exact_where_rounding_cancels() {
+        // (1 + 2^-52)^2 - (1 + 2^-51) = 2^-104 exactly, but rounds to 0 in f64.
+        let a = 1.0 + f64::EPSILON;
+        let c = 1.0 + 2.0 * f64::EPSILON;
+        assert!(f64::det2(&a, &a, &c, &1.0) > 0.0);
+        assert_eq!(f64::det2(&3.0, &4.0, &6.0, &2.0), 0.0);
+        assert_eq!(f64::det2(&3.0, &4.0, &5.0, &2.0), 2.0);
+    }
+
+    #[test]
+    fn f32_det2_sign_is_exact() {
+        let a = 1.0f32 + f32::EPSILON;
+        let c = 1.0f32 + 2.0 * f32::EPSILON;
+        assert!(f32::det2(&a, &a, &c, &1.0) > 0.0);
+        assert_eq!(f32::det2(&3.0, &4.0, &6.0, &2.0), 0.0);
+    }
+}

@@ -1,0 +1,159 @@
+//! What happens to each span a walk reaches: the run test, the cell tests, the triangle
+//! tests, and keeping the first hit.
+
+use super::counters::Counters;
+use super::frame::{Frame, Span};
+use super::scalar::{max, min, Scalar};
+use super::Query;
+use crate::geometry::{CellTriangles, RaySpace};
+use crate::heightfield::Terrain;
+use std::ops::ControlFlow;
+
+/// The best hit so far.
+#[derive(Clone, Debug)]
+pub struct Found<S> {
+    pub t: S,
+    pub cell: (usize, usize),
+    pub triangle: u8,
+}
+
+/// Searches the spans of one walk for the first hit (or any hit, for shadow queries).
+pub struct Search<'a, S> {
+    pub terrain: &'a Terrain,
+    pub frame: &'a Frame<S>,
+    pub ray: RaySpace<S>,
+    pub oz: S,
+    pub dz: S,
+    pub query: Query,
+    /// Test each span as a whole before its cells (the run method); a cell walk has none.
+    pub run_test: bool,
+    pub counters: Counters,
+    pub found: Option<Found<S>>,
+    /// Cells the walk covered, in order, when asked for.
+    pub cells: Option<Vec<[usize; 2]>>,
+}
+
+impl<S: Scalar> Search<'_, S> {
+    /// Visits one span; breaks when the answer is known.
+    pub fn span(&mut self, span: Span<S>) -> ControlFlow<()> {
+        self.stop_before(&span.t_lo)?;
+        if self.run_test && !self.run_may_hit(&span) {
+            if let Some(cells) = &mut self.cells {
+                cells.extend(span_cells(self.frame, &span).map(|(i, j)| [i, j]));
+            }
+            return ControlFlow::Continue(());
+        }
+        let several_columns = span.cols.0 != span.cols.1 && !self.frame.du.is_zero();
+        for (cu, cv) in frame_cells(&span) {
+            // The part of the span's ray inside this cell's column.
+            let (t_lo, t_hi) = if several_columns {
+                (
+                    max(span.t_lo.clone(), self.frame.t_at_u(cu)),
+                    min(span.t_hi.clone(), self.frame.t_at_u(cu + 1)),
+                )
+            } else {
+                (span.t_lo.clone(), span.t_hi.clone())
+            };
+            self.stop_before(&t_lo)?;
+            let (i, j) = self.frame.cell(cu, cv);
+            if let Some(cells) = &mut self.cells {
+                cells.push([i, j]);
+            }
+            let lowest = self.lowest_z(&t_lo, &t_hi);
+            let may_hit = lowest <= S::from_f64(self.terrain.cell_max(i, j));
+            if self.counters.cell.record(may_hit) {
+                self.triangles(i, j)?;
+            }
+        }
+        ControlFlow::Continue(())
+    }
+
+    /// Breaks when a hit is already known at or before `t` (cells come in order of first
+    /// contact, so nothing later can be earlier; equal `t` keeps the earlier cell).
+    fn stop_before(&self, t: &S) -> ControlFlow<()> {
+        match &self.found {
+            Some(found) if found.t <= *t => ControlFlow::Break(()),
+            _ => ControlFlow::Continue(()),
+        }
+    }
+
+    /// The ray's lowest height over `[t_lo, t_hi]`.
+    fn lowest_z(&self, t_lo: &S, t_hi: &S) -> S {
+        let t = if self.dz.is_negative() { t_hi } else { t_lo };
+        self.oz.clone() + self.dz.clone() * t.clone()
+    }
+
+    /// The run test: the ray's lowest height over the run against the highest cell under it.
+    fn run_may_hit(&mut self, span: &Span<S>) -> bool {
+        let lowest = self.lowest_z(&span.t_lo, &span.t_hi);
+        let (a, b) = (
+            self.frame.cell(span.cols.0, span.row),
+            self.frame.cell(span.cols.1, span.row + i64::from(span.rows) - 1),
+        );
+        let (lo_i, hi_i, lo_j, hi_j) = (a.0.min(b.0), a.0.max(b.0), a.1.min(b.1), a.1.max(b.1));
+        let highest = if self.frame.swap {
+            (lo_i..=hi_i)
+                .map(|i| self.terrain.column_max(i, lo_j, hi_j))
+                .fold(f64::NEG_INFINITY, f64::max)
+        } else {
+            (lo_j..=hi_j)
+                .map(|j| self.terrain.row_max(j, lo_i, hi_i))
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
+        self.counters.run.record(lowest <= S::from_f64(highest))
+    }
+
+    /// Tests both triangles of cell `(i, j)`.
+    fn triangles(&mut self, i: usize, j: usize) -> ControlFlow<()> {
+        let field = self.terrain.field();
+        let heights = [
+            field.z(i, j),
+            field.z(i + 1, j),
+            field.z(i, j + 1),
+            field.z(i + 1, j + 1),
+        ]
+        .map(S::from_f64);
+        let cell = CellTriangles::new(&self.ray, i, j, heights);
+        for triangle in 0..2 {
+            let hit = cell.intersect(&self.ray, triangle);
+            let counts = match (&hit, self.query) {
+                (None, _) => false,
+                (Some(_), Query::FirstHit) => true,
+                // A shadow ray must touch the surface after its start.
+                (Some(h), Query::Shadow) => {
+                    h.t_last.as_ref().is_none_or(|t| !t.is_negative() && !t.is_zero())
+                }
+            };
+            if !self.counters.triangle.record(counts) {
+                continue;
+            }
+            let Some(hit) = hit else { continue };
+            let earlier = self.found.as_ref().is_none_or(|f| hit.t_first < f.t);
+            if earlier {
+                self.found = Some(Found {
+                    t: hit.t_first,
+                    cell: (i, j),
+                    triangle,
+                });
+            }
+            if self.query == Query::Shadow {
+                return ControlFlow::Break(());
+            }
+        }
+        ControlFlow::Continue(())
+    }
+}
+
+/// Frame cells of a span in visiting order: along the row, or column by column for two rows.
+pub fn frame_cells<S>(span: &Span<S>) -> impl Iterator<Item = (i64, i64)> {
+    let (row, rows) = (span.row, i64::from(span.rows));
+    (span.cols.0..=span.cols.1).flat_map(move |cu| (row..row + rows).map(move |cv| (cu, cv)))
+}
+
+/// Original cells of a span in visiting order.
+pub fn span_cells<'f, S: Scalar>(
+    frame: &'f Frame<S>,
+    span: &Span<S>,
+) -> impl Iterator<Item = (usize, usize)> + 'f {
+    frame_cells(span).map(move |(cu, cv)| frame.cell(cu, cv))
+}
