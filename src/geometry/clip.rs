@@ -17,7 +17,11 @@ pub fn clip_to_box<S: Scalar>(o: &[S; 3], d: &[S; 3], lo: &[S; 3], hi: &[S; 3]) 
         }
         let ta = (lo[axis].clone() - o[axis].clone()) / d[axis].clone();
         let tb = (hi[axis].clone() - o[axis].clone()) / d[axis].clone();
-        let (near, far) = if d[axis].is_negative() { (tb, ta) } else { (ta, tb) };
+        let (near, far) = if d[axis].is_negative() {
+            (tb, ta)
+        } else {
+            (ta, tb)
+        };
         t0 = max(t0, near);
         t1 = Some(match t1 {
             Some(t) => min(t, far),
@@ -38,13 +42,19 @@ mod tests {
         let (lo, hi) = ([0.0, 0.0, 0.0], [4.0, 4.0, 1.0]);
         let got = clip_to_box(&[-1.0, 1.0, 0.5], &[1.0, 0.0, 0.0], &lo, &hi);
         assert_eq!(got, Some((1.0, 5.0)));
-        assert_eq!(clip_to_box(&[-1.0, 1.0, 2.0], &[1.0, 0.0, 0.0], &lo, &hi), None);
+        assert_eq!(
+            clip_to_box(&[-1.0, 1.0, 2.0], &[1.0, 0.0, 0.0], &lo, &hi),
+            None
+        );
         // Starting inside: t0 = 0.
         assert_eq!(
             clip_to_box(&[1.0, 1.0, 0.5], &[0.0, 0.0, -1.0], &lo, &hi),
             Some((0.0, 0.5))
         );
         // Pointing away.
-        assert_eq!(clip_to_box(&[5.0, 1.0, 0.5], &[1.0, 0.0, 0.0], &lo, &hi), None);
+        assert_eq!(
+            clip_to_box(&[5.0, 1.0, 0.5], &[1.0, 0.0, 0.0], &lo, &hi),
+            None
+        );
     }
 }

@@ -88,12 +88,8 @@ impl<S: Scalar> RaySpace<S> {
         }
         let t = t_scaled / det;
         Some(TriangleHit {
-            t_first: t,
-            t_last: None,
-        })
-        .map(|mut hit| {
-            hit.t_last = Some(hit.t_first.clone());
-            hit
+            t_first: t.clone(),
+            t_last: Some(t),
         })
     }
 
@@ -105,7 +101,10 @@ impl<S: Scalar> RaySpace<S> {
         let mut hi: Option<S> = None;
         for k in 0..3 {
             let (from, to) = (p[k], p[(k + 1) % 3]);
-            let (ex, ey) = (to[0].clone() - from[0].clone(), to[1].clone() - from[1].clone());
+            let (ex, ey) = (
+                to[0].clone() - from[0].clone(),
+                to[1].clone() - from[1].clone(),
+            );
             // Inside the edge where g0 + g1*t >= 0.
             let g0 = ex.clone() * (o[1].clone() - from[1].clone())
                 - ey.clone() * (o[0].clone() - from[0].clone());

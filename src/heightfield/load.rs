@@ -47,12 +47,8 @@ pub fn load_bytes(bytes: &[u8], z_scale: f64, name: &str) -> Result<Heightfield,
     if bytes.is_empty() {
         return Err(LoadError::Empty { name });
     }
-    let (width, height, samples, maxval) = if bytes.starts_with(b"P2") || bytes.starts_with(b"P5")
-    {
-        parse_pgm(bytes).map_err(|reason| LoadError::Decode {
-            name: name.clone(),
-            reason,
-        })?
+    let (width, height, samples, maxval) = if bytes.starts_with(b"P2") || bytes.starts_with(b"P5") {
+        parse_pgm(bytes, &name)?
     } else {
         decode_png(bytes, &name)?
     };
@@ -115,7 +111,24 @@ fn check_dimensions(width: usize, height: usize, name: &str) -> Result<(), LoadE
 }
 
 /// Parses a binary (P5) or ASCII (P2) PGM with maxval 1..=65535.
-fn parse_pgm(bytes: &[u8]) -> Result<Raster, String> {
+fn parse_pgm(bytes: &[u8], name: &str) -> Result<Raster, LoadError> {
+    let (width, height, header_end, maxval) =
+        parse_pgm_header(bytes).map_err(|reason| LoadError::Decode {
+            name: name.to_owned(),
+            reason,
+        })?;
+    // Refuse oversized images before allocating.
+    check_dimensions(width, height, name)?;
+    parse_pgm_raster(bytes, width * height, header_end, maxval)
+        .map_err(|reason| LoadError::Decode {
+            name: name.to_owned(),
+            reason,
+        })
+        .map(|samples| (width, height, samples, maxval))
+}
+
+/// Width, height, the position after the header, and maxval.
+fn parse_pgm_header(bytes: &[u8]) -> Result<(usize, usize, usize, u32), String> {
     let mut pos = 2;
     let mut header = [0u64; 3];
     for (field, name) in header.iter_mut().zip(["width", "height", "maxval"]) {
@@ -125,12 +138,20 @@ fn parse_pgm(bytes: &[u8]) -> Result<Raster, String> {
     if maxval == 0 || maxval > 65535 {
         return Err(format!("PGM maxval must be 1..=65535, got {maxval}"));
     }
-    let (width, height) = (w as usize, h as usize);
-    if w < 2 || h < 2 || w * h > MAX_SAMPLES {
-        // Let the height field report the size problem in its own words.
-        check_dimensions(width, height, "").map_err(|e| e.to_string().trim_start_matches(": ").to_owned())?;
-    }
-    let count = width * height;
+    let (width, height) = (
+        usize::try_from(w).map_err(|_| format!("PGM width {w} is too large"))?,
+        usize::try_from(h).map_err(|_| format!("PGM height {h} is too large"))?,
+    );
+    Ok((width, height, pos, maxval as u32))
+}
+
+/// The samples of a PGM raster that starts after the header at `pos`.
+fn parse_pgm_raster(
+    bytes: &[u8],
+    count: usize,
+    mut pos: usize,
+    maxval: u32,
+) -> Result<Vec<u16>, String> {
     let samples = if bytes[1] == b'5' {
         // Exactly one whitespace byte separates the header from the raster.
         let start = pos + 1;
@@ -160,7 +181,7 @@ fn parse_pgm(bytes: &[u8]) -> Result<Raster, String> {
         }
         samples
     };
-    Ok((width, height, samples, maxval as u32))
+    Ok(samples)
 }
 
 /// Reads the next decimal number of a PGM header or ASCII raster, skipping whitespace and

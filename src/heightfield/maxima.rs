@@ -79,7 +79,10 @@ impl LineMaxima {
             let next_blocks = blocks.div_ceil(2);
             let mut next = Vec::with_capacity(next_blocks * lines);
             for line in below.chunks(blocks) {
-                next.extend(line.chunks(2).map(|pair| pair.iter().copied().max().unwrap_or(0)));
+                next.extend(
+                    line.chunks(2)
+                        .map(|pair| pair.iter().copied().max().unwrap_or(0)),
+                );
             }
             levels.push(next);
             blocks = next_blocks;
@@ -116,9 +119,10 @@ mod tests {
 
     #[test]
     fn range_maxima_match_brute_force() {
-        let field =
-            Heightfield::from_fn(13, 6, 1000, 1.0, |x, y| ((x * 7919 + y * 104729) % 997) as u16)
-                .unwrap();
+        let field = Heightfield::from_fn(13, 6, 1000, 1.0, |x, y| {
+            ((x * 7919 + y * 104729) % 997) as u16
+        })
+        .unwrap();
         let cells = CellMaxima::build(&field);
         let (rows, cols) = (LineMaxima::rows(&cells), LineMaxima::columns(&cells));
         let (nx, ny) = cells.size();

@@ -70,7 +70,11 @@ impl<S: Scalar> Frame<S> {
                 (0, n - 1)
             }
         };
-        let (nu, nv) = if swap { (size.1, size.0) } else { (size.0, size.1) };
+        let (nu, nv) = if swap {
+            (size.1, size.0)
+        } else {
+            (size.0, size.1)
+        };
         Frame {
             swap,
             flip_u,
@@ -118,13 +122,10 @@ impl<S: Scalar> Frame<S> {
         visit: &mut impl FnMut(Span<S>) -> std::ops::ControlFlow<()>,
     ) -> std::ops::ControlFlow<()> {
         let (lo, hi) = (span.cols.0.max(self.cols.0), span.cols.1.min(self.cols.1));
-        let mut first = span.row.max(self.rows.0);
+        let first = span.row.max(self.rows.0);
         let last = (span.row + i64::from(span.rows) - 1).min(self.rows.1);
         if lo > hi || first > last {
             return std::ops::ControlFlow::Continue(());
-        }
-        if span.rows == 2 && first == span.row + 1 {
-            first = span.row + 1;
         }
         span.cols = (lo, hi);
         span.row = first;

@@ -16,7 +16,7 @@ pub use exact::Exact;
 pub use rational::{with_bound, Rational, RationalEvents, DEFAULT_BOUND};
 pub use scalar::Scalar;
 
-use crate::geometry::{clip_to_box, RaySpace, Ray};
+use crate::geometry::{clip_to_box, Ray, RaySpace};
 use crate::heightfield::Terrain;
 use frame::{Frame, Span};
 use num_rational::BigRational;
@@ -40,7 +40,9 @@ pub enum Arith {
     F32,
     F64,
     /// Fractions with denominators at most `bound` (num-rational `Ratio<i64>` sized).
-    Rational { bound: u32 },
+    Rational {
+        bound: u32,
+    },
     /// No rounding at all: the DESIGN 2 answer for the given `f64` inputs.
     Exact,
 }
@@ -107,7 +109,8 @@ pub fn trace(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
         Arith::F64 => trace_in::<f64>(terrain, ray, options),
         Arith::Exact => trace_in::<Exact>(terrain, ray, options),
         Arith::Rational { bound } => {
-            let (mut trace, events) = with_bound(bound, || trace_in::<Rational>(terrain, ray, options));
+            let (mut trace, events) =
+                with_bound(bound, || trace_in::<Rational>(terrain, ray, options));
             trace.counters.rational_rounded = events.rounded;
             trace.counters.rational_saturated = events.saturated;
             trace
@@ -117,7 +120,12 @@ pub fn trace(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
 
 /// Every cell the walk of `method` covers for the whole clipped ray, in order, with no culling
 /// and no stop at a hit: in exact arithmetic, exactly the cells the projected segment touches.
-pub fn covered_cells(terrain: &Terrain, ray: &Ray, method: Method, arith: Arith) -> Vec<[usize; 2]> {
+pub fn covered_cells(
+    terrain: &Terrain,
+    ray: &Ray,
+    method: Method,
+    arith: Arith,
+) -> Vec<[usize; 2]> {
     fn cover<S: Scalar>(terrain: &Terrain, ray: &Ray, method: Method) -> Vec<[usize; 2]> {
         let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
         let Some(frame) = clip(terrain, &o, &d, ray) else {
@@ -134,7 +142,9 @@ pub fn covered_cells(terrain: &Terrain, ray: &Ray, method: Method, arith: Arith)
         Arith::F32 => cover::<f32>(terrain, ray, method),
         Arith::F64 => cover::<f64>(terrain, ray, method),
         Arith::Exact => cover::<Exact>(terrain, ray, method),
-        Arith::Rational { bound } => with_bound(bound, || cover::<Rational>(terrain, ray, method)).0,
+        Arith::Rational { bound } => {
+            with_bound(bound, || cover::<Rational>(terrain, ray, method)).0
+        }
     }
 }
 
@@ -144,7 +154,11 @@ fn clip<S: Scalar>(terrain: &Terrain, o: &[S; 3], d: &[S; 3], ray: &Ray) -> Opti
     let (w, h) = (field.width(), field.height());
     let (z_lo, z_hi) = terrain.z_range();
     let lo = [S::zero(), S::zero(), S::from_f64(z_lo)];
-    let hi = [S::from_i64(w as i64 - 1), S::from_i64(h as i64 - 1), S::from_f64(z_hi)];
+    let hi = [
+        S::from_i64(w as i64 - 1),
+        S::from_i64(h as i64 - 1),
+        S::from_f64(z_hi),
+    ];
     let range = clip_to_box(o, d, &lo, &hi)?;
     Some(Frame::new(o, d, ray.dir(), range, (w, h)))
 }

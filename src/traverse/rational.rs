@@ -11,8 +11,8 @@
 //! then never leaves denominator `q`.
 
 use super::scalar::Scalar;
-use num_integer::Integer;
 use num_bigint::BigInt;
+use num_integer::Integer;
 use num_rational::{BigRational, Ratio};
 use num_traits::Signed;
 use std::cell::Cell;

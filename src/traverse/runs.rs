@@ -53,7 +53,8 @@ pub fn walk<S: Scalar>(
     let threshold = one.clone() - a.clone() * S::from_i64(short);
 
     // The first intercept may exceed `a`: the first run is truncated.
-    let beta = (f.vs.clone() - S::from_i64(row)) + a.clone() * (S::from_i64(col + 1) - f.us.clone());
+    let beta =
+        (f.vs.clone() - S::from_i64(row)) + a.clone() * (S::from_i64(col + 1) - f.us.clone());
     let beta = beta.align_to(&a);
     let steps = if beta >= one {
         0

@@ -221,7 +221,10 @@ mod tests {
             tenth,
             BigRational::new(3602879701896397u64.into(), BigInt::from(1u8) << 55)
         );
-        assert_eq!(exact_from_f64(5e-324), BigRational::new(1.into(), BigInt::from(1u8) << 1074));
+        assert_eq!(
+            exact_from_f64(5e-324),
+            BigRational::new(1.into(), BigInt::from(1u8) << 1074)
+        );
     }
 
     #[test]

@@ -88,7 +88,8 @@ impl<S: Scalar> Search<'_, S> {
         let lowest = self.lowest_z(&span.t_lo, &span.t_hi);
         let (a, b) = (
             self.frame.cell(span.cols.0, span.row),
-            self.frame.cell(span.cols.1, span.row + i64::from(span.rows) - 1),
+            self.frame
+                .cell(span.cols.1, span.row + i64::from(span.rows) - 1),
         );
         let (lo_i, hi_i, lo_j, hi_j) = (a.0.min(b.0), a.0.max(b.0), a.1.min(b.1), a.1.max(b.1));
         let highest = if self.frame.swap {
@@ -120,9 +121,10 @@ impl<S: Scalar> Search<'_, S> {
                 (None, _) => false,
                 (Some(_), Query::FirstHit) => true,
                 // A shadow ray must touch the surface after its start.
-                (Some(h), Query::Shadow) => {
-                    h.t_last.as_ref().is_none_or(|t| !t.is_negative() && !t.is_zero())
-                }
+                (Some(h), Query::Shadow) => h
+                    .t_last
+                    .as_ref()
+                    .is_none_or(|t| !t.is_negative() && !t.is_zero()),
             };
             if !self.counters.triangle.record(counts) {
                 continue;

@@ -1,0 +1,69 @@
+//! Command-line arguments and the subcommands (DESIGN 4).
+
+mod trace;
+
+use clap::{Parser, Subcommand};
+use heightray::{Arith, Method};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Exact, fast ray tracing of terrain height fields on the CPU.
+#[derive(Parser, Debug)]
+#[command(name = "heightray", version, about)]
+pub struct Args {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Trace rays against a height field and print one JSON object per ray.
+    Trace(TraceArgs),
+}
+
+#[derive(clap::Args, Debug)]
+pub struct TraceArgs {
+    /// Height map: 8- or 16-bit grayscale PNG, or PGM (P2/P5).
+    pub map: PathBuf,
+    /// Height of the largest sample value (maxval).
+    #[arg(long, allow_hyphen_values = true)]
+    pub z_scale: f64,
+    /// Ray origin X,Y,Z.
+    #[arg(long, value_parser = parse_triple, allow_hyphen_values = true, requires = "dir", conflicts_with = "rays")]
+    pub origin: Option<[f64; 3]>,
+    /// Ray direction DX,DY,DZ (not normalised).
+    #[arg(long, value_parser = parse_triple, allow_hyphen_values = true, requires = "origin")]
+    pub dir: Option<[f64; 3]>,
+    /// A file of rays, one per line: `ox oy oz dx dy dz` (`#` starts a comment).
+    #[arg(long, required_unless_present = "origin")]
+    pub rays: Option<PathBuf>,
+    /// Traversal: runs, dda, or auto.
+    #[arg(long, default_value = "auto")]
+    pub method: Method,
+    /// Arithmetic: f32, f64, rational, rational:BOUND (denominator bound), or exact.
+    #[arg(long, default_value = "f64")]
+    pub arith: Arith,
+    /// List the cells each walk covered, in order.
+    #[arg(long)]
+    pub cells: bool,
+}
+
+/// Runs a subcommand; per-item failures are reported by the subcommand and turn into the
+/// exit code, whole-command failures into the error.
+pub fn run(command: Command) -> anyhow::Result<ExitCode> {
+    match command {
+        Command::Trace(args) => trace::run(&args),
+    }
+}
+
+fn parse_triple(s: &str) -> Result<[f64; 3], String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let [x, y, z] = parts[..] else {
+        return Err(format!("expected three comma-separated numbers, got '{s}'"));
+    };
+    let number = |p: &str| {
+        p.parse::<f64>()
+            .map_err(|_| format!("'{p}' is not a number"))
+    };
+    Ok([number(x)?, number(y)?, number(z)?])
+}
