@@ -3,8 +3,10 @@
 //! Data flows one way: a file becomes a [`Heightfield`], acceleration data makes it a
 //! [`Terrain`], and [`traverse::trace`] answers rays against it.
 
+pub mod bench;
 pub mod geometry;
 pub mod heightfield;
+pub mod render;
 pub mod traverse;
 
 pub use geometry::{Ray, RayError};

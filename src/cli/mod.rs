@@ -1,5 +1,7 @@
 //! Command-line arguments and the subcommands (DESIGN 4).
 
+mod bench;
+mod generate;
 mod trace;
 
 use clap::{Parser, Subcommand};
@@ -19,6 +21,53 @@ pub struct Args {
 pub enum Command {
     /// Trace rays against a height field and print one JSON object per ray.
     Trace(TraceArgs),
+    /// Benchmarks: `speed` (time and queries per ray, per method and arithmetic).
+    #[command(subcommand)]
+    Bench(BenchCommand),
+    /// Write a generated landscape (16-bit grayscale PNG) of the built-in generator.
+    Generate(GenerateArgs),
+}
+
+#[derive(Subcommand, Debug)]
+pub enum BenchCommand {
+    /// Time per primary ray and queries per ray for each method and arithmetic on one view,
+    /// one thread, with answers that differ from exact arithmetic.
+    Speed(SpeedArgs),
+}
+
+#[derive(clap::Args, Debug)]
+pub struct SpeedArgs {
+    /// Height map to use instead of the built-in terrain.
+    #[arg(long, requires = "z_scale")]
+    pub map: Option<PathBuf>,
+    /// z scale for --map.
+    #[arg(long)]
+    pub z_scale: Option<f64>,
+    /// Built-in terrain (valley513, small49).
+    #[arg(long, default_value = "valley513")]
+    pub builtin: String,
+    /// View width and height in pixels (one primary ray each).
+    #[arg(long, default_value_t = 128)]
+    pub size: u32,
+    /// Methods, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "runs,dda")]
+    pub methods: Vec<Method>,
+    /// Arithmetics, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "f32,f64,rational:65536,exact")]
+    pub ariths: Vec<Arith>,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct GenerateArgs {
+    /// Samples per side.
+    #[arg(long, default_value_t = 513)]
+    pub size: usize,
+    /// Noise seed.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Output PNG.
+    #[arg(short, long)]
+    pub output: PathBuf,
 }
 
 #[derive(clap::Args, Debug)]
@@ -53,6 +102,8 @@ pub struct TraceArgs {
 pub fn run(command: Command) -> anyhow::Result<ExitCode> {
     match command {
         Command::Trace(args) => trace::run(&args),
+        Command::Generate(args) => generate::run(&args),
+        Command::Bench(BenchCommand::Speed(args)) => bench::speed(&args),
     }
 }
 

@@ -37,6 +37,11 @@ impl Ray {
         }
         Ok(Ray { origin, dir })
     }
+    /// A ray whose components the caller has already shown finite, with a non-zero direction.
+    pub(crate) fn new_checked_by_caller(origin: [f64; 3], dir: [f64; 3]) -> Ray {
+        debug_assert!(Ray::new(origin, dir).is_ok());
+        Ray { origin, dir }
+    }
     pub fn origin(&self) -> [f64; 3] {
         self.origin
     }

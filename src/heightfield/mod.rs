@@ -1,10 +1,14 @@
 //! Height fields: samples on a grid, their height mapping, loading, and the per-cell maxima
 //! and range-maximum structures the traversals skip empty space with.
 
+mod builtin;
+mod generate;
 mod load;
 mod maxima;
 mod terrain;
 
+pub use builtin::{Builtin, BUILTINS};
+pub use generate::landscape;
 pub use load::{load, load_bytes, LoadError};
 pub use maxima::{CellMaxima, LineMaxima};
 pub use terrain::Terrain;

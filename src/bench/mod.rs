@@ -1,0 +1,5 @@
+//! Benchmarks: methods and arithmetics measured side by side in one run, as ratios.
+
+mod speed;
+
+pub use speed::{measure, SpeedRow};

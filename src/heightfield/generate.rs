@@ -1,0 +1,109 @@
+//! The project's own terrain generator: fractal noise, erosion-like ridges, a crater and a
+//! terraced slope, defined on the unit square so every size shows the same landscape.
+
+use super::{Heightfield, HeightfieldError};
+
+/// A generated landscape of `size x size` 16-bit samples (maxval 65535).
+pub fn landscape(size: usize, seed: u64, z_scale: f64) -> Result<Heightfield, HeightfieldError> {
+    let scale = 1.0 / (size.max(2) - 1) as f64;
+    let heights: Vec<f64> = (0..size * size)
+        .map(|k| shape((k % size) as f64 * scale, (k / size) as f64 * scale, seed))
+        .collect();
+    let (lo, hi) = heights
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &h| (lo.min(h), hi.max(h)));
+    let range = (hi - lo).max(f64::MIN_POSITIVE);
+    Heightfield::from_fn(size, size, 65535, z_scale, |x, y| {
+        ((heights[y * size + x] - lo) / range * 65535.0).round() as u16
+    })
+}
+
+/// Height (arbitrary units) at `(x, y)` in the unit square.
+fn shape(x: f64, y: f64, seed: u64) -> f64 {
+    // Rolling hills: fractal value noise.
+    let hills = fbm(x * 4.0, y * 4.0, seed, 7);
+    // Erosion-like ridges, strongest towards the north-west.
+    let ridge_mask = smoothstep(0.2, 0.9, (1.0 - x) * 0.6 + y * 0.6);
+    let ridges = ridged(x * 3.0 + 11.0, y * 3.0 + 7.0, seed ^ 0x9e37, 6) * ridge_mask;
+    let mut h = 0.45 * hills + 0.65 * ridges;
+    // A crater in the south-east: a bowl with a raised rim.
+    let (cx, cy, r) = (0.7, 0.3, 0.13);
+    let d = ((x - cx).powi(2) + (y - cy).powi(2)).sqrt() / r;
+    let bowl = if d < 1.0 { -0.55 * (1.0 - d * d) } else { 0.0 };
+    let rim = 0.3 * (-((d - 1.0) * 4.0).powi(2)).exp();
+    h += bowl + rim;
+    // Terraces on the south-west slope: heights snap to steps with soft risers.
+    let terrace_mask = smoothstep(0.55, 0.25, x) * smoothstep(0.6, 0.3, y);
+    let steps = 9.0;
+    let k = (h * steps).floor();
+    let frac = h * steps - k;
+    let terraced = (k + smoothstep(0.7, 1.0, frac)) / steps;
+    h + (terraced - h) * terrace_mask
+}
+
+fn smoothstep(edge0: f64, edge1: f64, x: f64) -> f64 {
+    let t = ((x - edge0) / (edge1 - edge0)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// Fractal sum of value noise, in about [-1, 1].
+fn fbm(x: f64, y: f64, seed: u64, octaves: u32) -> f64 {
+    let (mut sum, mut amplitude, mut frequency) = (0.0, 0.5, 1.0);
+    for octave in 0..octaves {
+        sum += amplitude * value_noise(x * frequency, y * frequency, seed + u64::from(octave));
+        amplitude *= 0.5;
+        frequency *= 2.03;
+    }
+    sum
+}
+
+/// Ridged multifractal: sharp crests where the noise crosses zero, in about [0, 1].
+fn ridged(x: f64, y: f64, seed: u64, octaves: u32) -> f64 {
+    let (mut sum, mut amplitude, mut frequency, mut weight) = (0.0, 0.5, 1.0, 1.0);
+    for octave in 0..octaves {
+        let n = 1.0 - value_noise(x * frequency, y * frequency, seed + u64::from(octave)).abs();
+        let n = n * n * weight;
+        weight = (n * 2.0).clamp(0.0, 1.0);
+        sum += amplitude * n;
+        amplitude *= 0.5;
+        frequency *= 2.1;
+    }
+    sum
+}
+
+/// Smoothly interpolated lattice noise in [-1, 1].
+fn value_noise(x: f64, y: f64, seed: u64) -> f64 {
+    let (x0, y0) = (x.floor(), y.floor());
+    let (fx, fy) = (x - x0, y - y0);
+    let (sx, sy) = (fx * fx * (3.0 - 2.0 * fx), fy * fy * (3.0 - 2.0 * fy));
+    let (ix, iy) = (x0 as i64, y0 as i64);
+    let at = |dx: i64, dy: i64| lattice(ix + dx, iy + dy, seed);
+    let bottom = at(0, 0) + (at(1, 0) - at(0, 0)) * sx;
+    let top = at(0, 1) + (at(1, 1) - at(0, 1)) * sx;
+    bottom + (top - bottom) * sy
+}
+
+/// A pseudo-random value in [-1, 1] for a lattice point (SplitMix64 finaliser).
+fn lattice(x: i64, y: i64, seed: u64) -> f64 {
+    let mut z = seed
+        .wrapping_add((x as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15))
+        .wrapping_add((y as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F));
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^= z >> 31;
+    (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uses_the_full_sample_range_and_is_deterministic() {
+        let a = landscape(33, 7, 100.0).unwrap();
+        let b = landscape(33, 7, 100.0).unwrap();
+        assert_eq!(a.samples(), b.samples());
+        assert_eq!(a.samples().iter().max(), Some(&65535));
+        assert_eq!(a.samples().iter().min(), Some(&0));
+    }
+}
