@@ -2,4 +2,4 @@
 
 mod speed;
 
-pub use speed::{measure, SpeedRow};
+pub use speed::{measure, Disagreement, SpeedRow};

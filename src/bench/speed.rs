@@ -15,8 +15,41 @@ pub struct SpeedRow {
     pub hits: u64,
     pub time: Duration,
     pub counters: Counters,
-    /// Answers that differ from exact arithmetic on the same method (if measured).
-    pub differ_from_exact: Option<u64>,
+    /// How the answers differ from exact arithmetic on the same method (if measured).
+    pub versus_exact: Option<Disagreement>,
+}
+
+/// How a set of answers differs from the exact answers to the same rays.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Disagreement {
+    /// A hit where exact misses, or the other way round.
+    pub hit_or_miss: u64,
+    /// Both hit, but another cell or triangle.
+    pub cell_or_triangle: u64,
+    /// Same cell and triangle, `t` off by more than a relative 1e-9.
+    pub t_error: u64,
+    /// The largest relative error of `t` among rays hitting the same triangle.
+    pub worst_t_error: f64,
+}
+
+impl Disagreement {
+    /// Compares answers with the exact answers to the same rays.
+    pub fn between(answers: &[Option<Hit>], exact: &[Option<Hit>]) -> Disagreement {
+        let mut d = Disagreement::default();
+        for (a, e) in answers.iter().zip(exact) {
+            match (a, e) {
+                (None, None) => {}
+                (Some(a), Some(e)) if a.cell == e.cell && a.triangle == e.triangle => {
+                    let error = (a.t - e.t).abs() / e.t.abs().max(f64::MIN_POSITIVE);
+                    d.worst_t_error = d.worst_t_error.max(error);
+                    d.t_error += u64::from(error > 1e-9);
+                }
+                (Some(_), Some(_)) => d.cell_or_triangle += 1,
+                _ => d.hit_or_miss += 1,
+            }
+        }
+        d
+    }
 }
 
 impl SpeedRow {
@@ -31,16 +64,27 @@ impl SpeedRow {
 }
 
 /// Traces every pixel's primary ray of `camera` with each method and arithmetic, one thread.
-pub fn measure(terrain: &Terrain, camera: &Camera, methods: &[Method], ariths: &[Arith]) -> Vec<SpeedRow> {
+pub fn measure(
+    terrain: &Terrain,
+    camera: &Camera,
+    methods: &[Method],
+    ariths: &[Arith],
+) -> Vec<SpeedRow> {
     let (w, h) = camera.size();
-    let rays: Vec<_> = (0..h).flat_map(|py| (0..w).map(move |px| (px, py))).map(|(px, py)| camera.ray(px, py)).collect();
+    let rays: Vec<_> = (0..h)
+        .flat_map(|py| (0..w).map(move |px| (px, py)))
+        .map(|(px, py)| camera.ray(px, py))
+        .collect();
     let mut rows = Vec::new();
     for &method in methods {
         let mut answers = Vec::new();
         for &arith in ariths {
             let options = TraceOptions::new(method, arith);
             let start = Instant::now();
-            let traces: Vec<_> = rays.iter().map(|ray| trace(terrain, ray, &options)).collect();
+            let traces: Vec<_> = rays
+                .iter()
+                .map(|ray| trace(terrain, ray, &options))
+                .collect();
             let time = start.elapsed();
             let mut counters = Counters::default();
             for t in &traces {
@@ -53,7 +97,7 @@ pub fn measure(terrain: &Terrain, camera: &Camera, methods: &[Method], ariths: &
                 hits: traces.iter().filter(|t| t.hit.is_some()).count() as u64,
                 time,
                 counters,
-                differ_from_exact: None,
+                versus_exact: None,
             });
             answers.push(traces.into_iter().map(|t| t.hit).collect::<Vec<_>>());
         }
@@ -61,21 +105,9 @@ pub fn measure(terrain: &Terrain, camera: &Camera, methods: &[Method], ariths: &
         let first = rows.len() - ariths.len();
         if let Some(exact) = ariths.iter().position(|&a| a == Arith::Exact) {
             for (k, row) in rows[first..].iter_mut().enumerate() {
-                let differ = answers[k].iter().zip(&answers[exact]).filter(|(a, b)| !same_answer(a, b)).count();
-                row.differ_from_exact = Some(differ as u64);
+                row.versus_exact = Some(Disagreement::between(&answers[k], &answers[exact]));
             }
         }
     }
     rows
-}
-
-/// Same hit or miss, same cell and triangle, and `t` within a relative 1e-9.
-pub fn same_answer(a: &Option<Hit>, b: &Option<Hit>) -> bool {
-    match (a, b) {
-        (None, None) => true,
-        (Some(a), Some(b)) => {
-            a.cell == b.cell && a.triangle == b.triangle && (a.t - b.t).abs() <= 1e-9 * b.t.abs().max(1e-300)
-        }
-        _ => false,
-    }
 }

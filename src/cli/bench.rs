@@ -15,7 +15,11 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
         _ => {
             let builtin = Builtin::named(&args.builtin).with_context(|| {
                 let names: Vec<_> = BUILTINS.iter().map(|b| b.name).collect();
-                format!("no built-in terrain '{}'; there are {}", args.builtin, names.join(", "))
+                format!(
+                    "no built-in terrain '{}'; there are {}",
+                    args.builtin,
+                    names.join(", ")
+                )
             })?;
             (builtin.load()?, builtin.name.to_owned())
         }
@@ -32,8 +36,8 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
     );
     let rows = measure(&terrain, &camera, &args.methods, &args.ariths);
     println!();
-    println!("| method | arith | ns/ray | x f64 | hits | run q/ray | cell q/ray | triangle q/ray | cell E/N | differ from exact |");
-    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("| method | arith | ns/ray | x f64 | hits | run q/ray | cell q/ray | triangle q/ray | cell E/N | vs exact: hit/miss | cell/tri | t err > 1e-9 | worst t err |");
+    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for row in &rows {
         let f64_ns = rows
             .iter()
@@ -51,7 +55,10 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
             row.per_ray(c.cell.total()),
             row.per_ray(c.triangle.total()),
             c.cell.miss as f64 / c.cell.hit.max(1) as f64,
-            row.differ_from_exact.map_or("-".into(), |d| d.to_string()),
+            row.versus_exact.map_or("- | - | - | -".into(), |d| format!(
+                "{} | {} | {} | {:.1e}",
+                d.hit_or_miss, d.cell_or_triangle, d.t_error, d.worst_t_error
+            )),
         );
     }
     Ok(ExitCode::SUCCESS)
@@ -64,5 +71,11 @@ fn default_view(terrain: &Terrain, size: u32) -> anyhow::Result<Camera> {
     let (_, z_hi) = terrain.z_range();
     let eye = [-0.08 * w, -0.12 * h, 1.5 * z_hi.max(1.0) + 0.2 * w];
     let target = [0.5 * w, 0.5 * h, 0.33 * z_hi];
-    Ok(Camera::look_at(eye, target, [0.0, 0.0, 1.0], 45.0, (size, size))?)
+    Ok(Camera::look_at(
+        eye,
+        target,
+        [0.0, 0.0, 1.0],
+        45.0,
+        (size, size),
+    )?)
 }

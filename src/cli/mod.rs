@@ -53,7 +53,11 @@ pub struct SpeedArgs {
     #[arg(long, value_delimiter = ',', default_value = "runs,dda")]
     pub methods: Vec<Method>,
     /// Arithmetics, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "f32,f64,rational:65536,exact")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "f32,f64,rational:65536,exact"
+    )]
     pub ariths: Vec<Arith>,
 }
 

@@ -11,7 +11,9 @@ pub fn landscape(size: usize, seed: u64, z_scale: f64) -> Result<Heightfield, He
         .collect();
     let (lo, hi) = heights
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &h| (lo.min(h), hi.max(h)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &h| {
+            (lo.min(h), hi.max(h))
+        });
     let range = (hi - lo).max(f64::MIN_POSITIVE);
     Heightfield::from_fn(size, size, 65535, z_scale, |x, y| {
         ((heights[y * size + x] - lo) / range * 65535.0).round() as u16

@@ -48,10 +48,10 @@ impl CellMaxima {
 /// `[b * 2^k, (b+1) * 2^k)` of each line. Memory: about twice the cell maxima.
 #[derive(Clone, Debug)]
 pub struct LineMaxima {
-    /// Cells per line.
-    len: usize,
-    /// `levels[k]` has `lines * blocks(k)` entries, line-major.
+    /// `levels[k]` has `lines * blocks[k]` entries, line-major.
     levels: Vec<Vec<u16>>,
+    /// Blocks per line at each level.
+    blocks: Vec<usize>,
 }
 
 impl LineMaxima {
@@ -72,22 +72,20 @@ impl LineMaxima {
         for line in 0..lines {
             level0.extend((0..len).map(|k| cell(line, k)));
         }
-        let mut levels = vec![level0];
-        let mut blocks = len;
-        while blocks > 1 {
-            let below = &levels[levels.len() - 1];
-            let next_blocks = blocks.div_ceil(2);
-            let mut next = Vec::with_capacity(next_blocks * lines);
-            for line in below.chunks(blocks) {
+        let (mut levels, mut blocks) = (vec![level0], vec![len]);
+        while blocks[blocks.len() - 1] > 1 {
+            let (below, n) = (&levels[levels.len() - 1], blocks[blocks.len() - 1]);
+            let mut next = Vec::with_capacity(n.div_ceil(2) * lines);
+            for line in below.chunks(n) {
                 next.extend(
                     line.chunks(2)
                         .map(|pair| pair.iter().copied().max().unwrap_or(0)),
                 );
             }
             levels.push(next);
-            blocks = next_blocks;
+            blocks.push(n.div_ceil(2));
         }
-        LineMaxima { len, levels }
+        LineMaxima { levels, blocks }
     }
 
     /// Highest cell maximum among cells `lo..=hi` of line `line`.
@@ -96,12 +94,8 @@ impl LineMaxima {
         let mut best = 0;
         while lo < end {
             // The largest aligned block that starts at `lo` and ends by `end`.
-            let mut k = (lo.trailing_zeros() as usize).min(self.levels.len() - 1);
-            while lo + (1 << k) > end {
-                k -= 1;
-            }
-            let blocks = self.len.div_ceil(1 << k);
-            best = best.max(self.levels[k][line * blocks + (lo >> k)]);
+            let k = (lo.trailing_zeros()).min((end - lo).ilog2()) as usize;
+            best = best.max(self.levels[k][line * self.blocks[k] + (lo >> k)]);
             lo += 1 << k;
         }
         best

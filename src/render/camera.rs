@@ -54,8 +54,13 @@ impl Camera {
         if width == 0 || height == 0 {
             return Err(CameraError::EmptyImage(width, height));
         }
-        let forward = (target - eye).try_normalize().ok_or(CameraError::EyeIsTarget)?;
-        let right = forward.cross(up).try_normalize().ok_or(CameraError::UpParallel)?;
+        let forward = (target - eye)
+            .try_normalize()
+            .ok_or(CameraError::EyeIsTarget)?;
+        let right = forward
+            .cross(up)
+            .try_normalize()
+            .ok_or(CameraError::UpParallel)?;
         let h = (fov_y_deg.to_radians() / 2.0).tan();
         let aspect = f64::from(width) / f64::from(height);
         Ok(Camera {
@@ -78,7 +83,11 @@ impl Camera {
         size: (u32, u32),
     ) -> Result<Camera, CameraError> {
         let (yaw, pitch) = (yaw_deg.to_radians(), pitch_deg.to_radians());
-        let offset = DVec3::new(yaw.cos() * pitch.cos(), yaw.sin() * pitch.cos(), pitch.sin());
+        let offset = DVec3::new(
+            yaw.cos() * pitch.cos(),
+            yaw.sin() * pitch.cos(),
+            pitch.sin(),
+        );
         let eye = DVec3::from(target) + offset * distance;
         Camera::look_at(eye.into(), target, [0.0, 0.0, 1.0], fov_y_deg, size)
     }
@@ -105,11 +114,19 @@ mod tests {
 
     #[test]
     fn centre_pixel_looks_at_target_and_corners_follow_the_convention() {
-        let cam = Camera::look_at([0.0, 0.0, 0.0], [0.0, 10.0, 0.0], [0.0, 0.0, 1.0], 90.0, (2, 2))
-            .unwrap();
+        let cam = Camera::look_at(
+            [0.0, 0.0, 0.0],
+            [0.0, 10.0, 0.0],
+            [0.0, 0.0, 1.0],
+            90.0,
+            (2, 2),
+        )
+        .unwrap();
         // fov 90: h = 1. Pixel (0,0) is the top-left: x = -0.5, z = +0.5.
         let d = cam.ray(0, 0).dir();
-        assert!((d[0] + 0.5).abs() < 1e-12 && (d[1] - 1.0).abs() < 1e-12 && (d[2] - 0.5).abs() < 1e-12);
+        assert!(
+            (d[0] + 0.5).abs() < 1e-12 && (d[1] - 1.0).abs() < 1e-12 && (d[2] - 0.5).abs() < 1e-12
+        );
         assert_eq!(
             Camera::look_at([1.0; 3], [1.0; 3], [0.0, 0.0, 1.0], 45.0, (1, 1)),
             Err(CameraError::EyeIsTarget)

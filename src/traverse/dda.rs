@@ -45,7 +45,7 @@ pub fn walk<S: Scalar>(
     }
 
     // Parameters of the next u and v grid line crossings, and their increments.
-    let (step_u, step_v) = (S::one() / f.du.clone(), S::one() / f.dv.clone());
+    let (step_u, step_v) = (f.inv_du.clone(), f.inv_dv.clone());
     let (mut next_u, mut next_v) = (f.t_at_u(cu + 1), f.t_at_v(cv + 1));
     let mut t_enter = t0;
     while cu <= f.cols.1 && cv <= f.rows.1 {

@@ -29,6 +29,9 @@ pub struct Frame<S> {
     pub ov: S,
     pub du: S,
     pub dv: S,
+    /// `1/du` and `1/dv` (zero where the component is zero: never used then).
+    pub inv_du: S,
+    pub inv_dv: S,
     /// The clipped segment `[t0, t1]` and its end points.
     pub t0: S,
     pub t1: S,
@@ -70,6 +73,14 @@ impl<S: Scalar> Frame<S> {
                 (0, n - 1)
             }
         };
+        let inverse = |x: &S| {
+            if x.is_zero() {
+                S::zero()
+            } else {
+                S::one() / x.clone()
+            }
+        };
+        let (inv_du, inv_dv) = (inverse(&du), inverse(&dv));
         let (nu, nv) = if swap {
             (size.1, size.0)
         } else {
@@ -83,6 +94,8 @@ impl<S: Scalar> Frame<S> {
             ov,
             du,
             dv,
+            inv_du,
+            inv_dv,
             t0,
             t1,
             us,
@@ -107,12 +120,12 @@ impl<S: Scalar> Frame<S> {
 
     /// The ray parameter where the path crosses the grid line `u = k` (`du` non-zero).
     pub fn t_at_u(&self, k: i64) -> S {
-        (S::from_i64(k) - self.ou.clone()) / self.du.clone()
+        (S::from_i64(k) - self.ou.clone()) * self.inv_du.clone()
     }
 
     /// The ray parameter where the path crosses the grid line `v = k` (`dv` non-zero).
     pub fn t_at_v(&self, k: i64) -> S {
-        (S::from_i64(k) - self.ov.clone()) / self.dv.clone()
+        (S::from_i64(k) - self.ov.clone()) * self.inv_dv.clone()
     }
 
     /// Clamps a span to the grid and hands it on; empty spans are dropped.
