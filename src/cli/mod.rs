@@ -2,6 +2,7 @@
 
 mod bench;
 mod generate;
+mod render;
 mod trace;
 
 use clap::{Parser, Subcommand};
@@ -19,6 +20,8 @@ pub struct Args {
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
+    /// Render a scene file to a PNG, with statistics.
+    Render(RenderArgs),
     /// Trace rays against a height field and print one JSON object per ray.
     Trace(TraceArgs),
     /// Benchmarks: `speed` (time and queries per ray, per method and arithmetic).
@@ -75,6 +78,27 @@ pub struct GenerateArgs {
 }
 
 #[derive(clap::Args, Debug)]
+pub struct RenderArgs {
+    /// Scene file (TOML).
+    pub scene: PathBuf,
+    /// Output PNG.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Traversal, overriding the scene's.
+    #[arg(long)]
+    pub method: Option<Method>,
+    /// Arithmetic, overriding the scene's.
+    #[arg(long)]
+    pub arith: Option<Arith>,
+    /// Write the frame's statistics as JSON.
+    #[arg(long)]
+    pub stats: Option<PathBuf>,
+}
+
+#[derive(clap::Args, Debug)]
 pub struct TraceArgs {
     /// Height map: 8- or 16-bit grayscale PNG, or PGM (P2/P5).
     pub map: PathBuf,
@@ -106,6 +130,7 @@ pub struct TraceArgs {
 pub fn run(command: Command) -> anyhow::Result<ExitCode> {
     match command {
         Command::Trace(args) => trace::run(&args),
+        Command::Render(args) => render::run(&args),
         Command::Generate(args) => generate::run(&args),
         Command::Bench(BenchCommand::Speed(args)) => bench::speed(&args),
     }

@@ -34,6 +34,11 @@ impl Builtin {
 
     /// Decodes it with its suggested z scale.
     pub fn load(&self) -> Result<Heightfield, LoadError> {
-        load_bytes(self.png, self.z_scale, self.name)
+        self.load_scaled(self.z_scale)
+    }
+
+    /// Decodes it with the given z scale.
+    pub fn load_scaled(&self, z_scale: f64) -> Result<Heightfield, LoadError> {
+        load_bytes(self.png, z_scale, self.name)
     }
 }

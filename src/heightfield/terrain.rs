@@ -13,6 +13,7 @@ pub struct Terrain {
     columns: LineMaxima,
     min_sample: u16,
     max_sample: u16,
+    max_slope: f64,
     build_time: Duration,
 }
 
@@ -25,7 +26,9 @@ impl Terrain {
         let columns = LineMaxima::columns(&cells);
         let min_sample = field.samples().iter().copied().min().unwrap_or(0);
         let max_sample = field.samples().iter().copied().max().unwrap_or(0);
+        let max_slope = max_slope(&field);
         Terrain {
+            max_slope,
             field,
             cells,
             rows,
@@ -58,6 +61,11 @@ impl Terrain {
             self.field.height_of(self.max_sample),
         )
     }
+    /// The steepest gradient of any triangle (height per unit of horizontal distance): no
+    /// path on the surface climbs faster, which bounds where shadows can fall.
+    pub fn max_slope(&self) -> f64 {
+        self.max_slope
+    }
     /// Time spent building the acceleration data.
     pub fn build_time(&self) -> Duration {
         self.build_time
@@ -67,4 +75,20 @@ impl Terrain {
         let (nx, ny) = self.cells.size();
         nx * ny * 2 + self.rows.bytes() + self.columns.bytes()
     }
+}
+
+/// Largest gradient magnitude over all triangles. The gradient of `T0` is
+/// `(z10 - z00, z11 - z10)`, of `T1` `(z11 - z01, z01 - z00)`.
+fn max_slope(field: &Heightfield) -> f64 {
+    let mut steepest: f64 = 0.0;
+    for j in 0..field.height() - 1 {
+        for i in 0..field.width() - 1 {
+            let (z00, z10) = (field.z(i, j), field.z(i + 1, j));
+            let (z01, z11) = (field.z(i, j + 1), field.z(i + 1, j + 1));
+            steepest = steepest
+                .max((z10 - z00).hypot(z11 - z10))
+                .max((z11 - z01).hypot(z01 - z00));
+        }
+    }
+    steepest
 }

@@ -1,5 +1,14 @@
-//! Turning rays into pixels: cameras (and, to come, scenes, shading and passes).
+//! Turning rays into pixels: cameras, scene files, shading and effects, progressive passes,
+//! and the statistics of a frame.
 
 mod camera;
+mod passes;
+mod scene;
+mod shade;
+mod stats;
 
 pub use camera::{Camera, CameraError};
+pub use passes::{Frame, Renderer, PASS_BLOCKS};
+pub use scene::{Lighting, Normals, Ramp, Scene, SceneError, SceneFile};
+pub use shade::{Sample, Shader, Shadow, ShadowSkip};
+pub use stats::{FrameStats, PixelStats};

@@ -48,6 +48,9 @@ impl Scalar for Exact {
     fn to_f64(&self) -> f64 {
         self.0.to_f64().unwrap_or(f64::NAN)
     }
+    fn rounding_error(_magnitude: f64) -> f64 {
+        0.0
+    }
     fn floor_i64(&self) -> i64 {
         saturating_i64(&self.0.floor().to_integer())
     }

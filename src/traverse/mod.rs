@@ -20,6 +20,7 @@ use crate::geometry::{clip_to_box, Ray, RaySpace};
 use crate::heightfield::Terrain;
 use frame::{Frame, Span};
 use num_rational::BigRational;
+pub use search::Found;
 use search::{span_cells, Search};
 use std::fmt;
 use std::ops::ControlFlow;
@@ -56,6 +57,26 @@ pub enum Query {
     Shadow,
 }
 
+/// How to walk, whatever the arithmetic.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WalkOptions {
+    pub method: Method,
+    pub query: Query,
+    /// List the cells the walk covered, in order.
+    pub record_cells: bool,
+}
+
+impl WalkOptions {
+    /// A query of the given kind without cell recording.
+    pub fn new(method: Method, query: Query) -> Self {
+        WalkOptions {
+            method,
+            query,
+            record_cells: false,
+        }
+    }
+}
+
 /// How to trace.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TraceOptions {
@@ -67,6 +88,15 @@ pub struct TraceOptions {
 }
 
 impl TraceOptions {
+    /// The walk part of the options.
+    pub fn walk(&self) -> WalkOptions {
+        WalkOptions {
+            method: self.method,
+            query: self.query,
+            record_cells: self.record_cells,
+        }
+    }
+
     /// A first-hit query without cell recording.
     pub fn new(method: Method, arith: Arith) -> Self {
         TraceOptions {
@@ -128,7 +158,7 @@ pub fn covered_cells(
 ) -> Vec<[usize; 2]> {
     fn cover<S: Scalar>(terrain: &Terrain, ray: &Ray, method: Method) -> Vec<[usize; 2]> {
         let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
-        let Some(frame) = clip(terrain, &o, &d, ray) else {
+        let Some(frame) = clip(terrain, &o, &d, ray.dir()) else {
             return Vec::new();
         };
         let mut cells = Vec::new();
@@ -149,7 +179,12 @@ pub fn covered_cells(
 }
 
 /// The ray clipped to the terrain's box, in the octant frame.
-fn clip<S: Scalar>(terrain: &Terrain, o: &[S; 3], d: &[S; 3], ray: &Ray) -> Option<Frame<S>> {
+fn clip<S: Scalar>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+) -> Option<Frame<S>> {
     let field = terrain.field();
     let (w, h) = (field.width(), field.height());
     let (z_lo, z_hi) = terrain.z_range();
@@ -160,7 +195,7 @@ fn clip<S: Scalar>(terrain: &Terrain, o: &[S; 3], d: &[S; 3], ray: &Ray) -> Opti
         S::from_f64(z_hi),
     ];
     let range = clip_to_box(o, d, &lo, &hi)?;
-    Some(Frame::new(o, d, ray.dir(), range, (w, h)))
+    Some(Frame::new(o, d, dir_f64, range, (w, h)))
 }
 
 fn walk<S: Scalar>(
@@ -177,29 +212,9 @@ fn walk<S: Scalar>(
 
 fn trace_in<S: Scalar>(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
     let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
-    let mut trace = Trace::default();
-    let frame = clip(terrain, &o, &d, ray);
-    if !trace.counters.bbox.record(frame.is_some()) {
-        return trace;
-    }
-    let Some(frame) = frame else { return trace };
-    let mut search = Search {
-        terrain,
-        frame: &frame,
-        ray: RaySpace::new(o.clone(), d.clone(), ray.dir()),
-        oz: o[2].clone(),
-        dz: d[2].clone(),
-        query: options.query,
-        run_test: options.method == Method::Runs,
-        counters: trace.counters,
-        found: None,
-        cells: options.record_cells.then(Vec::new),
-    };
-    walk(&frame, options.method, &mut |span| search.span(span));
-    trace.counters = search.counters;
-    trace.cells = search.cells.unwrap_or_default();
-    trace.hit = search.found.map(|found| {
-        let point = [0, 1, 2].map(|k| (o[k].clone() + d[k].clone() * found.t.clone()).to_f64());
+    let answer = trace_scalar(terrain, &o, &d, ray.dir(), options.walk());
+    let hit = answer.hit.map(|found| {
+        let point = found.point(&o, &d).map(|c| c.to_f64());
         Hit {
             t: found.t.to_f64(),
             t_exact: found.t.to_exact(),
@@ -208,7 +223,61 @@ fn trace_in<S: Scalar>(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> 
             triangle: found.triangle,
         }
     });
-    trace
+    Trace {
+        hit,
+        counters: answer.counters,
+        cells: answer.cells,
+    }
+}
+
+/// The answer for one ray, in the arithmetic it was traced in.
+#[derive(Clone, Debug)]
+pub struct ScalarTrace<S> {
+    pub hit: Option<Found<S>>,
+    pub counters: Counters,
+    pub cells: Vec<[usize; 2]>,
+}
+
+/// Traces a ray given in the traversal's own arithmetic (for rays that start where another
+/// ray hit: exact mode keeps the exact point). `dir_f64` is the direction as given, which
+/// picks the octant and axes identically in every arithmetic. For [`Rational`] the caller
+/// sets the bound, see [`with_bound`].
+pub fn trace_scalar<S: Scalar>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+) -> ScalarTrace<S> {
+    let mut counters = Counters::default();
+    let frame = clip(terrain, o, d, dir_f64);
+    let Some(frame) = frame else {
+        counters.bbox.record(false);
+        return ScalarTrace {
+            hit: None,
+            counters,
+            cells: Vec::new(),
+        };
+    };
+    counters.bbox.record(true);
+    let mut search = Search {
+        terrain,
+        frame: &frame,
+        ray: RaySpace::new(o.clone(), d.clone(), dir_f64),
+        oz: o[2].clone(),
+        dz: d[2].clone(),
+        query: walk_options.query,
+        run_test: walk_options.method == Method::Runs,
+        counters,
+        found: None,
+        cells: walk_options.record_cells.then(Vec::new),
+    };
+    walk(&frame, walk_options.method, &mut |span| search.span(span));
+    ScalarTrace {
+        hit: search.found,
+        counters: search.counters,
+        cells: search.cells.unwrap_or_default(),
+    }
 }
 
 impl fmt::Display for Method {

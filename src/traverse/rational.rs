@@ -226,6 +226,12 @@ impl Scalar for Rational {
     fn to_f64(&self) -> f64 {
         self.num as f64 / self.den as f64
     }
+    fn rounding_error(magnitude: f64) -> f64 {
+        // Values are rounded to multiples of 1/bound (coarser for huge values, whose
+        // numerators would not fit): mostly an absolute error.
+        let bound = BOUND.with(Cell::get) as f64;
+        (1.0 / bound).max(magnitude * bound / i64::MAX as f64)
+    }
     fn floor_i64(&self) -> i64 {
         self.num.div_euclid(self.den)
     }

@@ -48,6 +48,10 @@ pub trait Scalar:
         self
     }
 
+    /// The size of one rounding of a value of about `magnitude` in this arithmetic (zero when
+    /// exact): what separates a computed point from the surface it was computed on.
+    fn rounding_error(magnitude: f64) -> f64;
+
     /// The exact value as a fraction, for arithmetics that have one.
     fn to_exact(&self) -> Option<BigRational> {
         None
@@ -142,6 +146,9 @@ impl Scalar for f64 {
     fn from_i64(n: i64) -> Self {
         n as f64
     }
+    fn rounding_error(magnitude: f64) -> f64 {
+        magnitude * f64::EPSILON / 2.0
+    }
     fn to_f64(&self) -> f64 {
         *self
     }
@@ -177,6 +184,9 @@ impl Scalar for f32 {
     }
     fn from_i64(n: i64) -> Self {
         n as f32
+    }
+    fn rounding_error(magnitude: f64) -> f64 {
+        magnitude * f64::from(f32::EPSILON) / 2.0
     }
     fn to_f64(&self) -> f64 {
         f64::from(*self)

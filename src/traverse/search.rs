@@ -9,12 +9,19 @@ use crate::geometry::{CellTriangles, RaySpace};
 use crate::heightfield::Terrain;
 use std::ops::ControlFlow;
 
-/// The best hit so far.
+/// A hit: the ray parameter, the cell `(i, j)` and its triangle (0 or 1).
 #[derive(Clone, Debug)]
 pub struct Found<S> {
     pub t: S,
     pub cell: (usize, usize),
     pub triangle: u8,
+}
+
+impl<S: Scalar> Found<S> {
+    /// The hit point `o + t*d`, in the ray's arithmetic.
+    pub fn point(&self, o: &[S; 3], d: &[S; 3]) -> [S; 3] {
+        [0, 1, 2].map(|k| o[k].clone() + d[k].clone() * self.t.clone())
+    }
 }
 
 /// Searches the spans of one walk for the first hit (or any hit, for shadow queries).

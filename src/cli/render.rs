@@ -1,0 +1,75 @@
+//! `heightray render`: a scene to a PNG and statistics in the paper's shape.
+
+use super::RenderArgs;
+use anyhow::Context;
+use heightray::render::{Frame, Renderer, Scene, Shader};
+use heightray::Terrain;
+use image::{ImageBuffer, Rgb};
+use serde_json::json;
+use std::process::ExitCode;
+use std::time::Instant;
+
+pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
+    let scene = Scene::load(&args.scene)?;
+    let method = args.method.unwrap_or(scene.method);
+    let arith = args.arith.unwrap_or(scene.arith);
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(threads) = args.threads {
+        anyhow::ensure!(threads > 0, "--threads must be at least 1");
+        pool = pool.num_threads(threads);
+    }
+    let pool = pool.build().context("cannot start worker threads")?;
+
+    let terrain = Terrain::new(scene.field);
+    let renderer = Renderer {
+        shader: Shader {
+            terrain: &terrain,
+            lighting: scene.lighting,
+            method,
+        },
+        camera: scene.camera,
+        arith,
+    };
+    let (width, height) = scene.camera.size();
+    let mut frame = Frame::new(width, height);
+    let start = Instant::now();
+    pool.install(|| renderer.render(&mut frame));
+    let render_ms = start.elapsed().as_secs_f64() * 1e3;
+    let build_ms = terrain.build_time().as_secs_f64() * 1e3;
+
+    save_png(&frame, &args.output)?;
+    let label = args.scene.display().to_string();
+    print!("{}", frame.totals.table(&label, build_ms, render_ms));
+    let rays = frame.totals.primary_rays + frame.totals.shadow_rays;
+    println!(
+        "{:.3} Mrays/s ({} threads, {method}, {arith})",
+        rays as f64 / render_ms / 1e3,
+        pool.current_num_threads()
+    );
+    if let Some(path) = &args.stats {
+        let mut stats = json!({
+            "width": width, "height": height, "threads": pool.current_num_threads(),
+            "method": method.to_string(), "arith": arith.to_string(),
+            "build_ms": build_ms, "render_ms": render_ms,
+            "rays_per_second": rays as f64 / (render_ms / 1e3),
+        });
+        if let (Some(object), serde_json::Value::Object(more)) =
+            (stats.as_object_mut(), frame.totals.to_json())
+        {
+            object.extend(more);
+        }
+        std::fs::write(path, serde_json::to_string_pretty(&stats)? + "\n")
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn save_png(frame: &Frame, path: &std::path::Path) -> anyhow::Result<()> {
+    let image = ImageBuffer::from_fn(frame.width, frame.height, |x, y| {
+        let rgb = frame.pixels[(y * frame.width + x) as usize];
+        Rgb([(rgb >> 16) as u8, (rgb >> 8) as u8, rgb as u8])
+    });
+    image
+        .save(path)
+        .with_context(|| format!("cannot write {}", path.display()))
+}

@@ -1,0 +1,150 @@
+//! Progressive, multi-threaded rendering: passes from one ray per 8x8 block down to one per
+//! pixel, each pixel traced exactly once over all passes, in bands of 8 rows on rayon's
+//! threads. A caller-supplied check lets a newer camera cancel the work between bands.
+
+use super::camera::Camera;
+use super::shade::Shader;
+use super::stats::{FrameStats, PixelStats};
+use crate::traverse::{with_bound, Arith, Exact, Rational, Scalar};
+use rayon::prelude::*;
+
+/// Block size of each pass: pass `k` traces the pixels on the `PASS_BLOCKS[k]` lattice that no
+/// coarser pass traced, and paints each as a block of that size.
+pub const PASS_BLOCKS: [u32; 4] = [8, 4, 2, 1];
+
+/// Rows per unit of parallel work (a multiple of the coarsest block, so blocks never straddle).
+const BAND: u32 = 8;
+
+/// An image with its per-pixel statistics and running totals.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    pub width: u32,
+    pub height: u32,
+    /// 0x00RRGGBB, row-major from the top.
+    pub pixels: Vec<u32>,
+    pub stats: Vec<PixelStats>,
+    pub totals: FrameStats,
+    /// Passes completed.
+    pub passes_done: usize,
+}
+
+impl Frame {
+    pub fn new(width: u32, height: u32) -> Frame {
+        let n = width as usize * height as usize;
+        Frame {
+            width,
+            height,
+            pixels: vec![0; n],
+            stats: vec![PixelStats::default(); n],
+            totals: FrameStats::default(),
+            passes_done: 0,
+        }
+    }
+
+    /// Whether every pass has been rendered.
+    pub fn complete(&self) -> bool {
+        self.passes_done == PASS_BLOCKS.len()
+    }
+}
+
+/// Renders a camera's view with a shader in one arithmetic.
+pub struct Renderer<'a> {
+    pub shader: Shader<'a>,
+    pub camera: Camera,
+    pub arith: Arith,
+}
+
+impl Renderer<'_> {
+    /// Renders all remaining passes (on the current rayon pool).
+    pub fn render(&self, frame: &mut Frame) {
+        while !frame.complete() {
+            self.render_pass(frame, &|| false);
+        }
+    }
+
+    /// Renders the next pass. Returns false, leaving the frame as it was, when `cancelled`
+    /// turned true (checked before each band).
+    pub fn render_pass(&self, frame: &mut Frame, cancelled: &(dyn Fn() -> bool + Sync)) -> bool {
+        let pass = frame.passes_done;
+        let Some(&block) = PASS_BLOCKS.get(pass) else {
+            return true;
+        };
+        let width = frame.width as usize;
+        let rows = BAND as usize * width;
+        let bands: Vec<Option<FrameStats>> = frame
+            .pixels
+            .par_chunks_mut(rows)
+            .zip(frame.stats.par_chunks_mut(rows))
+            .enumerate()
+            .map(|(band, (pixels, stats))| {
+                if cancelled() {
+                    return None;
+                }
+                let y0 = band as u32 * BAND;
+                let mut out = BandOut {
+                    pixels,
+                    stats,
+                    y0,
+                    width: frame.width,
+                    height: frame.height,
+                };
+                Some(match self.arith {
+                    Arith::F32 => self.band::<f32>(&mut out, pass, block),
+                    Arith::F64 => self.band::<f64>(&mut out, pass, block),
+                    Arith::Exact => self.band::<Exact>(&mut out, pass, block),
+                    Arith::Rational { bound } => {
+                        with_bound(bound, || self.band::<Rational>(&mut out, pass, block)).0
+                    }
+                })
+            })
+            .collect();
+        if bands.iter().any(Option::is_none) {
+            return false;
+        }
+        for totals in bands.into_iter().flatten() {
+            frame.totals += totals;
+        }
+        frame.passes_done += 1;
+        true
+    }
+
+    /// Traces this pass's pixels of one band and paints their blocks.
+    fn band<S: Scalar>(&self, out: &mut BandOut<'_>, pass: usize, block: u32) -> FrameStats {
+        let mut totals = FrameStats::default();
+        let y_end = (out.y0 + BAND).min(out.height);
+        for y in (out.y0..y_end).filter(|y| y % block == 0) {
+            for x in (0..out.width).step_by(block as usize) {
+                let traced_before = pass > 0 && x % (2 * block) == 0 && y % (2 * block) == 0;
+                if traced_before {
+                    continue;
+                }
+                let sample = self.shader.sample::<S>(&self.camera.ray(x, y));
+                totals.add(&sample);
+                out.paint(x, y, block, sample.rgb, PixelStats::of(&sample));
+            }
+        }
+        totals
+    }
+}
+
+/// The rows of one band of the frame.
+struct BandOut<'a> {
+    pixels: &'a mut [u32],
+    stats: &'a mut [PixelStats],
+    y0: u32,
+    width: u32,
+    height: u32,
+}
+
+impl BandOut<'_> {
+    /// Fills the block whose top-left pixel is `(x, y)`, clipped to the band.
+    fn paint(&mut self, x: u32, y: u32, block: u32, rgb: u32, stats: PixelStats) {
+        let rows = (y - self.y0)..(y - self.y0 + block).min(self.pixels.len() as u32 / self.width);
+        for row in rows {
+            let start = (row * self.width + x) as usize;
+            let end = start + (block.min(self.width - x)) as usize;
+            self.pixels[start..end].fill(rgb);
+            self.stats[start..end].fill(stats);
+        }
+    }
+}

@@ -1,0 +1,300 @@
+//! Scene files (DESIGN 5): TOML, paths relative to the file, unknown keys refused by name.
+
+use super::camera::{Camera, CameraError};
+use crate::heightfield::{self, Builtin, Heightfield, LoadError};
+use crate::traverse::{Arith, Method};
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// Why a scene could not be used.
+#[derive(Debug, Error)]
+pub enum SceneError {
+    #[error("cannot read scene {path}: {source}")]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("scene {path}: {message}")]
+    Parse { path: PathBuf, message: String },
+    #[error("scene {path}: {message}")]
+    Invalid { path: PathBuf, message: String },
+    #[error("scene {path}: [camera] {source}")]
+    Camera { path: PathBuf, source: CameraError },
+    #[error("scene {path}: [heightmap] {source}")]
+    Heightmap { path: PathBuf, source: LoadError },
+}
+
+/// A scene as written in its file.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    pub heightmap: HeightmapSection,
+    pub camera: CameraSection,
+    #[serde(default)]
+    pub sun: SunSection,
+    #[serde(default)]
+    pub effects: EffectsSection,
+    #[serde(default)]
+    pub shading: ShadingSection,
+    #[serde(default)]
+    pub render: RenderSection,
+}
+
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct HeightmapSection {
+    /// A file, relative to the scene file; or `builtin:NAME` for a built-in terrain.
+    pub path: String,
+    pub z_scale: f64,
+}
+
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSection {
+    pub eye: Option<[f64; 3]>,
+    pub target: Option<[f64; 3]>,
+    pub orbit: Option<Orbit>,
+    #[serde(default = "default_up")]
+    pub up: [f64; 3],
+    #[serde(default = "default_fov")]
+    pub fov_y_deg: f64,
+    pub width: u32,
+    pub height: u32,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Orbit {
+    pub target: [f64; 3],
+    pub yaw_deg: f64,
+    pub pitch_deg: f64,
+    pub distance: f64,
+}
+
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct SunSection {
+    /// Towards the sun; normalised on load.
+    pub direction: [f64; 3],
+    #[serde(default = "one")]
+    pub intensity: f64,
+    #[serde(default = "default_ambient")]
+    pub ambient: f64,
+}
+
+#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct EffectsSection {
+    #[serde(default)]
+    pub shadows: bool,
+    /// Fog density per unit of distance; 0 is off.
+    #[serde(default)]
+    pub fog: f64,
+}
+
+#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ShadingSection {
+    #[serde(default)]
+    pub normals: Normals,
+    #[serde(default)]
+    pub ramp: Ramp,
+}
+
+/// Surface normals: per triangle, or interpolated from vertex normals.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Normals {
+    #[default]
+    Flat,
+    Smooth,
+}
+
+/// Colour by elevation.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Ramp {
+    #[default]
+    Terrain,
+    Gray,
+}
+
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct RenderSection {
+    #[serde(default = "default_method")]
+    pub method: String,
+    #[serde(default = "default_arith")]
+    pub arith: String,
+}
+
+impl Default for SunSection {
+    fn default() -> Self {
+        SunSection {
+            direction: [0.4, 0.3, 0.8],
+            intensity: 1.0,
+            ambient: default_ambient(),
+        }
+    }
+}
+
+impl Default for RenderSection {
+    fn default() -> Self {
+        RenderSection {
+            method: default_method(),
+            arith: default_arith(),
+        }
+    }
+}
+
+fn default_up() -> [f64; 3] {
+    [0.0, 0.0, 1.0]
+}
+fn default_fov() -> f64 {
+    45.0
+}
+fn one() -> f64 {
+    1.0
+}
+fn default_ambient() -> f64 {
+    0.25
+}
+fn default_method() -> String {
+    "auto".into()
+}
+fn default_arith() -> String {
+    "f64".into()
+}
+
+/// Lighting and effects, validated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lighting {
+    /// Unit vector towards the sun.
+    pub sun: [f64; 3],
+    pub intensity: f64,
+    pub ambient: f64,
+    pub shadows: bool,
+    pub fog: f64,
+    pub normals: Normals,
+    pub ramp: Ramp,
+}
+
+/// A scene ready to render.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    pub field: Heightfield,
+    pub camera: Camera,
+    pub lighting: Lighting,
+    pub method: Method,
+    pub arith: Arith,
+}
+
+impl Scene {
+    /// Reads and validates a scene file, loading its height map.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+            path: path.to_owned(),
+            source,
+        })?;
+        let file: SceneFile = toml::from_str(&text).map_err(|e| SceneError::Parse {
+            path: path.to_owned(),
+            message: e.to_string().trim_end().replace('\n', " "),
+        })?;
+        let base = path.parent().unwrap_or(Path::new("."));
+        Scene::from_file(&file, base, path)
+    }
+
+    /// Validates a parsed scene; `base` resolves relative paths, `path` names the file in errors.
+    pub fn from_file(file: &SceneFile, base: &Path, path: &Path) -> Result<Scene, SceneError> {
+        let invalid = |message: String| SceneError::Invalid {
+            path: path.to_owned(),
+            message,
+        };
+        let map = &file.heightmap;
+        let field = match map.path.strip_prefix("builtin:") {
+            Some(name) => Builtin::named(name)
+                .ok_or_else(|| invalid(format!("[heightmap] path: no built-in terrain '{name}'")))?
+                .load_scaled(map.z_scale),
+            None => heightfield::load(&base.join(&map.path), map.z_scale),
+        }
+        .map_err(|source| SceneError::Heightmap {
+            path: path.to_owned(),
+            source,
+        })?;
+        let camera = camera(&file.camera, path)?;
+        let sun = &file.sun;
+        let length = sun.direction.iter().map(|c| c * c).sum::<f64>().sqrt();
+        if !(length.is_finite() && length > 0.0) {
+            return Err(invalid(
+                "[sun] direction must be a finite non-zero vector".into(),
+            ));
+        }
+        for (key, value) in [
+            ("[sun] intensity", sun.intensity),
+            ("[sun] ambient", sun.ambient),
+            ("[effects] fog", file.effects.fog),
+        ] {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(invalid(format!(
+                    "{key} must be a finite number >= 0, got {value}"
+                )));
+            }
+        }
+        let method = file
+            .render
+            .method
+            .parse()
+            .map_err(|e| invalid(format!("[render] method: {e}")))?;
+        let arith = file
+            .render
+            .arith
+            .parse()
+            .map_err(|e| invalid(format!("[render] arith: {e}")))?;
+        Ok(Scene {
+            field,
+            camera,
+            lighting: Lighting {
+                sun: sun.direction.map(|c| c / length),
+                intensity: sun.intensity,
+                ambient: sun.ambient,
+                shadows: file.effects.shadows,
+                fog: file.effects.fog,
+                normals: file.shading.normals,
+                ramp: file.shading.ramp,
+            },
+            method,
+            arith,
+        })
+    }
+}
+
+/// The camera of a `[camera]` section; `path` names the scene in errors.
+fn camera(section: &CameraSection, path: &Path) -> Result<Camera, SceneError> {
+    let size = (section.width, section.height);
+    let built = match (section.eye, section.target, section.orbit) {
+        (Some(eye), Some(target), None) => {
+            Camera::look_at(eye, target, section.up, section.fov_y_deg, size)
+        }
+        (None, None, Some(o)) => Camera::orbit(
+            o.target,
+            o.yaw_deg,
+            o.pitch_deg,
+            o.distance,
+            section.fov_y_deg,
+            size,
+        ),
+        _ => {
+            return Err(SceneError::Invalid {
+                path: path.to_owned(),
+                message: "[camera] needs either both eye and target, or \
+                          orbit = {target, yaw_deg, pitch_deg, distance}"
+                    .into(),
+            })
+        }
+    };
+    built.map_err(|source| SceneError::Camera {
+        path: path.to_owned(),
+        source,
+    })
+}

@@ -1,0 +1,221 @@
+//! From a ray to a colour: the primary ray, the shadow ray only where it can change the pixel,
+//! Lambert shading with an elevation ramp, sky and fog.
+
+use super::scene::{Lighting, Normals, Ramp};
+use crate::heightfield::Terrain;
+use crate::traverse::{trace_scalar, Counters, Found, Method, Query, Scalar, WalkOptions};
+use crate::Ray;
+use glam::DVec3;
+
+/// Why a shadow ray was not cast although the scene has shadows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShadowSkip {
+    /// The surface faces away from the sun: it is dark whatever a shadow ray says.
+    FacingAway,
+    /// The sun stands higher than the steepest slope anywhere: nothing can cast a shadow.
+    NoShadowPossible,
+    /// The shadow ray starts above the highest terrain and rises.
+    AboveTerrain,
+}
+
+/// What became of a pixel's shadow.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shadow {
+    /// No primary hit, or the scene has no shadows: nothing to decide.
+    NotAsked,
+    Skipped(ShadowSkip),
+    Cast {
+        shadowed: bool,
+    },
+}
+
+/// One traced pixel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// 0x00RRGGBB.
+    pub rgb: u32,
+    pub hit: bool,
+    pub shadow: Shadow,
+    pub primary: Counters,
+    pub secondary: Counters,
+}
+
+/// Everything a pixel needs besides its ray.
+pub struct Shader<'a> {
+    pub terrain: &'a Terrain,
+    pub lighting: Lighting,
+    pub method: Method,
+}
+
+impl Shader<'_> {
+    /// Traces and shades one primary ray in arithmetic `S`.
+    pub fn sample<S: Scalar>(&self, ray: &Ray) -> Sample {
+        let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
+        let walk = WalkOptions::new(self.method, Query::FirstHit);
+        let primary = trace_scalar(self.terrain, &o, &d, ray.dir(), walk);
+        let Some(found) = primary.hit else {
+            return Sample {
+                rgb: pack(self.sky(ray.dir())),
+                hit: false,
+                shadow: Shadow::NotAsked,
+                primary: primary.counters,
+                secondary: Counters::default(),
+            };
+        };
+        let point = found.point(&o, &d);
+        let p = DVec3::from(point.clone().map(|c| c.to_f64()));
+        let normal = self.normal(&found, p);
+        let sun = DVec3::from(self.lighting.sun);
+        let facing = normal.dot(sun);
+        let (shadow, secondary) = self.shadow::<S>(&found, point, ray, facing);
+        let lit = match shadow {
+            Shadow::Cast { shadowed: true } | Shadow::Skipped(ShadowSkip::FacingAway) => 0.0,
+            _ => facing.max(0.0),
+        };
+        let light = self.lighting.ambient + self.lighting.intensity * lit;
+        let mut colour = self.ramp(p.z) * light;
+        if self.lighting.fog > 0.0 {
+            let distance = found.t.to_f64() * DVec3::from(ray.dir()).length();
+            let clear = (-self.lighting.fog * distance).exp();
+            colour = colour * clear + horizon() * (1.0 - clear);
+        }
+        Sample {
+            rgb: pack(colour),
+            hit: true,
+            shadow,
+            primary: primary.counters,
+            secondary,
+        }
+    }
+
+    /// Decides whether a shadow ray can change the pixel, and casts it if so.
+    fn shadow<S: Scalar>(
+        &self,
+        found: &Found<S>,
+        point: [S; 3],
+        ray: &Ray,
+        facing: f64,
+    ) -> (Shadow, Counters) {
+        let skip = |why| (Shadow::Skipped(why), Counters::default());
+        if !self.lighting.shadows {
+            return (Shadow::NotAsked, Counters::default());
+        }
+        if facing <= 0.0 {
+            return skip(ShadowSkip::FacingAway);
+        }
+        let sun = self.lighting.sun;
+        let climb = sun[2] / sun[0].hypot(sun[1]);
+        // Strictly steeper than any triangle (with room for the rounding of max_slope).
+        if climb > self.terrain.max_slope() * (1.0 + 1e-9) {
+            return skip(ShadowSkip::NoShadowPossible);
+        }
+        // Lift the start above the surface by what rounding may have moved it below (zero in
+        // exact arithmetic): the surface is a height field, so up is always outside.
+        let magnitude = ray
+            .origin()
+            .iter()
+            .chain(ray.dir().iter())
+            .fold(found.t.to_f64().abs(), |m, c| m.max(c.abs()));
+        let lift = 64.0
+            * S::rounding_error(magnitude * (1.0 + found.t.to_f64().abs()))
+            * (1.0 + self.terrain.max_slope());
+        let [x, y, z] = point;
+        let origin = [x, y, z + S::from_f64(lift)];
+        let (_, z_max) = self.terrain.z_range();
+        if sun[2] > 0.0 && origin[2] > S::from_f64(z_max) {
+            return skip(ShadowSkip::AboveTerrain);
+        }
+        let walk = WalkOptions::new(self.method, Query::Shadow);
+        let answer = trace_scalar(self.terrain, &origin, &sun.map(S::from_f64), sun, walk);
+        (
+            Shadow::Cast {
+                shadowed: answer.hit.is_some(),
+            },
+            answer.counters,
+        )
+    }
+
+    /// The shading normal at `p` on the hit triangle.
+    fn normal<S: Scalar>(&self, found: &Found<S>, p: DVec3) -> DVec3 {
+        let field = self.terrain.field();
+        let (i, j) = found.cell;
+        let z = |di: usize, dj: usize| field.z(i + di, j + dj);
+        let (u, w) = (
+            (p.x - i as f64).clamp(0.0, 1.0),
+            (p.y - j as f64).clamp(0.0, 1.0),
+        );
+        let n = match (self.lighting.normals, found.triangle) {
+            (Normals::Flat, 0) => DVec3::new(z(0, 0) - z(1, 0), z(1, 0) - z(1, 1), 1.0),
+            (Normals::Flat, _) => DVec3::new(z(0, 1) - z(1, 1), z(0, 0) - z(0, 1), 1.0),
+            // Interpolate vertex normals with the triangle's barycentric weights.
+            (Normals::Smooth, 0) => {
+                self.vertex_normal(i, j) * (1.0 - u)
+                    + self.vertex_normal(i + 1, j) * (u - w)
+                    + self.vertex_normal(i + 1, j + 1) * w
+            }
+            (Normals::Smooth, _) => {
+                self.vertex_normal(i, j) * (1.0 - w)
+                    + self.vertex_normal(i + 1, j + 1) * u
+                    + self.vertex_normal(i, j + 1) * (w - u)
+            }
+        };
+        n.normalize_or(DVec3::Z)
+    }
+
+    /// Central-difference normal at sample `(i, j)` (one-sided at the border).
+    fn vertex_normal(&self, i: usize, j: usize) -> DVec3 {
+        let field = self.terrain.field();
+        let (w, h) = (field.width() - 1, field.height() - 1);
+        let (i0, i1, j0, j1) = (
+            i.saturating_sub(1),
+            (i + 1).min(w),
+            j.saturating_sub(1),
+            (j + 1).min(h),
+        );
+        let dzdx = (field.z(i1, j) - field.z(i0, j)) / (i1 - i0) as f64;
+        let dzdy = (field.z(i, j1) - field.z(i, j0)) / (j1 - j0) as f64;
+        DVec3::new(-dzdx, -dzdy, 1.0).normalize_or(DVec3::Z)
+    }
+
+    /// Surface colour by elevation.
+    fn ramp(&self, z: f64) -> DVec3 {
+        let (lo, hi) = self.terrain.z_range();
+        let e = ((z - lo) / (hi - lo).max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+        match self.lighting.ramp {
+            Ramp::Gray => DVec3::splat(0.25 + 0.75 * e),
+            Ramp::Terrain => {
+                const STOPS: [(f64, [f64; 3]); 5] = [
+                    (0.0, [0.18, 0.32, 0.14]),
+                    (0.35, [0.36, 0.52, 0.22]),
+                    (0.6, [0.52, 0.43, 0.29]),
+                    (0.82, [0.55, 0.53, 0.50]),
+                    (0.95, [0.95, 0.95, 0.97]),
+                ];
+                let k = STOPS
+                    .iter()
+                    .rposition(|s| s.0 <= e)
+                    .unwrap_or(0)
+                    .min(STOPS.len() - 2);
+                let ((e0, c0), (e1, c1)) = (STOPS[k], STOPS[k + 1]);
+                let f = ((e - e0) / (e1 - e0)).clamp(0.0, 1.0);
+                DVec3::from(c0).lerp(DVec3::from(c1), f)
+            }
+        }
+    }
+
+    /// Sky gradient for rays that miss.
+    fn sky(&self, dir: [f64; 3]) -> DVec3 {
+        let d = DVec3::from(dir).normalize_or(DVec3::Z);
+        horizon().lerp(DVec3::new(0.28, 0.46, 0.82), d.z.clamp(0.0, 1.0).sqrt())
+    }
+}
+
+fn horizon() -> DVec3 {
+    DVec3::new(0.78, 0.85, 0.93)
+}
+
+/// Linear colour to 0x00RRGGBB with a display gamma of 2.2.
+fn pack(c: DVec3) -> u32 {
+    let channel = |v: f64| (v.clamp(0.0, 1.0).powf(1.0 / 2.2) * 255.0 + 0.5) as u32;
+    (channel(c.x) << 16) | (channel(c.y) << 8) | channel(c.z)
+}

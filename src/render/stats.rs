@@ -1,0 +1,149 @@
+//! Statistics of a frame (DESIGN 3): totals, per primary ray, hit/miss ratios, and a compact
+//! per-pixel record for heat maps.
+
+use super::shade::{Sample, Shadow, ShadowSkip};
+use crate::traverse::{Counters, HitMiss};
+use serde_json::{json, Value};
+use std::ops::AddAssign;
+
+/// Queries one pixel's rays (primary and shadow) made, for heat maps.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PixelStats {
+    pub runs: u32,
+    pub cells: u32,
+    pub triangles: u32,
+}
+
+impl PixelStats {
+    pub fn of(sample: &Sample) -> PixelStats {
+        let total = |f: fn(&Counters) -> HitMiss| {
+            (f(&sample.primary).total() + f(&sample.secondary).total()).min(u64::from(u32::MAX))
+                as u32
+        };
+        PixelStats {
+            runs: total(|c| c.run),
+            cells: total(|c| c.cell),
+            triangles: total(|c| c.triangle),
+        }
+    }
+}
+
+/// Shadow rays not cast, by reason.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Skipped {
+    pub facing_away: u64,
+    pub no_shadow_possible: u64,
+    pub above_terrain: u64,
+}
+
+/// Totals of a frame (or of any set of pixels).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FrameStats {
+    pub primary_rays: u64,
+    pub primary_hits: u64,
+    pub shadow_rays: u64,
+    pub shadowed: u64,
+    pub skipped: Skipped,
+    pub primary: Counters,
+    pub shadow: Counters,
+}
+
+impl FrameStats {
+    /// Counts one traced pixel.
+    pub fn add(&mut self, sample: &Sample) {
+        self.primary_rays += 1;
+        self.primary_hits += u64::from(sample.hit);
+        self.primary += sample.primary;
+        self.shadow += sample.secondary;
+        match sample.shadow {
+            Shadow::NotAsked => {}
+            Shadow::Cast { shadowed } => {
+                self.shadow_rays += 1;
+                self.shadowed += u64::from(shadowed);
+            }
+            Shadow::Skipped(ShadowSkip::FacingAway) => self.skipped.facing_away += 1,
+            Shadow::Skipped(ShadowSkip::NoShadowPossible) => self.skipped.no_shadow_possible += 1,
+            Shadow::Skipped(ShadowSkip::AboveTerrain) => self.skipped.above_terrain += 1,
+        }
+    }
+
+    /// Primary and shadow queries together.
+    pub fn queries(&self) -> Counters {
+        let mut all = self.primary;
+        all += self.shadow;
+        all
+    }
+
+    /// The DESIGN 3 keys (the caller adds size, threads, method, arith and times).
+    pub fn to_json(&self) -> Value {
+        let q = self.queries();
+        json!({
+            "primary_rays": self.primary_rays,
+            "primary_hits": self.primary_hits,
+            "shadow_rays": self.shadow_rays,
+            "shadowed": self.shadowed,
+            "shadow_rays_skipped": {
+                "facing_away": self.skipped.facing_away,
+                "no_shadow_possible": self.skipped.no_shadow_possible,
+                "above_terrain": self.skipped.above_terrain,
+            },
+            "queries": {"bbox": q.bbox, "run": q.run, "cell": q.cell, "triangle": q.triangle},
+            "primary_queries": self.primary,
+            "shadow_queries": self.shadow,
+        })
+    }
+
+    /// The paper's table shape: totals, queries per primary ray, hits/misses ratios.
+    pub fn table(&self, label: &str, build_ms: f64, render_ms: f64) -> String {
+        let q = self.queries();
+        let per = |n: u64| n as f64 / self.primary_rays.max(1) as f64;
+        let ratio = |h: HitMiss| format!("{}:{:.1}", 1, h.miss as f64 / h.hit.max(1) as f64);
+        let mut out = String::new();
+        out += "| scene | build ms | render ms | primary rays | shadow rays | bbox queries | run queries | cell queries | triangle queries |\n";
+        out += "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        out += &format!(
+            "| {label} | {build_ms:.1} | {render_ms:.1} | {} | {} | {} | {} | {} | {} |\n",
+            self.primary_rays,
+            self.shadow_rays,
+            q.bbox.total(),
+            q.run.total(),
+            q.cell.total(),
+            q.triangle.total()
+        );
+        out += &format!(
+            "\nper primary ray: {:.2} bbox, {:.2} run, {:.2} cell, {:.2} triangle queries; \
+             hits:misses (E:N) bbox {}, run {}, cell {}, triangle {}\n",
+            per(q.bbox.total()),
+            per(q.run.total()),
+            per(q.cell.total()),
+            per(q.triangle.total()),
+            ratio(q.bbox),
+            ratio(q.run),
+            ratio(q.cell),
+            ratio(q.triangle)
+        );
+        out += &format!(
+            "shadow rays: {} cast, {} in shadow; skipped {} facing away, {} no shadow possible, {} above terrain\n",
+            self.shadow_rays,
+            self.shadowed,
+            self.skipped.facing_away,
+            self.skipped.no_shadow_possible,
+            self.skipped.above_terrain
+        );
+        out
+    }
+}
+
+impl AddAssign for FrameStats {
+    fn add_assign(&mut self, rhs: FrameStats) {
+        self.primary_rays += rhs.primary_rays;
+        self.primary_hits += rhs.primary_hits;
+        self.shadow_rays += rhs.shadow_rays;
+        self.shadowed += rhs.shadowed;
+        self.skipped.facing_away += rhs.skipped.facing_away;
+        self.skipped.no_shadow_possible += rhs.skipped.no_shadow_possible;
+        self.skipped.above_terrain += rhs.skipped.above_terrain;
+        self.primary += rhs.primary;
+        self.shadow += rhs.shadow;
+    }
+}
