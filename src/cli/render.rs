@@ -2,7 +2,7 @@
 
 use super::RenderArgs;
 use anyhow::Context;
-use heightray::render::{Frame, Renderer, Scene, Shader};
+use heightray::render::{Culling, Frame, Renderer, Scene, Shader};
 use heightray::Terrain;
 use image::{ImageBuffer, Rgb};
 use serde_json::json;
@@ -26,6 +26,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
             terrain: &terrain,
             lighting: scene.lighting,
             method,
+            culling: Culling::default(),
         },
         camera: scene.camera,
         arith,

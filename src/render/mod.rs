@@ -10,5 +10,5 @@ mod stats;
 pub use camera::{Camera, CameraError};
 pub use passes::{Frame, Renderer, PASS_BLOCKS};
 pub use scene::{Lighting, Normals, Ramp, Scene, SceneError, SceneFile};
-pub use shade::{Sample, Shader, Shadow, ShadowSkip};
+pub use shade::{Culling, Sample, Shader, Shadow, ShadowSkip};
 pub use stats::{FrameStats, PixelStats};

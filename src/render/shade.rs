@@ -40,11 +40,31 @@ pub struct Sample {
     pub secondary: Counters,
 }
 
+/// Which shadow rays to leave out where they cannot change the pixel (all on by default;
+/// switching one off must not change the image, only the work).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Culling {
+    pub facing_away: bool,
+    pub no_shadow_possible: bool,
+    pub above_terrain: bool,
+}
+
+impl Default for Culling {
+    fn default() -> Self {
+        Culling {
+            facing_away: true,
+            no_shadow_possible: true,
+            above_terrain: true,
+        }
+    }
+}
+
 /// Everything a pixel needs besides its ray.
 pub struct Shader<'a> {
     pub terrain: &'a Terrain,
     pub lighting: Lighting,
     pub method: Method,
+    pub culling: Culling,
 }
 
 impl Shader<'_> {
@@ -69,7 +89,7 @@ impl Shader<'_> {
         let facing = normal.dot(sun);
         let (shadow, secondary) = self.shadow::<S>(&found, point, ray, facing);
         let lit = match shadow {
-            Shadow::Cast { shadowed: true } | Shadow::Skipped(ShadowSkip::FacingAway) => 0.0,
+            Shadow::Cast { shadowed: true } => 0.0,
             _ => facing.max(0.0),
         };
         let light = self.lighting.ambient + self.lighting.intensity * lit;
@@ -100,29 +120,29 @@ impl Shader<'_> {
         if !self.lighting.shadows {
             return (Shadow::NotAsked, Counters::default());
         }
-        if facing <= 0.0 {
+        if self.culling.facing_away && facing <= 0.0 {
             return skip(ShadowSkip::FacingAway);
         }
         let sun = self.lighting.sun;
         let climb = sun[2] / sun[0].hypot(sun[1]);
         // Strictly steeper than any triangle (with room for the rounding of max_slope).
-        if climb > self.terrain.max_slope() * (1.0 + 1e-9) {
+        if self.culling.no_shadow_possible && climb > self.terrain.max_slope() * (1.0 + 1e-9) {
             return skip(ShadowSkip::NoShadowPossible);
         }
         // Lift the start above the surface by what rounding may have moved it below (zero in
         // exact arithmetic): the surface is a height field, so up is always outside.
-        let magnitude = ray
+        // |o + t*d| is at most max(|o|, |d|) * (1 + |t|) per component.
+        let t = found.t.to_f64().abs();
+        let largest = ray
             .origin()
             .iter()
-            .chain(ray.dir().iter())
-            .fold(found.t.to_f64().abs(), |m, c| m.max(c.abs()));
-        let lift = 64.0
-            * S::rounding_error(magnitude * (1.0 + found.t.to_f64().abs()))
-            * (1.0 + self.terrain.max_slope());
+            .chain(&ray.dir())
+            .fold(0.0f64, |m, c| m.max(c.abs()));
+        let lift = 64.0 * S::rounding_error(largest * (1.0 + t)) * (1.0 + self.terrain.max_slope());
         let [x, y, z] = point;
         let origin = [x, y, z + S::from_f64(lift)];
         let (_, z_max) = self.terrain.z_range();
-        if sun[2] > 0.0 && origin[2] > S::from_f64(z_max) {
+        if self.culling.above_terrain && sun[2] > 0.0 && origin[2] > S::from_f64(z_max) {
             return skip(ShadowSkip::AboveTerrain);
         }
         let walk = WalkOptions::new(self.method, Query::Shadow);

@@ -1,0 +1,395 @@
+//! The renderer: determinism, golden images, a hand-computed shade, effect culling, no shadow
+//! acne, and scene-file errors.
+//!
+//! Golden images are regenerated with `HEIGHTRAY_BLESS=1 cargo test --release --test render`.
+
+use heightray::render::{
+    Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Scene, SceneFile, Shader,
+};
+use heightray::{Arith, Heightfield, Method, Terrain};
+use std::path::{Path, PathBuf};
+
+const ARITHS: [Arith; 4] = [
+    Arith::F32,
+    Arith::F64,
+    Arith::Rational { bound: 1 << 16 },
+    Arith::Exact,
+];
+
+fn render_with(
+    terrain: &Terrain,
+    camera: Camera,
+    lighting: Lighting,
+    arith: Arith,
+    culling: Culling,
+    threads: usize,
+) -> Frame {
+    let renderer = Renderer {
+        shader: Shader {
+            terrain,
+            lighting,
+            method: Method::Runs,
+            culling,
+        },
+        camera,
+        arith,
+    };
+    let (w, h) = camera.size();
+    let mut frame = Frame::new(w, h);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| renderer.render(&mut frame));
+    frame
+}
+
+/// A built-in scene file at a smaller size.
+fn builtin_scene(name: &str, size: u32) -> Scene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("assets")
+        .join(format!("{name}.toml"));
+    let mut file: SceneFile = toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    file.camera.width = size;
+    file.camera.height = size;
+    Scene::from_file(&file, path.parent().unwrap(), &path).unwrap()
+}
+
+fn render_scene(scene: &Scene, threads: usize) -> Frame {
+    let terrain = Terrain::new(scene.field.clone());
+    render_with(
+        &terrain,
+        scene.camera,
+        scene.lighting,
+        scene.arith,
+        Culling::default(),
+        threads,
+    )
+}
+
+#[test]
+fn same_image_and_statistics_on_one_and_two_threads() {
+    for name in ["small49", "valley513"] {
+        let scene = builtin_scene(name, 96);
+        let (one, two) = (render_scene(&scene, 1), render_scene(&scene, 2));
+        assert_eq!(one.pixels, two.pixels, "{name}");
+        assert_eq!(one.stats, two.stats, "{name}");
+        assert_eq!(one.totals, two.totals, "{name}");
+        assert_eq!(
+            one.totals.primary_rays,
+            96 * 96,
+            "every pixel traced exactly once"
+        );
+    }
+}
+
+#[test]
+fn built_in_scenes_match_their_golden_images() {
+    for name in ["small49", "valley513"] {
+        let frame = render_scene(&builtin_scene(name, 128), 2);
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/golden")
+            .join(format!("{name}.png"));
+        let rgb: Vec<u8> = frame
+            .pixels
+            .iter()
+            .flat_map(|p| [(p >> 16) as u8, (p >> 8) as u8, *p as u8])
+            .collect();
+        if std::env::var_os("HEIGHTRAY_BLESS").is_some() {
+            image::save_buffer(&path, &rgb, 128, 128, image::ColorType::Rgb8).unwrap();
+        }
+        let golden = image::open(&path)
+            .unwrap_or_else(|e| {
+                panic!("{}: {e}; regenerate with HEIGHTRAY_BLESS=1", path.display())
+            })
+            .to_rgb8();
+        assert_eq!(golden.dimensions(), (128, 128));
+        // Small tolerance: a channel may differ by 2 levels (libm differences), and at most
+        // 0.5% of pixels may differ at all.
+        let differing = golden
+            .as_raw()
+            .chunks(3)
+            .zip(rgb.chunks(3))
+            .filter(|(a, b)| a != b)
+            .count();
+        let worst = golden
+            .as_raw()
+            .iter()
+            .zip(&rgb)
+            .map(|(a, b)| a.abs_diff(*b))
+            .max()
+            .unwrap_or(0);
+        assert!(
+            worst <= 2 && differing * 200 <= 128 * 128,
+            "{name}: {differing} pixels differ, worst by {worst}"
+        );
+    }
+}
+
+fn flat_field(level: u16) -> Terrain {
+    Terrain::new(Heightfield::from_fn(9, 9, 255, 25.5, |_, _| level).unwrap())
+}
+
+fn lighting(sun: [f64; 3], shadows: bool) -> Lighting {
+    let n = sun.iter().map(|c| c * c).sum::<f64>().sqrt();
+    Lighting {
+        sun: sun.map(|c| c / n),
+        intensity: 1.0,
+        ambient: 0.25,
+        shadows,
+        fog: 0.0,
+        normals: Normals::Flat,
+        ramp: Ramp::Gray,
+    }
+}
+
+fn looking_down(size: u32) -> Camera {
+    Camera::look_at(
+        [4.0, 4.0, 30.0],
+        [4.0, 4.0, 0.0],
+        [0.0, 1.0, 0.0],
+        10.0,
+        (size, size),
+    )
+    .unwrap()
+}
+
+#[test]
+fn flat_lit_plane_has_the_lambert_shade() {
+    // Gray ramp on a flat field: albedo 0.25; light = ambient + intensity * (n . s) with
+    // n = +z, so s_z = 0.8/|(0.4, 0.3, 0.8)|; then gamma 2.2 to 8 bits.
+    let sun = [0.4, 0.3, 0.8];
+    let s_z = 0.8 / (0.16f64 + 0.09 + 0.64).sqrt();
+    let level = ((0.25 * (0.25 + s_z)).powf(1.0 / 2.2) * 255.0 + 0.5) as u32;
+    let expected = level << 16 | level << 8 | level;
+    for arith in ARITHS {
+        let frame = render_with(
+            &flat_field(10),
+            looking_down(8),
+            lighting(sun, true),
+            arith,
+            Culling::default(),
+            1,
+        );
+        assert!(
+            frame.pixels.iter().all(|&p| p == expected),
+            "{arith}: {:06x?} vs {expected:06x}",
+            &frame.pixels[..4]
+        );
+    }
+}
+
+#[test]
+fn shadows_off_cast_no_shadow_rays() {
+    let scene = builtin_scene("small49", 48);
+    let terrain = Terrain::new(scene.field.clone());
+    let mut lighting = scene.lighting;
+    lighting.shadows = false;
+    let frame = render_with(
+        &terrain,
+        scene.camera,
+        lighting,
+        Arith::F64,
+        Culling::default(),
+        2,
+    );
+    assert_eq!(frame.totals.shadow_rays, 0);
+    assert_eq!(frame.totals.shadow.bbox.total(), 0);
+    assert!(frame.totals.primary_hits > 0);
+}
+
+#[test]
+fn no_shadow_rays_where_no_shadow_is_possible() {
+    // The sun stands higher than the steepest slope of the field: every shadow ray is left out,
+    // and the image is the one casting them all gives.
+    let scene = builtin_scene("small49", 48);
+    let terrain = Terrain::new(scene.field.clone());
+    let steepest = terrain.max_slope();
+    let sun = lighting([1.0, 0.0, steepest * 1.01], true);
+    let culled = render_with(
+        &terrain,
+        scene.camera,
+        sun,
+        Arith::F64,
+        Culling::default(),
+        2,
+    );
+    let none = Culling {
+        facing_away: false,
+        no_shadow_possible: false,
+        above_terrain: false,
+    };
+    let brute = render_with(&terrain, scene.camera, sun, Arith::F64, none, 2);
+    assert_eq!(culled.totals.shadow_rays, 0);
+    assert!(culled.totals.skipped.no_shadow_possible > 0);
+    assert!(brute.totals.shadow_rays > 0);
+    assert_eq!(
+        brute.totals.shadowed, 0,
+        "brute force finds no shadow either"
+    );
+    assert_eq!(culled.pixels, brute.pixels);
+}
+
+#[test]
+fn each_culling_rule_on_or_off_gives_the_same_image() {
+    let scene = builtin_scene("small49", 64);
+    let terrain = Terrain::new(scene.field.clone());
+    let all = render_with(
+        &terrain,
+        scene.camera,
+        scene.lighting,
+        Arith::F64,
+        Culling::default(),
+        2,
+    );
+    let rules = [
+        Culling {
+            facing_away: false,
+            ..Culling::default()
+        },
+        Culling {
+            no_shadow_possible: false,
+            ..Culling::default()
+        },
+        Culling {
+            above_terrain: false,
+            ..Culling::default()
+        },
+        Culling {
+            facing_away: false,
+            no_shadow_possible: false,
+            above_terrain: false,
+        },
+    ];
+    for culling in rules {
+        let frame = render_with(
+            &terrain,
+            scene.camera,
+            scene.lighting,
+            Arith::F64,
+            culling,
+            2,
+        );
+        assert_eq!(frame.pixels, all.pixels, "{culling:?}");
+        assert!(frame.totals.shadow_rays >= all.totals.shadow_rays);
+    }
+    assert!(
+        all.totals.skipped.facing_away > 0,
+        "the scene exercises facing-away culling"
+    );
+}
+
+/// A plane rising towards +x with slope 1/2, lit from -x by a sun that climbs at 0.2:
+/// shadow rays are cast (the sun is lower than the slope) yet nothing can shadow the plane.
+#[test]
+fn gentle_slope_has_no_shadow_acne_in_any_arithmetic() {
+    let terrain =
+        Terrain::new(Heightfield::from_fn(9, 9, 255, 25.5, |x, _| (x * 5) as u16).unwrap());
+    assert_eq!(terrain.max_slope(), 0.5);
+    let camera = Camera::look_at(
+        [4.0, 4.0, 60.0],
+        [4.0, 4.0, 20.0],
+        [0.0, 1.0, 0.0],
+        8.0,
+        (12, 12),
+    )
+    .unwrap();
+    for arith in ARITHS {
+        let frame = render_with(
+            &terrain,
+            camera,
+            lighting([-1.0, 0.1, 0.2], true),
+            arith,
+            Culling::default(),
+            2,
+        );
+        assert_eq!(frame.totals.primary_hits, 144, "{arith}");
+        assert_eq!(
+            frame.totals.shadow_rays, 144,
+            "{arith}: every pixel casts a shadow ray"
+        );
+        assert_eq!(frame.totals.shadowed, 0, "{arith}: false shadows (acne)");
+    }
+}
+
+/// A wall on flat ground with the sun low behind it: the contact shadow at the wall's foot is
+/// found by every arithmetic exactly where exact arithmetic finds it.
+#[test]
+fn contact_shadows_are_kept_in_float_arithmetic() {
+    let terrain = Terrain::new(
+        Heightfield::from_fn(12, 12, 255, 25.5, |x, _| if x >= 6 { 200 } else { 0 }).unwrap(),
+    );
+    let camera = Camera::look_at(
+        [3.0, 5.5, 80.0],
+        [3.0, 5.5, 0.0],
+        [0.0, 1.0, 0.0],
+        6.0,
+        (16, 16),
+    )
+    .unwrap();
+    let sun = lighting([1.0, 0.0, 0.3], true);
+    let exact = render_with(&terrain, camera, sun, Arith::Exact, Culling::default(), 2);
+    assert!(exact.totals.shadowed > 0, "the wall casts a shadow");
+    for arith in [Arith::F32, Arith::F64] {
+        let frame = render_with(&terrain, camera, sun, arith, Culling::default(), 2);
+        assert_eq!(frame.pixels, exact.pixels, "{arith}");
+    }
+}
+
+fn scene_error(text: &str) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bad.toml");
+    std::fs::write(&path, text).unwrap();
+    match Scene::load(&path) {
+        Ok(_) => panic!("scene loaded:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+const GOOD: &str = r#"
+[heightmap]
+path = "builtin:small49"
+z_scale = 12.0
+[camera]
+eye = [-10.0, -10.0, 30.0]
+target = [24.0, 24.0, 0.0]
+width = 16
+height = 16
+"#;
+
+#[test]
+fn scene_errors_name_the_key_and_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("good.toml");
+    std::fs::write(&path, GOOD).unwrap();
+    let scene = Scene::load(&path).unwrap();
+    assert_eq!(scene.camera.size(), (16, 16));
+
+    let unknown = scene_error(&GOOD.replace("width = 16", "width = 16\nfov = 30.0"));
+    assert!(
+        unknown.contains("fov") && unknown.contains("bad.toml"),
+        "{unknown}"
+    );
+    let missing = scene_error(&GOOD.replace("z_scale = 12.0\n", ""));
+    assert!(
+        missing.contains("z_scale") && missing.contains("bad.toml"),
+        "{missing}"
+    );
+    let unknown_section = scene_error(&format!("{GOOD}\n[lights]\nsun = 1\n"));
+    assert!(unknown_section.contains("lights"), "{unknown_section}");
+    let bad_method = scene_error(&format!("{GOOD}\n[render]\nmethod = \"bvh\"\n"));
+    assert!(
+        bad_method.contains("method") && bad_method.contains("bvh"),
+        "{bad_method}"
+    );
+    let no_map = scene_error(&GOOD.replace("builtin:small49", "missing.png"));
+    assert!(no_map.contains("missing.png"), "{no_map}");
+    let bad_camera = scene_error(&GOOD.replace(
+        "target = [24.0, 24.0, 0.0]",
+        "target = [-10.0, -10.0, 30.0]",
+    ));
+    assert!(
+        bad_camera.contains("camera") && bad_camera.contains("coincide"),
+        "{bad_camera}"
+    );
+}
