@@ -1,5 +1,8 @@
-//! Benchmarks: methods and arithmetics measured side by side in one run, as ratios.
+//! Benchmarks: methods, arithmetics and thread counts measured side by side in one run, as
+//! ratios.
 
+mod accuracy;
 mod speed;
 
-pub use speed::{measure, Disagreement, SpeedRow};
+pub use accuracy::{accuracy, AccuracyRow, Disagreement};
+pub use speed::{throughput, ThroughputRow};

@@ -24,7 +24,7 @@ pub enum Command {
     Render(RenderArgs),
     /// Trace rays against a height field and print one JSON object per ray.
     Trace(TraceArgs),
-    /// Benchmarks: `speed` (time and queries per ray, per method and arithmetic).
+    /// Benchmarks: `speed` (rays per second of whole frames), `accuracy` (time against error).
     #[command(subcommand)]
     Bench(BenchCommand),
     /// Write a generated landscape (16-bit grayscale PNG) of the built-in generator.
@@ -33,13 +33,35 @@ pub enum Command {
 
 #[derive(Subcommand, Debug)]
 pub enum BenchCommand {
-    /// Time per primary ray and queries per ray for each method and arithmetic on one view,
-    /// one thread, with answers that differ from exact arithmetic.
+    /// Primary and shadow rays per second on the built-in scenes, per method, arithmetic and
+    /// thread count, as ratios.
     Speed(SpeedArgs),
+    /// Time per primary ray, queries per ray and answers that differ from exact arithmetic,
+    /// per method and arithmetic, one thread.
+    Accuracy(AccuracyArgs),
 }
 
 #[derive(clap::Args, Debug)]
 pub struct SpeedArgs {
+    /// Scene files (default: the built-in scenes).
+    #[arg(long, value_delimiter = ',')]
+    pub scenes: Vec<PathBuf>,
+    /// Image width and height (overrides the scenes').
+    #[arg(long, default_value_t = 256)]
+    pub size: u32,
+    /// Methods, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "runs,dda")]
+    pub methods: Vec<Method>,
+    /// Arithmetics, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "f32,f64,rational:65536")]
+    pub ariths: Vec<Arith>,
+    /// Thread counts, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "1,2")]
+    pub threads: Vec<usize>,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct AccuracyArgs {
     /// Height map to use instead of the built-in terrain.
     #[arg(long, requires = "z_scale")]
     pub map: Option<PathBuf>,
@@ -133,6 +155,7 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Render(args) => render::run(&args),
         Command::Generate(args) => generate::run(&args),
         Command::Bench(BenchCommand::Speed(args)) => bench::speed(&args),
+        Command::Bench(BenchCommand::Accuracy(args)) => bench::accuracy(&args),
     }
 }
 
