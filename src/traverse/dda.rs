@@ -25,7 +25,8 @@ pub fn walk<S: Scalar>(
     f: &Frame<S>,
     visit: &mut impl FnMut(Span<S>) -> ControlFlow<()>,
 ) -> ControlFlow<()> {
-    if f.du.is_zero() {
+    // A path of zero length touches its cells all at once: row by row, like a point.
+    if f.du.is_zero() || f.t0 == f.t1 {
         return walk_point(f, visit);
     }
     if f.dv.is_zero() {
@@ -51,7 +52,11 @@ pub fn walk<S: Scalar>(
     while cu <= f.cols.1 && cv <= f.rows.1 {
         let t_exit = min(f.t1.clone(), min(next_u.clone(), next_v.clone()));
         f.emit(cell(cu, cv, t_enter, t_exit), visit)?;
-        let order = next_u.partial_cmp(&next_v).unwrap_or(Ordering::Equal);
+        let order = if next_u.nearly_equal(&next_v) {
+            Ordering::Equal
+        } else {
+            next_u.partial_cmp(&next_v).unwrap_or(Ordering::Equal)
+        };
         let t = if order == Ordering::Greater {
             next_v.clone()
         } else {

@@ -7,8 +7,8 @@
 //! saturate. Both events are counted per thread, never panic, and are reported with each ray.
 //!
 //! The run recurrence stays exact in this arithmetic: the slope `a = p/q` is rounded once, the
-//! intercept is rounded onto multiples of `1/q` ([`Scalar::align_to`]), and `beta + a*len - 1`
-//! then never leaves denominator `q`.
+//! intercept is rounded onto multiples of `1/(q*m)` with `m = floor(bound/q)`
+//! ([`Scalar::align_to`]), and `beta + a*len - 1` then never leaves that denominator.
 
 use super::scalar::Scalar;
 use num_bigint::BigInt;
@@ -268,8 +268,11 @@ impl Scalar for Rational {
         }
     }
     fn align_to(self, slope: &Self) -> Self {
-        // Round self to the nearest multiple of 1/slope.den.
-        let q = i128::from(slope.den);
+        // Round self to the nearest multiple of 1/(q*m), q the slope's denominator and m as
+        // large as the bound allows: adding multiples of the slope then never leaves that
+        // denominator, and the resolution stays about 1/bound.
+        let bound = BOUND.with(Cell::get);
+        let q = i128::from(slope.den) * (bound / i128::from(slope.den)).max(1);
         let scaled = i128::from(self.num) * q;
         let den = i128::from(self.den);
         let numerator = (2 * scaled + den).div_euclid(2 * den);

@@ -23,7 +23,8 @@ pub fn walk<S: Scalar>(
     f: &Frame<S>,
     visit: &mut impl FnMut(Span<S>) -> ControlFlow<()>,
 ) -> ControlFlow<()> {
-    if f.du.is_zero() {
+    // A path of zero length touches its cells all at once: row by row, like a point.
+    if f.du.is_zero() || f.t0 == f.t1 {
         return walk_point(f, visit);
     }
     let a = f.dv.clone() / f.du.clone();
@@ -56,13 +57,20 @@ pub fn walk<S: Scalar>(
     let beta =
         (f.vs.clone() - S::from_i64(row)) + a.clone() * (S::from_i64(col + 1) - f.us.clone());
     let beta = beta.align_to(&a);
-    let steps = if beta >= one {
+    let mut steps = if beta >= one {
         0
     } else {
         ((one.clone() - beta.clone()) / a.clone()).ceil_i64()
     };
-    let exit = beta + a.clone() * S::from_i64(steps) - one.clone();
-    let (mut len, mut next_beta) = if exit.is_zero() {
+    // The division may round: settle on the least step count that reaches the row's top.
+    let exit_after = |k: i64| beta.clone() + a.clone() * S::from_i64(k) - one.clone();
+    if exit_after(steps).is_negative() {
+        steps += 1;
+    } else if steps > 0 && !exit_after(steps - 1).is_negative() {
+        steps -= 1;
+    }
+    let exit = exit_after(steps);
+    let (mut len, mut next_beta) = if exit.nearly_equal(&S::zero()) {
         (steps.saturating_add(1), a.clone())
     } else {
         (steps, exit)
@@ -92,7 +100,7 @@ pub fn walk<S: Scalar>(
         row += 1;
         col = col.saturating_add(len);
         let beta = next_beta;
-        let through_corner = beta == a;
+        let through_corner = beta.nearly_equal(&a);
         lo = col - i64::from(through_corner);
         len = if beta > threshold { short } else { long };
         next_beta = beta + a.clone() * S::from_i64(len) - one.clone();

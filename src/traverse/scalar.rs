@@ -42,6 +42,14 @@ pub trait Scalar:
     /// callers may test signs on the value. This is what makes the triangle test watertight.
     fn det2(a: &Self, b: &Self, c: &Self, d: &Self) -> Self;
 
+    /// Whether two computed values are equal as far as this arithmetic can tell: exactly for
+    /// exact arithmetic, within accumulated rounding for floats. Walks use it to decide that a
+    /// path crosses a lattice point and visit both cells touching it only there; visiting one
+    /// too many is harmless, one too few leaves a hole.
+    fn nearly_equal(&self, other: &Self) -> bool {
+        self == other
+    }
+
     /// Rounds an intercept onto the denominator of `slope`, so that a recurrence adding
     /// multiples of the slope stays exact. Only bounded rationals round; others return `self`.
     fn align_to(self, _slope: &Self) -> Self {
@@ -149,6 +157,10 @@ impl Scalar for f64 {
     fn rounding_error(magnitude: f64) -> f64 {
         magnitude * f64::EPSILON / 2.0
     }
+    fn nearly_equal(&self, other: &f64) -> bool {
+        // Room for the drift of a recurrence over a million steps.
+        (self - other).abs() <= 1e-9 * self.abs().max(other.abs()).max(1.0)
+    }
     fn to_f64(&self) -> f64 {
         *self
     }
@@ -187,6 +199,9 @@ impl Scalar for f32 {
     }
     fn rounding_error(magnitude: f64) -> f64 {
         magnitude * f64::from(f32::EPSILON) / 2.0
+    }
+    fn nearly_equal(&self, other: &f32) -> bool {
+        (self - other).abs() <= 1e-4 * self.abs().max(other.abs()).max(1.0)
     }
     fn to_f64(&self) -> f64 {
         f64::from(*self)

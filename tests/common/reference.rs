@@ -34,7 +34,10 @@ pub fn qi(n: i64) -> Q {
 }
 
 fn floor_i64(x: &Q) -> i64 {
-    x.floor().to_integer().to_i64().expect("grid coordinate fits i64")
+    x.floor()
+        .to_integer()
+        .to_i64()
+        .expect("grid coordinate fits i64")
 }
 
 /// A closed set of ray parameters `lo <= t <= hi` (`hi == None`: unbounded), possibly empty.
@@ -161,10 +164,15 @@ impl ExactField {
 
     /// Highest of the cell's four corner heights.
     pub fn cell_max(&self, [i, j]: [usize; 2]) -> &Q {
-        [self.z(i, j), self.z(i + 1, j), self.z(i, j + 1), self.z(i + 1, j + 1)]
-            .into_iter()
-            .max()
-            .expect("four corners")
+        [
+            self.z(i, j),
+            self.z(i + 1, j),
+            self.z(i, j + 1),
+            self.z(i + 1, j + 1),
+        ]
+        .into_iter()
+        .max()
+        .expect("four corners")
     }
 
     fn cell_count(&self) -> usize {
@@ -244,7 +252,11 @@ pub fn solve(field: &Heightfield, ray: &Ray) -> Answer {
 
 fn clip(field: &ExactField, ray: &ExactRay) -> Option<(Q, Q)> {
     let lo = [Q::zero(), Q::zero(), field.zmin.clone()];
-    let hi = [qi(field.w as i64 - 1), qi(field.h as i64 - 1), field.zmax.clone()];
+    let hi = [
+        qi(field.w as i64 - 1),
+        qi(field.h as i64 - 1),
+        field.zmax.clone(),
+    ];
     let mut range = Interval::nonnegative();
     for k in 0..3 {
         if !range.slab(&ray.o[k], &ray.d[k], &lo[k], &hi[k]) {
@@ -374,7 +386,8 @@ fn first_hit(cells: &[Contact], touches: &HashMap<[usize; 2], [Option<Q>; 2]>) -
 /// The query counters the contract prescribes for `answer` (exact arithmetic):
 /// - bbox: one query, a hit iff the clip range is non-empty;
 /// - cells are walked in visiting order, grouped in spans (maximal runs of consecutive cells
-///   with the same minor index; a path with minor component 0 is one span). The walk stops
+///   with the same minor index; a path with minor component 0 and positive length is one
+///   span). The walk stops
 ///   at the first span or cell whose t_enter >= the best hit so far;
 /// - `runs`: each span first gets a run query (the ray's lowest z over the span's t-range <=
 ///   highest cell maximum of its cells); a missed span's cells are skipped;
@@ -395,8 +408,16 @@ pub fn counters(answer: &Answer, runs: bool) -> Counters {
             break;
         }
         if runs {
-            let t_lo = span.iter().map(|c| &c.t_enter).min().expect("non-empty span");
-            let t_hi = span.iter().map(|c| &c.t_exit).max().expect("non-empty span");
+            let t_lo = span
+                .iter()
+                .map(|c| &c.t_enter)
+                .min()
+                .expect("non-empty span");
+            let t_hi = span
+                .iter()
+                .map(|c| &c.t_exit)
+                .max()
+                .expect("non-empty span");
             let highest = span
                 .iter()
                 .map(|c| answer.field.cell_max(c.cell))
@@ -410,7 +431,8 @@ pub fn counters(answer: &Answer, runs: bool) -> Counters {
             if done(&best, &contact.t_enter) {
                 break 'spans;
             }
-            let may_hit = lowest(&contact.t_enter, &contact.t_exit) <= *answer.field.cell_max(contact.cell);
+            let may_hit =
+                lowest(&contact.t_enter, &contact.t_exit) <= *answer.field.cell_max(contact.cell);
             if !counters.cell.record(may_hit) {
                 continue;
             }
@@ -418,7 +440,9 @@ pub fn counters(answer: &Answer, runs: bool) -> Counters {
                 .touches
                 .get(&contact.cell)
                 .cloned()
-                .unwrap_or_else(|| [0, 1].map(|k| first_touch(&answer.field, ray, contact.cell, k)));
+                .unwrap_or_else(|| {
+                    [0, 1].map(|k| first_touch(&answer.field, ray, contact.cell, k))
+                });
             for t in touches.into_iter() {
                 if !counters.triangle.record(t.is_some()) {
                     continue;
@@ -440,7 +464,10 @@ fn spans(answer: &Answer) -> Vec<&[Contact]> {
     if answer.cells.is_empty() {
         return Vec::new();
     }
-    if ray.dir[minor] == 0.0 && ray.dir[major] != 0.0 {
+    // A level path of positive length walks its one or two rows as a single span; a path
+    // clipped to a single point is walked like a point, row by row.
+    let single_point = answer.clip.as_ref().is_some_and(|(t0, t1)| t0 == t1);
+    if ray.dir[minor] == 0.0 && ray.dir[major] != 0.0 && !single_point {
         return vec![&answer.cells[..]];
     }
     answer

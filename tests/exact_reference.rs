@@ -1,0 +1,376 @@
+//! Exact mode against the brute-force reference of tests/common/reference.rs: for both
+//! methods, the hit (exact t, cell, triangle), `covered_cells`, the recorded cells and every
+//! query counter must match the contract exactly.
+
+mod common;
+
+use common::families::{self, ray, terrain};
+use common::random::{field_and_ray, field_and_ray_up_to};
+use common::reference::{self, q};
+use common::{assert_family, check_exact, describe, options};
+use heightray::traverse::covered_cells;
+use heightray::traverse::HitMiss;
+use heightray::{trace, Arith, Counters, Heightfield, Method, Ray, Terrain};
+use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
+use proptest::test_runner::TestCaseError;
+
+#[test]
+fn octant_entries_on_non_dyadic_heights() {
+    assert_family(&families::octant_entries(
+        "octant entries (hilly)",
+        families::hilly(),
+    ));
+}
+
+#[test]
+fn octant_entries_on_integer_heights() {
+    assert_family(&families::octant_entries(
+        "octant entries (integer)",
+        families::integer_hills(6, 5, 6, 3),
+    ));
+}
+
+#[test]
+fn lattice_point_slope_0() {
+    assert_family(&families::lattice_slope(0, 1));
+}
+
+#[test]
+fn lattice_point_slope_1() {
+    assert_family(&families::lattice_slope(1, 1));
+}
+
+#[test]
+fn lattice_point_slope_1_2() {
+    assert_family(&families::lattice_slope(1, 2));
+}
+
+#[test]
+fn lattice_point_slope_2_3() {
+    assert_family(&families::lattice_slope(2, 3));
+}
+
+#[test]
+fn lattice_point_slope_17_41() {
+    assert_family(&families::lattice_slope(17, 41));
+}
+
+#[test]
+fn lattice_point_slope_41_17() {
+    assert_family(&families::lattice_slope(41, 17));
+}
+
+#[test]
+fn rays_along_grid_lines_on_non_dyadic_heights() {
+    assert_family(&families::grid_lines(
+        "grid lines (hilly)",
+        families::hilly(),
+    ));
+}
+
+#[test]
+fn rays_along_grid_lines_on_integer_heights() {
+    assert_family(&families::grid_lines(
+        "grid lines (integer)",
+        families::integer_hills(6, 5, 6, 3),
+    ));
+}
+
+#[test]
+fn rays_along_cell_diagonals_on_integer_heights() {
+    assert_family(&families::cell_diagonals(
+        "cell diagonals (integer)",
+        families::integer_hills(6, 5, 6, 3),
+    ));
+}
+
+#[test]
+fn rays_along_cell_diagonals_on_non_dyadic_heights() {
+    assert_family(&families::cell_diagonals(
+        "cell diagonals (hilly)",
+        families::hilly(),
+    ));
+}
+
+#[test]
+fn vertical_ray_in_cell() {
+    assert_family(&families::vertical_in_cell());
+}
+
+#[test]
+fn vertical_ray_on_edge() {
+    assert_family(&families::vertical_on_edge());
+}
+
+#[test]
+fn vertical_ray_on_corner() {
+    assert_family(&families::vertical_on_corner());
+}
+
+#[test]
+fn vertical_ray_on_grid_boundary() {
+    assert_family(&families::vertical_on_grid_boundary());
+}
+
+#[test]
+fn rays_starting_inside_the_grid() {
+    assert_family(&families::starts_inside_above_surface(
+        "starts inside",
+        families::hilly(),
+    ));
+}
+
+#[test]
+fn rays_starting_below_the_surface() {
+    assert_family(&families::starts_below_surface(
+        "starts below the surface",
+        families::hilly(),
+    ));
+}
+
+#[test]
+fn rays_starting_on_a_vertex_or_edge() {
+    assert_family(&families::starts_on_vertex(
+        "starts on a vertex",
+        families::integer_hills(6, 6, 6, 5),
+    ));
+}
+
+#[test]
+fn level_rays_at_plateau_height() {
+    assert_family(&families::plateau_level());
+}
+
+#[test]
+fn near_vertical_rays() {
+    assert_family(&families::near_vertical());
+}
+
+#[test]
+fn negative_zero_components() {
+    assert_family(&families::negative_zero());
+}
+
+#[test]
+fn single_point_segments_at_the_box_corner() {
+    assert_family(&families::single_point_segments());
+}
+
+#[test]
+fn oblique_rays_touch_a_flat_field_at_one_point() {
+    let family = families::flat_field_single_point();
+    assert_family(&family);
+    // Every one of them hits, at t = 1 (the aimed point).
+    for ray in &family.rays {
+        let answer = reference::solve(family.terrain.field(), ray);
+        let hit = answer
+            .hit
+            .unwrap_or_else(|| panic!("reference misses {}", describe(ray)));
+        assert_eq!(hit.t, q(1.0), "{}", describe(ray));
+    }
+}
+
+/// A level path (minor component 0) clipped to one lattice point (the ray meets the flat
+/// field's zero-height box there): the four cells all have contact [0, 0], so the key orders
+/// them by minor index first.
+#[test]
+fn single_point_level_segment_on_a_lattice_point() {
+    let flat = terrain(3, 3, 255, 255.0, |_, _| 0);
+    let cases = [
+        // y-major: minor is x.
+        (
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 1.0],
+            vec![[0, 0], [0, 1], [1, 0], [1, 1]],
+        ),
+        (
+            [1.0, 1.0, 0.0],
+            [-0.0, -1.0, 1.0],
+            vec![[0, 1], [0, 0], [1, 1], [1, 0]],
+        ),
+        // x-major: minor is y.
+        (
+            [1.0, 1.0, 0.0],
+            [1.0, 0.0, 1.0],
+            vec![[0, 0], [1, 0], [0, 1], [1, 1]],
+        ),
+        (
+            [1.0, 1.0, 0.0],
+            [-1.0, 0.0, -1.0],
+            vec![[1, 0], [0, 0], [1, 1], [0, 1]],
+        ),
+    ];
+    for (o, d, expected) in cases {
+        let r = ray(o, d);
+        assert_eq!(
+            reference::solve(flat.field(), &r).cell_list(),
+            expected,
+            "reference"
+        );
+        for method in common::METHODS {
+            let got = covered_cells(&flat, &r, method, Arith::Exact);
+            assert_eq!(got, expected, "{method}: {}", describe(&r));
+        }
+    }
+}
+
+#[test]
+fn slope_1_3777_strip_finds_the_far_spike() {
+    let family = families::strip_slope_1_3777();
+    assert_family(&family);
+    for ray in &family.rays {
+        for method in common::METHODS {
+            let got = trace(&family.terrain, ray, &options(method, Arith::Exact));
+            let hit = got
+                .hit
+                .unwrap_or_else(|| panic!("{method} misses the spike: {}", describe(ray)));
+            assert!(
+                families::strip_spike_cells().contains(&hit.cell),
+                "{method}: hit {hit:?} is not next to the spike: {}",
+                describe(ray)
+            );
+        }
+    }
+}
+
+/// The 4x3 field of the hand-worked ray: heights 0 except z(0,0) = 1 and z(2,2) = 4.
+fn hand_worked_terrain() -> Terrain {
+    terrain(4, 3, 255, 255.0, |x, y| match (x, y) {
+        (0, 0) => 1,
+        (2, 2) => 4,
+        _ => 0,
+    })
+}
+
+fn hit_miss(hit: u64, miss: u64) -> HitMiss {
+    HitMiss { hit, miss }
+}
+
+/// Field (y up; cell maxima in brackets):
+///
+/// ```text
+///   y=2   0   0   4   0
+///   y=1   0   0   0   0        cells: (0,1)[0] (1,1)[4] (2,1)[4]
+///   y=0   1   0   0   0               (0,0)[1] (1,0)[0] (2,0)[0]
+/// ```
+///
+/// Ray o = (0, 0.25, 3), d = (2, 1, -2): x = 2t, y = 0.25 + t, z = 3 - 2t; x-major, slope 1/2.
+/// Clip: x in [0,3] gives t in [0, 1.5], y in [0,2] gives [-0.25, 1.75], z in [0,4] gives
+/// [-0.5, 1.5]; so [t0, t1] = [0, 1.5]. The path goes from (0, 0.25) to (3, 1.75), crossing
+/// x = 1 at t = 0.5, y = 1 at t = 0.75 (x = 1.5), x = 2 at t = 1 (y = 1.25). Covered cells:
+/// (0,0) [0, .5], (1,0) [.5, .75], (1,1) [.75, 1], (2,1) [1, 1.5].
+///
+/// Triangles of (1,1) (z00 = z10 = z01 = 0, z11 = 4; X = 2t-1, Y = t-0.75):
+/// - T0: z = 4Y; 3 - 2t = 4t - 3 gives t = 1, (X, Y) = (1, 0.25), 0 <= Y <= X <= 1: hit.
+/// - T1: z = 4X; 3 - 2t = 8t - 4 gives t = 0.7, Y = -0.05 < 0: miss.
+///
+/// The hit point (2, 1.25, 1) is also on T1 of (2,1) (z = 4Y - 4X there, X = 0, Y = .25);
+/// (1,1) comes first in visiting order, so the answer is cell (1,1), T0, t = 1.
+///
+/// Runs: bbox hit. Span row 0 = {(0,0),(1,0)}, t in [0, .75]: lowest z = 1.5 > max(1, 0):
+/// run miss, cells skipped. Span row 1 = {(1,1),(2,1)}, t in [.75, 1.5]: lowest z = 0 <= 4:
+/// run hit. Cell (1,1): lowest z over [.75, 1] = 1 <= 4: hit; T0 hit (t = 1), T1 miss.
+/// Cell (2,1): t_enter = 1 >= 1: stop.
+///   bbox 1/0, run 1/1, cell 1/0, triangle 1/1 (hit/miss).
+/// DDA: cell (0,0): lowest z over [0, .5] = 2 > 1: miss. Cell (1,0): lowest over [.5, .75] =
+/// 1.5 > 0: miss. Cell (1,1): hit, T0 hit, T1 miss. Cell (2,1): stop.
+///   bbox 1/0, run 0/0, cell 1/2, triangle 1/1.
+#[test]
+fn hand_worked_counters_on_4x3_field() {
+    let terrain = hand_worked_terrain();
+    let ray = ray([0.0, 0.25, 3.0], [2.0, 1.0, -2.0]);
+    let expected_cells = vec![[0, 0], [1, 0], [1, 1], [2, 1]];
+    let runs = Counters {
+        bbox: hit_miss(1, 0),
+        run: hit_miss(1, 1),
+        cell: hit_miss(1, 0),
+        triangle: hit_miss(1, 1),
+        ..Counters::default()
+    };
+    let dda = Counters {
+        bbox: hit_miss(1, 0),
+        run: hit_miss(0, 0),
+        cell: hit_miss(1, 2),
+        triangle: hit_miss(1, 1),
+        ..Counters::default()
+    };
+    // The reference agrees with the hand computation.
+    let answer = reference::solve(terrain.field(), &ray);
+    assert_eq!(answer.cell_list(), expected_cells);
+    let hit = answer.hit.clone().expect("reference hit");
+    assert_eq!((hit.t.clone(), hit.cell, hit.triangle), (q(1.0), [1, 1], 0));
+    assert_eq!(reference::counters(&answer, true), runs);
+    assert_eq!(reference::counters(&answer, false), dda);
+
+    for (method, counters) in [(Method::Runs, runs), (Method::Dda, dda)] {
+        let got = trace(&terrain, &ray, &options(method, Arith::Exact));
+        let hit = got.hit.unwrap_or_else(|| panic!("{method}: no hit"));
+        assert_eq!(hit.t_exact, Some(q(1.0)), "{method}");
+        assert_eq!(hit.t, 1.0, "{method}");
+        assert_eq!(hit.point, [2.0, 1.25, 1.0], "{method}");
+        assert_eq!((hit.cell, hit.triangle), ([1, 1], 0), "{method}");
+        assert_eq!(got.counters.bbox, counters.bbox, "{method} bbox");
+        assert_eq!(got.counters.run, counters.run, "{method} run");
+        assert_eq!(got.counters.cell, counters.cell, "{method} cell");
+        assert_eq!(
+            got.counters.triangle, counters.triangle,
+            "{method} triangle"
+        );
+        assert_eq!(got.counters, counters, "{method}");
+        assert_eq!(
+            covered_cells(&terrain, &ray, method, Arith::Exact),
+            expected_cells,
+            "{method}"
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Random rays on random small fields (strategies in tests/common/random.rs).
+
+fn config(cases: u32, seed: u64) -> ProptestConfig {
+    ProptestConfig {
+        cases,
+        rng_seed: RngSeed::Fixed(seed),
+        failure_persistence: None,
+        max_shrink_iters: 4096,
+        ..ProptestConfig::default()
+    }
+}
+
+/// Fails with the field and the ray when the crate disagrees with the reference.
+fn check_random(field: &Heightfield, ray: &Ray) -> Result<(), TestCaseError> {
+    let problems = check_exact(&Terrain::new(field.clone()), ray);
+    prop_assert!(
+        problems.is_empty(),
+        "field {}x{} maxval {} z_scale {:?} samples (y up, by j*w+i) {:?}\n{}\n{}",
+        field.width(),
+        field.height(),
+        field.maxval(),
+        field.z_scale(),
+        field.samples(),
+        describe(ray),
+        problems.join("\n")
+    );
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(config(30_000, 0x4845_4947_4854))]
+
+    #[test]
+    fn random_rays_on_random_small_fields((field, ray) in field_and_ray()) {
+        check_random(&field, &ray)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(config(3_000, 0x5241_5953))]
+
+    /// Up to 40 samples per side: long walks, many runs.
+    #[test]
+    fn random_rays_on_random_medium_fields((field, ray) in field_and_ray_up_to(40)) {
+        check_random(&field, &ray)?;
+    }
+}
