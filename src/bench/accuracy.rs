@@ -1,14 +1,18 @@
-//! Time per primary ray, queries per ray, and how far each answer is from exact, per method and
-//! the number of answers that differ from exact arithmetic when exact is measured too.
+//! What accuracy costs in time: per method and arithmetic, time per ray, queries per ray, and
+//! how far the answers are from exact arithmetic on the same rays.
 
-use crate::heightfield::Terrain;
-use crate::render::Camera;
-use crate::traverse::{trace, Arith, Counters, Hit, Method, TraceOptions};
+use super::ray_sets::RaySet;
+use crate::render::{Culling, Frame, Renderer, Scene, Shader};
+use crate::traverse::{covered_cells, trace, Arith, Counters, Hit, Method, TraceOptions};
+use crate::Terrain;
+use std::collections::HashSet;
 use std::time::{Duration, Instant};
 
 /// One method and arithmetic measured on every pixel of a view.
 #[derive(Clone, Debug)]
 pub struct AccuracyRow {
+    /// The ray set's name.
+    pub set: String,
     pub method: Method,
     pub arith: Arith,
     pub rays: u64,
@@ -17,6 +21,8 @@ pub struct AccuracyRow {
     pub counters: Counters,
     /// How the answers differ from exact arithmetic on the same method (if measured).
     pub versus_exact: Option<Disagreement>,
+    /// Cells the exact walk covers that this walk did not (if exact was measured).
+    pub skipped_cells: Option<u64>,
 }
 
 /// How a set of answers differs from the exact answers to the same rays.
@@ -33,6 +39,11 @@ pub struct Disagreement {
 }
 
 impl Disagreement {
+    /// Answers that differ in any way counted here.
+    pub fn total(&self) -> u64 {
+        self.hit_or_miss + self.cell_or_triangle + self.t_error
+    }
+
     /// Compares answers with the exact answers to the same rays.
     pub fn between(answers: &[Option<Hit>], exact: &[Option<Hit>]) -> Disagreement {
         let mut d = Disagreement::default();
@@ -63,27 +74,24 @@ impl AccuracyRow {
     }
 }
 
-/// Traces every pixel's primary ray of `camera` with each method and arithmetic, one thread.
+/// Traces every ray of `set` with each method and arithmetic, one thread, and compares each
+/// with exact arithmetic (if among `ariths`): answers, and cells of the exact walk skipped.
 pub fn accuracy(
-    terrain: &Terrain,
-    camera: &Camera,
+    set: &RaySet,
     methods: &[Method],
     ariths: &[Arith],
+    progress: &mut dyn FnMut(),
 ) -> Vec<AccuracyRow> {
-    let (w, h) = camera.size();
-    let rays: Vec<_> = (0..h)
-        .flat_map(|py| (0..w).map(move |px| (px, py)))
-        .map(|(px, py)| camera.ray(px, py))
-        .collect();
     let mut rows = Vec::new();
     for &method in methods {
         let mut answers = Vec::new();
         for &arith in ariths {
             let options = TraceOptions::new(method, arith);
             let start = Instant::now();
-            let traces: Vec<_> = rays
+            let traces: Vec<_> = set
+                .rays
                 .iter()
-                .map(|ray| trace(terrain, ray, &options))
+                .map(|ray| trace(&set.terrain, ray, &options))
                 .collect();
             let time = start.elapsed();
             let mut counters = Counters::default();
@@ -91,22 +99,102 @@ pub fn accuracy(
                 counters += t.counters;
             }
             rows.push(AccuracyRow {
+                set: set.name.clone(),
                 method,
                 arith,
-                rays: rays.len() as u64,
+                rays: set.rays.len() as u64,
                 hits: traces.iter().filter(|t| t.hit.is_some()).count() as u64,
                 time,
                 counters,
                 versus_exact: None,
+                skipped_cells: None,
             });
             answers.push(traces.into_iter().map(|t| t.hit).collect::<Vec<_>>());
+            progress();
         }
-        // Compare with exact, if it was measured.
         let first = rows.len() - ariths.len();
-        if let Some(exact) = ariths.iter().position(|&a| a == Arith::Exact) {
-            for (k, row) in rows[first..].iter_mut().enumerate() {
-                row.versus_exact = Some(Disagreement::between(&answers[k], &answers[exact]));
-            }
+        let Some(exact) = ariths.iter().position(|&a| a == Arith::Exact) else {
+            continue;
+        };
+        let exact_cells: Vec<HashSet<[usize; 2]>> = set
+            .rays
+            .iter()
+            .map(|ray| {
+                covered_cells(&set.terrain, ray, method, Arith::Exact)
+                    .into_iter()
+                    .collect()
+            })
+            .collect();
+        for (k, row) in rows[first..].iter_mut().enumerate() {
+            row.versus_exact = Some(Disagreement::between(&answers[k], &answers[exact]));
+            let skipped = set.rays.iter().zip(&exact_cells).map(|(ray, want)| {
+                let got: HashSet<_> = covered_cells(&set.terrain, ray, method, row.arith)
+                    .into_iter()
+                    .collect();
+                want.difference(&got).count() as u64
+            });
+            row.skipped_cells = Some(skipped.sum());
+        }
+    }
+    rows
+}
+
+/// A scene rendered in one method and arithmetic, against the exact render.
+#[derive(Clone, Debug)]
+pub struct PixelRow {
+    pub method: Method,
+    pub arith: Arith,
+    /// Pixels whose colour differs from the exact render's.
+    pub differing: u64,
+    pub pixels: u64,
+    /// Wall time of the frame (all threads).
+    pub time: Duration,
+}
+
+/// Renders `scene` in each arithmetic and counts pixels that differ from the exact render
+/// (which is rendered too, whether or not `ariths` names it).
+pub fn pixel_differences(
+    scene: &Scene,
+    terrain: &Terrain,
+    methods: &[Method],
+    ariths: &[Arith],
+    progress: &mut dyn FnMut(),
+) -> Vec<PixelRow> {
+    let render = |method, arith| {
+        let renderer = Renderer {
+            shader: Shader {
+                terrain,
+                lighting: scene.lighting,
+                method,
+                culling: Culling::default(),
+            },
+            camera: scene.camera,
+            arith,
+        };
+        let (w, h) = scene.camera.size();
+        let mut frame = Frame::new(w, h);
+        let start = Instant::now();
+        renderer.render(&mut frame);
+        (frame.pixels, start.elapsed())
+    };
+    let mut rows = Vec::new();
+    for &method in methods {
+        let (exact, exact_time) = render(method, Arith::Exact);
+        progress();
+        for &arith in ariths {
+            let (pixels, time) = if arith == Arith::Exact {
+                (exact.clone(), exact_time)
+            } else {
+                render(method, arith)
+            };
+            rows.push(PixelRow {
+                method,
+                arith,
+                differing: pixels.iter().zip(&exact).filter(|(a, b)| a != b).count() as u64,
+                pixels: pixels.len() as u64,
+                time,
+            });
+            progress();
         }
     }
     rows

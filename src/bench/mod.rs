@@ -2,7 +2,10 @@
 //! ratios.
 
 mod accuracy;
+pub mod plot;
+mod ray_sets;
 mod speed;
 
-pub use accuracy::{accuracy, AccuracyRow, Disagreement};
+pub use accuracy::{accuracy, pixel_differences, AccuracyRow, Disagreement, PixelRow};
+pub use ray_sets::{hard_cases, scene_sets, RaySet};
 pub use speed::{throughput, ThroughputRow};

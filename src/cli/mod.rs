@@ -1,5 +1,6 @@
 //! Command-line arguments and the subcommands (DESIGN 4).
 
+mod accuracy;
 mod bench;
 mod generate;
 mod render;
@@ -62,28 +63,31 @@ pub struct SpeedArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct AccuracyArgs {
-    /// Height map to use instead of the built-in terrain.
-    #[arg(long, requires = "z_scale")]
-    pub map: Option<PathBuf>,
-    /// z scale for --map.
-    #[arg(long)]
-    pub z_scale: Option<f64>,
-    /// Built-in terrain (valley513, small49).
-    #[arg(long, default_value = "valley513")]
-    pub builtin: String,
-    /// View width and height in pixels (one primary ray each).
-    #[arg(long, default_value_t = 128)]
+    /// Scene files (default: the built-in scenes).
+    #[arg(long, value_delimiter = ',')]
+    pub scenes: Vec<PathBuf>,
+    /// Image width and height for the scenes' rays and renders (exact arithmetic is slow).
+    #[arg(long, default_value_t = 48)]
     pub size: u32,
+    /// Rays per generated hard-case set.
+    #[arg(long, default_value_t = 64)]
+    pub per_set: usize,
     /// Methods, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "runs,dda")]
     pub methods: Vec<Method>,
-    /// Arithmetics, comma-separated.
+    /// Arithmetics, comma-separated (exact is always measured: it is the reference).
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "f32,f64,rational:65536,exact"
+        default_value = "f32,f64,rational:16,rational:256,rational:4096,rational:65536,rational:16777216,exact"
     )]
     pub ariths: Vec<Arith>,
+    /// Also write the report (Markdown) here.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Plot time per ray against error rate (PNG or SVG).
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
 }
 
 #[derive(clap::Args, Debug)]
@@ -155,7 +159,7 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Render(args) => render::run(&args),
         Command::Generate(args) => generate::run(&args),
         Command::Bench(BenchCommand::Speed(args)) => bench::speed(&args),
-        Command::Bench(BenchCommand::Accuracy(args)) => bench::accuracy(&args),
+        Command::Bench(BenchCommand::Accuracy(args)) => accuracy::run(&args),
     }
 }
 
