@@ -1,12 +1,28 @@
 //! Clipping a ray to an axis-aligned box (slabs), in any arithmetic.
 
-use crate::traverse::scalar::{max, min, Scalar};
+use crate::traverse::scalar::Scalar;
 
-/// The parameter range `[t0, t1]` (with `t0 >= 0`) in which `o + t*d` lies in the closed box
-/// `[lo, hi]`, or `None` if it never does.
-pub fn clip_to_box<S: Scalar>(o: &[S; 3], d: &[S; 3], lo: &[S; 3], hi: &[S; 3]) -> Option<(S, S)> {
-    let mut t0 = S::zero();
-    let mut t1: Option<S> = None;
+/// The part of a ray inside a box: `t0..=t1` (with `t0 >= 0`), and for each end the box face
+/// it lies on, if a face and not the ray's origin fixes it: `(axis, value)`. The end point's
+/// coordinate on that axis is exactly `value`, which arithmetic that rounds cannot tell from
+/// `o + t*d` alone.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Clipped<S> {
+    pub t0: S,
+    pub t1: S,
+    pub entry_face: Option<(usize, S)>,
+    pub exit_face: Option<(usize, S)>,
+}
+
+/// Clips `o + t*d` (t >= 0) to the closed box `[lo, hi]`, or `None` if it never meets it.
+pub fn clip_to_box<S: Scalar>(
+    o: &[S; 3],
+    d: &[S; 3],
+    lo: &[S; 3],
+    hi: &[S; 3],
+) -> Option<Clipped<S>> {
+    let mut enter = (S::zero(), None);
+    let mut exit: Option<(S, Option<(usize, S)>)> = None;
     for axis in 0..3 {
         if d[axis].is_zero() {
             // Parallel to this slab: inside it for every t, or never.
@@ -15,45 +31,59 @@ pub fn clip_to_box<S: Scalar>(o: &[S; 3], d: &[S; 3], lo: &[S; 3], hi: &[S; 3]) 
             }
             continue;
         }
-        let ta = (lo[axis].clone() - o[axis].clone()) / d[axis].clone();
-        let tb = (hi[axis].clone() - o[axis].clone()) / d[axis].clone();
         let (near, far) = if d[axis].is_negative() {
-            (tb, ta)
+            (&hi[axis], &lo[axis])
         } else {
-            (ta, tb)
+            (&lo[axis], &hi[axis])
         };
-        t0 = max(t0, near);
-        t1 = Some(match t1 {
-            Some(t) => min(t, far),
-            None => far,
-        });
+        let t_near = (near.clone() - o[axis].clone()) / d[axis].clone();
+        let t_far = (far.clone() - o[axis].clone()) / d[axis].clone();
+        if t_near > enter.0 {
+            enter = (t_near, Some((axis, near.clone())));
+        }
+        if exit.as_ref().is_none_or(|(t, _)| t_far < *t) {
+            exit = Some((t_far, Some((axis, far.clone()))));
+        }
     }
     // A box is bounded, so some axis has a non-zero direction component (rays are validated).
-    let t1 = t1?;
-    (t0 <= t1).then_some((t0, t1))
+    let (t1, exit_face) = exit?;
+    let (t0, entry_face) = enter;
+    (t0 <= t1).then_some(Clipped {
+        t0,
+        t1,
+        entry_face,
+        exit_face,
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    fn range(c: Option<Clipped<f64>>) -> Option<(f64, f64)> {
+        c.map(|c| (c.t0, c.t1))
+    }
+
     #[test]
     fn clips_and_misses() {
         let (lo, hi) = ([0.0, 0.0, 0.0], [4.0, 4.0, 1.0]);
-        let got = clip_to_box(&[-1.0, 1.0, 0.5], &[1.0, 0.0, 0.0], &lo, &hi);
-        assert_eq!(got, Some((1.0, 5.0)));
+        let through = clip_to_box(&[-1.0, 1.0, 0.5], &[1.0, 0.0, 0.0], &lo, &hi);
+        assert_eq!(range(through.clone()), Some((1.0, 5.0)));
+        let through = through.unwrap();
         assert_eq!(
-            clip_to_box(&[-1.0, 1.0, 2.0], &[1.0, 0.0, 0.0], &lo, &hi),
+            (through.entry_face, through.exit_face),
+            (Some((0, 0.0)), Some((0, 4.0)))
+        );
+        assert_eq!(
+            range(clip_to_box(&[-1.0, 1.0, 2.0], &[1.0, 0.0, 0.0], &lo, &hi)),
             None
         );
-        // Starting inside: t0 = 0.
-        assert_eq!(
-            clip_to_box(&[1.0, 1.0, 0.5], &[0.0, 0.0, -1.0], &lo, &hi),
-            Some((0.0, 0.5))
-        );
+        // Starting inside: t0 = 0 at the origin, no entry face.
+        let inside = clip_to_box(&[1.0, 1.0, 0.5], &[0.0, 0.0, -1.0], &lo, &hi).unwrap();
+        assert_eq!((inside.t0, inside.t1, inside.entry_face), (0.0, 0.5, None));
         // Pointing away.
         assert_eq!(
-            clip_to_box(&[5.0, 1.0, 0.5], &[1.0, 0.0, 0.0], &lo, &hi),
+            range(clip_to_box(&[5.0, 1.0, 0.5], &[1.0, 0.0, 0.0], &lo, &hi)),
             None
         );
     }

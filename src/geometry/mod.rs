@@ -4,6 +4,6 @@ mod clip;
 mod ray;
 mod triangle;
 
-pub use clip::clip_to_box;
+pub use clip::{clip_to_box, Clipped};
 pub use ray::{Ray, RayError};
 pub use triangle::{CellTriangles, RaySpace, TriangleHit};

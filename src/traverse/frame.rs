@@ -2,6 +2,7 @@
 //! slope `dv/du` in `[0, 1]`, by mirroring axes (negation, exact in every arithmetic) and
 //! exchanging x and y. Cells are named by frame indices `(cu, cv)` until they are reported.
 
+use crate::geometry::Clipped;
 use crate::traverse::scalar::Scalar;
 
 /// A span of cells the walk reached, in visiting order: one row of cells (`rows == 1`), or
@@ -51,9 +52,15 @@ impl<S: Scalar> Frame<S> {
         o: &[S; 3],
         d: &[S; 3],
         d_f64: [f64; 3],
-        (t0, t1): (S, S),
+        clipped: Clipped<S>,
         size: (usize, usize),
     ) -> Self {
+        let Clipped {
+            t0,
+            t1,
+            entry_face,
+            exit_face,
+        } = clipped;
         let swap = d_f64[1].abs() > d_f64[0].abs();
         let (ku, kv) = if swap { (1, 0) } else { (0, 1) };
         let (flip_u, flip_v) = (d_f64[ku] < 0.0, d_f64[kv] < 0.0);
@@ -63,8 +70,19 @@ impl<S: Scalar> Frame<S> {
         let du = mirror(d[ku].clone(), flip_u);
         let dv = mirror(d[kv].clone(), flip_v);
         let at = |o: &S, d: &S, t: &S| o.clone() + d.clone() * t.clone();
-        let (us, vs) = (at(&ou, &du, &t0), at(&ov, &dv, &t0));
-        let (ue, ve) = (at(&ou, &du, &t1), at(&ov, &dv, &t1));
+        let (mut us, mut vs) = (at(&ou, &du, &t0), at(&ov, &dv, &t0));
+        let (mut ue, mut ve) = (at(&ou, &du, &t1), at(&ov, &dv, &t1));
+        // An end on a side of the box lies exactly on that side.
+        for (face, u, v) in [
+            (entry_face, &mut us, &mut vs),
+            (exit_face, &mut ue, &mut ve),
+        ] {
+            match face {
+                Some((axis, value)) if axis == ku => *u = mirror(value, flip_u),
+                Some((axis, value)) if axis == kv => *v = mirror(value, flip_v),
+                _ => {}
+            }
+        }
         let cells = |n: usize, flip: bool| {
             let n = n as i64 - 1;
             if flip {

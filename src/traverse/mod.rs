@@ -6,6 +6,7 @@ mod dda;
 mod degenerate;
 mod exact;
 mod frame;
+mod interval;
 mod rational;
 mod runs;
 pub mod scalar;
@@ -13,6 +14,7 @@ mod search;
 
 pub use counters::{Counters, HitMiss};
 pub use exact::Exact;
+pub use interval::{settled, Interval};
 pub use rational::{with_bound, Rational, RationalEvents, DEFAULT_BOUND};
 pub use scalar::Scalar;
 
@@ -64,6 +66,9 @@ pub struct WalkOptions {
     pub query: Query,
     /// List the cells the walk covered, in order.
     pub record_cells: bool,
+    /// A triangle `(cell, k)` the ray starts on and leaves at once (it touches it only at
+    /// `t = 0`), not to be tested: a shadow ray's own triangle.
+    pub start_triangle: Option<((usize, usize), u8)>,
 }
 
 impl WalkOptions {
@@ -73,6 +78,7 @@ impl WalkOptions {
             method,
             query,
             record_cells: false,
+            start_triangle: None,
         }
     }
 }
@@ -94,6 +100,7 @@ impl TraceOptions {
             method: self.method,
             query: self.query,
             record_cells: self.record_cells,
+            start_triangle: None,
         }
     }
 
@@ -137,7 +144,7 @@ pub fn trace(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
     match options.arith {
         Arith::F32 => trace_in::<f32>(terrain, ray, options),
         Arith::F64 => trace_in::<f64>(terrain, ray, options),
-        Arith::Exact => trace_in::<Exact>(terrain, ray, options),
+        Arith::Exact => trace_exact(terrain, ray, options),
         Arith::Rational { bound } => {
             let (mut trace, events) =
                 with_bound(bound, || trace_in::<Rational>(terrain, ray, options));
@@ -171,7 +178,10 @@ pub fn covered_cells(
     match arith {
         Arith::F32 => cover::<f32>(terrain, ray, method),
         Arith::F64 => cover::<f64>(terrain, ray, method),
-        Arith::Exact => cover::<Exact>(terrain, ray, method),
+        Arith::Exact => match settled(|| cover::<Interval>(terrain, ray, method)) {
+            (cells, true) => cells,
+            (_, false) => cover::<Exact>(terrain, ray, method),
+        },
         Arith::Rational { bound } => {
             with_bound(bound, || cover::<Rational>(terrain, ray, method)).0
         }
@@ -194,8 +204,8 @@ fn clip<S: Scalar>(
         S::from_i64(h as i64 - 1),
         S::from_f64(z_hi),
     ];
-    let range = clip_to_box(o, d, &lo, &hi)?;
-    Some(Frame::new(o, d, dir_f64, range, (w, h)))
+    let clipped = clip_to_box(o, d, &lo, &hi)?;
+    Some(Frame::new(o, d, dir_f64, clipped, (w, h)))
 }
 
 fn walk<S: Scalar>(
@@ -208,6 +218,56 @@ fn walk<S: Scalar>(
         Method::Runs => runs::walk(frame, visit),
         Method::Dda => dda::walk(frame, visit),
     };
+}
+
+/// Exact arithmetic: intervals first; only a ray with a decision they cannot settle is traced
+/// again in rationals. Settled decisions are the exact ones, so only the hit's `t` remains to
+/// be computed exactly, on the one triangle hit.
+fn trace_exact(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
+    let (mut fast, is_settled) = settled(|| trace_in::<Interval>(terrain, ray, options));
+    if !is_settled {
+        return trace_in::<Exact>(terrain, ray, options);
+    }
+    let Some(hit) = fast.hit.take() else {
+        return fast;
+    };
+    match exact_t(terrain, ray, hit.cell, hit.triangle) {
+        Some(t) => {
+            let (o, d) = (
+                ray.origin().map(Exact::from_f64),
+                ray.dir().map(Exact::from_f64),
+            );
+            fast.hit = Some(Hit {
+                t: t.to_f64(),
+                point: [0, 1, 2].map(|k| (o[k].clone() + d[k].clone() * t.clone()).to_f64()),
+                t_exact: t.to_exact(),
+                ..hit
+            });
+            fast
+        }
+        // The ray lies in the triangle's plane (or, impossibly, misses it): rationals decide.
+        None => trace_in::<Exact>(terrain, ray, options),
+    }
+}
+
+/// Where the ray meets the plane of triangle `k` of `cell`, exactly; `None` if it runs parallel.
+/// Over `T0` the plane is `z = z00 + (z10-z00)(x-i) + (z11-z10)(y-j)`, over `T1`
+/// `z = z00 + (z11-z01)(x-i) + (z01-z00)(y-j)` (DESIGN 2).
+fn exact_t(terrain: &Terrain, ray: &Ray, [i, j]: [usize; 2], k: u8) -> Option<Exact> {
+    let field = terrain.field();
+    let z = |di, dj| Exact::from_f64(field.z(i + di, j + dj));
+    let (gx, gy) = if k == 0 {
+        (z(1, 0) - z(0, 0), z(1, 1) - z(1, 0))
+    } else {
+        (z(1, 1) - z(0, 1), z(0, 1) - z(0, 0))
+    };
+    let [ox, oy, oz] = ray.origin().map(Exact::from_f64);
+    let [dx, dy, dz] = ray.dir().map(Exact::from_f64);
+    let (x0, y0) = (Exact::from_i64(i as i64), Exact::from_i64(j as i64));
+    // oz + t*dz = z00 + gx*(ox + t*dx - i) + gy*(oy + t*dy - j), solved for t.
+    let above = oz - z(0, 0) - gx.clone() * (ox - x0) - gy.clone() * (oy - y0);
+    let closing = gx * dx + gy * dy - dz;
+    (!closing.is_zero()).then(|| above / closing)
 }
 
 fn trace_in<S: Scalar>(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
@@ -271,6 +331,7 @@ pub fn trace_scalar<S: Scalar>(
         counters,
         found: None,
         cells: walk_options.record_cells.then(Vec::new),
+        start_triangle: walk_options.start_triangle,
     };
     walk(&frame, walk_options.method, &mut |span| search.span(span));
     ScalarTrace {

@@ -38,6 +38,8 @@ pub struct Search<'a, S> {
     pub found: Option<Found<S>>,
     /// Cells the walk covered, in order, when asked for.
     pub cells: Option<Vec<[usize; 2]>>,
+    /// The triangle the ray starts on and leaves at once: not tested.
+    pub start_triangle: Option<((usize, usize), u8)>,
 }
 
 impl<S: Scalar> Search<'_, S> {
@@ -123,6 +125,9 @@ impl<S: Scalar> Search<'_, S> {
         .map(S::from_f64);
         let cell = CellTriangles::new(&self.ray, i, j, heights);
         for triangle in 0..2 {
+            if self.start_triangle == Some(((i, j), triangle)) {
+                continue;
+            }
             let hit = cell.intersect(&self.ray, triangle);
             let counts = match (&hit, self.query) {
                 (None, _) => false,
