@@ -6,4 +6,4 @@ mod triangle;
 
 pub use clip::{clip_to_box, Clipped};
 pub use ray::{Ray, RayError};
-pub use triangle::{CellTriangles, RaySpace, TriangleHit};
+pub use triangle::{gradient, plane_height, CellTriangles, RaySpace, TriangleHit};

@@ -167,3 +167,22 @@ impl<S: Scalar> CellTriangles<S> {
         )
     }
 }
+
+/// The gradient `(dz/dx, dz/dy)` of triangle `k` of a cell with corner heights
+/// `[z00, z10, z01, z11]`: over `T0` the plane is `z = z00 + (z10-z00)(x-i) + (z11-z10)(y-j)`,
+/// over `T1` `z = z00 + (z11-z01)(x-i) + (z01-z00)(y-j)` (DESIGN 2).
+pub fn gradient<S: Scalar>(k: u8, [z00, z10, z01, z11]: [S; 4]) -> (S, S) {
+    if k == 0 {
+        (z10.clone() - z00, z11 - z10)
+    } else {
+        (z11 - z01.clone(), z01 - z00)
+    }
+}
+
+/// The height of triangle `k`'s plane over `(x, y)`, for the cell `(i, j)` with corner heights
+/// `heights`: exact for a flat triangle in every arithmetic.
+pub fn plane_height<S: Scalar>(k: u8, (i, j): (usize, usize), heights: [S; 4], x: S, y: S) -> S {
+    let z00 = heights[0].clone();
+    let (gx, gy) = gradient(k, heights);
+    z00 + gx * (x - S::from_i64(i as i64)) + gy * (y - S::from_i64(j as i64))
+}

@@ -42,6 +42,11 @@ impl Terrain {
     pub fn field(&self) -> &Heightfield {
         &self.field
     }
+    /// Heights `[z00, z10, z01, z11]` of the corners of cell `(i, j)`.
+    pub fn corner_heights(&self, i: usize, j: usize) -> [f64; 4] {
+        let f = &self.field;
+        [f.z(i, j), f.z(i + 1, j), f.z(i, j + 1), f.z(i + 1, j + 1)]
+    }
     /// Highest height of cell `(i, j)`.
     pub fn cell_max(&self, i: usize, j: usize) -> f64 {
         self.field.height_of(self.cells.get(i, j))

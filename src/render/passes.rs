@@ -3,9 +3,11 @@
 //! threads. A caller-supplied check lets a newer camera cancel the work between bands.
 
 use super::camera::Camera;
+use super::shade::Sample;
 use super::shade::Shader;
 use super::stats::{FrameStats, PixelStats};
-use crate::traverse::{with_bound, Arith, Exact, Rational, Scalar};
+use crate::traverse::{with_bound, Arith, Rational};
+use crate::Ray;
 use rayon::prelude::*;
 
 /// Block size of each pass: pass `k` traces the pixels on the `PASS_BLOCKS[k]` lattice that no
@@ -88,12 +90,16 @@ impl Renderer<'_> {
                     width: frame.width,
                     height: frame.height,
                 };
+                let shader = &self.shader;
                 Some(match self.arith {
-                    Arith::F32 => self.band::<f32>(&mut out, pass, block),
-                    Arith::F64 => self.band::<f64>(&mut out, pass, block),
-                    Arith::Exact => self.band::<Exact>(&mut out, pass, block),
+                    Arith::F32 => self.band(&mut out, pass, block, |r| shader.sample::<f32>(r)),
+                    Arith::F64 => self.band(&mut out, pass, block, |r| shader.sample::<f64>(r)),
+                    Arith::Exact => self.band(&mut out, pass, block, |r| shader.sample_exact(r)),
                     Arith::Rational { bound } => {
-                        with_bound(bound, || self.band::<Rational>(&mut out, pass, block)).0
+                        with_bound(bound, || {
+                            self.band(&mut out, pass, block, |r| shader.sample::<Rational>(r))
+                        })
+                        .0
                     }
                 })
             })
@@ -109,7 +115,13 @@ impl Renderer<'_> {
     }
 
     /// Traces this pass's pixels of one band and paints their blocks.
-    fn band<S: Scalar>(&self, out: &mut BandOut<'_>, pass: usize, block: u32) -> FrameStats {
+    fn band(
+        &self,
+        out: &mut BandOut<'_>,
+        pass: usize,
+        block: u32,
+        sample: impl Fn(&Ray) -> Sample,
+    ) -> FrameStats {
         let mut totals = FrameStats::default();
         let y_end = (out.y0 + BAND).min(out.height);
         for y in (out.y0..y_end).filter(|y| y % block == 0) {
@@ -118,7 +130,7 @@ impl Renderer<'_> {
                 if traced_before {
                     continue;
                 }
-                let sample = self.shader.sample::<S>(&self.camera.ray(x, y));
+                let sample = sample(&self.camera.ray(x, y));
                 totals.add(&sample);
                 out.paint(x, y, block, sample.rgb, PixelStats::of(&sample));
             }

@@ -2,8 +2,11 @@
 //! Lambert shading with an elevation ramp, sky and fog.
 
 use super::scene::{Lighting, Normals, Ramp};
+use crate::geometry::{gradient, plane_height};
 use crate::heightfield::Terrain;
-use crate::traverse::{trace_scalar, Counters, Found, Method, Query, Scalar, WalkOptions};
+use crate::traverse::{
+    settled, trace_scalar, Counters, Exact, Found, Interval, Method, Query, Scalar, WalkOptions,
+};
 use crate::Ray;
 use glam::DVec3;
 
@@ -68,6 +71,15 @@ pub struct Shader<'a> {
 }
 
 impl Shader<'_> {
+    /// Traces and shades one primary ray exactly: in intervals, and again in rationals if
+    /// they left a decision unsettled.
+    pub fn sample_exact(&self, ray: &Ray) -> Sample {
+        match settled(|| self.sample::<Interval>(ray)) {
+            (sample, true) => sample,
+            (_, false) => self.sample::<Exact>(ray),
+        }
+    }
+
     /// Traces and shades one primary ray in arithmetic `S`.
     pub fn sample<S: Scalar>(&self, ray: &Ray) -> Sample {
         let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
@@ -139,13 +151,24 @@ impl Shader<'_> {
             .chain(&ray.dir())
             .fold(0.0f64, |m, c| m.max(c.abs()));
         let lift = 64.0 * S::rounding_error(largest * (1.0 + t)) * (1.0 + self.terrain.max_slope());
-        let [x, y, z] = point;
+        // On the hit triangle's plane: exact height on flat ground in every arithmetic.
+        let [x, y, _] = point;
+        let heights = self
+            .terrain
+            .corner_heights(found.cell.0, found.cell.1)
+            .map(S::from_f64);
+        let z = plane_height(found.triangle, found.cell, heights, x.clone(), y.clone());
         let origin = [x, y, z + S::from_f64(lift)];
         let (_, z_max) = self.terrain.z_range();
         if self.culling.above_terrain && sun[2] > 0.0 && origin[2] > S::from_f64(z_max) {
             return skip(ShadowSkip::AboveTerrain);
         }
-        let walk = WalkOptions::new(self.method, Query::Shadow);
+        let walk = WalkOptions {
+            start_triangle: self
+                .leaves_at_once(found)
+                .then_some((found.cell, found.triangle)),
+            ..WalkOptions::new(self.method, Query::Shadow)
+        };
         let answer = trace_scalar(self.terrain, &origin, &sun.map(S::from_f64), sun, walk);
         (
             Shadow::Cast {
@@ -155,18 +178,33 @@ impl Shader<'_> {
         )
     }
 
+    /// Whether a ray towards the sun leaves the hit triangle's plane at once, so that it
+    /// touches the triangle it starts on only at its start (decided with room to spare for
+    /// rounding; when in doubt the triangle is tested like any other).
+    fn leaves_at_once<S: Scalar>(&self, found: &Found<S>) -> bool {
+        let n = self.geometric_normal(found);
+        let s = DVec3::from(self.lighting.sun);
+        let terms = [n.x * s.x, n.y * s.y, n.z * s.z];
+        let sum: f64 = terms.iter().sum();
+        sum.abs() > 1e-9 * terms.iter().map(|t| t.abs()).sum::<f64>()
+    }
+
+    /// The (unnormalised) normal of the hit triangle's plane: `(-gx, -gy, 1)`.
+    fn geometric_normal<S: Scalar>(&self, found: &Found<S>) -> DVec3 {
+        let heights = self.terrain.corner_heights(found.cell.0, found.cell.1);
+        let (gx, gy) = gradient(found.triangle, heights);
+        DVec3::new(-gx, -gy, 1.0)
+    }
+
     /// The shading normal at `p` on the hit triangle.
     fn normal<S: Scalar>(&self, found: &Found<S>, p: DVec3) -> DVec3 {
-        let field = self.terrain.field();
         let (i, j) = found.cell;
-        let z = |di: usize, dj: usize| field.z(i + di, j + dj);
         let (u, w) = (
             (p.x - i as f64).clamp(0.0, 1.0),
             (p.y - j as f64).clamp(0.0, 1.0),
         );
         let n = match (self.lighting.normals, found.triangle) {
-            (Normals::Flat, 0) => DVec3::new(z(0, 0) - z(1, 0), z(1, 0) - z(1, 1), 1.0),
-            (Normals::Flat, _) => DVec3::new(z(0, 1) - z(1, 1), z(0, 0) - z(0, 1), 1.0),
+            (Normals::Flat, _) => self.geometric_normal(found),
             // Interpolate vertex normals with the triangle's barycentric weights.
             (Normals::Smooth, 0) => {
                 self.vertex_normal(i, j) * (1.0 - u)
@@ -200,7 +238,13 @@ impl Shader<'_> {
     /// Surface colour by elevation.
     fn ramp(&self, z: f64) -> DVec3 {
         let (lo, hi) = self.terrain.z_range();
-        let e = ((z - lo) / (hi - lo).max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+        // A flat field has one colour (and rounding must not make up a range).
+        let range = hi - lo;
+        let e = if range > 1e-9 * hi.abs().max(1.0) {
+            ((z - lo) / range).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         match self.lighting.ramp {
             Ramp::Gray => DVec3::splat(0.25 + 0.75 * e),
             Ramp::Terrain => {

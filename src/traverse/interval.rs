@@ -25,6 +25,9 @@ pub fn settled<R>(f: impl FnOnce() -> R) -> (R, bool) {
 }
 
 fn unsettled() {
+    if std::env::var_os("HR_DEBUG").is_some() && !UNSETTLED.with(|u| u.get()) {
+        eprintln!("{}", std::backtrace::Backtrace::force_capture());
+    }
     UNSETTLED.with(|u| u.set(true));
 }
 
@@ -190,8 +193,13 @@ impl Scalar for Interval {
         Interval::point(x)
     }
     fn from_i64(n: i64) -> Self {
-        // Grid coordinates are far below 2^53: exact.
-        Interval::point(n as f64)
+        let x = n as f64;
+        // Grid coordinates are far below 2^53 and exact; saturated step counts may not be.
+        if x.abs() < 9.0e15 {
+            Interval::point(x)
+        } else {
+            Interval::checked(x.next_down(), x.next_up())
+        }
     }
     fn to_f64(&self) -> f64 {
         self.lo + (self.hi - self.lo) / 2.0
@@ -232,6 +240,19 @@ impl Scalar for Interval {
         // The sign is decided (or flagged) where it is used; a straddling interval is only
         // trusted as a value in sums.
         value
+    }
+    fn lesser(self, other: Interval) -> Interval {
+        // Encloses the smaller exact value without deciding which one it is.
+        Interval {
+            lo: self.lo.min(other.lo),
+            hi: self.hi.min(other.hi),
+        }
+    }
+    fn greater(self, other: Interval) -> Interval {
+        Interval {
+            lo: self.lo.max(other.lo),
+            hi: self.hi.max(other.hi),
+        }
     }
     fn rounding_error(_magnitude: f64) -> f64 {
         // It encloses the exact value: no lift needed, as in exact arithmetic.

@@ -18,7 +18,7 @@ pub use interval::{settled, Interval};
 pub use rational::{with_bound, Rational, RationalEvents, DEFAULT_BOUND};
 pub use scalar::Scalar;
 
-use crate::geometry::{clip_to_box, Ray, RaySpace};
+use crate::geometry::{clip_to_box, gradient, Ray, RaySpace};
 use crate::heightfield::Terrain;
 use frame::{Frame, Span};
 use num_rational::BigRational;
@@ -251,21 +251,15 @@ fn trace_exact(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
 }
 
 /// Where the ray meets the plane of triangle `k` of `cell`, exactly; `None` if it runs parallel.
-/// Over `T0` the plane is `z = z00 + (z10-z00)(x-i) + (z11-z10)(y-j)`, over `T1`
-/// `z = z00 + (z11-z01)(x-i) + (z01-z00)(y-j)` (DESIGN 2).
 fn exact_t(terrain: &Terrain, ray: &Ray, [i, j]: [usize; 2], k: u8) -> Option<Exact> {
-    let field = terrain.field();
-    let z = |di, dj| Exact::from_f64(field.z(i + di, j + dj));
-    let (gx, gy) = if k == 0 {
-        (z(1, 0) - z(0, 0), z(1, 1) - z(1, 0))
-    } else {
-        (z(1, 1) - z(0, 1), z(0, 1) - z(0, 0))
-    };
+    let heights = terrain.corner_heights(i, j).map(Exact::from_f64);
+    let z00 = heights[0].clone();
+    let (gx, gy) = gradient(k, heights);
     let [ox, oy, oz] = ray.origin().map(Exact::from_f64);
     let [dx, dy, dz] = ray.dir().map(Exact::from_f64);
     let (x0, y0) = (Exact::from_i64(i as i64), Exact::from_i64(j as i64));
     // oz + t*dz = z00 + gx*(ox + t*dx - i) + gy*(oy + t*dy - j), solved for t.
-    let above = oz - z(0, 0) - gx.clone() * (ox - x0) - gy.clone() * (oy - y0);
+    let above = oz - z00 - gx.clone() * (ox - x0) - gy.clone() * (oy - y0);
     let closing = gx * dx + gy * dy - dz;
     (!closing.is_zero()).then(|| above / closing)
 }

@@ -65,7 +65,8 @@ pub fn walk<S: Scalar>(
     // The division may round: settle on the least step count that reaches the row's top.
     let exit_after = |k: i64| beta.clone() + a.clone() * S::from_i64(k) - one.clone();
     if exit_after(steps).is_negative() {
-        steps += 1;
+        // (Saturated for slopes so small the path never reaches the top: it ends first.)
+        steps = steps.saturating_add(1);
     } else if steps > 0 && !exit_after(steps - 1).is_negative() {
         steps -= 1;
     }

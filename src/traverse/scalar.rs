@@ -65,6 +65,24 @@ pub trait Scalar:
         None
     }
 
+    /// The smaller of two values (the first on ties). Enclosing arithmetics need not decide
+    /// which it is.
+    fn lesser(self, other: Self) -> Self {
+        if other < self {
+            other
+        } else {
+            self
+        }
+    }
+    /// The larger of two values (the first on ties).
+    fn greater(self, other: Self) -> Self {
+        if other > self {
+            other
+        } else {
+            self
+        }
+    }
+
     fn zero() -> Self {
         Self::from_i64(0)
     }
@@ -79,20 +97,12 @@ pub trait Scalar:
 
 /// Smaller of two values (the first on ties).
 pub fn min<S: Scalar>(a: S, b: S) -> S {
-    if b < a {
-        b
-    } else {
-        a
-    }
+    a.lesser(b)
 }
 
 /// Larger of two values (the first on ties).
 pub fn max<S: Scalar>(a: S, b: S) -> S {
-    if b > a {
-        b
-    } else {
-        a
-    }
+    a.greater(b)
 }
 
 /// The exact value of a finite `f64` as a fraction (non-finite values give zero; callers
@@ -158,8 +168,10 @@ impl Scalar for f64 {
         magnitude * f64::EPSILON / 2.0
     }
     fn nearly_equal(&self, other: &f64) -> bool {
-        // Room for the drift of a recurrence over a million steps.
-        (self - other).abs() <= 1e-9 * self.abs().max(other.abs()).max(1.0)
+        // Room for the drift of a recurrence over a million steps; infinities (a parameter
+        // step overflowing for a subnormal direction) are near nothing but themselves.
+        let scale = self.abs().max(other.abs()).max(1.0);
+        self == other || (scale.is_finite() && (self - other).abs() <= 1e-9 * scale)
     }
     fn to_f64(&self) -> f64 {
         *self
@@ -201,7 +213,8 @@ impl Scalar for f32 {
         magnitude * f64::from(f32::EPSILON) / 2.0
     }
     fn nearly_equal(&self, other: &f32) -> bool {
-        (self - other).abs() <= 1e-4 * self.abs().max(other.abs()).max(1.0)
+        let scale = self.abs().max(other.abs()).max(1.0);
+        self == other || (scale.is_finite() && (self - other).abs() <= 1e-4 * scale)
     }
     fn to_f64(&self) -> f64 {
         f64::from(*self)

@@ -115,14 +115,7 @@ impl<S: Scalar> Search<'_, S> {
 
     /// Tests both triangles of cell `(i, j)`.
     fn triangles(&mut self, i: usize, j: usize) -> ControlFlow<()> {
-        let field = self.terrain.field();
-        let heights = [
-            field.z(i, j),
-            field.z(i + 1, j),
-            field.z(i, j + 1),
-            field.z(i + 1, j + 1),
-        ]
-        .map(S::from_f64);
+        let heights = self.terrain.corner_heights(i, j).map(S::from_f64);
         let cell = CellTriangles::new(&self.ray, i, j, heights);
         for triangle in 0..2 {
             if self.start_triangle == Some(((i, j), triangle)) {
