@@ -62,7 +62,14 @@ pub fn walk<S: Scalar>(
         } else {
             next_u.clone()
         };
-        if t > f.t1 {
+        // Leaving the grid ends the walk whatever t1 says (when the path leaves through the
+        // box side the two are equal, which rounding arithmetic cannot always tell).
+        let leaves_grid = match order {
+            Ordering::Less => cu + 1 > f.cols.1,
+            Ordering::Greater => cv + 1 > f.rows.1,
+            Ordering::Equal => cu + 1 > f.cols.1 && cv + 1 > f.rows.1,
+        };
+        if leaves_grid || t > f.t1 {
             break;
         }
         match order {
