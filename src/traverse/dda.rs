@@ -4,7 +4,7 @@
 //! touch the path only there, so in exact arithmetic it visits the same cells, in the same
 //! order, as the run walk.
 
-use super::degenerate::{walk_level, walk_point};
+use super::degenerate::{is_point, walk_level, walk_point};
 use super::frame::{Frame, Span};
 use super::scalar::{min, Scalar};
 use std::cmp::Ordering;
@@ -25,8 +25,7 @@ pub fn walk<S: Scalar>(
     f: &Frame<S>,
     visit: &mut impl FnMut(Span<S>) -> ControlFlow<()>,
 ) -> ControlFlow<()> {
-    // A path of zero length touches its cells all at once: row by row, like a point.
-    if f.du.is_zero() || f.t0 == f.t1 {
+    if is_point(f) {
         return walk_point(f, visit);
     }
     if f.dv.is_zero() {

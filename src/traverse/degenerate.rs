@@ -5,6 +5,12 @@ use super::frame::{Frame, Span};
 use super::scalar::{max, min, Scalar};
 use std::ops::ControlFlow;
 
+/// Whether the path is a single point: a vertical ray, or one clipped to length zero. Its
+/// cells are all touched at once and are walked row by row, like a point.
+pub fn is_point<S: Scalar>(f: &Frame<S>) -> bool {
+    f.du.is_zero() || f.t0 == f.t1
+}
+
 /// Cells touching the point `(us, vs)`: up to two rows of up to two cells, row by row.
 pub fn walk_point<S: Scalar>(
     f: &Frame<S>,

@@ -13,7 +13,7 @@
 //! cells it touches only at a lattice point, so in exact arithmetic the walk visits exactly
 //! the cells the segment touches, in order of first contact.
 
-use super::degenerate::{walk_level, walk_point};
+use super::degenerate::{is_point, walk_level, walk_point};
 use super::frame::{Frame, Span};
 use super::scalar::{min, Scalar};
 use std::ops::ControlFlow;
@@ -23,8 +23,7 @@ pub fn walk<S: Scalar>(
     f: &Frame<S>,
     visit: &mut impl FnMut(Span<S>) -> ControlFlow<()>,
 ) -> ControlFlow<()> {
-    // A path of zero length touches its cells all at once: row by row, like a point.
-    if f.du.is_zero() || f.t0 == f.t1 {
+    if is_point(f) {
         return walk_point(f, visit);
     }
     let a = f.dv.clone() / f.du.clone();

@@ -157,93 +157,80 @@ fn with_sign(value: f64, sign: Ordering) -> f64 {
     }
 }
 
-impl Scalar for f64 {
-    fn from_f64(x: f64) -> Self {
-        x
-    }
-    fn from_i64(n: i64) -> Self {
-        n as f64
-    }
-    fn rounding_error(magnitude: f64) -> f64 {
-        magnitude * f64::EPSILON / 2.0
-    }
-    fn nearly_equal(&self, other: &f64) -> bool {
-        // Room for the drift of a recurrence over a million steps; infinities (a parameter
-        // step overflowing for a subnormal direction) are near nothing but themselves.
-        let scale = self.abs().max(other.abs()).max(1.0);
-        self == other || (scale.is_finite() && (self - other).abs() <= 1e-9 * scale)
-    }
-    fn to_f64(&self) -> f64 {
-        *self
-    }
-    fn floor_i64(&self) -> i64 {
-        self.floor() as i64
-    }
-    fn ceil_i64(&self) -> i64 {
-        self.ceil() as i64
-    }
-    fn is_zero(&self) -> bool {
-        *self == 0.0
-    }
-    fn is_negative(&self) -> bool {
-        *self < 0.0
-    }
-    fn det2(a: &f64, b: &f64, c: &f64, d: &f64) -> f64 {
-        let (p, q) = (a * b, c * d);
-        let value = p - q;
-        // Error of fl(fl(ab) - fl(cd)) is below 3u(|ab| + |cd|) with u = 2^-53; outside that
-        // band the sign is certain, inside it we decide exactly (rare).
-        let bound = 3.4e-16 * (p.abs() + q.abs()) + 1e-300;
-        if value.abs() > bound {
-            value
-        } else {
-            with_sign(value, exact_det2_sign(*a, *b, *c, *d))
-        }
+/// `a*b - c*d` in `f64` with the exact sign: rounded where the error bound allows, decided
+/// exactly inside it (rare).
+fn det2_f64(a: &f64, b: &f64, c: &f64, d: &f64) -> f64 {
+    let (p, q) = (a * b, c * d);
+    let value = p - q;
+    // Error of fl(fl(ab) - fl(cd)) is below 3u(|ab| + |cd|) with u = 2^-53; outside that
+    // band the sign is certain.
+    let bound = 3.4e-16 * (p.abs() + q.abs()) + 1e-300;
+    if value.abs() > bound {
+        value
+    } else {
+        with_sign(value, exact_det2_sign(*a, *b, *c, *d))
     }
 }
 
-impl Scalar for f32 {
-    fn from_f64(x: f64) -> Self {
-        x as f32
-    }
-    fn from_i64(n: i64) -> Self {
-        n as f32
-    }
-    fn rounding_error(magnitude: f64) -> f64 {
-        magnitude * f64::from(f32::EPSILON) / 2.0
-    }
-    fn nearly_equal(&self, other: &f32) -> bool {
-        let scale = self.abs().max(other.abs()).max(1.0);
-        self == other || (scale.is_finite() && (self - other).abs() <= 1e-4 * scale)
-    }
-    fn to_f64(&self) -> f64 {
-        f64::from(*self)
-    }
-    fn floor_i64(&self) -> i64 {
-        self.floor() as i64
-    }
-    fn ceil_i64(&self) -> i64 {
-        self.ceil() as i64
-    }
-    fn is_zero(&self) -> bool {
-        *self == 0.0
-    }
-    fn is_negative(&self) -> bool {
-        *self < 0.0
-    }
-    fn det2(a: &f32, b: &f32, c: &f32, d: &f32) -> f32 {
-        // Products of two f32 are exact in f64, and the f64 difference of two exact values has
-        // the exact sign: the double-precision fallback of Woop et al., always taken.
-        let value = f64::from(*a) * f64::from(*b) - f64::from(*c) * f64::from(*d);
-        let rounded = value as f32;
-        if rounded == 0.0 && value != 0.0 {
-            // Underflow to zero would lose the sign.
-            (f32::MIN_POSITIVE).copysign(value as f32 + value.signum() as f32)
-        } else {
-            rounded
-        }
+/// `a*b - c*d` in `f32` with the exact sign.
+fn det2_f32(a: &f32, b: &f32, c: &f32, d: &f32) -> f32 {
+    // Products of two f32 are exact in f64, and the f64 difference of two exact values has
+    // the exact sign: the double-precision fallback of Woop et al., always taken.
+    let value = f64::from(*a) * f64::from(*b) - f64::from(*c) * f64::from(*d);
+    let rounded = value as f32;
+    if rounded == 0.0 && value != 0.0 {
+        // Underflow to zero would lose the sign.
+        f32::MIN_POSITIVE.copysign(value as f32)
+    } else {
+        rounded
     }
 }
+
+/// The floating-point arithmetics: the same operations, their own epsilon, tolerance for
+/// lattice crossings (room for a recurrence's drift over a million steps) and exact-sign
+/// determinant.
+macro_rules! float_scalar {
+    ($float:ty, $tolerance:expr, $det2:path) => {
+        impl Scalar for $float {
+            fn from_f64(x: f64) -> Self {
+                x as $float
+            }
+            fn from_i64(n: i64) -> Self {
+                n as $float
+            }
+            fn rounding_error(magnitude: f64) -> f64 {
+                magnitude * f64::from(<$float>::EPSILON) / 2.0
+            }
+            fn nearly_equal(&self, other: &Self) -> bool {
+                // Infinities (a parameter step overflowing for a subnormal direction) are
+                // near nothing but themselves.
+                let scale = self.abs().max(other.abs()).max(1.0);
+                self == other || (scale.is_finite() && (self - other).abs() <= $tolerance * scale)
+            }
+            fn to_f64(&self) -> f64 {
+                f64::from(*self)
+            }
+            fn floor_i64(&self) -> i64 {
+                self.floor() as i64
+            }
+            fn ceil_i64(&self) -> i64 {
+                self.ceil() as i64
+            }
+            fn is_zero(&self) -> bool {
+                *self == 0.0
+            }
+            fn is_negative(&self) -> bool {
+                *self < 0.0
+            }
+            fn det2(a: &Self, b: &Self, c: &Self, d: &Self) -> Self {
+                $det2(a, b, c, d)
+            }
+        }
+    };
+}
+
+float_scalar!(f64, 1e-9, det2_f64);
+float_scalar!(f32, 1e-4, det2_f32);
 
 #[cfg(test)]
 mod tests {
