@@ -8,6 +8,7 @@ pub mod geometry;
 pub mod heightfield;
 pub mod render;
 pub mod traverse;
+pub mod viewer;
 
 pub use geometry::{Ray, RayError};
 pub use heightfield::{Heightfield, HeightfieldError, LoadError, Terrain};

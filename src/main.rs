@@ -2,16 +2,13 @@
 
 mod cli;
 
-use clap::{CommandFactory, Parser};
+use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
     let args = cli::Args::parse();
-    let Some(command) = args.command else {
-        // The viewer comes next; until then the default prints what there is.
-        let _ = cli::Args::command().print_long_help();
-        return ExitCode::SUCCESS;
-    };
+    // Without a subcommand: the viewer (DESIGN 4).
+    let command = args.command.unwrap_or(cli::Command::View(args.view));
     match cli::run(command) {
         Ok(code) => code,
         Err(error) => {

@@ -12,15 +12,26 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 /// Exact, fast ray tracing of terrain height fields on the CPU.
+///
+/// Without a subcommand, opens the viewer (on the built-in terrain, or FILE_OR_SCENE).
 #[derive(Parser, Debug)]
-#[command(name = "heightray", version, about)]
+#[command(
+    name = "heightray",
+    version,
+    about,
+    args_conflicts_with_subcommands = true
+)]
 pub struct Args {
     #[command(subcommand)]
     pub command: Option<Command>,
+    #[command(flatten)]
+    pub view: ViewArgs,
 }
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
+    /// Open the interactive viewer (the default without a subcommand).
+    View(ViewArgs),
     /// Render a scene file to a PNG, with statistics.
     Render(RenderArgs),
     /// Trace rays against a height field and print one JSON object per ray.
@@ -30,6 +41,33 @@ pub enum Command {
     Bench(BenchCommand),
     /// Write a generated landscape (16-bit grayscale PNG) of the built-in generator.
     Generate(GenerateArgs),
+}
+
+#[derive(clap::Args, Debug)]
+pub struct ViewArgs {
+    /// Height map (8/16-bit grayscale PNG or PGM) or scene file (.toml); default: the
+    /// built-in terrain.
+    #[arg(value_name = "FILE_OR_SCENE")]
+    pub source: Option<PathBuf>,
+    /// Height of the largest sample value (default: a built-in's or scene's own; a quarter
+    /// of the larger side for an image).
+    #[arg(long)]
+    pub z_scale: Option<f64>,
+    /// Window size in logical pixels, WIDTHxHEIGHT.
+    #[arg(long, value_parser = parse_size, default_value = "1280x720")]
+    pub size: (u32, u32),
+    /// Rays per physical pixel along each axis (default: one per logical pixel).
+    #[arg(long)]
+    pub render_scale: Option<f32>,
+    /// Quit after this many fully refined frames have been shown (for scripts and tests).
+    #[arg(long)]
+    pub exit_after_frames: Option<u64>,
+    /// Where S saves screenshots; with --exit-after-frames the last frame is saved there.
+    #[arg(long)]
+    pub screenshot: Option<PathBuf>,
+    /// Write the window's state as JSON to this file after every frame (for tests).
+    #[arg(long)]
+    pub report_state: Option<PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -155,11 +193,51 @@ pub struct TraceArgs {
 /// exit code, whole-command failures into the error.
 pub fn run(command: Command) -> anyhow::Result<ExitCode> {
     match command {
+        Command::View(args) => view(args),
         Command::Trace(args) => trace::run(&args),
         Command::Render(args) => render::run(&args),
         Command::Generate(args) => generate::run(&args),
         Command::Bench(BenchCommand::Speed(args)) => bench::speed(&args),
         Command::Bench(BenchCommand::Accuracy(args)) => accuracy::run(&args),
+    }
+}
+
+/// Opens the viewer.
+pub fn view(args: ViewArgs) -> anyhow::Result<ExitCode> {
+    if let Some(source) = args.source.as_ref().filter(|p| !p.exists()) {
+        // `heightray rendr` lands here too: say what else it could have meant.
+        anyhow::bail!(
+            "no file '{}' to view (subcommands: view, render, trace, bench, generate)",
+            source.display()
+        );
+    }
+    if let Some(scale) = args.render_scale {
+        anyhow::ensure!(
+            (0.05..=4.0).contains(&scale),
+            "--render-scale must be between 0.05 and 4, got {scale}"
+        );
+    }
+    heightray::viewer::run(heightray::viewer::ViewerOptions {
+        source: args.source,
+        z_scale: args.z_scale,
+        size: args.size,
+        render_scale: args.render_scale,
+        exit_after_frames: args.exit_after_frames,
+        screenshot: args.screenshot,
+        report_state: args.report_state,
+    })?;
+    Ok(ExitCode::SUCCESS)
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let parsed = s
+        .split_once(['x', 'X'])
+        .and_then(|(w, h)| Some((w.trim().parse::<u32>().ok()?, h.trim().parse::<u32>().ok()?)));
+    match parsed {
+        Some((w, h)) if w > 0 && h > 0 && w <= 16384 && h <= 16384 => Ok((w, h)),
+        _ => Err(format!(
+            "expected WIDTHxHEIGHT (1 to 16384 each), got '{s}'"
+        )),
     }
 }
 

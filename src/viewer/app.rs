@@ -1,0 +1,411 @@
+//! The application: one window, its egui state, the render worker and the loader. Window
+//! events come in through `window_event`, worker and loader news through `user_event`; each
+//! redraw runs the UI, submits a render job if the view changed, and presents.
+
+use super::compose::{self, PixelRect};
+use super::hooks::{Counts, Hooks};
+use super::loader::{LoadRequest, Loaded, Loader, Source};
+use super::model::{Action, Model, Shown};
+use super::orbit::Orbit;
+use super::quality::{detail, JobKey, Quality, ViewKey};
+use super::worker::{RenderJob, RenderWorker};
+use super::{panels, view, UserEvent};
+
+mod present;
+
+use egui_software_backend::{ColorFieldOrder, EguiSoftwareRender};
+use present::keys_ui;
+use std::collections::VecDeque;
+use std::num::NonZeroU32;
+use std::rc::Rc;
+use std::time::{Duration, Instant};
+use winit::event::WindowEvent;
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoopProxy};
+use winit::window::Window;
+
+/// Behind the view where nothing is rendered yet.
+const BACKGROUND: u32 = 0x0020_2226;
+/// Shortest time between redraws that egui asks for: its animations (a spinner while a file
+/// loads) need no more than 60 a second, and the loader needs the CPU more.
+const MIN_FRAME: Duration = Duration::from_millis(16);
+
+/// The viewer's window and everything it shows.
+pub struct App {
+    window: Rc<Window>,
+    surface: softbuffer::Surface<Rc<Window>, Rc<Window>>,
+    egui_ctx: egui::Context,
+    egui_state: egui_winit::State,
+    egui_renderer: EguiSoftwareRender,
+    proxy: EventLoopProxy<UserEvent>,
+    worker: RenderWorker,
+    loader: Loader,
+    model: Model,
+    hooks: Hooks,
+    counts: Counts,
+    quality: Quality,
+    /// The inputs of the job last submitted.
+    submitted: Option<JobKey>,
+    /// Jobs submitted for input whose effect is not on screen yet: generation, input time.
+    unreflected: VecDeque<(u64, Instant)>,
+    /// The earliest input event since the last redraw.
+    input_since_redraw: Option<Instant>,
+    converged_counted: u64,
+    next_repaint: Option<Instant>,
+    screenshot_requested: bool,
+}
+
+impl App {
+    pub fn new(
+        window: Rc<Window>,
+        proxy: EventLoopProxy<UserEvent>,
+        loaded: Loaded,
+        render_scale: Option<f32>,
+        hooks: Hooks,
+    ) -> anyhow::Result<App> {
+        let context = softbuffer::Context::new(window.clone())
+            .map_err(|e| anyhow::anyhow!("cannot draw into the window: {e}"))?;
+        let surface = softbuffer::Surface::new(&context, window.clone())
+            .map_err(|e| anyhow::anyhow!("cannot draw into the window: {e}"))?;
+        let egui_ctx = egui::Context::default();
+        let egui_state = egui_winit::State::new(
+            egui_ctx.clone(),
+            egui::ViewportId::ROOT,
+            &window,
+            Some(window.scale_factor() as f32),
+            None,
+            None,
+        );
+        let (worker, loader) = background_threads(&proxy)?;
+        // Rays cost the square of the scale factor: by default trace one ray per logical pixel.
+        let settings = super::settings::Settings {
+            render_scale: render_scale.unwrap_or(1.0 / window.scale_factor().max(1.0) as f32),
+            ..Default::default()
+        };
+        let model = initial_model(loaded, settings);
+        let counts = Counts {
+            x11_window: x11_window_id(&window),
+            ..Counts::default()
+        };
+        window.set_title(&format!("heightray: {}", model.shown.source.label()));
+        Ok(App {
+            window,
+            surface,
+            egui_ctx,
+            egui_state,
+            egui_renderer: EguiSoftwareRender::new(ColorFieldOrder::Bgra),
+            proxy,
+            worker,
+            loader,
+            model,
+            hooks,
+            counts,
+            quality: Quality::default(),
+            submitted: None,
+            unreflected: VecDeque::new(),
+            input_since_redraw: None,
+            converged_counted: 0,
+            next_repaint: None,
+            screenshot_requested: false,
+        })
+    }
+
+    pub fn window_event(&mut self, event_loop: &ActiveEventLoop, event: WindowEvent) {
+        let response = self.egui_state.on_window_event(&self.window, &event);
+        // egui asks for a repaint in answer to the redraw itself: obeying would spin.
+        if response.repaint && !matches!(event, WindowEvent::RedrawRequested) {
+            self.window.request_redraw();
+        }
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::RedrawRequested => self.redraw(event_loop),
+            WindowEvent::CursorMoved { .. }
+            | WindowEvent::MouseInput { .. }
+            | WindowEvent::MouseWheel { .. }
+            | WindowEvent::KeyboardInput { .. } => {
+                self.input_since_redraw.get_or_insert_with(Instant::now);
+            }
+            WindowEvent::HoveredFile(_) => {
+                self.model.drop_hover = true;
+                self.window.request_redraw();
+            }
+            WindowEvent::HoveredFileCancelled => {
+                self.model.drop_hover = false;
+                self.window.request_redraw();
+            }
+            WindowEvent::DroppedFile(path) => {
+                self.model.drop_hover = false;
+                self.start_load(LoadRequest {
+                    source: Source::File(path),
+                    z_scale: None,
+                    reframe: true,
+                    from_memory: None,
+                });
+            }
+            WindowEvent::Resized(_) | WindowEvent::ScaleFactorChanged { .. } => {
+                self.window.request_redraw();
+            }
+            _ => {}
+        }
+    }
+
+    pub fn user_event(&mut self, event: UserEvent) {
+        match event {
+            UserEvent::FrameReady => {}
+            UserEvent::Load(event) => match self.loader.accept(event) {
+                Some((_, Ok(loaded))) => self.show(loaded),
+                Some((what, Err(message))) => {
+                    self.model.error = Some(format!(
+                        "Could not open {what}: {message}. Still showing {}.",
+                        self.model.shown.source.label()
+                    ));
+                }
+                None => {}
+            },
+            UserEvent::Saved(Ok(path)) => {
+                self.model.notify(format!("Saved {}", path.display()));
+                self.counts.last_screenshot = Some(path);
+            }
+            UserEvent::Saved(Err(message)) => self.model.error = Some(message),
+        }
+        self.window.request_redraw();
+    }
+
+    /// Sleeps until the next thing to draw: a frame from the worker, input, egui's own
+    /// repaint time, or the moment the camera comes to rest (to refine at full resolution).
+    pub fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        let wake = [self.next_repaint, self.quality.rest_deadline()]
+            .into_iter()
+            .flatten()
+            .min();
+        match wake {
+            Some(at) if at <= Instant::now() => {
+                self.next_repaint = None;
+                self.window.request_redraw();
+                event_loop.set_control_flow(ControlFlow::Wait);
+            }
+            Some(at) => event_loop.set_control_flow(ControlFlow::WaitUntil(at)),
+            None => event_loop.set_control_flow(ControlFlow::Wait),
+        }
+    }
+
+    fn start_load(&mut self, request: LoadRequest) {
+        // A new load supersedes the last one's error.
+        self.model.error = None;
+        self.loader.start(request);
+        self.model.progress = self.loader.progress().cloned();
+        self.window.request_redraw();
+    }
+
+    /// Puts a loaded terrain on screen.
+    fn show(&mut self, loaded: Loaded) {
+        let terrain = loaded.terrain;
+        let model = &mut self.model;
+        model.shown = Shown {
+            source: loaded.request.source.clone(),
+            terrain: terrain.clone(),
+            decode_time: loaded.decode_time,
+        };
+        model.error = None;
+        // A rescale keeps the z scale field as the user has it (they may still be dragging).
+        if loaded.request.reframe {
+            model.z_scale = terrain.field().z_scale();
+            model.orbit = loaded
+                .scene
+                .map_or_else(|| Orbit::framing(&terrain), |s| s.orbit);
+            model.home = model.orbit;
+            if let Some(scene) = loaded.scene {
+                model
+                    .settings
+                    .adopt_scene(&scene.lighting, scene.method, scene.arith);
+            }
+            let field = terrain.field();
+            model.notify(format!(
+                "Opened {}: {} x {} samples, acceleration data built in {:.1} ms",
+                model.shown.source.label(),
+                field.width(),
+                field.height(),
+                terrain.build_time().as_secs_f64() * 1e3
+            ));
+        }
+        self.window
+            .set_title(&format!("heightray: {}", model.shown.source.label()));
+    }
+
+    fn apply(&mut self, action: Action) {
+        match action {
+            Action::Load(request) => self.start_load(request),
+            Action::ResetView => self.model.orbit = self.model.home,
+            Action::Screenshot => {
+                self.screenshot_requested = true;
+                self.window.request_redraw();
+            }
+        }
+    }
+
+    fn redraw(&mut self, event_loop: &ActiveEventLoop) {
+        let size = self.window.inner_size();
+        // Minimised or not yet laid out: nothing to draw into.
+        let (Some(width), Some(height)) =
+            (NonZeroU32::new(size.width), NonZeroU32::new(size.height))
+        else {
+            return;
+        };
+        let started = Instant::now();
+        self.model.window_size = (size.width, size.height);
+        self.model.scale_factor = self.window.scale_factor() as f32;
+        self.model.progress = self.loader.progress().cloned();
+        self.pick_frame();
+        let input_at = self.input_since_redraw.take();
+        let (output, view_rect, actions) = self.run_ui();
+        for action in actions {
+            self.apply(action);
+        }
+        self.model.pixels_per_point = output.pixels_per_point;
+        let view = compose::physical_rect(view_rect, output.pixels_per_point);
+        self.counts.view_rect = Some(view);
+        self.submit(view, input_at);
+        let delay = output
+            .viewport_output
+            .get(&egui::ViewportId::ROOT)
+            .map_or(Duration::MAX, |v| v.repaint_delay);
+        if let Err(message) = self.present((width, height), view, output) {
+            self.model.error = Some(message);
+        }
+        self.model.redraw.record(started.elapsed());
+        self.after_present(event_loop);
+        if delay < Duration::from_secs(3600) {
+            self.next_repaint = Some(Instant::now() + delay.max(MIN_FRAME));
+        }
+    }
+
+    /// Runs egui: the panels, the 3D view and the keys. Returns the view's rectangle.
+    fn run_ui(&mut self) -> (egui::FullOutput, egui::Rect, Vec<Action>) {
+        let input = self.egui_state.take_egui_input(&self.window);
+        let ctx = self.egui_ctx.clone();
+        let model = &mut self.model;
+        let mut actions = Vec::new();
+        let mut view_rect = egui::Rect::NOTHING;
+        let output = ctx.run_ui(input, |ui| {
+            // egui may run this twice in one frame; act on the last run only.
+            actions.clear();
+            model.widget_rects.clear();
+            keys_ui(ui, model, &mut actions);
+            if model.panels_visible {
+                panels::side_panel_ui(ui, model, &mut actions);
+            }
+            egui::CentralPanel::no_frame().show_inside(ui, |ui| {
+                view_rect = view::view_ui(ui, model);
+            });
+        });
+        self.egui_state
+            .handle_platform_output(&self.window, output.platform_output.clone());
+        (output, view_rect, actions)
+    }
+
+    /// Chooses the frame to show: the newest, unless it is a coarser render of the view on
+    /// screen (coming to rest restarts at full resolution from coarse blocks).
+    fn pick_frame(&mut self) {
+        let Some(latest) = self.worker.latest() else {
+            return;
+        };
+        let replace = match &self.model.latest {
+            None => true,
+            Some(shown) => {
+                shown.generation == latest.generation
+                    || shown.job.view_id != latest.job.view_id
+                    || detail(&latest) >= detail(shown)
+            }
+        };
+        if replace {
+            if latest.pass_times.len() == 1 {
+                self.quality.first_pass(&latest);
+            }
+            self.model.latest = Some(latest);
+        }
+    }
+
+    /// Sends the worker a job when what the view shows, or its resolution, has changed.
+    fn submit(&mut self, view: PixelRect, input_at: Option<Instant>) {
+        if view.width == 0 || view.height == 0 {
+            return;
+        }
+        let model = &self.model;
+        self.quality.settle(model.view_held);
+        let view_key = ViewKey::new(model, view);
+        let mut caused_by = None;
+        if self.submitted.as_ref().is_none_or(|s| s.view != view_key) {
+            self.quality.changed(model.view_held, &view_key);
+            // Latency is measured from input that changed a view already on screen.
+            caused_by = input_at.filter(|_| self.submitted.is_some());
+        }
+        let size = self.quality.render_size(&view_key);
+        let key = JobKey {
+            view: view_key,
+            size,
+        };
+        if self.submitted.as_ref() == Some(&key) {
+            return;
+        }
+        let Ok(camera) = model.orbit.camera(size) else {
+            return;
+        };
+        let job = RenderJob {
+            terrain: model.shown.terrain.clone(),
+            camera,
+            lighting: model.settings.lighting(),
+            method: model.settings.method,
+            arith: model.settings.arith(),
+            view_id: self.quality.view_id(),
+        };
+        let generation = self.worker.submit(job);
+        if let Some(at) = caused_by {
+            self.unreflected.push_back((generation, at));
+        }
+        self.counts.submitted_generation = generation;
+        self.submitted = Some(key);
+    }
+}
+
+/// The render worker and the loader, both reporting to the window through `proxy`.
+fn background_threads(
+    proxy: &EventLoopProxy<UserEvent>,
+) -> std::io::Result<(RenderWorker, Loader)> {
+    let frame_proxy = proxy.clone();
+    let worker = RenderWorker::start(move || {
+        // The window may be gone at exit; then nobody needs the news.
+        let _ = frame_proxy.send_event(UserEvent::FrameReady);
+    })?;
+    let load_proxy = proxy.clone();
+    let loader = Loader::new(move |event| {
+        let _ = load_proxy.send_event(UserEvent::Load(event));
+    })?;
+    Ok((worker, loader))
+}
+
+/// The model for the terrain named on the command line (with a scene's view and lighting).
+fn initial_model(loaded: Loaded, settings: super::settings::Settings) -> Model {
+    let shown = Shown {
+        source: loaded.request.source.clone(),
+        terrain: loaded.terrain.clone(),
+        decode_time: loaded.decode_time,
+    };
+    let mut model = Model::new(shown, settings);
+    if let Some(scene) = loaded.scene {
+        model.orbit = scene.orbit;
+        model.home = scene.orbit;
+        model
+            .settings
+            .adopt_scene(&scene.lighting, scene.method, scene.arith);
+    }
+    model
+}
+
+/// The X11 window id, for scripted tests that drive the window.
+fn x11_window_id(window: &Window) -> Option<u64> {
+    use winit::raw_window_handle::{HasWindowHandle, RawWindowHandle};
+    match window.window_handle().ok()?.as_raw() {
+        RawWindowHandle::Xlib(handle) => Some(handle.window),
+        RawWindowHandle::Xcb(handle) => Some(u64::from(handle.window.get())),
+        _ => None,
+    }
+}

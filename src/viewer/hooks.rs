@@ -1,0 +1,142 @@
+//! Screenshots, and what scripted tests read: a JSON report of the window's state, written
+//! after every presented frame. The window, event loop and drawing are the interactive ones.
+
+use super::compose::PixelRect;
+use super::model::Model;
+use image::{ImageBuffer, Rgb};
+use serde_json::{json, Value};
+use std::path::{Path, PathBuf};
+
+/// The test and automation hooks asked for on the command line.
+#[derive(Clone, Debug, Default)]
+pub struct Hooks {
+    /// Quit after this many converged frames (all passes) have been presented.
+    pub exit_after_frames: Option<u64>,
+    /// Where S saves (and, with `exit_after_frames`, where the last frame is saved on exit).
+    pub screenshot: Option<PathBuf>,
+    /// Where to write the state report after each presented frame.
+    pub report_state: Option<PathBuf>,
+}
+
+/// Counts the application keeps for the report.
+#[derive(Clone, Debug, Default)]
+pub struct Counts {
+    pub frames_presented: u64,
+    pub converged_frames: u64,
+    pub submitted_generation: u64,
+    pub x11_window: Option<u64>,
+    pub view_rect: Option<PixelRect>,
+    pub last_screenshot: Option<PathBuf>,
+    pub busy: bool,
+}
+
+/// Saves 0x00RRGGBB pixels as a PNG.
+pub fn save_png(pixels: &[u32], width: u32, height: u32, path: &Path) -> Result<(), String> {
+    let image = ImageBuffer::from_fn(width, height, |x, y| {
+        let rgb = pixels[(y * width + x) as usize];
+        Rgb([(rgb >> 16) as u8, (rgb >> 8) as u8, rgb as u8])
+    });
+    image
+        .save(path)
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))
+}
+
+/// A file name for a screenshot taken now, in the current directory.
+pub fn default_screenshot_path() -> PathBuf {
+    let seconds = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    PathBuf::from(format!("heightray-{seconds}.png"))
+}
+
+/// Writes the report atomically (a reader never sees half a file).
+pub fn write_report(path: &Path, model: &Model, counts: &Counts) -> Result<(), String> {
+    let text = serde_json::to_string_pretty(&report(model, counts))
+        .map_err(|e| format!("cannot encode the state report: {e}"))?;
+    let partial = path.with_extension("partial");
+    std::fs::write(&partial, text + "\n")
+        .and_then(|()| std::fs::rename(&partial, path))
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))
+}
+
+fn report(model: &Model, counts: &Counts) -> Value {
+    let orbit = &model.orbit;
+    let field = model.shown.terrain.field();
+    let latency = &model.latency;
+    let percentiles = latency.percentiles();
+    json!({
+        "frames_presented": counts.frames_presented,
+        "converged_frames": counts.converged_frames,
+        "submitted_generation": counts.submitted_generation,
+        "rendering": counts.busy,
+        "x11_window": counts.x11_window,
+        "window_size": [model.window_size.0, model.window_size.1],
+        "scale_factor": model.scale_factor,
+        "view_rect": counts.view_rect.map(|r| [r.x, r.y, r.width, r.height]),
+        "frame": frame_report(model),
+        "camera": {
+            "yaw_deg": orbit.yaw_deg, "pitch_deg": orbit.pitch_deg, "distance": orbit.distance,
+            "fov_y_deg": orbit.fov_y_deg, "target": orbit.target,
+        },
+        "sun": {
+            "azimuth_deg": model.settings.sun_azimuth_deg,
+            "elevation_deg": model.settings.sun_elevation_deg,
+        },
+        "terrain": {
+            "name": model.shown.source.label(), "width": field.width(), "height": field.height(),
+            "z_scale": field.z_scale(),
+        },
+        "loading": model.progress.as_ref().map(|p| p.label.clone()),
+        "error": model.error,
+        "drop_hover": model.drop_hover,
+        "panels_visible": model.panels_visible,
+        "help_open": model.help_open,
+        "heat_map": model.settings.heat.label(),
+        "widgets": widget_report(model),
+        "latency_ms": {
+            "count": latency.count, "last": latency.last_ms(), "max": latency.max_ms,
+            "median": percentiles.map(|p| p.0), "p95": percentiles.map(|p| p.1),
+            "recent": latency.recent().collect::<Vec<_>>(),
+        },
+        "redraw_ms": {
+            "last": model.redraw.last_ms(), "max": model.redraw.max_ms,
+            "median": model.redraw.percentiles().map(|p| p.0),
+            "p95": model.redraw.percentiles().map(|p| p.1),
+        },
+        "last_screenshot": counts.last_screenshot,
+    })
+}
+
+/// The frame on screen: size, passes, times and ray counts.
+fn frame_report(model: &Model) -> Option<Value> {
+    let latest = model.latest.as_ref()?;
+    let pass_ms: Vec<f64> = latest
+        .pass_times
+        .iter()
+        .map(|t| t.as_secs_f64() * 1e3)
+        .collect();
+    Some(json!({
+        "generation": latest.generation,
+        "width": latest.frame.width,
+        "height": latest.frame.height,
+        "passes_done": latest.frame.passes_done,
+        "complete": latest.frame.complete(),
+        "elapsed_ms": latest.elapsed().as_secs_f64() * 1e3,
+        "pass_ms": pass_ms,
+        "primary_rays": latest.frame.totals.primary_rays,
+        "shadow_rays": latest.frame.totals.shadow_rays,
+    }))
+}
+
+/// Named widgets' rectangles in window pixels: x0, y0, x1, y1.
+fn widget_report(model: &Model) -> serde_json::Map<String, Value> {
+    let ppp = model.pixels_per_point;
+    model
+        .widget_rects
+        .iter()
+        .map(|(name, r)| {
+            let physical = [r.min.x, r.min.y, r.max.x, r.max.y].map(|v| f64::from(v * ppp));
+            ((*name).to_owned(), json!(physical))
+        })
+        .collect()
+}

@@ -1,0 +1,335 @@
+//! Loading terrains off the window's thread: built-ins, height map files and scene files,
+//! read, decoded and built into acceleration data on a background thread. A newer load
+//! supersedes an older one: the older one's result is dropped when it arrives.
+
+use super::orbit::Orbit;
+use super::sources;
+use crate::heightfield::BUILTINS;
+use crate::render::Lighting;
+use crate::{Arith, Method, Terrain};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Arc, Condvar, Mutex, PoisonError};
+use std::time::{Duration, Instant};
+
+/// Where a terrain comes from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Source {
+    Builtin(&'static str),
+    /// A height map image, or a `.toml` scene file.
+    File(PathBuf),
+}
+
+impl Source {
+    /// The name shown to the user.
+    pub fn label(&self) -> String {
+        match self {
+            Source::Builtin(name) => format!("{name} (built-in)"),
+            Source::File(path) => path.file_name().map_or_else(
+                || path.display().to_string(),
+                |n| n.to_string_lossy().into(),
+            ),
+        }
+    }
+
+    /// The default terrain.
+    pub fn default_builtin() -> Source {
+        Source::Builtin(BUILTINS[0].name)
+    }
+
+    pub(super) fn is_scene(&self) -> bool {
+        matches!(self, Source::File(p) if p.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml")))
+    }
+}
+
+/// What to load.
+#[derive(Clone, Debug)]
+pub struct LoadRequest {
+    pub source: Source,
+    /// Height of the largest sample; None picks the source's own (a built-in's or a scene's)
+    /// or, for a plain image, a quarter of its larger side.
+    pub z_scale: Option<f64>,
+    /// Frame the camera on the new terrain (and take a scene's camera and lighting); false
+    /// keeps the view, for a changed z scale.
+    pub reframe: bool,
+    /// Rescale these samples instead of reading the source again (a z scale change).
+    pub from_memory: Option<Arc<Terrain>>,
+}
+
+/// A scene file's camera, lighting and traversal.
+#[derive(Clone, Copy, Debug)]
+pub struct SceneSetup {
+    pub orbit: Orbit,
+    pub lighting: Lighting,
+    pub method: Method,
+    pub arith: Arith,
+}
+
+/// A terrain ready to render.
+pub struct Loaded {
+    pub request: LoadRequest,
+    pub terrain: Arc<Terrain>,
+    pub scene: Option<SceneSetup>,
+    /// Reading and decoding, before the acceleration data was built.
+    pub decode_time: Duration,
+}
+
+/// The steps of a load, in order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    Reading,
+    Building,
+}
+
+impl Stage {
+    pub fn label(self) -> &'static str {
+        match self {
+            Stage::Reading => "reading and decoding",
+            Stage::Building => "building acceleration data",
+        }
+    }
+    /// Rough share of the work done when this stage starts (for a progress bar).
+    pub fn fraction(self) -> f32 {
+        match self {
+            Stage::Reading => 0.1,
+            Stage::Building => 0.6,
+        }
+    }
+}
+
+/// Sent from a loading thread to the window.
+pub enum LoadEvent {
+    Stage {
+        generation: u64,
+        stage: Stage,
+    },
+    Done {
+        generation: u64,
+        result: Box<Result<Loaded, String>>,
+    },
+}
+
+/// A load in progress, as the window shows it.
+#[derive(Clone, Debug)]
+pub struct Progress {
+    pub label: String,
+    pub stage: Stage,
+    pub started: Instant,
+}
+
+/// Loads on one background thread, newest first: a request made while another is loading
+/// waits (replacing any request already waiting), and the superseded load's result is
+/// dropped when it arrives. Loads cannot stop halfway, and running them side by side would
+/// only split the CPU (and memory) between work of which just the newest counts.
+pub struct Loader {
+    shared: Arc<Shared>,
+    in_flight: Option<(u64, Progress)>,
+}
+
+struct Shared {
+    generation: AtomicU64,
+    pending: Mutex<Option<(u64, LoadRequest)>>,
+    wake: Condvar,
+    quit: AtomicBool,
+    sink: Box<dyn Fn(LoadEvent) + Send + Sync>,
+}
+
+impl Loader {
+    /// `sink` receives the loading thread's events (it wakes the window).
+    pub fn new(sink: impl Fn(LoadEvent) + Send + Sync + 'static) -> std::io::Result<Loader> {
+        let shared = Arc::new(Shared {
+            generation: AtomicU64::new(0),
+            pending: Mutex::new(None),
+            wake: Condvar::new(),
+            quit: AtomicBool::new(false),
+            sink: Box::new(sink),
+        });
+        let thread_shared = Arc::clone(&shared);
+        std::thread::Builder::new()
+            .name("heightray-load".into())
+            .spawn(move || load_loop(&thread_shared))?;
+        Ok(Loader {
+            shared,
+            in_flight: None,
+        })
+    }
+
+    /// Queues a load, superseding any load in progress or waiting.
+    pub fn start(&mut self, request: LoadRequest) {
+        let label = request.source.label();
+        let mut pending = self
+            .shared
+            .pending
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner);
+        let generation = self.shared.generation.fetch_add(1, Ordering::SeqCst) + 1;
+        *pending = Some((generation, request));
+        self.shared.wake.notify_one();
+        let progress = Progress {
+            label,
+            stage: Stage::Reading,
+            started: Instant::now(),
+        };
+        self.in_flight = Some((generation, progress));
+    }
+
+    /// Takes a loading thread's event; returns the result of the newest load when it is done,
+    /// with the name of what was loaded.
+    pub fn accept(&mut self, event: LoadEvent) -> Option<(String, Result<Loaded, String>)> {
+        let newest = self.shared.generation.load(Ordering::SeqCst);
+        match event {
+            LoadEvent::Stage { generation, stage } if generation == newest => {
+                if let Some((_, progress)) = &mut self.in_flight {
+                    progress.stage = stage;
+                }
+                None
+            }
+            LoadEvent::Done { generation, result } if generation == newest => {
+                let label = self
+                    .in_flight
+                    .take()
+                    .map(|(_, p)| p.label)
+                    .unwrap_or_default();
+                Some((label, *result))
+            }
+            _ => None,
+        }
+    }
+
+    /// The load in progress, if any.
+    pub fn progress(&self) -> Option<&Progress> {
+        self.in_flight.as_ref().map(|(_, p)| p)
+    }
+}
+
+impl Drop for Loader {
+    fn drop(&mut self) {
+        // The thread finishes the load it is in (it cannot stop halfway) and then ends.
+        self.shared.quit.store(true, Ordering::SeqCst);
+        let _pending = self.shared.pending.lock();
+        self.shared.wake.notify_one();
+    }
+}
+
+/// The loading thread: waits for the newest request and loads it.
+fn load_loop(shared: &Shared) {
+    loop {
+        let (generation, request) = {
+            let mut pending = shared
+                .pending
+                .lock()
+                .unwrap_or_else(PoisonError::into_inner);
+            loop {
+                if shared.quit.load(Ordering::SeqCst) {
+                    return;
+                }
+                if let Some(next) = pending.take() {
+                    break next;
+                }
+                pending = shared
+                    .wake
+                    .wait(pending)
+                    .unwrap_or_else(PoisonError::into_inner);
+            }
+        };
+        let report = |stage| {
+            // A superseded load says nothing more; its result is dropped anyway.
+            if shared.generation.load(Ordering::SeqCst) == generation {
+                (shared.sink)(LoadEvent::Stage { generation, stage });
+            }
+        };
+        let result = Box::new(sources::load(request, &report));
+        (shared.sink)(LoadEvent::Done { generation, result });
+    }
+}
+
+/// Loads on the calling thread (for the terrain named on the command line).
+pub fn load_now(request: LoadRequest) -> Result<Loaded, String> {
+    sources::load(request, &|_| {})
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::{mpsc, Mutex};
+
+    /// Starts the requests one after the other; returns the result the window would take.
+    fn run_all(requests: Vec<LoadRequest>) -> Result<Loaded, String> {
+        let (send, receive) = mpsc::channel();
+        let send = Mutex::new(send);
+        let mut loader = Loader::new(move |event| {
+            let _ = send.lock().map(|s| s.send(event));
+        })
+        .expect("a loading thread");
+        for request in requests {
+            loader.start(request);
+        }
+        loop {
+            let event = receive.recv().expect("the loading thread reports");
+            if let Some((_, result)) = loader.accept(event) {
+                return result;
+            }
+        }
+    }
+
+    fn run(request: LoadRequest) -> Result<Loaded, String> {
+        run_all(vec![request])
+    }
+
+    fn builtin(z_scale: f64) -> LoadRequest {
+        LoadRequest {
+            source: Source::Builtin("small49"),
+            z_scale: Some(z_scale),
+            reframe: true,
+            from_memory: None,
+        }
+    }
+
+    #[test]
+    fn the_newest_load_wins() {
+        let loaded = run_all(vec![builtin(1.0), builtin(2.0), builtin(3.0)]).expect("loads");
+        assert_eq!(loaded.terrain.field().z_scale(), 3.0);
+    }
+
+    #[test]
+    fn loads_a_builtin_and_rescales_it() {
+        let loaded = run(builtin(3.0)).expect("small49 loads");
+        assert_eq!(loaded.terrain.field().width(), 49);
+        assert_eq!(loaded.terrain.field().z_scale(), 3.0);
+    }
+
+    #[test]
+    fn a_file_that_is_not_an_image_is_an_error_message() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("notes.txt");
+        std::fs::write(&path, "not a height map").expect("write");
+        let error = run(LoadRequest {
+            source: Source::File(path),
+            z_scale: None,
+            reframe: true,
+            from_memory: None,
+        })
+        .err()
+        .expect("refused");
+        assert!(error.contains("not a PNG or PGM"), "{error}");
+    }
+
+    #[test]
+    fn a_plain_image_gets_a_quarter_of_its_side_as_z_scale() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("ramp.pgm");
+        std::fs::write(
+            &path,
+            "P2\n8 4\n255\n".to_owned() + &"0 1 2 3 4 5 6 7\n".repeat(4),
+        )
+        .expect("write");
+        let loaded = run(LoadRequest {
+            source: Source::File(path),
+            z_scale: None,
+            reframe: true,
+            from_memory: None,
+        })
+        .expect("loads");
+        assert_eq!(loaded.terrain.field().z_scale(), 2.0);
+    }
+}

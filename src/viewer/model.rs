@@ -1,0 +1,174 @@
+//! The viewer's state that the panels and the 3D view read and edit, and the actions they ask
+//! the application to carry out.
+
+use super::compose::HeatScale;
+use super::loader::{LoadRequest, Progress, Source};
+use super::orbit::Orbit;
+use super::probe::Probe;
+use super::settings::Settings;
+use super::worker::RenderedFrame;
+use crate::Terrain;
+use std::collections::{BTreeMap, VecDeque};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// The terrain on screen.
+pub struct Shown {
+    pub source: Source,
+    pub terrain: Arc<Terrain>,
+    /// Reading and decoding time of its file.
+    pub decode_time: Duration,
+}
+
+/// Something the UI asks for that the application does.
+#[derive(Debug)]
+pub enum Action {
+    Load(LoadRequest),
+    ResetView,
+    Screenshot,
+}
+
+/// Times from an input to the first frame on screen that shows its effect.
+#[derive(Clone, Debug, Default)]
+pub struct Latency {
+    recent: VecDeque<f64>,
+    pub count: u64,
+    pub max_ms: f64,
+}
+
+impl Latency {
+    const KEEP: usize = 240;
+
+    pub fn record(&mut self, latency: Duration) {
+        let ms = latency.as_secs_f64() * 1e3;
+        if self.recent.len() == Self::KEEP {
+            self.recent.pop_front();
+        }
+        self.recent.push_back(ms);
+        self.count += 1;
+        self.max_ms = self.max_ms.max(ms);
+    }
+
+    /// The recent samples, oldest first.
+    pub fn recent(&self) -> impl Iterator<Item = f64> + '_ {
+        self.recent.iter().copied()
+    }
+
+    pub fn last_ms(&self) -> Option<f64> {
+        self.recent.back().copied()
+    }
+
+    /// Median and 95th percentile of the recent samples.
+    pub fn percentiles(&self) -> Option<(f64, f64)> {
+        let mut sorted: Vec<f64> = self.recent.iter().copied().collect();
+        if sorted.is_empty() {
+            return None;
+        }
+        sorted.sort_by(f64::total_cmp);
+        let at = |q: f64| sorted[((sorted.len() - 1) as f64 * q).round() as usize];
+        Some((at(0.5), at(0.95)))
+    }
+}
+
+/// A short message shown over the view.
+#[derive(Clone, Debug)]
+pub struct Notice {
+    pub text: String,
+    pub at: Instant,
+}
+
+/// Everything the UI shows and edits.
+pub struct Model {
+    pub shown: Shown,
+    pub orbit: Orbit,
+    /// Where R returns to.
+    pub home: Orbit,
+    pub settings: Settings,
+    /// The z scale field of the heightmap panel (applied when editing ends).
+    pub z_scale: f64,
+    /// The path field of the heightmap panel.
+    pub path_text: String,
+    pub panels_visible: bool,
+    /// Show the hovered pixel's ray next to the pointer.
+    pub show_probe: bool,
+    pub help_open: bool,
+    /// A file is being dragged over the window.
+    pub drop_hover: bool,
+    /// Why the last file could not be used (stays until dismissed or a load succeeds).
+    pub error: Option<String>,
+    pub notice: Option<Notice>,
+    pub progress: Option<Progress>,
+    pub latest: Option<Arc<RenderedFrame>>,
+    pub probe: Option<Probe>,
+    /// The heat map scale of the frame on screen, with the frame's generation and passes.
+    pub heat_scale: Option<(u64, usize, HeatScale)>,
+    pub latency: Latency,
+    /// Time the window thread spent on each redraw (UI, compositing, presenting).
+    pub redraw: Latency,
+    /// Window scale factor and the physical size of the window.
+    pub scale_factor: f32,
+    pub pixels_per_point: f32,
+    pub window_size: (u32, u32),
+    /// A mouse button is held on the 3D view (a drag in progress).
+    pub view_held: bool,
+    /// Where named widgets were drawn last frame, in points (for scripted tests).
+    pub widget_rects: BTreeMap<&'static str, egui::Rect>,
+}
+
+impl Model {
+    /// A model showing `shown` from its framing view.
+    pub fn new(shown: Shown, settings: Settings) -> Model {
+        let orbit = Orbit::framing(&shown.terrain);
+        Model {
+            z_scale: shown.terrain.field().z_scale(),
+            shown,
+            orbit,
+            home: orbit,
+            settings,
+            path_text: String::new(),
+            panels_visible: true,
+            show_probe: true,
+            help_open: false,
+            drop_hover: false,
+            error: None,
+            notice: None,
+            progress: None,
+            latest: None,
+            probe: None,
+            heat_scale: None,
+            latency: Latency::default(),
+            redraw: Latency::default(),
+            scale_factor: 1.0,
+            pixels_per_point: 1.0,
+            window_size: (0, 0),
+            view_held: false,
+            widget_rects: BTreeMap::new(),
+        }
+    }
+
+    /// Shows a short message for a few seconds.
+    pub fn notify(&mut self, text: impl Into<String>) {
+        self.notice = Some(Notice {
+            text: text.into(),
+            at: Instant::now(),
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn latency_percentiles_of_recent_samples() {
+        let mut latency = Latency::default();
+        assert_eq!(latency.percentiles(), None);
+        for ms in 1..=100 {
+            latency.record(Duration::from_millis(ms));
+        }
+        let (median, p95) = latency.percentiles().expect("samples");
+        assert!((median - 50.0).abs() <= 1.0 && (p95 - 95.0).abs() <= 1.0);
+        assert_eq!(latency.max_ms, 100.0);
+        assert_eq!(latency.last_ms(), Some(100.0));
+    }
+}

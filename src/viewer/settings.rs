@@ -1,0 +1,192 @@
+//! What the panels edit besides the camera: light, shading, effects, traversal, display.
+
+use crate::render::{Lighting, Normals, Ramp};
+use crate::traverse::DEFAULT_BOUND;
+use crate::{Arith, Method};
+
+/// Which arithmetic, with the rational bound kept apart so switching away and back keeps it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ArithKind {
+    F32,
+    F64,
+    Rational,
+    Exact,
+}
+
+impl ArithKind {
+    pub const ALL: [ArithKind; 4] = [
+        ArithKind::F32,
+        ArithKind::F64,
+        ArithKind::Rational,
+        ArithKind::Exact,
+    ];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            ArithKind::F32 => "f32",
+            ArithKind::F64 => "f64",
+            ArithKind::Rational => "rational (bounded)",
+            ArithKind::Exact => "exact",
+        }
+    }
+}
+
+/// Which per-pixel counter the heat map shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HeatMode {
+    Off,
+    Cells,
+    Triangles,
+    Runs,
+}
+
+impl HeatMode {
+    pub const ALL: [HeatMode; 4] = [
+        HeatMode::Off,
+        HeatMode::Cells,
+        HeatMode::Triangles,
+        HeatMode::Runs,
+    ];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            HeatMode::Off => "off (shaded image)",
+            HeatMode::Cells => "cell queries",
+            HeatMode::Triangles => "triangle queries",
+            HeatMode::Runs => "run queries",
+        }
+    }
+}
+
+/// Everything the panels edit besides the camera and the height map.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    /// Sun direction: azimuth from +x towards +y, elevation above the horizon.
+    pub sun_azimuth_deg: f64,
+    pub sun_elevation_deg: f64,
+    pub intensity: f64,
+    pub ambient: f64,
+    pub shadows: bool,
+    /// Fog density per unit of distance; 0 is off.
+    pub fog: f64,
+    pub normals: Normals,
+    pub ramp: Ramp,
+    pub method: Method,
+    pub arith: ArithKind,
+    pub rational_bound: u32,
+    /// Rendered pixels per physical window pixel along each axis (1 = full resolution).
+    pub render_scale: f32,
+    pub heat: HeatMode,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        let mut settings = Settings {
+            sun_azimuth_deg: 0.0,
+            sun_elevation_deg: 0.0,
+            intensity: 1.0,
+            ambient: 0.25,
+            shadows: true,
+            fog: 0.0,
+            normals: Normals::Flat,
+            ramp: Ramp::Terrain,
+            method: Method::Runs,
+            arith: ArithKind::F64,
+            rational_bound: DEFAULT_BOUND,
+            render_scale: 1.0,
+            heat: HeatMode::Off,
+        };
+        // The scene files' default sun.
+        settings.set_sun([0.4, 0.3, 0.8]);
+        settings
+    }
+}
+
+impl Settings {
+    /// Takes a scene's lighting, traversal and arithmetic.
+    pub fn adopt_scene(&mut self, lighting: &Lighting, method: Method, arith: Arith) {
+        self.set_sun(lighting.sun);
+        self.intensity = lighting.intensity;
+        self.ambient = lighting.ambient;
+        self.shadows = lighting.shadows;
+        self.fog = lighting.fog;
+        self.normals = lighting.normals;
+        self.ramp = lighting.ramp;
+        self.method = method;
+        self.arith = match arith {
+            Arith::F32 => ArithKind::F32,
+            Arith::F64 => ArithKind::F64,
+            Arith::Exact => ArithKind::Exact,
+            Arith::Rational { bound } => {
+                self.rational_bound = bound;
+                ArithKind::Rational
+            }
+        };
+    }
+
+    /// Sets azimuth and elevation from a direction towards the sun.
+    pub fn set_sun(&mut self, towards_sun: [f64; 3]) {
+        let [x, y, z] = towards_sun;
+        self.sun_azimuth_deg = y.atan2(x).to_degrees();
+        self.sun_elevation_deg = z.atan2(x.hypot(y)).to_degrees();
+    }
+
+    /// Unit vector towards the sun.
+    pub fn sun(&self) -> [f64; 3] {
+        let (az, el) = (
+            self.sun_azimuth_deg.to_radians(),
+            self.sun_elevation_deg.to_radians(),
+        );
+        [az.cos() * el.cos(), az.sin() * el.cos(), el.sin()]
+    }
+
+    /// The renderer's lighting.
+    pub fn lighting(&self) -> Lighting {
+        Lighting {
+            sun: self.sun(),
+            intensity: self.intensity,
+            ambient: self.ambient,
+            shadows: self.shadows,
+            fog: self.fog,
+            normals: self.normals,
+            ramp: self.ramp,
+        }
+    }
+
+    /// The traversal arithmetic.
+    pub fn arith(&self) -> Arith {
+        match self.arith {
+            ArithKind::F32 => Arith::F32,
+            ArithKind::F64 => Arith::F64,
+            ArithKind::Exact => Arith::Exact,
+            ArithKind::Rational => Arith::Rational {
+                bound: self.rational_bound.clamp(1, 1 << 30),
+            },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sun_angles_round_trip() {
+        let mut settings = Settings::default();
+        let towards = [0.4, 0.3, 0.8];
+        let length = (0.16f64 + 0.09 + 0.64).sqrt();
+        settings.set_sun(towards);
+        for (got, want) in settings.sun().iter().zip(towards) {
+            assert!((got - want / length).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn scene_arithmetic_is_kept_with_its_bound() {
+        let mut settings = Settings::default();
+        let lighting = settings.lighting();
+        settings.adopt_scene(&lighting, Method::Dda, Arith::Rational { bound: 77 });
+        assert_eq!(settings.arith(), Arith::Rational { bound: 77 });
+        assert_eq!(settings.method, Method::Dda);
+    }
+}

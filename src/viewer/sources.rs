@@ -1,0 +1,117 @@
+//! Where terrains come from: built-ins, height map images (with a z scale that makes their
+//! relief visible) and scene files (with their camera and lighting); and rescaling.
+
+use super::loader::{LoadRequest, Loaded, SceneSetup, Source, Stage};
+use super::orbit::Orbit;
+use crate::heightfield::{self, Builtin};
+use crate::render::{Lighting, Scene, SceneFile};
+use crate::{Arith, Heightfield, Method, Terrain};
+use std::path::Path;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// Loads a request to the end (on the loading thread).
+pub fn load(request: LoadRequest, report: &dyn Fn(Stage)) -> Result<Loaded, String> {
+    let start = Instant::now();
+    report(Stage::Reading);
+    let (field, scene) = match (&request.source, &request.from_memory) {
+        (_, Some(terrain)) => (terrain.field().clone(), None),
+        (Source::Builtin(name), None) => {
+            let builtin = Builtin::named(name).ok_or(format!("no built-in terrain '{name}'"))?;
+            (builtin.load().map_err(|e| e.to_string())?, None)
+        }
+        (Source::File(path), None) if request.source.is_scene() => load_scene(path)?,
+        (Source::File(path), None) => {
+            let field = heightfield::load(path, 1.0).map_err(|e| e.to_string())?;
+            let (w, h) = (field.width(), field.height());
+            // A plain image has no height unit: make relief visible whatever its size.
+            let sensible = 0.25 * w.max(h) as f64;
+            (rescale(field, sensible)?, None)
+        }
+    };
+    let field = match request.z_scale {
+        Some(z) => rescale(field, z)?,
+        None => field,
+    };
+    let decode_time = start.elapsed();
+    report(Stage::Building);
+    let terrain = Arc::new(Terrain::new(field));
+    let scene = scene.map(|parts| scene_setup(&parts, &terrain));
+    Ok(Loaded {
+        request,
+        terrain,
+        scene,
+        decode_time,
+    })
+}
+
+/// A validated scene and the camera section as written (the scene's `Camera` keeps no orbit).
+struct SceneParts {
+    file: SceneFile,
+    lighting: Lighting,
+    method: Method,
+    arith: Arith,
+}
+
+/// Reads a scene file: its height field, lighting, traversal and camera section.
+fn load_scene(path: &Path) -> Result<(Heightfield, Option<SceneParts>), String> {
+    let Scene {
+        field,
+        lighting,
+        method,
+        arith,
+        ..
+    } = Scene::load(path).map_err(|e| e.to_string())?;
+    // Scene::load has just read and validated this file; parse it again for the camera form.
+    let text = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
+    let file: SceneFile = toml::from_str(&text).map_err(|e| e.to_string())?;
+    let parts = SceneParts {
+        file,
+        lighting,
+        method,
+        arith,
+    };
+    Ok((field, Some(parts)))
+}
+
+/// The viewer's orbit, lighting and traversal from a scene.
+fn scene_setup(parts: &SceneParts, terrain: &Terrain) -> SceneSetup {
+    let framing = Orbit::framing(terrain);
+    let camera = &parts.file.camera;
+    let orbit = match (camera.eye, camera.target, &camera.orbit) {
+        (Some(eye), Some(target), _) => {
+            Orbit::from_eye(eye, target, camera.fov_y_deg, framing.scale)
+        }
+        (_, _, Some(o)) => Orbit {
+            target: o.target,
+            yaw_deg: o.yaw_deg,
+            pitch_deg: o.pitch_deg.clamp(-89.0, 89.0),
+            distance: o.distance,
+            fov_y_deg: camera.fov_y_deg,
+            scale: framing.scale,
+        },
+        // Scene::load refused any other form.
+        _ => framing,
+    };
+    SceneSetup {
+        orbit,
+        lighting: parts.lighting,
+        method: parts.method,
+        arith: parts.arith,
+    }
+}
+
+/// The same samples with another z scale.
+fn rescale(field: Heightfield, z_scale: f64) -> Result<Heightfield, String> {
+    if field.z_scale() == z_scale {
+        return Ok(field);
+    }
+    Heightfield::from_fn(
+        field.width(),
+        field.height(),
+        u32::from(field.maxval()),
+        z_scale,
+        |i, j| field.sample(i, j),
+    )
+    .map_err(|e| e.to_string())
+}

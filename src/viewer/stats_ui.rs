@@ -1,0 +1,143 @@
+//! The Statistics section: the frame's totals, queries per primary ray, hit/miss ratios,
+//! times, pass progress, input latency and the heat-map mode.
+
+use super::model::Model;
+use super::probe_ui::QUERY_KINDS;
+use super::settings::HeatMode;
+use crate::render::{FrameStats, PASS_BLOCKS};
+use egui::Ui;
+
+pub fn statistics_ui(ui: &mut Ui, model: &mut Model) {
+    let heat = egui::ComboBox::from_label("heat map")
+        .selected_text(model.settings.heat.label())
+        .show_ui(ui, |ui| {
+            for mode in HeatMode::ALL {
+                ui.selectable_value(&mut model.settings.heat, mode, mode.label());
+            }
+        });
+    model.widget_rects.insert("heat_map", heat.response.rect);
+    ui.checkbox(&mut model.show_probe, "show the hovered pixel's ray");
+    let Some(latest) = model.latest.clone() else {
+        ui.label("no frame yet");
+        return;
+    };
+    let frame = &latest.frame;
+    let elapsed = latest.elapsed().as_secs_f64();
+    let passes = frame.passes_done;
+    let label = if frame.complete() {
+        format!("complete in {:.0} ms", elapsed * 1e3)
+    } else {
+        format!(
+            "pass {passes}/{}, {:.0} ms so far",
+            PASS_BLOCKS.len(),
+            elapsed * 1e3
+        )
+    };
+    ui.add(egui::ProgressBar::new(passes as f32 / PASS_BLOCKS.len() as f32).text(label));
+    let pass_ms: Vec<String> = latest
+        .pass_times
+        .iter()
+        .map(|t| format!("{:.0}", t.as_secs_f64() * 1e3))
+        .collect();
+    ui.weak(format!("passes ended at {} ms", pass_ms.join(", ")));
+    let totals = &frame.totals;
+    let rays = totals.primary_rays + totals.shadow_rays;
+    ui.label(format!(
+        "{:.3} Mrays/s ({} {}), {} x {} pixels",
+        rays as f64 / elapsed.max(1e-9) / 1e6,
+        latest.job.method,
+        latest.job.arith,
+        frame.width,
+        frame.height
+    ));
+    ui.label(format!(
+        "build {:.1} ms (acceleration data)",
+        latest.job.terrain.build_time().as_secs_f64() * 1e3
+    ));
+    totals_ui(ui, totals);
+    queries_ui(ui, totals);
+    latency_ui(ui, model);
+}
+
+fn totals_ui(ui: &mut Ui, totals: &FrameStats) {
+    egui::Grid::new("frame totals")
+        .num_columns(2)
+        .show(ui, |ui| {
+            let percent = |n: u64, of: u64| 100.0 * n as f64 / of.max(1) as f64;
+            let rows = [
+                ("primary rays", totals.primary_rays.to_string()),
+                (
+                    "hits",
+                    format!(
+                        "{} ({:.1}%)",
+                        totals.primary_hits,
+                        percent(totals.primary_hits, totals.primary_rays)
+                    ),
+                ),
+                ("shadow rays", totals.shadow_rays.to_string()),
+                (
+                    "in shadow",
+                    format!(
+                        "{} ({:.1}%)",
+                        totals.shadowed,
+                        percent(totals.shadowed, totals.shadow_rays)
+                    ),
+                ),
+                (
+                    "skipped: facing away",
+                    totals.skipped.facing_away.to_string(),
+                ),
+                (
+                    "skipped: above terrain",
+                    totals.skipped.above_terrain.to_string(),
+                ),
+                (
+                    "skipped: no shadow possible",
+                    totals.skipped.no_shadow_possible.to_string(),
+                ),
+            ];
+            for (name, value) in rows {
+                ui.label(name);
+                ui.label(value);
+                ui.end_row();
+            }
+        });
+}
+
+/// Totals, per primary ray and E:N ratio of each query kind, primary and shadow together.
+fn queries_ui(ui: &mut Ui, totals: &FrameStats) {
+    let all = totals.queries();
+    let per_ray = |n: u64| n as f64 / totals.primary_rays.max(1) as f64;
+    egui::Grid::new("frame queries")
+        .num_columns(4)
+        .striped(true)
+        .show(ui, |ui| {
+            for heading in ["query", "total", "per primary", "E : N"] {
+                ui.strong(heading);
+            }
+            ui.end_row();
+            for (name, pick) in QUERY_KINDS {
+                let h = pick(&all);
+                ui.label(*name);
+                ui.label(h.total().to_string());
+                ui.label(format!("{:.2}", per_ray(h.total())));
+                ui.label(format!("1 : {:.2}", h.miss as f64 / h.hit.max(1) as f64));
+                ui.end_row();
+            }
+        });
+}
+
+fn latency_ui(ui: &mut Ui, model: &Model) {
+    let latency = &model.latency;
+    match (latency.last_ms(), latency.percentiles()) {
+        (Some(last), Some((median, p95))) => {
+            ui.label(format!(
+                "input to first frame: last {last:.1} ms, median {median:.1}, p95 {p95:.1}, max {:.1} ({} moves)",
+                latency.max_ms, latency.count
+            ));
+        }
+        _ => {
+            ui.weak("input to first frame: drag the view to measure");
+        }
+    }
+}
