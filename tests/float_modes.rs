@@ -9,7 +9,7 @@ mod common;
 use common::families::{self, hash, ray, terrain};
 use common::reference::{self, Answer};
 use common::{describe, options, try_trace, METHODS};
-use heightray::{Arith, Method, Ray, Terrain};
+use heightray::{trace, Arith, Method, Ray, Terrain, TraceOptions};
 use num_traits::ToPrimitive;
 
 const MODES: [Arith; 3] = [Arith::F32, Arith::F64, Arith::Rational { bound: 1 << 16 }];
@@ -313,4 +313,56 @@ fn watertight_rays_at_shared_vertices_of_non_dyadic_fields() {
         }
     }
     assert_no_holes("non-dyadic field", &t, &rays);
+}
+
+/// Rays coming down onto flat ground at the field's lowest height end exactly on the bottom
+/// of the bounding box; rounding must not lift the ray's lowest point over the last cells
+/// above the ground. Found by the viewer (lines of sky across the flat border of this hill);
+/// the first ray is the one it reported.
+#[test]
+fn rounded_rays_find_flat_ground_at_the_lowest_height() {
+    let hill = include_bytes!("data/hill.pgm");
+    let terrain = Terrain::new(heightray::heightfield::load_bytes(hill, 16.0, "hill.pgm").unwrap());
+    let reported = (
+        [-7.042785426744196, -26.43350300091015, 49.98579514089657],
+        [0.6969209130310196, 0.5280471059744715, -0.5259796411768727],
+    );
+    let mut rays = vec![Ray::new(reported.0, reported.1).unwrap()];
+    for k in 1..300 {
+        let (a, b) = (k as f64 * 0.7391, k as f64 * 0.3217);
+        let dir = [
+            reported.1[0] + 0.05 * a.cos(),
+            reported.1[1] + 0.05 * b.sin(),
+            reported.1[2],
+        ];
+        rays.push(Ray::new(reported.0, dir).unwrap());
+    }
+    let mut misses = Vec::new();
+    for ray in &rays {
+        if trace(
+            &terrain,
+            ray,
+            &TraceOptions::new(Method::Runs, Arith::Exact),
+        )
+        .hit
+        .is_none()
+        {
+            continue;
+        }
+        for arith in [Arith::F32, Arith::F64, Arith::Rational { bound: 1 << 16 }] {
+            for method in [Method::Runs, Method::Dda] {
+                if trace(&terrain, ray, &TraceOptions::new(method, arith))
+                    .hit
+                    .is_none()
+                {
+                    misses.push(format!("{method} {arith}: {}", describe(ray)));
+                }
+            }
+        }
+    }
+    assert!(
+        misses.is_empty(),
+        "rounded walks missed ground exact arithmetic hits:\n{}",
+        misses.join("\n")
+    );
 }

@@ -204,7 +204,10 @@ fn clip<S: Scalar>(
         S::from_i64(h as i64 - 1),
         S::from_f64(z_hi),
     ];
-    let clipped = clip_to_box(o, d, &lo, &hi)?;
+    let mut clipped = clip_to_box(o, d, &lo, &hi)?;
+    // Floats lengthen the segment by their own rounding, so that the last cells before a box
+    // face (flat ground at the lowest height) are not cut off.
+    clipped.t1 = clipped.t1.past_rounding();
     Some(Frame::new(o, d, dir_f64, clipped, (w, h)))
 }
 

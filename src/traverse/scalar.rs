@@ -50,6 +50,12 @@ pub trait Scalar:
         self == other
     }
 
+    /// A value raised by what floating-point rounding may have taken off it (itself in the
+    /// other arithmetics, whose rounding a walk tolerates in its own way).
+    fn past_rounding(self) -> Self {
+        self
+    }
+
     /// Rounds an intercept onto the denominator of `slope`, so that a recurrence adding
     /// multiples of the slope stays exact. Only bounded rationals round; others return `self`.
     fn align_to(self, _slope: &Self) -> Self {
@@ -224,6 +230,9 @@ macro_rules! float_scalar {
             }
             fn det2(a: &Self, b: &Self, c: &Self, d: &Self) -> Self {
                 $det2(a, b, c, d)
+            }
+            fn past_rounding(self) -> Self {
+                self + 8.0 * <$float>::EPSILON * self.abs()
             }
         }
     };

@@ -87,9 +87,19 @@ impl<S: Scalar> Search<'_, S> {
     }
 
     /// The ray's lowest height over `[t_lo, t_hi]`.
+    /// Lowered by what rounding may have added, so that a rounding arithmetic never culls a
+    /// run or cell the ray really touches (as a ray ending on flat ground at the lowest
+    /// height does); zero in exact arithmetic.
     fn lowest_z(&self, t_lo: &S, t_hi: &S) -> S {
         let t = if self.dz.is_negative() { t_hi } else { t_lo };
-        self.oz.clone() + self.dz.clone() * t.clone()
+        let z = self.oz.clone() + self.dz.clone() * t.clone();
+        let size = self.oz.to_f64().abs() + (self.dz.to_f64() * t.to_f64()).abs();
+        let slack = 8.0 * S::rounding_error(size);
+        if slack > 0.0 {
+            z - S::from_f64(slack)
+        } else {
+            z
+        }
     }
 
     /// The run test: the ray's lowest height over the run against the highest cell under it.
