@@ -2,14 +2,14 @@
 //! read, decoded and built into acceleration data on a background thread. A newer load
 //! supersedes an older one: the older one's result is dropped when it arrives.
 
+use super::mailbox::Mailbox;
 use super::orbit::Orbit;
 use super::sources;
 use crate::heightfield::BUILTINS;
 use crate::render::Lighting;
 use crate::{Arith, Method, Terrain};
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::{Arc, Condvar, Mutex, PoisonError};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// Where a terrain comes from.
@@ -127,10 +127,7 @@ pub struct Loader {
 }
 
 struct Shared {
-    generation: AtomicU64,
-    pending: Mutex<Option<(u64, LoadRequest)>>,
-    wake: Condvar,
-    quit: AtomicBool,
+    requests: Mailbox<LoadRequest>,
     sink: Box<dyn Fn(LoadEvent) + Send + Sync>,
 }
 
@@ -138,10 +135,7 @@ impl Loader {
     /// `sink` receives the loading thread's events (it wakes the window).
     pub fn new(sink: impl Fn(LoadEvent) + Send + Sync + 'static) -> std::io::Result<Loader> {
         let shared = Arc::new(Shared {
-            generation: AtomicU64::new(0),
-            pending: Mutex::new(None),
-            wake: Condvar::new(),
-            quit: AtomicBool::new(false),
+            requests: Mailbox::new(),
             sink: Box::new(sink),
         });
         let thread_shared = Arc::clone(&shared);
@@ -157,14 +151,7 @@ impl Loader {
     /// Queues a load, superseding any load in progress or waiting.
     pub fn start(&mut self, request: LoadRequest) {
         let label = request.source.label();
-        let mut pending = self
-            .shared
-            .pending
-            .lock()
-            .unwrap_or_else(PoisonError::into_inner);
-        let generation = self.shared.generation.fetch_add(1, Ordering::SeqCst) + 1;
-        *pending = Some((generation, request));
-        self.shared.wake.notify_one();
+        let generation = self.shared.requests.post(request);
         let progress = Progress {
             label,
             stage: Stage::Reading,
@@ -176,7 +163,7 @@ impl Loader {
     /// Takes a loading thread's event; returns the result of the newest load when it is done,
     /// with the name of what was loaded.
     pub fn accept(&mut self, event: LoadEvent) -> Option<(String, Result<Loaded, String>)> {
-        let newest = self.shared.generation.load(Ordering::SeqCst);
+        let newest = self.shared.requests.newest();
         match event {
             LoadEvent::Stage { generation, stage } if generation == newest => {
                 if let Some((_, progress)) = &mut self.in_flight {
@@ -205,36 +192,16 @@ impl Loader {
 impl Drop for Loader {
     fn drop(&mut self) {
         // The thread finishes the load it is in (it cannot stop halfway) and then ends.
-        self.shared.quit.store(true, Ordering::SeqCst);
-        let _pending = self.shared.pending.lock();
-        self.shared.wake.notify_one();
+        self.shared.requests.close();
     }
 }
 
 /// The loading thread: waits for the newest request and loads it.
 fn load_loop(shared: &Shared) {
-    loop {
-        let (generation, request) = {
-            let mut pending = shared
-                .pending
-                .lock()
-                .unwrap_or_else(PoisonError::into_inner);
-            loop {
-                if shared.quit.load(Ordering::SeqCst) {
-                    return;
-                }
-                if let Some(next) = pending.take() {
-                    break next;
-                }
-                pending = shared
-                    .wake
-                    .wait(pending)
-                    .unwrap_or_else(PoisonError::into_inner);
-            }
-        };
+    while let Some((generation, request)) = shared.requests.take() {
         let report = |stage| {
             // A superseded load says nothing more; its result is dropped anyway.
-            if shared.generation.load(Ordering::SeqCst) == generation {
+            if shared.requests.newest() == generation {
                 (shared.sink)(LoadEvent::Stage { generation, stage });
             }
         };

@@ -7,6 +7,7 @@ mod app;
 mod compose;
 mod hooks;
 mod loader;
+mod mailbox;
 mod model;
 mod orbit;
 mod panels;

@@ -5,10 +5,11 @@
 //! running pass sees through `render_pass`'s `cancelled` check within one band of rows. Only
 //! the refining passes are cancelled: the first, coarse one is always shown.
 
+use super::mailbox::Mailbox;
 use crate::render::{Camera, Culling, Frame, Lighting, Renderer, Shader};
 use crate::{Arith, Method, Terrain};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::{Arc, Condvar, Mutex, PoisonError};
+use std::sync::{Arc, Mutex, PoisonError};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -42,11 +43,8 @@ impl RenderedFrame {
 }
 
 struct Shared {
-    /// The newest generation; a pass of any other one stops.
-    generation: AtomicU64,
-    quit: AtomicBool,
-    pending: Mutex<Option<(u64, RenderJob)>>,
-    wake: Condvar,
+    /// The newest job; a pass of any other generation stops.
+    jobs: Mailbox<RenderJob>,
     latest: Mutex<Option<Arc<RenderedFrame>>>,
     rendering: AtomicBool,
     /// The newest generation the window has put on screen.
@@ -63,10 +61,7 @@ impl RenderWorker {
     /// Starts the thread; `notify` is called (from the thread) after each published pass.
     pub fn start(notify: impl Fn() + Send + 'static) -> std::io::Result<RenderWorker> {
         let shared = Arc::new(Shared {
-            generation: AtomicU64::new(0),
-            quit: AtomicBool::new(false),
-            pending: Mutex::new(None),
-            wake: Condvar::new(),
+            jobs: Mailbox::new(),
             latest: Mutex::new(None),
             rendering: AtomicBool::new(false),
             presented: AtomicU64::new(0),
@@ -83,15 +78,7 @@ impl RenderWorker {
 
     /// Replaces whatever is being rendered with `job`; returns its generation.
     pub fn submit(&self, job: RenderJob) -> u64 {
-        let mut pending = self
-            .shared
-            .pending
-            .lock()
-            .unwrap_or_else(PoisonError::into_inner);
-        let generation = self.shared.generation.fetch_add(1, Ordering::SeqCst) + 1;
-        *pending = Some((generation, job));
-        self.shared.wake.notify_one();
-        generation
+        self.shared.jobs.post(job)
     }
 
     /// Tells the worker the window has shown a frame of `generation`.
@@ -99,8 +86,7 @@ impl RenderWorker {
         self.shared
             .presented
             .fetch_max(generation, Ordering::SeqCst);
-        let _pending = self.shared.pending.lock();
-        self.shared.wake.notify_one();
+        self.shared.jobs.nudge();
     }
 
     /// The newest published frame.
@@ -114,25 +100,14 @@ impl RenderWorker {
 
     /// Whether a job is being rendered or waits to be.
     pub fn busy(&self) -> bool {
-        self.shared.rendering.load(Ordering::SeqCst)
-            || self
-                .shared
-                .pending
-                .lock()
-                .unwrap_or_else(PoisonError::into_inner)
-                .is_some()
+        self.shared.rendering.load(Ordering::SeqCst) || self.shared.jobs.has_waiting()
     }
 }
 
 impl Drop for RenderWorker {
     fn drop(&mut self) {
-        self.shared.quit.store(true, Ordering::SeqCst);
-        // Bumping the generation cancels the pass in flight.
-        self.shared.generation.fetch_add(1, Ordering::SeqCst);
-        {
-            let _pending = self.shared.pending.lock();
-            self.shared.wake.notify_one();
-        }
+        // Closing also supersedes the pass in flight.
+        self.shared.jobs.close();
         if let Some(thread) = self.thread.take() {
             // A panicked render thread has nothing more to say at exit.
             let _ = thread.join();
@@ -141,55 +116,19 @@ impl Drop for RenderWorker {
 }
 
 fn render_loop(shared: &Shared, notify: &dyn Fn()) {
-    while let Some((generation, job)) = next_job(shared) {
+    while let Some((generation, job)) = shared.jobs.take() {
         shared.rendering.store(true, Ordering::SeqCst);
         render_job(shared, notify, generation, job);
         shared.rendering.store(false, Ordering::SeqCst);
     }
 }
 
-/// Waits for a job; None when the worker is stopping.
-fn next_job(shared: &Shared) -> Option<(u64, RenderJob)> {
-    let mut pending = shared
-        .pending
-        .lock()
-        .unwrap_or_else(PoisonError::into_inner);
-    loop {
-        if shared.quit.load(Ordering::SeqCst) {
-            return None;
-        }
-        if let Some(job) = pending.take() {
-            return Some(job);
-        }
-        pending = shared
-            .wake
-            .wait(pending)
-            .unwrap_or_else(PoisonError::into_inner);
-    }
-}
-
 /// Waits (briefly) until the window has shown `generation`, or a newer job has come.
 fn wait_until_presented(shared: &Shared, generation: u64) {
     const PATIENCE: Duration = Duration::from_millis(40);
-    let deadline = Instant::now() + PATIENCE;
-    let mut pending = shared
-        .pending
-        .lock()
-        .unwrap_or_else(PoisonError::into_inner);
-    while shared.presented.load(Ordering::SeqCst) < generation
-        && pending.is_none()
-        && !shared.quit.load(Ordering::SeqCst)
-    {
-        let now = Instant::now();
-        if now >= deadline {
-            return;
-        }
-        pending = shared
-            .wake
-            .wait_timeout(pending, deadline - now)
-            .unwrap_or_else(PoisonError::into_inner)
-            .0;
-    }
+    shared.jobs.wait_until(Instant::now() + PATIENCE, || {
+        shared.presented.load(Ordering::SeqCst) >= generation
+    });
 }
 
 /// Renders passes until the frame is complete or a newer job cancels it.
@@ -206,8 +145,8 @@ fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJo
         camera: job.camera,
         arith: job.arith,
     };
-    let quitting = || shared.quit.load(Ordering::Relaxed);
-    let superseded = || shared.generation.load(Ordering::Relaxed) != generation || quitting();
+    let quitting = || shared.jobs.is_closed();
+    let superseded = || shared.jobs.newest() != generation || quitting();
     let start = Instant::now();
     let mut pass_times = Vec::new();
     loop {
