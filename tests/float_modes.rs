@@ -350,7 +350,7 @@ fn rounded_rays_find_flat_ground_at_the_lowest_height() {
             continue;
         }
         for arith in [Arith::F32, Arith::F64, Arith::Rational { bound: 1 << 16 }] {
-            for method in [Method::Runs, Method::Dda] {
+            for method in Method::ALL {
                 if trace(&terrain, ray, &TraceOptions::new(method, arith))
                     .hit
                     .is_none()

@@ -5,13 +5,15 @@ mod builtin;
 mod generate;
 mod load;
 mod maxima;
+mod mipmap;
 mod terrain;
 
 pub use builtin::{Builtin, BUILTINS};
 pub use generate::landscape;
 pub use load::{load, load_bytes, LoadError};
 pub use maxima::{CellMaxima, LineMaxima};
-pub use terrain::Terrain;
+pub use mipmap::MaxMipmap;
+pub use terrain::{Lines, Terrain};
 
 use thiserror::Error;
 

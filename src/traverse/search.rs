@@ -79,7 +79,7 @@ impl<S: Scalar> Search<'_, S> {
 
     /// Breaks when a hit is already known at or before `t` (cells come in order of first
     /// contact, so nothing later can be earlier; equal `t` keeps the earlier cell).
-    fn stop_before(&self, t: &S) -> ControlFlow<()> {
+    pub fn stop_before(&self, t: &S) -> ControlFlow<()> {
         match &self.found {
             Some(found) if found.t <= *t => ControlFlow::Break(()),
             _ => ControlFlow::Continue(()),
@@ -100,6 +100,14 @@ impl<S: Scalar> Search<'_, S> {
         } else {
             z
         }
+    }
+
+    /// The block test of the hierarchical walk: the ray's lowest height over `[t_lo, t_hi]`
+    /// against the block's highest sample.
+    pub fn block_may_hit(&mut self, t_lo: &S, t_hi: &S, highest: u16) -> bool {
+        let lowest = self.lowest_z(t_lo, t_hi);
+        let highest = self.terrain.field().height_of(highest);
+        self.counters.block.record(lowest <= S::from_f64(highest))
     }
 
     /// The run test: the ray's lowest height over the run against the highest cell under it.
