@@ -43,38 +43,53 @@ pub fn walk<S: Scalar>(f: &Frame<S>, search: &mut Search<'_, S>) -> ControlFlow<
         v: f.vs.clone(),
     };
     let mut k = top;
+    let mut first_part = true;
     loop {
         search.stop_before(&at.t)?;
         // (Rounding, or an interval that cannot tell, may put a point on the grid's near
         // edge just outside it.)
-        let (cu, cv) = (at.u.floor_i64().max(f.cols.0), at.v.floor_i64().max(f.rows.0));
+        let (cu, cv) = (
+            at.u.floor_i64().max(f.cols.0),
+            at.v.floor_i64().max(f.rows.0),
+        );
         if cu > f.cols.1 || cv > f.rows.1 {
             return ControlFlow::Continue(());
         }
         // Frame blocks are aligned like the grid's: mirroring maps multiples of 2^k to
         // multiples of 2^k.
         let (i, j) = f.cell(cu, cv);
-        let highest = search.terrain.block_max_sample(k, i >> k, j >> k);
         let exit = exit_point(f, &at, ((cu >> k) + 1) << k, ((cv >> k) + 1) << k);
         let ends_inside = exit.t >= f.t1;
         let t_hi = if ends_inside { &f.t1 } else { &exit.t };
-        if search.block_may_hit(&at.t, t_hi, highest) {
-            if k > 0 {
+        if k > 0 {
+            let highest = search.terrain.mipmap().get(k, i >> k, j >> k);
+            if search.block_may_hit(&at.t, t_hi, highest) {
                 k -= 1;
                 continue;
             }
-            // A cell the ray may hit: its part of the path, cell by cell, run by run.
-            let mut part = f.clone();
-            (part.t0, part.us, part.vs) = (at.t, at.u, at.v);
-            if !ends_inside {
-                (part.t1, part.ue, part.ve) = (exit.t.clone(), exit.u.clone(), exit.v.clone());
+        } else if search.cell_may_hit(i, j, &at.t, t_hi) {
+            // Only the cell's own triangles, unless the path touches other cells at an end
+            // of this part that no other part covers: the ray's start (no part before it),
+            // a lattice point it leaves through, or the segment's end. Cells touched where
+            // this part begins were covered by the part before, or lie in a skipped block.
+            let corner_exit = exit.u.is_integer() && exit.v.is_integer();
+            if first_part || corner_exit || ends_inside {
+                let mut part = f.clone();
+                (part.t0, part.us, part.vs) = (at.t.clone(), at.u.clone(), at.v.clone());
+                if !ends_inside {
+                    (part.t1, part.ue, part.ve) = (exit.t.clone(), exit.u.clone(), exit.v.clone());
+                }
+                runs::walk(&part, &mut |span| search.span(span))?;
+            } else {
+                search.reached(i, j);
+                search.triangles(i, j)?;
             }
-            runs::walk(&part, &mut |span| search.span(span))?;
         }
         if ends_inside {
             return ControlFlow::Continue(());
         }
         at = exit;
+        first_part = false;
         k = (k + 1).min(top);
     }
 }

@@ -65,16 +65,27 @@ impl<S: Scalar> Search<'_, S> {
             };
             self.stop_before(&t_lo)?;
             let (i, j) = self.frame.cell(cu, cv);
-            if let Some(cells) = &mut self.cells {
-                cells.push([i, j]);
-            }
-            let lowest = self.lowest_z(&t_lo, &t_hi);
-            let may_hit = lowest <= S::from_f64(self.terrain.cell_max(i, j));
-            if self.counters.cell.record(may_hit) {
+            self.reached(i, j);
+            if self.cell_may_hit(i, j, &t_lo, &t_hi) {
                 self.triangles(i, j)?;
             }
         }
         ControlFlow::Continue(())
+    }
+
+    /// Records cell `(i, j)` as reached, when cells are recorded.
+    pub fn reached(&mut self, i: usize, j: usize) {
+        if let Some(cells) = &mut self.cells {
+            cells.push([i, j]);
+        }
+    }
+
+    /// The cell test: the ray's lowest height over `[t_lo, t_hi]` against the cell's highest
+    /// sample.
+    pub fn cell_may_hit(&mut self, i: usize, j: usize, t_lo: &S, t_hi: &S) -> bool {
+        let lowest = self.lowest_z(t_lo, t_hi);
+        let may_hit = lowest <= S::from_f64(self.terrain.cell_max(i, j));
+        self.counters.cell.record(may_hit)
     }
 
     /// Breaks when a hit is already known at or before `t` (cells come in order of first
@@ -132,7 +143,7 @@ impl<S: Scalar> Search<'_, S> {
     }
 
     /// Tests both triangles of cell `(i, j)`.
-    fn triangles(&mut self, i: usize, j: usize) -> ControlFlow<()> {
+    pub fn triangles(&mut self, i: usize, j: usize) -> ControlFlow<()> {
         let heights = self.terrain.corner_heights(i, j).map(S::from_f64);
         let cell = CellTriangles::new(&self.ray, i, j, heights);
         for triangle in 0..2 {
