@@ -144,7 +144,13 @@ impl<S: Scalar> Search<'_, S> {
 
     /// Tests both triangles of cell `(i, j)`.
     pub fn triangles(&mut self, i: usize, j: usize) -> ControlFlow<()> {
-        let heights = self.terrain.corner_heights(i, j).map(S::from_f64);
+        let [z00, z10, z01, z11] = self.terrain.corner_heights(i, j);
+        let heights = [
+            S::from_f64(z00),
+            S::from_f64(z10),
+            S::from_f64(z01),
+            S::from_f64(z11),
+        ];
         let cell = CellTriangles::new(&self.ray, i, j, heights);
         for triangle in 0..2 {
             if self.start_triangle == Some(((i, j), triangle)) {
