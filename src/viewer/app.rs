@@ -260,6 +260,8 @@ impl App {
         self.model.scale_factor = self.window.scale_factor() as f32;
         self.model.progress = self.loader.progress().cloned();
         self.pick_frame();
+        // Collect the accuracy threads' news before the panel shows them.
+        self.update_accuracy();
         let input_at = self.input_since_redraw.take();
         let (output, view_rect, actions) = self.run_ui();
         for action in actions {
@@ -269,13 +271,8 @@ impl App {
         let view = compose::physical_rect(view_rect, output.pixels_per_point);
         self.counts.view_rect = Some(view);
         self.submit(view, input_at);
-        let converged = self.converged();
-        self.accuracy.update(
-            &mut self.model.accuracy,
-            converged.as_ref(),
-            self.quality.view_id(),
-            self.model.latest.as_ref().map(|l| l.generation),
-        );
+        // Start, or cancel for a changed view, what the panel has just asked for.
+        self.update_accuracy();
         let delay = output
             .viewport_output
             .get(&egui::ViewportId::ROOT)
@@ -334,6 +331,16 @@ impl App {
             }
             self.model.latest = Some(latest);
         }
+    }
+
+    fn update_accuracy(&mut self) {
+        let converged = self.converged();
+        self.accuracy.update(
+            &mut self.model.accuracy,
+            converged.as_ref(),
+            self.quality.view_id(),
+            self.model.latest.as_ref().map(|l| l.generation),
+        );
     }
 
     /// The frame on screen if it is complete and shows the current view at the size last
