@@ -81,6 +81,7 @@ pub fn count(stats: &PixelStats, mode: HeatMode) -> u32 {
         HeatMode::Off => 0,
         HeatMode::Cells => stats.cells,
         HeatMode::Triangles => stats.triangles,
+        HeatMode::Blocks => stats.blocks,
         HeatMode::Runs => stats.runs,
     }
 }

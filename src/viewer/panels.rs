@@ -209,6 +209,7 @@ fn traversal_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let s = &mut model.settings;
     ui.horizontal(|ui| {
         ui.label("method");
+        ui.radio_value(&mut s.method, Method::Mipmap, "mipmap");
         ui.radio_value(&mut s.method, Method::Runs, "runs");
         ui.radio_value(&mut s.method, Method::Dda, "cell DDA");
     });
