@@ -374,3 +374,31 @@ proptest! {
         check_random(&field, &ray)?;
     }
 }
+
+/// A field large enough for a deep hierarchy (9 levels, odd sizes, blocks cut by the far
+/// edges), where the brute-force reference would be slow: the mipmap must give exactly the
+/// run walk's answer, which the tests above hold to the reference.
+fn large_field() -> Heightfield {
+    let t = terrain(301, 221, 4095, 97.0, |x, y| {
+        let hills = ((x as f64 / 23.0).sin() * (y as f64 / 17.0).cos() + 1.0) * 1500.0;
+        let plateau = if (120..180).contains(&x) && (60..140).contains(&y) {
+            2600.0
+        } else {
+            0.0
+        };
+        (hills.max(plateau) as u16).max(families::hash(x, y, 7, 300))
+    });
+    t.field().clone()
+}
+
+proptest! {
+    #![proptest_config(config(2_000, 0x4d49_504d))]
+
+    #[test]
+    fn mipmap_equals_runs_on_a_large_field(ray in common::random::ray_on(&large_field())) {
+        let terrain = Terrain::new(large_field());
+        let answer = |method| trace(&terrain, &ray, &options(method, Arith::Exact)).hit;
+        let (mipmap, runs) = (answer(Method::Mipmap), answer(Method::Runs));
+        prop_assert_eq!(mipmap, runs, "{}", describe(&ray));
+    }
+}

@@ -8,8 +8,11 @@ use super::Heightfield;
 /// `[bi * 2^k, (bi+1) * 2^k) x [bj * 2^k, (bj+1) * 2^k)`, clipped to the grid.
 #[derive(Clone, Debug)]
 pub struct MaxMipmap {
-    /// `levels[k - 1]` is level `k`.
-    levels: Vec<Level>,
+    /// Every level's blocks, level 1 first, each by `bj * nx + bi`: one allocation, so that
+    /// a lookup is one index computation and one bounds check.
+    max: Vec<u16>,
+    /// Per level `k` (index `k - 1`): where its blocks start in `max`, and blocks along x.
+    levels: Vec<(usize, usize)>,
 }
 
 #[derive(Clone, Debug)]
@@ -25,12 +28,18 @@ impl MaxMipmap {
     /// Builds every level up to the one whose single block covers the grid.
     pub fn build(field: &Heightfield) -> Self {
         let (cells_x, cells_y) = (field.width() - 1, field.height() - 1);
-        let mut levels = vec![first_level(field)];
-        while cells_x.max(cells_y) > 1 << levels.len() {
-            let below = &levels[levels.len() - 1];
-            levels.push(halve(below));
+        let mut built = vec![first_level(field)];
+        while cells_x.max(cells_y) > 1 << built.len() {
+            let below = &built[built.len() - 1];
+            built.push(halve(below));
         }
-        MaxMipmap { levels }
+        let mut levels = Vec::with_capacity(built.len());
+        let mut max = Vec::with_capacity(built.iter().map(|l| l.max.len()).sum());
+        for level in built {
+            levels.push((max.len(), level.nx));
+            max.extend_from_slice(&level.max);
+        }
+        MaxMipmap { max, levels }
     }
 
     /// The coarsest level (its one block covers the grid).
@@ -41,13 +50,13 @@ impl MaxMipmap {
     /// Highest sample of block `(bi, bj)` at level `k` (`1 <= k <= top`).
     #[inline]
     pub fn get(&self, k: u32, bi: usize, bj: usize) -> u16 {
-        let level = &self.levels[k as usize - 1];
-        level.max[bj * level.nx + bi]
+        let (start, nx) = self.levels[k as usize - 1];
+        self.max[start + bj * nx + bi]
     }
 
     /// Bytes held.
     pub fn bytes(&self) -> usize {
-        self.levels.iter().map(|l| l.max.len() * 2).sum()
+        self.max.len() * 2 + self.levels.len() * 16
     }
 }
 

@@ -338,6 +338,7 @@ pub fn trace_scalar<S: Scalar>(
         found: None,
         cells: walk_options.record_cells.then(Vec::new),
         start_triangle: walk_options.start_triangle,
+        slack: search::slack(&o[2], &d[2], &frame.t1),
     };
     if walk_options.method == Method::Mipmap {
         // Ends by itself or at the answer; both are fine here.

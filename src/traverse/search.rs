@@ -40,6 +40,18 @@ pub struct Search<'a, S> {
     pub cells: Option<Vec<[usize; 2]>>,
     /// The triangle the ray starts on and leaves at once: not tested.
     pub start_triangle: Option<((usize, usize), u8)>,
+    /// What rounding may have added to a height computed along the ray (zero in exact
+    /// arithmetic), see [`slack`]: lowest heights are lowered by it, so that a rounding
+    /// arithmetic never culls a run or cell the ray really touches (as a ray ending on flat
+    /// ground at the lowest height does).
+    pub slack: f64,
+}
+
+/// The rounding a height `oz + dz*t` computed in `S` may carry, for `t` up to `t_max`: eight
+/// roundings of the largest magnitude involved (zero when exact).
+pub fn slack<S: Scalar>(oz: &S, dz: &S, t_max: &S) -> f64 {
+    let size = oz.to_f64().abs() + (dz.to_f64() * t_max.to_f64()).abs();
+    8.0 * S::rounding_error(size)
 }
 
 impl<S: Scalar> Search<'_, S> {
@@ -97,17 +109,12 @@ impl<S: Scalar> Search<'_, S> {
         }
     }
 
-    /// The ray's lowest height over `[t_lo, t_hi]`.
-    /// Lowered by what rounding may have added, so that a rounding arithmetic never culls a
-    /// run or cell the ray really touches (as a ray ending on flat ground at the lowest
-    /// height does); zero in exact arithmetic.
+    /// The ray's lowest height over `[t_lo, t_hi]`, lowered by [`Search::slack`].
     fn lowest_z(&self, t_lo: &S, t_hi: &S) -> S {
         let t = if self.dz.is_negative() { t_hi } else { t_lo };
         let z = self.oz.clone() + self.dz.clone() * t.clone();
-        let size = self.oz.to_f64().abs() + (self.dz.to_f64() * t.to_f64()).abs();
-        let slack = 8.0 * S::rounding_error(size);
-        if slack > 0.0 {
-            z - S::from_f64(slack)
+        if self.slack > 0.0 {
+            z - S::from_f64(self.slack)
         } else {
             z
         }
