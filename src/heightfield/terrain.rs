@@ -24,6 +24,7 @@ impl Terrain {
         let cells = CellMaxima::build(&field);
         let rows = LineMaxima::rows(&cells);
         let columns = LineMaxima::columns(&cells);
+        // No-data samples hold the lowest valid sample: they change neither extreme.
         let min_sample = field.samples().iter().copied().min().unwrap_or(0);
         let max_sample = field.samples().iter().copied().max().unwrap_or(0);
         let max_slope = max_slope(&field);
@@ -82,12 +83,12 @@ impl Terrain {
     }
 }
 
-/// Largest gradient magnitude over all triangles. The gradient of `T0` is
+/// Largest gradient magnitude over all triangles (holes have none). The gradient of `T0` is
 /// `(z10 - z00, z11 - z10)`, of `T1` `(z11 - z01, z01 - z00)`.
 fn max_slope(field: &Heightfield) -> f64 {
     let mut steepest: f64 = 0.0;
     for j in 0..field.height() - 1 {
-        for i in 0..field.width() - 1 {
+        for i in (0..field.width() - 1).filter(|&i| !field.is_hole_cell(i, j)) {
             let (z00, z10) = (field.z(i, j), field.z(i + 1, j));
             let (z01, z11) = (field.z(i, j + 1), field.z(i + 1, j + 1));
             steepest = steepest

@@ -125,6 +125,9 @@ impl<S: Scalar> Search<'_, S> {
 
     /// Tests both triangles of cell `(i, j)`.
     fn triangles(&mut self, i: usize, j: usize) -> ControlFlow<()> {
+        if self.terrain.field().is_hole_cell(i, j) {
+            return ControlFlow::Continue(());
+        }
         let heights = self.terrain.corner_heights(i, j).map(S::from_f64);
         let cell = CellTriangles::new(&self.ray, i, j, heights);
         for triangle in 0..2 {
