@@ -13,7 +13,10 @@ mod terrain;
 pub use builtin::{Builtin, BUILTINS};
 pub use generate::landscape;
 pub use limits::{MAX_DECODED_BYTES, MAX_SAMPLES};
-pub use load::{load, load_bytes, load_with, ColourEncoding, LoadError, LoadOptions, NoDataValue};
+pub use load::{
+    load, load_bytes, load_bytes_with, load_with, ColourEncoding, LoadError, LoadOptions,
+    NoDataValue, Progress,
+};
 pub use maxima::{CellMaxima, LineMaxima};
 pub use nodata::NoDataMask;
 pub use terrain::Terrain;
