@@ -20,10 +20,11 @@ use watched::Watched;
 /// Why a file could not be loaded as a height field.
 #[derive(Debug, Error)]
 pub enum LoadError {
-    #[error("cannot read {path}: {source}; check that the file exists and can be read")]
+    // `reason`, not `source`: the message already says it, error chains must not repeat it.
+    #[error("cannot read {path}: {reason}; check that the file exists and can be read")]
     Io {
         path: PathBuf,
-        source: std::io::Error,
+        reason: std::io::Error,
     },
     #[error("{path} is a directory; choose a height map file (PNG, PGM or TIFF) instead")]
     Directory { path: PathBuf },
@@ -128,9 +129,9 @@ pub fn load_with(
             path: path.to_owned(),
         });
     }
-    let bytes = std::fs::read(path).map_err(|source| LoadError::Io {
+    let bytes = std::fs::read(path).map_err(|reason| LoadError::Io {
         path: path.to_owned(),
-        source,
+        reason,
     })?;
     load_bytes_with(&bytes, options, &path.display().to_string(), progress)
 }
