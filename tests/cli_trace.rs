@@ -98,11 +98,15 @@ fn assert_hand_worked(line: &Value, method: &str, arith: &str) {
     }
     let c = &line["counters"];
     assert_eq!(hit_miss(&c["bbox"]), (1, 0), "{what}");
-    let (run, cell) = if method == "dda" {
-        ((0, 0), (1, 2))
-    } else {
-        ((1, 1), (1, 0))
+    // The mipmap (the default) tests the blocks of levels 2 and 1 around cell (0,0), then
+    // cells (0,0), (1,0) (misses) and (1,1), staying on level 0 while the ray descends
+    // inside the level-1 block it entered.
+    let (block, run, cell) = match method {
+        "dda" => ((0, 0), (0, 0), (1, 2)),
+        "mipmap" | "auto" => ((2, 0), (0, 0), (1, 2)),
+        _ => ((0, 0), (1, 1), (1, 0)),
     };
+    assert_eq!(hit_miss(&c["block"]), block, "{what}");
     assert_eq!(hit_miss(&c["run"]), run, "{what}");
     assert_eq!(hit_miss(&c["triangle"]), (1, 1), "{what}");
     if arith.starts_with("rational") && method != "dda" {
@@ -121,7 +125,7 @@ fn assert_hand_worked(line: &Value, method: &str, arith: &str) {
 fn hand_worked_ray_in_every_arithmetic_and_method() {
     let dir = TempDir::new().unwrap();
     let map = write_map(&dir);
-    for method in ["runs", "dda", "auto"] {
+    for method in ["runs", "dda", "mipmap", "auto"] {
         for arith in ARITHS {
             let args = trace_args(
                 &map,
@@ -146,7 +150,7 @@ fn cells_flag_lists_walked_cells_in_order() {
     let dir = TempDir::new().unwrap();
     let map = write_map(&dir);
     let covered = [[0, 0], [1, 0], [1, 1], [2, 1]];
-    for method in ["runs", "dda"] {
+    for method in ["runs", "dda", "mipmap"] {
         let args = trace_args(
             &map,
             &[
@@ -183,7 +187,7 @@ fn rays_file_gives_one_line_per_ray_in_order() {
         let args = trace_args(&map, &["--rays", rays.to_str().unwrap(), "--arith", arith]);
         let lines = json_lines(&heightray(&args));
         assert_eq!(lines.len(), 4, "{arith}");
-        assert_hand_worked(&lines[0], "runs", arith);
+        assert_hand_worked(&lines[0], "auto", arith);
         assert_eq!(lines[1]["hit"], Value::Bool(false), "{arith}: {}", lines[1]);
         for key in ["t", "point", "cell", "triangle"] {
             assert!(

@@ -17,7 +17,7 @@ proptest! {
     #[test]
     fn interval_path_and_rational_path_agree((field, ray) in field_and_ray()) {
         let terrain = heightray::Terrain::new(field);
-        for method in [Method::Runs, Method::Dda] {
+        for method in Method::ALL {
             let combined = trace(&terrain, &ray, &TraceOptions::new(method, Arith::Exact));
             let (o, d) = (ray.origin().map(Exact::from_f64), ray.dir().map(Exact::from_f64));
             let walk = WalkOptions::new(method, Query::FirstHit);

@@ -2,7 +2,7 @@
 //! how far the answers are from exact arithmetic on the same rays.
 
 use super::ray_sets::RaySet;
-use crate::render::{Culling, Frame, Renderer, Scene, Shader};
+use crate::render::{Camera, Culling, Frame, Lighting, Renderer, Scene, Shader};
 use crate::traverse::{covered_cells, trace, Arith, Counters, Hit, Method, TraceOptions};
 use crate::Terrain;
 use std::collections::HashSet;
@@ -160,42 +160,93 @@ pub fn pixel_differences(
     ariths: &[Arith],
     progress: &mut dyn FnMut(),
 ) -> Vec<PixelRow> {
-    let render = |method, arith| {
-        let renderer = Renderer {
-            shader: Shader {
-                terrain,
-                lighting: scene.lighting,
-                method,
-                culling: Culling::default(),
-            },
-            camera: scene.camera,
-            arith,
-        };
-        let (w, h) = scene.camera.size();
-        let mut frame = Frame::new(w, h);
-        let start = Instant::now();
-        renderer.render(&mut frame);
-        (frame.pixels, start.elapsed())
-    };
     let mut rows = Vec::new();
     for &method in methods {
-        let (exact, exact_time) = render(method, Arith::Exact);
-        progress();
-        for &arith in ariths {
-            let (pixels, time) = if arith == Arith::Exact {
-                (exact.clone(), exact_time)
-            } else {
-                render(method, arith)
-            };
-            rows.push(PixelRow {
-                method,
-                arith,
-                differing: pixels.iter().zip(&exact).filter(|(a, b)| a != b).count() as u64,
-                pixels: pixels.len() as u64,
-                time,
-            });
-            progress();
-        }
+        let view = View {
+            terrain,
+            camera: scene.camera,
+            lighting: scene.lighting,
+            method,
+        };
+        // Never cancelled, so always complete.
+        let measured = view_pixel_differences(&view, ariths, &|| false, &mut |_| progress());
+        rows.extend(measured.unwrap_or_default());
     }
     rows
+}
+
+/// What a view shows: the terrain through a camera, lit, walked with one method.
+#[derive(Clone, Copy)]
+pub struct View<'a> {
+    pub terrain: &'a Terrain,
+    pub camera: Camera,
+    pub lighting: Lighting,
+    pub method: Method,
+}
+
+/// Renders `view` exactly, then in each arithmetic (on the current rayon pool), and counts the
+/// pixels that differ from the exact render. Each render's row goes to `rendered` as soon as
+/// it is done, the exact reference first (for a caller showing progress or a growing table).
+/// `cancelled` is asked between bands of rows; once it says yes, the result is None.
+pub fn view_pixel_differences(
+    view: &View<'_>,
+    ariths: &[Arith],
+    cancelled: &(dyn Fn() -> bool + Sync),
+    rendered: &mut dyn FnMut(&PixelRow),
+) -> Option<Vec<PixelRow>> {
+    let render = |arith| {
+        let renderer = Renderer {
+            shader: Shader {
+                terrain: view.terrain,
+                lighting: view.lighting,
+                method: view.method,
+                culling: Culling::default(),
+            },
+            camera: view.camera,
+            arith,
+        };
+        let (w, h) = view.camera.size();
+        let mut frame = Frame::new(w, h);
+        let start = Instant::now();
+        while !frame.complete() {
+            if !renderer.render_pass(&mut frame, cancelled) {
+                return None;
+            }
+        }
+        Some((frame.pixels, start.elapsed()))
+    };
+    let row = |arith, pixels: &[u32], exact: &[u32], time| PixelRow {
+        method: view.method,
+        arith,
+        differing: differing_pixels(pixels, exact).count() as u64,
+        pixels: pixels.len() as u64,
+        time,
+    };
+    let (exact, exact_time) = render(Arith::Exact)?;
+    rendered(&row(Arith::Exact, &exact, &exact, exact_time));
+    let mut rows = Vec::new();
+    for &arith in ariths {
+        let measured = if arith == Arith::Exact {
+            row(arith, &exact, &exact, exact_time)
+        } else {
+            let (pixels, time) = render(arith)?;
+            row(arith, &pixels, &exact, time)
+        };
+        rendered(&measured);
+        rows.push(measured);
+    }
+    Some(rows)
+}
+
+/// Indices of the pixels whose colour differs between two renders of one view.
+pub fn differing_pixels<'a>(
+    pixels: &'a [u32],
+    exact: &'a [u32],
+) -> impl Iterator<Item = usize> + 'a {
+    pixels
+        .iter()
+        .zip(exact)
+        .enumerate()
+        .filter(|(_, (a, b))| a != b)
+        .map(|(k, _)| k)
 }

@@ -4,8 +4,13 @@
 mod accuracy;
 pub mod plot;
 mod ray_sets;
+mod sizes;
 mod speed;
 
-pub use accuracy::{accuracy, pixel_differences, AccuracyRow, Disagreement, PixelRow};
+pub use accuracy::{
+    accuracy, differing_pixels, pixel_differences, view_pixel_differences, AccuracyRow,
+    Disagreement, PixelRow, View,
+};
 pub use ray_sets::{hard_cases, scene_sets, RaySet};
+pub use sizes::{method_build, sized_scene, SizedSceneError, SEED};
 pub use speed::{throughput, ThroughputRow};

@@ -2,12 +2,13 @@
 
 use super::SpeedArgs;
 use anyhow::Context;
-use heightray::bench::throughput;
+use heightray::bench::{method_build, sized_scene, throughput, ThroughputRow, SEED};
 use heightray::heightfield::BUILTINS;
 use heightray::render::{Scene, SceneFile};
 use heightray::traverse::Arith;
 use heightray::Terrain;
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::ProgressBar;
+use indicatif::ProgressStyle;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -16,60 +17,124 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
         args.threads.iter().all(|&t| t > 0),
         "--threads counts must be at least 1"
     );
-    let scenes = scenes_or_builtins(&args.scenes);
     let configs = args.methods.len() * args.ariths.len() * args.threads.len();
-    let bar = progress_bar(configs * scenes.len());
-    let mut tables = Vec::new();
-    for path in &scenes {
-        let scene = scene_at_size(path, args.size)?;
-        let terrain = Terrain::new(scene.field.clone());
-        bar.set_message(path.display().to_string());
-        let rows = throughput(
-            &scene,
-            &terrain,
-            &args.methods,
-            &args.ariths,
-            &args.threads,
-            &mut || bar.inc(1),
-        )?;
-        tables.push((path.display().to_string(), terrain, rows));
-    }
-    bar.finish_and_clear();
-    for (label, terrain, rows) in tables {
-        let field = terrain.field();
-        println!(
-            "\n{label}: {}x{} samples, {}x{} pixels, build {:.1} ms",
-            field.width(),
-            field.height(),
-            args.size,
-            args.size,
-            terrain.build_time().as_secs_f64() * 1e3
-        );
-        println!("| method | arith | threads | primary Mrays/s | shadow Mrays/s | primary x f64 | 2 threads x 1 |");
-        println!("|---|---|---:|---:|---:|---:|---:|");
-        for row in &rows {
-            let same = |arith, threads| {
-                rows.iter()
-                    .find(|r| r.method == row.method && r.arith == arith && r.threads == threads)
-            };
-            let versus_f64 = same(Arith::F64, row.threads)
-                .map(|r| row.primary_per_second() / r.primary_per_second());
-            let versus_one = same(row.arith, 1)
-                .filter(|_| row.threads > 1)
-                .map(|r| row.primary_per_second() / r.primary_per_second());
-            println!(
-                "| {} | {} | {} | {:.3} | {:.3} | {} | {} |",
-                row.method,
-                row.arith,
-                row.threads,
-                row.primary_per_second() / 1e6,
-                row.shadow_per_second() / 1e6,
-                versus_f64.map_or("-".into(), |r| format!("{r:.2}")),
-                versus_one.map_or("-".into(), |r| format!("{r:.2}")),
-            );
+    let mut measured = Vec::new();
+    if args.sizes.is_empty() {
+        let scenes = scenes_or_builtins(&args.scenes);
+        let size = args.size.unwrap_or(256);
+        let bar = progress_bar(configs * scenes.len());
+        for path in &scenes {
+            bar.set_message(path.display().to_string());
+            let scene = scene_at_size(path, size)?;
+            let terrain = Terrain::new(scene.field.clone());
+            let rows = measure(args, &scene, &terrain, &bar)?;
+            measured.push((path.display().to_string(), terrain, rows));
         }
+        bar.finish_and_clear();
+    } else {
+        let size = args.size.unwrap_or(512);
+        let bar = progress_bar(configs * args.sizes.len());
+        for &samples in &args.sizes {
+            bar.set_message(format!("generating {samples}x{samples}"));
+            let scene = sized_scene(samples, size)?;
+            let terrain = Terrain::new(scene.field.clone());
+            bar.set_message(format!("{samples}x{samples}"));
+            let rows = measure(args, &scene, &terrain, &bar)?;
+            let label = format!("valley landscape (seed {SEED}) at {samples}x{samples}");
+            measured.push((label, terrain, rows));
+        }
+        bar.finish_and_clear();
+    }
+    for (label, terrain, rows) in &measured {
+        print_table(label, terrain, rows);
+    }
+    if measured.len() > 1 && !args.sizes.is_empty() {
+        print_growth(&measured);
     }
     Ok(ExitCode::SUCCESS)
+}
+
+fn measure(
+    args: &SpeedArgs,
+    scene: &Scene,
+    terrain: &Terrain,
+    bar: &ProgressBar,
+) -> anyhow::Result<Vec<ThroughputRow>> {
+    throughput(
+        scene,
+        terrain,
+        &args.methods,
+        &args.ariths,
+        &args.threads,
+        &mut || bar.inc(1),
+    )
+}
+
+fn print_table(label: &str, terrain: &Terrain, rows: &[ThroughputRow]) {
+    let field = terrain.field();
+    let samples = (field.width() * field.height()) as f64;
+    println!("\n{label}: {}x{} samples", field.width(), field.height());
+    println!("| method | arith | threads | build ms | bytes/sample | primary Mrays/s | shadow Mrays/s | time x f64 | 2 threads x 1 |");
+    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|");
+    for row in rows {
+        let same = |arith, threads| {
+            rows.iter()
+                .find(|r| r.method == row.method && r.arith == arith && r.threads == threads)
+        };
+        let versus_f64 = same(Arith::F64, row.threads)
+            .map(|r| r.primary_per_second() / row.primary_per_second());
+        let versus_one = same(row.arith, 1)
+            .filter(|_| row.threads > 1)
+            .map(|r| row.primary_per_second() / r.primary_per_second());
+        let (build, bytes) = method_build(terrain, row.method);
+        println!(
+            "| {} | {} | {} | {:.1} | {:.2} | {:.3} | {:.3} | {} | {} |",
+            row.method,
+            row.arith,
+            row.threads,
+            build.as_secs_f64() * 1e3,
+            bytes as f64 / samples,
+            row.primary_per_second() / 1e6,
+            row.shadow_per_second() / 1e6,
+            versus_f64.map_or("-".into(), |r| format!("{r:.2}")),
+            versus_one.map_or("-".into(), |r| format!("{r:.2}")),
+        );
+    }
+}
+
+/// Time per primary ray at each size against the smallest, per method (first arithmetic, one
+/// thread), beside the growth of log N.
+fn print_growth(measured: &[(String, Terrain, Vec<ThroughputRow>)]) {
+    let first = &measured[0];
+    let side = |t: &Terrain| t.field().width() as f64;
+    println!("\ngrowth of time per primary ray with the terrain size (x the smallest)");
+    let mut header = "| method | arith |".to_string();
+    for (_, terrain, _) in measured {
+        header += &format!(" {0}x{0} |", side(terrain));
+    }
+    println!("{header}");
+    println!("|---|---|{}", "---:|".repeat(measured.len()));
+    for base in first.2.iter().filter(|r| r.threads == 1) {
+        let mut line = format!("| {} | {} |", base.method, base.arith);
+        for (_, _, rows) in measured {
+            let row = rows.iter().find(|r| {
+                r.method == base.method && r.arith == base.arith && r.threads == base.threads
+            });
+            line += &match row {
+                Some(r) => format!(
+                    " {:.2} |",
+                    base.primary_per_second() / r.primary_per_second()
+                ),
+                None => " - |".into(),
+            };
+        }
+        println!("{line}");
+    }
+    let mut line = "| log2 N | - |".to_string();
+    for (_, terrain, _) in measured {
+        line += &format!(" {:.2} |", side(terrain).log2() / side(&first.1).log2());
+    }
+    println!("{line}");
 }
 
 /// The given scene files, or the built-in scenes.

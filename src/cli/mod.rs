@@ -85,13 +85,18 @@ pub enum BenchCommand {
 #[derive(clap::Args, Debug)]
 pub struct SpeedArgs {
     /// Scene files (default: the built-in scenes).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', conflicts_with = "sizes")]
     pub scenes: Vec<PathBuf>,
-    /// Image width and height (overrides the scenes').
-    #[arg(long, default_value_t = 256)]
-    pub size: u32,
+    /// Instead of scenes: the built-in valley's landscape generated at these sizes (samples
+    /// per side, e.g. 513,2049,4097,8193) under the same view, with build time, memory per
+    /// sample and the growth of time per ray.
+    #[arg(long, value_delimiter = ',')]
+    pub sizes: Vec<usize>,
+    /// Image width and height (overrides the scenes'; 512 with --sizes if not given).
+    #[arg(long)]
+    pub size: Option<u32>,
     /// Methods, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "runs,dda")]
+    #[arg(long, value_delimiter = ',', default_value = "mipmap,runs,dda")]
     pub methods: Vec<Method>,
     /// Arithmetics, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "f32,f64,rational:65536")]

@@ -153,7 +153,13 @@ impl<S: Scalar> CellTriangles<S> {
             [x0, y1.clone(), z01],
             [x1, y1, z11],
         ];
-        let images = corners.clone().map(|c| ray.vertex(c));
+        // (Written out: `array::map` over generic values is not reliably unrolled.)
+        let images = [
+            ray.vertex(corners[0].clone()),
+            ray.vertex(corners[1].clone()),
+            ray.vertex(corners[2].clone()),
+            ray.vertex(corners[3].clone()),
+        ];
         CellTriangles { corners, images }
     }
 

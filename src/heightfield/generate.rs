@@ -2,11 +2,14 @@
 //! terraced slope, defined on the unit square so every size shows the same landscape.
 
 use super::{Heightfield, HeightfieldError};
+use rayon::prelude::*;
 
 /// A generated landscape of `size x size` 16-bit samples (maxval 65535).
 pub fn landscape(size: usize, seed: u64, z_scale: f64) -> Result<Heightfield, HeightfieldError> {
     let scale = 1.0 / (size.max(2) - 1) as f64;
+    // Every sample is independent: computed in parallel (deterministic all the same).
     let heights: Vec<f64> = (0..size * size)
+        .into_par_iter()
         .map(|k| shape((k % size) as f64 * scale, (k / size) as f64 * scale, seed))
         .collect();
     let (lo, hi) = heights

@@ -6,6 +6,7 @@ mod generate;
 mod limits;
 mod load;
 mod maxima;
+mod mipmap;
 mod nodata;
 mod summary;
 mod terrain;
@@ -18,8 +19,9 @@ pub use load::{
     NoDataValue, Progress,
 };
 pub use maxima::{CellMaxima, LineMaxima};
+pub use mipmap::MaxMipmap;
 pub use nodata::NoDataMask;
-pub use terrain::Terrain;
+pub use terrain::{Lines, Terrain};
 
 use thiserror::Error;
 

@@ -1,16 +1,16 @@
 //! A height field with the acceleration data the traversals use.
 
-use super::{CellMaxima, Heightfield, LineMaxima};
+use super::{CellMaxima, Heightfield, LineMaxima, MaxMipmap};
+use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
-/// A height field ready to be ray traced: cell maxima, row and column range maxima, and the
-/// height range.
+/// A height field ready to be ray traced: the max-mipmap, the height range, and (built on
+/// first use, for the run method) row and column range maxima.
 #[derive(Clone, Debug)]
 pub struct Terrain {
     field: Heightfield,
-    cells: CellMaxima,
-    rows: LineMaxima,
-    columns: LineMaxima,
+    mipmap: MaxMipmap,
+    lines: OnceLock<Lines>,
     min_sample: u16,
     max_sample: u16,
     max_slope: f64,
@@ -18,12 +18,10 @@ pub struct Terrain {
 }
 
 impl Terrain {
-    /// Builds the acceleration data (timed).
+    /// Builds the acceleration data every method uses (timed).
     pub fn new(field: Heightfield) -> Self {
         let start = Instant::now();
-        let cells = CellMaxima::build(&field);
-        let rows = LineMaxima::rows(&cells);
-        let columns = LineMaxima::columns(&cells);
+        let mipmap = MaxMipmap::build(&field);
         // No-data samples hold the lowest valid sample: they change neither extreme.
         let min_sample = field.samples().iter().copied().min().unwrap_or(0);
         let max_sample = field.samples().iter().copied().max().unwrap_or(0);
@@ -31,9 +29,8 @@ impl Terrain {
         Terrain {
             max_slope,
             field,
-            cells,
-            rows,
-            columns,
+            mipmap,
+            lines: OnceLock::new(),
             min_sample,
             max_sample,
             build_time: start.elapsed(),
@@ -48,17 +45,41 @@ impl Terrain {
         let f = &self.field;
         [f.z(i, j), f.z(i + 1, j), f.z(i, j + 1), f.z(i + 1, j + 1)]
     }
+    /// Highest sample of cell `(i, j)`.
+    #[inline]
+    pub fn cell_max_sample(&self, i: usize, j: usize) -> u16 {
+        let (w, s) = (self.field.width(), self.field.samples());
+        let (below, above) = (j * w + i, (j + 1) * w + i);
+        s[below].max(s[below + 1]).max(s[above]).max(s[above + 1])
+    }
     /// Highest height of cell `(i, j)`.
     pub fn cell_max(&self, i: usize, j: usize) -> f64 {
-        self.field.height_of(self.cells.get(i, j))
+        self.field.height_of(self.cell_max_sample(i, j))
+    }
+    /// Highest sample over the cells of block `(bi, bj)` of mipmap level `k` (level 0: a cell).
+    #[inline]
+    pub fn block_max_sample(&self, k: u32, bi: usize, bj: usize) -> u16 {
+        if k == 0 {
+            self.cell_max_sample(bi, bj)
+        } else {
+            self.mipmap.get(k, bi, bj)
+        }
+    }
+    /// The max-mipmap.
+    pub fn mipmap(&self) -> &MaxMipmap {
+        &self.mipmap
     }
     /// Highest height over cells `lo..=hi` of row `j`.
     pub fn row_max(&self, j: usize, lo: usize, hi: usize) -> f64 {
-        self.field.height_of(self.rows.max(j, lo, hi))
+        self.field.height_of(self.lines().rows.max(j, lo, hi))
     }
     /// Highest height over cells `lo..=hi` of column `i`.
     pub fn column_max(&self, i: usize, lo: usize, hi: usize) -> f64 {
-        self.field.height_of(self.columns.max(i, lo, hi))
+        self.field.height_of(self.lines().columns.max(i, lo, hi))
+    }
+    /// The row and column range maxima, built on first use (only the run method asks).
+    pub fn lines(&self) -> &Lines {
+        self.lines.get_or_init(|| Lines::build(&self.field))
     }
     /// Lowest and highest height of the field.
     pub fn z_range(&self) -> (f64, f64) {
@@ -76,25 +97,57 @@ impl Terrain {
     pub fn build_time(&self) -> Duration {
         self.build_time
     }
-    /// Bytes of acceleration data beyond the samples.
+    /// Bytes of acceleration data beyond the samples that every method uses (the mipmap).
     pub fn accel_bytes(&self) -> usize {
-        let (nx, ny) = self.cells.size();
-        nx * ny * 2 + self.rows.bytes() + self.columns.bytes()
+        self.mipmap.bytes()
+    }
+}
+
+/// Range maxima along rows and columns of cells, for the run test.
+#[derive(Clone, Debug)]
+pub struct Lines {
+    rows: LineMaxima,
+    columns: LineMaxima,
+    build_time: Duration,
+}
+
+impl Lines {
+    fn build(field: &Heightfield) -> Self {
+        let start = Instant::now();
+        let cells = CellMaxima::build(field);
+        let (rows, columns) = (LineMaxima::rows(&cells), LineMaxima::columns(&cells));
+        Lines {
+            rows,
+            columns,
+            build_time: start.elapsed(),
+        }
+    }
+    /// Bytes held.
+    pub fn bytes(&self) -> usize {
+        self.rows.bytes() + self.columns.bytes()
+    }
+    /// Time the build took.
+    pub fn build_time(&self) -> Duration {
+        self.build_time
     }
 }
 
 /// Largest gradient magnitude over all triangles (holes have none). The gradient of `T0` is
-/// `(z10 - z00, z11 - z10)`, of `T1` `(z11 - z01, z01 - z00)`.
+/// `(z10 - z00, z11 - z10)`, of `T1` `(z11 - z01, z01 - z00)`; compared as exact integer
+/// squares of sample differences, so one square root is taken in all.
 fn max_slope(field: &Heightfield) -> f64 {
-    let mut steepest: f64 = 0.0;
-    for j in 0..field.height() - 1 {
-        for i in (0..field.width() - 1).filter(|&i| !field.is_hole_cell(i, j)) {
-            let (z00, z10) = (field.z(i, j), field.z(i + 1, j));
-            let (z01, z11) = (field.z(i, j + 1), field.z(i + 1, j + 1));
-            steepest = steepest
-                .max((z10 - z00).hypot(z11 - z10))
-                .max((z11 - z01).hypot(z01 - z00));
-        }
-    }
-    steepest
+    let w = field.width();
+    let d = |a: u16, b: u16| (i64::from(a) - i64::from(b)).pow(2);
+    let steepest = field
+        .samples()
+        .windows(w + 2)
+        .enumerate()
+        .filter(|(k, _)| k % w != w - 1 && !field.is_hole_cell(k % w, k / w))
+        .map(|(_, s)| {
+            let (z00, z10, z01, z11) = (s[0], s[1], s[w], s[w + 1]);
+            (d(z10, z00) + d(z11, z10)).max(d(z11, z01) + d(z01, z00))
+        })
+        .max()
+        .unwrap_or(0);
+    field.step() * (steepest as f64).sqrt()
 }

@@ -9,6 +9,6 @@ mod stats;
 
 pub use camera::{Camera, CameraError};
 pub use passes::{Frame, Renderer, PASS_BLOCKS};
-pub use scene::{Lighting, Normals, Ramp, Scene, SceneError, SceneFile};
+pub use scene::{Lighting, Normals, Ramp, Scene, SceneError, SceneFile, SunSection};
 pub use shade::{Culling, Sample, Shader, Shadow, ShadowSkip};
 pub use stats::{FrameStats, PixelStats};

@@ -9,6 +9,7 @@ use std::ops::AddAssign;
 /// Queries one pixel's rays (primary and shadow) made, for heat maps.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PixelStats {
+    pub blocks: u32,
     pub runs: u32,
     pub cells: u32,
     pub triangles: u32,
@@ -21,6 +22,7 @@ impl PixelStats {
                 as u32
         };
         PixelStats {
+            blocks: total(|c| c.block),
             runs: total(|c| c.run),
             cells: total(|c| c.cell),
             triangles: total(|c| c.triangle),
@@ -87,7 +89,7 @@ impl FrameStats {
                 "no_shadow_possible": self.skipped.no_shadow_possible,
                 "above_terrain": self.skipped.above_terrain,
             },
-            "queries": {"bbox": q.bbox, "run": q.run, "cell": q.cell, "triangle": q.triangle},
+            "queries": {"bbox": q.bbox, "block": q.block, "run": q.run, "cell": q.cell, "triangle": q.triangle},
             "primary_queries": self.primary,
             "shadow_queries": self.shadow,
         })
@@ -99,25 +101,28 @@ impl FrameStats {
         let per = |n: u64| n as f64 / self.primary_rays.max(1) as f64;
         let ratio = |h: HitMiss| format!("{}:{:.1}", 1, h.miss as f64 / h.hit.max(1) as f64);
         let mut out = String::new();
-        out += "| scene | build ms | render ms | primary rays | shadow rays | bbox queries | run queries | cell queries | triangle queries |\n";
-        out += "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        out += "| scene | build ms | render ms | primary rays | shadow rays | bbox queries | block queries | run queries | cell queries | triangle queries |\n";
+        out += "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
         out += &format!(
-            "| {label} | {build_ms:.1} | {render_ms:.1} | {} | {} | {} | {} | {} | {} |\n",
+            "| {label} | {build_ms:.1} | {render_ms:.1} | {} | {} | {} | {} | {} | {} | {} |\n",
             self.primary_rays,
             self.shadow_rays,
             q.bbox.total(),
+            q.block.total(),
             q.run.total(),
             q.cell.total(),
             q.triangle.total()
         );
         out += &format!(
-            "\nper primary ray: {:.2} bbox, {:.2} run, {:.2} cell, {:.2} triangle queries; \
-             hits:misses (E:N) bbox {}, run {}, cell {}, triangle {}\n",
+            "\nper primary ray: {:.2} bbox, {:.2} block, {:.2} run, {:.2} cell, {:.2} triangle queries; \
+             hits:misses (E:N) bbox {}, block {}, run {}, cell {}, triangle {}\n",
             per(q.bbox.total()),
+            per(q.block.total()),
             per(q.run.total()),
             per(q.cell.total()),
             per(q.triangle.total()),
             ratio(q.bbox),
+            ratio(q.block),
             ratio(q.run),
             ratio(q.cell),
             ratio(q.triangle)

@@ -42,6 +42,9 @@ impl AddAssign for HitMiss {
 pub struct Counters {
     /// Ray against the height field's bounding box.
     pub bbox: HitMiss,
+    /// A block of the max-mipmap (the hierarchical method): the ray's lowest height over the
+    /// block's part of the path against the block's highest sample.
+    pub block: HitMiss,
     /// A run as a whole: the ray's lowest height over it against its highest sample.
     pub run: HitMiss,
     /// A cell: the ray's lowest height over it against its highest sample.
@@ -57,6 +60,7 @@ pub struct Counters {
 impl AddAssign for Counters {
     fn add_assign(&mut self, rhs: Counters) {
         self.bbox += rhs.bbox;
+        self.block += rhs.block;
         self.run += rhs.run;
         self.cell += rhs.cell;
         self.triangle += rhs.triangle;

@@ -77,13 +77,35 @@ fn sum(a: f64, b: f64) -> (f64, f64) {
 /// Products below this may lose bits of their FMA residual to underflow.
 const TINY: f64 = 1e-280;
 
+/// Operands above this could overflow when split for [`product_error`].
+const HUGE: f64 = 1e290;
+
+/// The rounding error `a*b - p` of the product `p = a*b`, exactly: one fused multiply-add
+/// where the target has it, else Dekker's splitting (a library `fma` call is several times
+/// slower than the dozen operations of the split).
+#[inline]
+fn product_error(a: f64, b: f64, p: f64) -> f64 {
+    if cfg!(target_feature = "fma") || a.abs() > HUGE || b.abs() > HUGE {
+        return a.mul_add(b, -p);
+    }
+    // Veltkamp's split into halves of 26 bits: products of halves are exact.
+    let split = |x: f64| {
+        let c = 134_217_729.0 * x; // 2^27 + 1
+        let hi = c - (c - x);
+        (hi, x - hi)
+    };
+    let ((ah, al), (bh, bl)) = (split(a), split(b));
+    ((ah * bh - p) + ah * bl + al * bh) + al * bl
+}
+
 /// `a * b` rounded down and up: `p + e` is the exact product.
+#[inline]
 fn product(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
     if p != 0.0 && p.abs() < TINY {
         return (p.next_down().min(0.0), p.next_up().max(0.0));
     }
-    let e = a.mul_add(b, -p);
+    let e = product_error(a, b, p);
     (
         if e < 0.0 { p.next_down() } else { p },
         if e > 0.0 { p.next_up() } else { p },
@@ -96,7 +118,10 @@ fn quotient(a: f64, b: f64) -> (f64, f64) {
     if q != 0.0 && q.abs() < TINY {
         return (q.next_down().min(0.0), q.next_up().max(0.0));
     }
-    let r = (-q).mul_add(b, a);
+    // `a - q*b`: `a - p` is exact (Sterbenz: `p` is within a factor 2 of `a`), so the
+    // difference with the product's error has the residual's sign.
+    let p = q * b;
+    let r = (a - p) - product_error(q, b, p);
     let above = (r > 0.0) == (b > 0.0) && r != 0.0; // exact quotient above q
     let below = r != 0.0 && !above;
     (
@@ -135,6 +160,18 @@ impl Mul for Interval {
         if self.is_point() && rhs.is_point() {
             let (lo, hi) = product(self.lo, rhs.lo);
             return Interval::checked(lo, hi);
+        }
+        // Where the signs are known, two end products bound it (the usual case).
+        let (a, b) = (self, rhs);
+        let ends = |(x, y): (f64, f64), (z, w): (f64, f64)| {
+            Interval::checked(product(x, y).0, product(z, w).1)
+        };
+        match (a.lo >= 0.0, a.hi <= 0.0, b.lo >= 0.0, b.hi <= 0.0) {
+            (true, _, true, _) => return ends((a.lo, b.lo), (a.hi, b.hi)),
+            (true, _, _, true) => return ends((a.hi, b.lo), (a.lo, b.hi)),
+            (_, true, true, _) => return ends((a.lo, b.hi), (a.hi, b.lo)),
+            (_, true, _, true) => return ends((a.hi, b.hi), (a.lo, b.lo)),
+            _ => {}
         }
         let ends = [
             product(self.lo, rhs.lo),

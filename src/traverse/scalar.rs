@@ -216,11 +216,17 @@ macro_rules! float_scalar {
             fn to_f64(&self) -> f64 {
                 f64::from(*self)
             }
+            // Without SSE4.1, `floor` and `ceil` are library calls; a truncating conversion
+            // and one comparison give the same saturated integers (NaN gives 0).
+            #[inline]
             fn floor_i64(&self) -> i64 {
-                self.floor() as i64
+                let n = *self as i64;
+                n.saturating_sub(i64::from((n as $float) > *self))
             }
+            #[inline]
             fn ceil_i64(&self) -> i64 {
-                self.ceil() as i64
+                let n = *self as i64;
+                n.saturating_add(i64::from((n as $float) < *self))
             }
             fn is_zero(&self) -> bool {
                 *self == 0.0

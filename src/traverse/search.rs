@@ -65,21 +65,32 @@ impl<S: Scalar> Search<'_, S> {
             };
             self.stop_before(&t_lo)?;
             let (i, j) = self.frame.cell(cu, cv);
-            if let Some(cells) = &mut self.cells {
-                cells.push([i, j]);
-            }
-            let lowest = self.lowest_z(&t_lo, &t_hi);
-            let may_hit = lowest <= S::from_f64(self.terrain.cell_max(i, j));
-            if self.counters.cell.record(may_hit) {
+            self.reached(i, j);
+            if self.cell_may_hit(i, j, &t_lo, &t_hi) {
                 self.triangles(i, j)?;
             }
         }
         ControlFlow::Continue(())
     }
 
+    /// Records cell `(i, j)` as reached, when cells are recorded.
+    pub fn reached(&mut self, i: usize, j: usize) {
+        if let Some(cells) = &mut self.cells {
+            cells.push([i, j]);
+        }
+    }
+
+    /// The cell test: the ray's lowest height over `[t_lo, t_hi]` against the cell's highest
+    /// sample.
+    pub fn cell_may_hit(&mut self, i: usize, j: usize, t_lo: &S, t_hi: &S) -> bool {
+        let lowest = self.lowest_z(t_lo, t_hi);
+        let may_hit = lowest <= S::from_f64(self.terrain.cell_max(i, j));
+        self.counters.cell.record(may_hit)
+    }
+
     /// Breaks when a hit is already known at or before `t` (cells come in order of first
     /// contact, so nothing later can be earlier; equal `t` keeps the earlier cell).
-    fn stop_before(&self, t: &S) -> ControlFlow<()> {
+    pub fn stop_before(&self, t: &S) -> ControlFlow<()> {
         match &self.found {
             Some(found) if found.t <= *t => ControlFlow::Break(()),
             _ => ControlFlow::Continue(()),
@@ -100,6 +111,14 @@ impl<S: Scalar> Search<'_, S> {
         } else {
             z
         }
+    }
+
+    /// The block test of the hierarchical walk: the ray's lowest height over `[t_lo, t_hi]`
+    /// against the block's highest sample.
+    pub fn block_may_hit(&mut self, t_lo: &S, t_hi: &S, highest: u16) -> bool {
+        let lowest = self.lowest_z(t_lo, t_hi);
+        let highest = self.terrain.field().height_of(highest);
+        self.counters.block.record(lowest <= S::from_f64(highest))
     }
 
     /// The run test: the ray's lowest height over the run against the highest cell under it.
@@ -124,11 +143,17 @@ impl<S: Scalar> Search<'_, S> {
     }
 
     /// Tests both triangles of cell `(i, j)`.
-    fn triangles(&mut self, i: usize, j: usize) -> ControlFlow<()> {
+    pub fn triangles(&mut self, i: usize, j: usize) -> ControlFlow<()> {
         if self.terrain.field().is_hole_cell(i, j) {
             return ControlFlow::Continue(());
         }
-        let heights = self.terrain.corner_heights(i, j).map(S::from_f64);
+        let [z00, z10, z01, z11] = self.terrain.corner_heights(i, j);
+        let heights = [
+            S::from_f64(z00),
+            S::from_f64(z10),
+            S::from_f64(z01),
+            S::from_f64(z11),
+        ];
         let cell = CellTriangles::new(&self.ray, i, j, heights);
         for triangle in 0..2 {
             if self.start_triangle == Some(((i, j), triangle)) {

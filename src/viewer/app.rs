@@ -2,13 +2,14 @@
 //! events come in through `window_event`, worker and loader news through `user_event`; each
 //! redraw runs the UI, submits a render job if the view changed, and presents.
 
+use super::accuracy::Accuracy;
 use super::compose::{self, PixelRect};
 use super::hooks::{Counts, Hooks};
 use super::loader::{LoadRequest, Loaded, Loader, Source};
 use super::model::{Action, Model, Shown};
 use super::orbit::Orbit;
 use super::quality::{detail, JobKey, Quality, ViewKey};
-use super::worker::{RenderJob, RenderWorker};
+use super::worker::{RenderJob, RenderWorker, RenderedFrame};
 use super::{panels, view, UserEvent};
 
 mod present;
@@ -18,6 +19,7 @@ use present::keys_ui;
 use std::collections::VecDeque;
 use std::num::NonZeroU32;
 use std::rc::Rc;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoopProxy};
@@ -39,6 +41,7 @@ pub struct App {
     proxy: EventLoopProxy<UserEvent>,
     worker: RenderWorker,
     loader: Loader,
+    accuracy: Accuracy,
     model: Model,
     hooks: Hooks,
     counts: Counts,
@@ -75,7 +78,7 @@ impl App {
             None,
             None,
         );
-        let (worker, loader) = background_threads(&proxy)?;
+        let (worker, loader, accuracy) = background_threads(&proxy)?;
         // Rays cost the square of the scale factor: by default trace one ray per logical pixel.
         let settings = super::settings::Settings {
             render_scale: render_scale.unwrap_or(1.0 / window.scale_factor().max(1.0) as f32),
@@ -96,6 +99,7 @@ impl App {
             proxy,
             worker,
             loader,
+            accuracy,
             model,
             hooks,
             counts,
@@ -150,7 +154,7 @@ impl App {
 
     pub fn user_event(&mut self, event: UserEvent) {
         match event {
-            UserEvent::FrameReady => {}
+            UserEvent::FrameReady | UserEvent::Accuracy => {}
             UserEvent::Load(event) => match self.loader.accept(event) {
                 Some((_, Ok(loaded))) => self.show(loaded),
                 Some((what, Err(message))) => {
@@ -239,6 +243,7 @@ impl App {
                 self.screenshot_requested = true;
                 self.window.request_redraw();
             }
+            Action::MeasureArithmetics => self.accuracy.toggle_measure(&mut self.model.accuracy),
         }
     }
 
@@ -255,6 +260,8 @@ impl App {
         self.model.scale_factor = self.window.scale_factor() as f32;
         self.model.progress = self.loader.progress().cloned();
         self.pick_frame();
+        // Collect the accuracy threads' news before the panel shows them.
+        self.update_accuracy();
         let input_at = self.input_since_redraw.take();
         let (output, view_rect, actions) = self.run_ui();
         for action in actions {
@@ -264,6 +271,8 @@ impl App {
         let view = compose::physical_rect(view_rect, output.pixels_per_point);
         self.counts.view_rect = Some(view);
         self.submit(view, input_at);
+        // Start, or cancel for a changed view, what the panel has just asked for.
+        self.update_accuracy();
         let delay = output
             .viewport_output
             .get(&egui::ViewportId::ROOT)
@@ -324,6 +333,27 @@ impl App {
         }
     }
 
+    fn update_accuracy(&mut self) {
+        let converged = self.converged();
+        self.accuracy.update(
+            &mut self.model.accuracy,
+            converged.as_ref(),
+            self.quality.view_id(),
+            self.model.latest.as_ref().map(|l| l.generation),
+        );
+    }
+
+    /// The frame on screen if it is complete and shows the current view at the size last
+    /// asked for (not a lowered resolution while moving).
+    fn converged(&self) -> Option<Arc<RenderedFrame>> {
+        let latest = self.model.latest.as_ref()?;
+        let submitted = self.submitted.as_ref()?;
+        let current = latest.job.view_id == self.quality.view_id()
+            && (latest.frame.width, latest.frame.height) == submitted.size
+            && latest.frame.complete();
+        current.then(|| Arc::clone(latest))
+    }
+
     /// Sends the worker a job when what the view shows, or its resolution, has changed.
     fn submit(&mut self, view: PixelRect, input_at: Option<Instant>) {
         if view.width == 0 || view.height == 0 {
@@ -351,6 +381,7 @@ impl App {
         };
         let job = RenderJob {
             terrain: model.shown.terrain.clone(),
+            orbit: model.orbit,
             camera,
             lighting: model.settings.lighting(),
             method: model.settings.method,
@@ -366,10 +397,11 @@ impl App {
     }
 }
 
-/// The render worker and the loader, both reporting to the window through `proxy`.
+/// The render worker, the loader and the accuracy threads, all reporting to the window
+/// through `proxy`.
 fn background_threads(
     proxy: &EventLoopProxy<UserEvent>,
-) -> std::io::Result<(RenderWorker, Loader)> {
+) -> std::io::Result<(RenderWorker, Loader, Accuracy)> {
     let frame_proxy = proxy.clone();
     let worker = RenderWorker::start(move || {
         // The window may be gone at exit; then nobody needs the news.
@@ -379,7 +411,11 @@ fn background_threads(
     let loader = Loader::new(move |event| {
         let _ = load_proxy.send_event(UserEvent::Load(event));
     })?;
-    Ok((worker, loader))
+    let accuracy_proxy = proxy.clone();
+    let accuracy = Accuracy::start(move || {
+        let _ = accuracy_proxy.send_event(UserEvent::Accuracy);
+    })?;
+    Ok((worker, loader, accuracy))
 }
 
 /// The model for the terrain named on the command line (with a scene's view and lighting).

@@ -1,5 +1,6 @@
 //! Putting a rendered frame into the window's pixels: nearest-neighbour scaling from the
-//! render size to the view rectangle, and the heat-map colouring of per-pixel counters.
+//! render size to the view rectangle, the heat-map colouring of per-pixel counters, and the
+//! overlay of pixels that differ from the exact render.
 
 use super::settings::HeatMode;
 use crate::render::{Frame, PixelStats};
@@ -80,6 +81,7 @@ pub fn count(stats: &PixelStats, mode: HeatMode) -> u32 {
         HeatMode::Off => 0,
         HeatMode::Cells => stats.cells,
         HeatMode::Triangles => stats.triangles,
+        HeatMode::Blocks => stats.blocks,
         HeatMode::Runs => stats.runs,
     }
 }
@@ -100,9 +102,21 @@ pub fn ramp(x: f32) -> u32 {
     (channel(0) << 16) | (channel(1) << 8) | channel(2)
 }
 
-/// Draws `frame` scaled into `rect` of the canvas (clipped to the canvas), shaded or as a
-/// heat map.
-pub fn blit(canvas: &mut Canvas<'_>, rect: PixelRect, frame: &Frame, heat: Option<HeatScale>) {
+/// How to colour the frame's pixels.
+#[derive(Clone, Copy, Default)]
+pub struct Look<'a> {
+    /// Per-pixel counters instead of the shaded image.
+    pub heat: Option<HeatScale>,
+    /// Pixels that differ from the exact render, one flag per frame pixel: drawn in
+    /// [`HIGHLIGHT`] over the rest, dimmed so that single pixels stand out.
+    pub differs: Option<&'a [bool]>,
+}
+
+/// Colour of the pixels that differ from exact (magenta: no terrain, sky or heat colour).
+pub const HIGHLIGHT: u32 = 0x00ff_00ff;
+
+/// Draws `frame` scaled into `rect` of the canvas (clipped to the canvas).
+pub fn blit(canvas: &mut Canvas<'_>, rect: PixelRect, frame: &Frame, look: Look<'_>) {
     if frame.width == 0 || frame.height == 0 || rect.width == 0 || rect.height == 0 {
         return;
     }
@@ -111,6 +125,17 @@ pub fn blit(canvas: &mut Canvas<'_>, rect: PixelRect, frame: &Frame, heat: Optio
     if rect.x >= x_end || rect.y >= y_end {
         return;
     }
+    let base = |k: usize| match look.heat {
+        None => frame.pixels[k],
+        Some(scale) => scale.colour(count(&frame.stats[k], scale.mode)),
+    };
+    // A mask of another size belongs to another frame.
+    let differs = look.differs.filter(|d| d.len() == frame.pixels.len());
+    let colour = |k: usize| match differs {
+        None => base(k),
+        Some(d) if d[k] => HIGHLIGHT,
+        Some(_) => (base(k) >> 1) & 0x007f_7f7f,
+    };
     // Source column of each destination column, computed once.
     let columns: Vec<usize> = (rect.x..x_end)
         .map(|x| {
@@ -123,17 +148,8 @@ pub fn blit(canvas: &mut Canvas<'_>, rect: PixelRect, frame: &Frame, heat: Optio
         let source = sy * frame.width as usize;
         let start = (y * canvas.width + rect.x) as usize;
         let row = &mut canvas.pixels[start..start + columns.len()];
-        match heat {
-            None => {
-                for (out, &sx) in row.iter_mut().zip(&columns) {
-                    *out = frame.pixels[source + sx];
-                }
-            }
-            Some(scale) => {
-                for (out, &sx) in row.iter_mut().zip(&columns) {
-                    *out = scale.colour(count(&frame.stats[source + sx], scale.mode));
-                }
-            }
+        for (out, &sx) in row.iter_mut().zip(&columns) {
+            *out = colour(source + sx);
         }
     }
 }
@@ -173,7 +189,7 @@ mod tests {
             width: 4,
             height: 4,
         };
-        blit(&mut canvas, rect, &frame, None);
+        blit(&mut canvas, rect, &frame, Look::default());
         assert_eq!(pixels, vec![0, 1, 1, 2, 2, 0, 1, 1, 2, 2, 0, 3, 3, 4, 4]);
     }
 

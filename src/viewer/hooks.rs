@@ -1,6 +1,7 @@
 //! Screenshots, and what scripted tests read: a JSON report of the window's state, written
 //! after every presented frame. The window, event loop and drawing are the interactive ones.
 
+use super::accuracy::{ns_per_ray, AccuracyState, MeasureState};
 use super::compose::PixelRect;
 use super::model::Model;
 use image::{ImageBuffer, Rgb};
@@ -81,7 +82,11 @@ fn report(model: &Model, counts: &Counts) -> Value {
         "sun": {
             "azimuth_deg": model.settings.sun_azimuth_deg,
             "elevation_deg": model.settings.sun_elevation_deg,
+            "direction": model.settings.sun(),
         },
+        "shadows": model.settings.shadows,
+        "arith": model.settings.arith().to_string(),
+        "accuracy": accuracy_report(&model.accuracy),
         "terrain": {
             "name": model.shown.source.label(), "width": field.width(), "height": field.height(),
             "z_scale": field.z_scale(),
@@ -126,6 +131,46 @@ fn frame_report(model: &Model) -> Option<Value> {
         "primary_rays": latest.frame.totals.primary_rays,
         "shadow_rays": latest.frame.totals.shadow_rays,
     }))
+}
+
+/// The measurement's table and the comparison's count.
+fn accuracy_report(state: &AccuracyState) -> Value {
+    let measure = &state.measure;
+    let rows: Vec<Value> = measure
+        .measurement()
+        .map(|m| {
+            m.rows
+                .iter()
+                .map(|r| {
+                    json!({
+                        "arith": r.arith.to_string(), "ns_per_ray": ns_per_ray(r),
+                        "differing": r.differing, "pixels": r.pixels,
+                    })
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    let fraction = match measure {
+        MeasureState::Running {
+            report: Some(r), ..
+        } => Some(r.fraction),
+        _ => None,
+    };
+    let stale = matches!(measure, MeasureState::Done { view_id, .. } if *view_id != state.view_id);
+    let comparison = state.comparison_shown();
+    json!({
+        "measure": {
+            "state": measure.label(), "fraction": fraction, "stale": stale,
+            "size": measure.measurement().map(|m| [m.size.0, m.size.1]), "rows": rows,
+        },
+        "compare": {
+            "on": state.compare_on,
+            "state": state.compare.label(),
+            "differing": comparison.map(|c| c.differing),
+            "pixels": comparison.map(|c| c.pixels),
+            "generation": comparison.map(|c| c.generation),
+        },
+    })
 }
 
 /// Named widgets' rectangles in window pixels: x0, y0, x1, y1.

@@ -86,6 +86,13 @@ impl<T> Mailbox<T> {
         self.lock().is_some()
     }
 
+    /// Drops what waits and supersedes the work in flight, leaving the mailbox open.
+    pub fn cancel(&self) {
+        let mut waiting = self.lock();
+        self.generation.fetch_add(1, Ordering::SeqCst);
+        *waiting = None;
+    }
+
     /// Closes the mailbox: `take` returns `None`, and work in flight is superseded.
     pub fn close(&self) {
         self.closed.store(true, Ordering::SeqCst);

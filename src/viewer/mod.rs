@@ -3,7 +3,9 @@
 //!
 //! This module wires winit's events to [`app::App`]; the state and drawing live there.
 
+mod accuracy;
 mod app;
+mod background;
 mod compose;
 mod hooks;
 mod loader;
@@ -68,6 +70,8 @@ impl Default for ViewerOptions {
 /// News for the window thread from the render, loading and saving threads.
 pub enum UserEvent {
     FrameReady,
+    /// A measurement or comparison reported progress or a result.
+    Accuracy,
     Load(LoadEvent),
     Saved(Result<PathBuf, String>),
 }

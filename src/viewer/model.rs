@@ -1,6 +1,7 @@
 //! The viewer's state that the panels and the 3D view read and edit, and the actions they ask
 //! the application to carry out.
 
+use super::accuracy::AccuracyState;
 use super::compose::HeatScale;
 use super::loader::{LoadRequest, Progress, Source};
 use super::orbit::Orbit;
@@ -26,6 +27,8 @@ pub enum Action {
     Load(LoadRequest),
     ResetView,
     Screenshot,
+    /// Measure every arithmetic on the view, or cancel the measurement under way.
+    MeasureArithmetics,
 }
 
 /// Times from an input to the first frame on screen that shows its effect.
@@ -113,6 +116,8 @@ pub struct Model {
     pub view_held: bool,
     /// Where named widgets were drawn last frame, in points (for scripted tests).
     pub widget_rects: BTreeMap<&'static str, egui::Rect>,
+    /// Measuring every arithmetic, and comparing with exact.
+    pub accuracy: AccuracyState,
 }
 
 impl Model {
@@ -143,6 +148,7 @@ impl Model {
             window_size: (0, 0),
             view_held: false,
             widget_rects: BTreeMap::new(),
+            accuracy: AccuracyState::default(),
         }
     }
 

@@ -1,5 +1,6 @@
 //! The side panel: camera, light, height map, traversal, effects and statistics.
 
+use super::accuracy::panel::accuracy_ui;
 use super::loader::{LoadRequest, Source};
 use super::model::{Action, Model};
 use super::settings::ArithKind;
@@ -23,7 +24,9 @@ pub fn side_panel_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) 
                 section(ui, "Camera", |ui| camera_ui(ui, model, actions));
                 section(ui, "Light", |ui| light_ui(ui, model));
                 section(ui, "Heightmap", |ui| heightmap_ui(ui, model, actions));
-                section_closed(ui, "Traversal", |ui| traversal_ui(ui, model));
+                let traversal =
+                    section_closed(ui, "Traversal", |ui| traversal_ui(ui, model, actions));
+                named(model, "traversal_section", traversal);
                 section_closed(ui, "Effects", |ui| effects_ui(ui, model));
                 section(ui, "Statistics", |ui| statistics_ui(ui, model));
             });
@@ -36,10 +39,12 @@ fn section(ui: &mut Ui, title: &str, add: impl FnOnce(&mut Ui)) {
         .show(ui, add);
 }
 
-fn section_closed(ui: &mut Ui, title: &str, add: impl FnOnce(&mut Ui)) {
+/// A section that starts closed; returns its header (to click open).
+fn section_closed(ui: &mut Ui, title: &str, add: impl FnOnce(&mut Ui)) -> egui::Response {
     CollapsingHeader::new(title)
         .default_open(false)
-        .show(ui, add);
+        .show(ui, add)
+        .header_response
 }
 
 /// Records where a named widget is, for scripted tests that drag it.
@@ -201,10 +206,11 @@ fn load(source: Source) -> Action {
     })
 }
 
-fn traversal_ui(ui: &mut Ui, model: &mut Model) {
+fn traversal_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let s = &mut model.settings;
     ui.horizontal(|ui| {
         ui.label("method");
+        ui.radio_value(&mut s.method, Method::Mipmap, "mipmap");
         ui.radio_value(&mut s.method, Method::Runs, "runs");
         ui.radio_value(&mut s.method, Method::Dda, "cell DDA");
     });
@@ -226,6 +232,7 @@ fn traversal_ui(ui: &mut Ui, model: &mut Model) {
     if s.arith == ArithKind::Exact {
         ui.weak("exact arithmetic is much slower: passes take a while");
     }
+    accuracy_ui(ui, model, actions);
 }
 
 fn effects_ui(ui: &mut Ui, model: &mut Model) {

@@ -32,8 +32,8 @@ pub fn probe_ui(ui: &mut Ui, probe: &Probe, rendered: Option<&PixelStats>) {
         });
     if let Some(stats) = rendered {
         ui.label(format!(
-            "in the frame: {} runs, {} cells, {} triangles",
-            stats.runs, stats.cells, stats.triangles
+            "in the frame: {} blocks, {} runs, {} cells, {} triangles",
+            stats.blocks, stats.runs, stats.cells, stats.triangles
         ));
     }
     ui.weak(format!(
@@ -81,6 +81,7 @@ type Pick = fn(&Counters) -> HitMiss;
 /// The four query kinds of DESIGN 3, by name.
 pub const QUERY_KINDS: &[(&str, Pick)] = &[
     ("bbox", |c| c.bbox),
+    ("block", |c| c.block),
     ("run", |c| c.run),
     ("cell", |c| c.cell),
     ("triangle", |c| c.triangle),

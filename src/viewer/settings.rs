@@ -37,14 +37,16 @@ pub enum HeatMode {
     Off,
     Cells,
     Triangles,
+    Blocks,
     Runs,
 }
 
 impl HeatMode {
-    pub const ALL: [HeatMode; 4] = [
+    pub const ALL: [HeatMode; 5] = [
         HeatMode::Off,
         HeatMode::Cells,
         HeatMode::Triangles,
+        HeatMode::Blocks,
         HeatMode::Runs,
     ];
 
@@ -53,6 +55,7 @@ impl HeatMode {
             HeatMode::Off => "off (shaded image)",
             HeatMode::Cells => "cell queries",
             HeatMode::Triangles => "triangle queries",
+            HeatMode::Blocks => "block queries (mipmap)",
             HeatMode::Runs => "run queries",
         }
     }
@@ -90,7 +93,7 @@ impl Default for Settings {
             fog: 0.0,
             normals: Normals::Flat,
             ramp: Ramp::Terrain,
-            method: Method::Runs,
+            method: Method::Mipmap,
             arith: ArithKind::F64,
             rational_bound: DEFAULT_BOUND,
             render_scale: 1.0,

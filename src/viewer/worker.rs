@@ -6,6 +6,7 @@
 //! the refining passes are cancelled: the first, coarse one is always shown.
 
 use super::mailbox::Mailbox;
+use super::orbit::Orbit;
 use crate::render::{Camera, Culling, Frame, Lighting, Renderer, Shader};
 use crate::{Arith, Method, Terrain};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -17,12 +18,30 @@ use std::time::{Duration, Instant};
 #[derive(Clone)]
 pub struct RenderJob {
     pub terrain: Arc<Terrain>,
+    /// The orbit the camera was made from (for renders of the same view at other sizes).
+    pub orbit: Orbit,
     pub camera: Camera,
     pub lighting: Lighting,
     pub method: Method,
     pub arith: Arith,
     /// Jobs of one view (the same camera, terrain and settings at any resolution) share it.
     pub view_id: u64,
+}
+
+impl RenderJob {
+    /// A renderer of this job's view in arithmetic `arith`.
+    pub fn renderer(&self, arith: Arith) -> Renderer<'_> {
+        Renderer {
+            shader: Shader {
+                terrain: &self.terrain,
+                lighting: self.lighting,
+                method: self.method,
+                culling: Culling::default(),
+            },
+            camera: self.camera,
+            arith,
+        }
+    }
 }
 
 /// A frame after some passes, as published to the window.
@@ -135,16 +154,7 @@ fn wait_until_presented(shared: &Shared, generation: u64) {
 fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJob) {
     let (width, height) = job.camera.size();
     let mut frame = Frame::new(width, height);
-    let renderer = Renderer {
-        shader: Shader {
-            terrain: &job.terrain,
-            lighting: job.lighting,
-            method: job.method,
-            culling: Culling::default(),
-        },
-        camera: job.camera,
-        arith: job.arith,
-    };
+    let renderer = job.renderer(job.arith);
     let quitting = || shared.jobs.is_closed();
     let superseded = || shared.jobs.newest() != generation || quitting();
     let start = Instant::now();

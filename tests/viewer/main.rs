@@ -5,6 +5,7 @@
 //! Each test starts its own Xvfb on a free display; they run one at a time (the machine has
 //! two cores and each viewer uses both). Without Xvfb they fail and say what to install.
 
+mod accuracy;
 mod app;
 mod x11;
 mod xdnd;

@@ -41,7 +41,15 @@ impl App {
                 (_, Some((_, _, scale))) => Some(scale),
                 (mode, None) => Some(HeatScale::of(&latest.frame, mode)),
             };
-            compose::blit(&mut canvas, view, &latest.frame, heat);
+            let look = compose::Look {
+                heat,
+                differs: self
+                    .model
+                    .accuracy
+                    .comparison_shown()
+                    .map(|c| c.differs.as_slice()),
+            };
+            compose::blit(&mut canvas, view, &latest.frame, look);
         }
         let ppp = output.pixels_per_point;
         let primitives = self.egui_ctx.tessellate(output.shapes, ppp);

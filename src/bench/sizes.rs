@@ -1,0 +1,68 @@
+//! The same landscape at several sizes, seen from the same oblique view: how build time,
+//! memory and time per ray grow with the terrain.
+
+use crate::heightfield::{landscape, HeightfieldError};
+use crate::render::{Camera, CameraError, Lighting, Normals, Ramp, Scene, SunSection};
+use crate::traverse::{Arith, Method};
+use crate::Terrain;
+use std::time::Duration;
+use thiserror::Error;
+
+/// The seed of every generated size (the built-in valley's).
+pub const SEED: u64 = 1;
+
+/// Why a sized scene could not be made.
+#[derive(Debug, Error)]
+pub enum SizedSceneError {
+    #[error(transparent)]
+    Field(#[from] HeightfieldError),
+    #[error(transparent)]
+    Camera(#[from] CameraError),
+}
+
+/// The built-in valley's landscape and view at `samples x samples`: heights, camera and sun
+/// scale with the grid, so every size shows the same picture in more detail.
+pub fn sized_scene(samples: usize, image: u32) -> Result<Scene, SizedSceneError> {
+    let scale = (samples.max(2) - 1) as f64 / 512.0;
+    let field = landscape(samples, SEED, 120.0 * scale)?;
+    let at = |p: [f64; 3]| p.map(|c| c * scale);
+    let camera = Camera::look_at(
+        at([-40.0, -60.0, 180.0]),
+        at([256.0, 256.0, 40.0]),
+        [0.0, 0.0, 1.0],
+        45.0,
+        (image, image),
+    )?;
+    // The valley's sun is the default one.
+    let sun = SunSection::default();
+    let length = sun.direction.iter().map(|c| c * c).sum::<f64>().sqrt();
+    Ok(Scene {
+        field,
+        camera,
+        lighting: Lighting {
+            sun: sun.direction.map(|c| c / length),
+            intensity: sun.intensity,
+            ambient: sun.ambient,
+            shadows: true,
+            fog: 0.0,
+            normals: Normals::default(),
+            ramp: Ramp::default(),
+        },
+        method: Method::Mipmap,
+        arith: Arith::F64,
+    })
+}
+
+/// What a method needs beyond the samples: the time to build it (the terrain's shared part
+/// included) and its bytes.
+pub fn method_build(terrain: &Terrain, method: Method) -> (Duration, usize) {
+    match method {
+        Method::Mipmap => (terrain.build_time(), terrain.accel_bytes()),
+        Method::Runs => {
+            let lines = terrain.lines();
+            (terrain.build_time() + lines.build_time(), lines.bytes())
+        }
+        // The cell test reads the four corner samples: nothing to build.
+        Method::Dda => (terrain.build_time(), 0),
+    }
+}

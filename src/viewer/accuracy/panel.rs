@@ -1,0 +1,181 @@
+//! The Traversal panel's accuracy part: the measure button, its table (and plot), and the
+//! compare-with-exact switch with its count.
+
+use super::measure::{label, ns_per_ray, BOUNDS, PIXEL_BUDGETS};
+use super::{CompareState, MeasureState, Measurement};
+use crate::viewer::compose::HIGHLIGHT;
+use crate::viewer::model::{Action, Model};
+use crate::Arith;
+use egui::{Color32, RichText, Ui};
+
+/// Colour of the pixels that differ from exact: the overlay's, in the panel and the plot.
+pub const DIFFERING: Color32 = Color32::from_rgb(
+    (HIGHLIGHT >> 16) as u8,
+    (HIGHLIGHT >> 8) as u8,
+    HIGHLIGHT as u8,
+);
+
+pub fn accuracy_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
+    ui.separator();
+    ui.strong("What accuracy costs in this view");
+    measure_ui(ui, model, actions);
+    ui.separator();
+    compare_ui(ui, model);
+}
+
+fn measure_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
+    let state = &mut model.accuracy;
+    let busy = matches!(
+        state.measure,
+        MeasureState::Running { .. } | MeasureState::Waiting
+    );
+    ui.horizontal(|ui| {
+        let text = if busy {
+            "Cancel measuring"
+        } else {
+            "Measure all arithmetics"
+        };
+        let button = ui.button(text);
+        model.widget_rects.insert("measure_button", button.rect);
+        if button.clicked() {
+            actions.push(Action::MeasureArithmetics);
+        }
+        let state = &mut model.accuracy;
+        ui.add_enabled_ui(!busy, |ui| {
+            egui::ComboBox::from_id_salt("measure size")
+                .selected_text(format!("{} px", state.budget))
+                .show_ui(ui, |ui| {
+                    for budget in PIXEL_BUDGETS {
+                        ui.selectable_value(&mut state.budget, budget, format!("{budget} px"));
+                    }
+                });
+        });
+    });
+    let state = &model.accuracy;
+    let shadows = if model.settings.shadows {
+        "its shadow ray included"
+    } else {
+        "shadows are off"
+    };
+    let bounds: Vec<String> = BOUNDS
+        .iter()
+        .map(|b| format!("2^{}", b.trailing_zeros()))
+        .collect();
+    ui.weak(format!(
+        "This view at about {} pixels in each arithmetic (rational bounds {}), one thread, \
+         against the exact render. Time per primary ray, {shadows}.",
+        state.budget,
+        bounds.join(", ")
+    ));
+    match &state.measure {
+        MeasureState::Waiting => {
+            ui.horizontal(|ui| {
+                ui.spinner();
+                ui.label("waiting for the view to settle");
+            });
+        }
+        MeasureState::Running {
+            report: Some(report),
+            ..
+        } => {
+            ui.add(egui::ProgressBar::new(report.fraction).text(report.status.as_str()));
+        }
+        MeasureState::Running { .. } => {
+            ui.horizontal(|ui| {
+                ui.spinner();
+                ui.label("starting");
+            });
+        }
+        MeasureState::Done { view_id, .. } if *view_id != state.view_id => {
+            ui.colored_label(
+                Color32::from_rgb(230, 180, 80),
+                "measured for an earlier view: measure again for this one",
+            );
+        }
+        MeasureState::Cancelled { .. } => {
+            ui.weak("cancelled");
+        }
+        MeasureState::Failed(why) => {
+            ui.colored_label(Color32::from_rgb(230, 110, 110), why);
+        }
+        MeasureState::Idle | MeasureState::Done { .. } => {}
+    }
+    if let Some(measurement) = state.measure.measurement() {
+        table_ui(ui, measurement);
+        super::plot::plot_ui(ui, measurement);
+    }
+}
+
+/// Arithmetic, time per ray, ratio to f64, pixels differing from exact.
+fn table_ui(ui: &mut Ui, measurement: &Measurement) {
+    let (w, h) = measurement.size;
+    ui.weak(format!("{w} x {h} = {} pixels", w * h));
+    let f64_ns = measurement.row(Arith::F64).map(ns_per_ray);
+    egui::Grid::new("arithmetic costs")
+        .num_columns(4)
+        .striped(true)
+        .show(ui, |ui| {
+            for heading in ["arithmetic", "ns/ray", "× f64", "px ≠ exact"] {
+                ui.strong(heading);
+            }
+            ui.end_row();
+            // Measured exact first (it is the reference); listed last, as in the README.
+            let ordered = measurement
+                .rows
+                .iter()
+                .filter(|r| r.arith != Arith::Exact)
+                .chain(measurement.row(Arith::Exact));
+            for row in ordered {
+                let mut name = RichText::new(label(row.arith));
+                if row.arith == measurement.shown {
+                    name = name.strong().color(Color32::WHITE);
+                }
+                ui.label(name)
+                    .on_hover_text_at_pointer("bold: the arithmetic on screen");
+                let ns = ns_per_ray(row);
+                ui.label(format!("{ns:.0}"));
+                ui.label(f64_ns.map_or("…".into(), |f| format!("{:.2}", ns / f)));
+                ui.label(row.differing.to_string());
+                ui.end_row();
+            }
+        });
+}
+
+fn compare_ui(ui: &mut Ui, model: &mut Model) {
+    let state = &mut model.accuracy;
+    let toggle = ui.checkbox(&mut state.compare_on, "Compare with exact");
+    model.widget_rects.insert("compare_toggle", toggle.rect);
+    let state = &model.accuracy;
+    if !state.compare_on {
+        ui.weak(
+            "renders the frame on screen again in exact arithmetic and marks the pixels that \
+             differ in magenta",
+        );
+        return;
+    }
+    match &state.compare {
+        CompareState::Running {
+            report: Some(report),
+            ..
+        } => {
+            ui.add(egui::ProgressBar::new(report.fraction).text(report.status.as_str()));
+        }
+        CompareState::Done(c) if Some(c.generation) == state.shown_generation => {
+            ui.label(
+                RichText::new(format!("{} of {} pixels differ", c.differing, c.pixels))
+                    .color(DIFFERING)
+                    .strong(),
+            );
+            ui.weak(format!(
+                "the exact render took {:.1} s (all threads)",
+                c.exact_time.as_secs_f64()
+            ));
+        }
+        _ => {
+            ui.horizontal(|ui| {
+                ui.spinner();
+                ui.label("comparing once the view has settled");
+            });
+        }
+    }
+}
