@@ -1,11 +1,16 @@
 //! Refused input gives an error with a clear message, never a panic; good files load with
 //! the sizes and heights that were written.
 
-use heightray::heightfield::{load, Heightfield};
+mod common;
+
+use common::files::{png_header, tiff, tiff_header};
+use heightray::heightfield::{load, load_with, ColourEncoding, LoadOptions};
 use heightray::Ray;
-use image::{GrayImage, ImageBuffer, Luma, RgbImage};
+use image::{GrayImage, ImageBuffer, Luma, Rgb};
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use tempfile::TempDir;
+use tiff::encoder::colortype::{Gray16, Gray32Float, RGB8};
 
 /// The error message of `result`, which must be an error.
 fn message<T: std::fmt::Debug, E: std::fmt::Display>(result: Result<T, E>) -> String {
@@ -131,7 +136,7 @@ fn files_that_are_not_images_are_refused() {
             &msg,
             &[
                 path.file_name().unwrap().to_str().unwrap(),
-                "not a png or pgm",
+                "not a png, pgm or tiff",
             ],
         );
     }
@@ -176,19 +181,9 @@ fn truncated_and_malformed_pgms_are_refused() {
 fn a_directory_is_refused() {
     let dir = TempDir::new().unwrap();
     let msg = load_error(dir.path());
-    assert_mentions(&msg, &["cannot read", &dir.path().display().to_string()]);
+    assert_mentions(&msg, &["is a directory", &dir.path().display().to_string()]);
     let missing = dir.path().join("missing.png");
     assert_mentions(&load_error(&missing), &["cannot read", "missing.png"]);
-}
-
-#[test]
-fn color_images_are_refused() {
-    let dir = TempDir::new().unwrap();
-    let path = dir.path().join("rgb.png");
-    RgbImage::from_pixel(4, 4, image::Rgb([1, 2, 3]))
-        .save(&path)
-        .unwrap();
-    assert_mentions(&load_error(&path), &["grayscale"]);
 }
 
 #[test]
@@ -200,82 +195,119 @@ fn bad_z_scales_are_refused() {
     }
 }
 
-/// Checks size, maxval and every height: `rows[r][c]` is image row `r` (top first), so
-/// sample `(c, H-1-r)`.
-fn assert_field(field: &Heightfield, rows: &[Vec<u32>], maxval: u32, z_scale: f64) {
-    let (w, h) = (rows[0].len(), rows.len());
-    assert_eq!((field.width(), field.height()), (w, h));
-    assert_eq!(u32::from(field.maxval()), maxval);
-    for (r, row) in rows.iter().enumerate() {
-        for (c, &s) in row.iter().enumerate() {
-            let j = h - 1 - r;
-            assert_eq!(u32::from(field.sample(c, j)), s, "sample ({c}, {j})");
-            let expected = f64::from(s) * (z_scale / f64::from(maxval));
-            assert_eq!(
-                field.z(c, j).to_bits(),
-                expected.to_bits(),
-                "height ({c}, {j})"
-            );
-        }
+#[test]
+fn huge_headers_are_refused_before_decoding() {
+    let dir = TempDir::new().unwrap();
+    let cases = [
+        ("huge.png", png_header(100_000, 100_000, 8, 0)),
+        ("huge.tif", tiff_header(100_000, 100_000)),
+        ("huge.pgm", b"P5 100000 100000 65535\n\x01\x02".to_vec()),
+    ];
+    for (name, bytes) in cases {
+        let msg = load_error(&write(&dir, name, &bytes));
+        assert_mentions(
+            &msg,
+            &[name, "100000x100000", "more than the limit", "downsample"],
+        );
     }
 }
 
-/// 5 columns x 3 rows of distinct samples up to `maxval`.
-fn test_rows(maxval: u32) -> Vec<Vec<u32>> {
-    (0..3)
-        .map(|r| (0..5).map(|c| (r * 5 + c) * maxval / 14).collect())
-        .collect()
+#[test]
+fn an_image_too_big_to_decode_is_refused_from_its_header() {
+    // 40000x40000 is under the sample limit, but RGBA at 16 bits would take 11.9 GiB.
+    let dir = TempDir::new().unwrap();
+    let path = write(&dir, "bomb.png", &png_header(40_000, 40_000, 16, 6));
+    assert_mentions(
+        &load_error(&path),
+        &["bomb.png", "11.9 GiB", "limit of 8 GiB"],
+    );
 }
 
 #[test]
-fn eight_bit_png_loads_with_its_heights() {
+fn truncated_and_corrupt_tiffs_are_refused() {
     let dir = TempDir::new().unwrap();
-    let rows = test_rows(255);
-    let path = dir.path().join("eight.png");
-    GrayImage::from_fn(5, 3, |x, y| Luma([rows[y as usize][x as usize] as u8]))
+    let samples: Vec<u16> = (0..64 * 64).map(|k| k as u16).collect();
+    let whole = tiff::<Gray16>(64, 64, &samples, None);
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut noise: Vec<u8> = b"II*\0".to_vec();
+    noise.extend((0..2048).map(|_| {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 33) as u8
+    }));
+    for (name, bytes) in [
+        ("half.tif", &whole[..whole.len() / 2]),
+        ("header.tif", &whole[..6]),
+        ("noise.tif", &noise[..]),
+    ] {
+        let msg = load_error(&write(&dir, name, bytes));
+        assert_mentions(&msg, &[name, "truncated or corrupt"]);
+    }
+}
+
+#[test]
+fn a_tiff_of_only_nan_has_no_terrain() {
+    let dir = TempDir::new().unwrap();
+    let path = write(
+        &dir,
+        "nan.tif",
+        &tiff::<Gray32Float>(4, 3, &[f32::NAN; 12], None),
+    );
+    assert_mentions(&load_error(&path), &["nan.tif", "every sample is no-data"]);
+}
+
+#[test]
+fn a_one_by_one_tiff_is_too_small() {
+    let dir = TempDir::new().unwrap();
+    let path = write(&dir, "one.tif", &tiff::<Gray16>(1, 1, &[7], None));
+    assert_mentions(&load_error(&path), &["one.tif", "2x2"]);
+}
+
+#[test]
+fn colour_images_that_are_not_height_maps_are_refused() {
+    let dir = TempDir::new().unwrap();
+    let rgb_tiff = write(&dir, "rgb.tif", &tiff::<RGB8>(2, 2, &[9; 12], None));
+    assert_mentions(
+        &load_error(&rgb_tiff),
+        &["rgb.tif", "rgb", "single-band tiff"],
+    );
+    // Terrain-RGB encodings are 8-bit: a 16-bit RGB PNG cannot be one.
+    let rgb16 = dir.path().join("rgb16.png");
+    ImageBuffer::<Rgb<u16>, Vec<u16>>::from_pixel(3, 3, Rgb([1, 2, 3]))
+        .save(&rgb16)
+        .unwrap();
+    let options = LoadOptions {
+        colour: ColourEncoding::Mapbox,
+        ..LoadOptions::new(1.0)
+    };
+    let msg = message(load_with(&rgb16, &options, &|_| ControlFlow::Continue(())));
+    assert_mentions(&msg, &["rgb16.png", "mapbox", "not a height map"]);
+}
+
+#[test]
+fn an_unreadable_path_is_refused() {
+    let dir = TempDir::new().unwrap();
+    let link = dir.path().join("dangling.png");
+    std::os::unix::fs::symlink(dir.path().join("gone.png"), &link).unwrap();
+    assert_mentions(&load_error(&link), &["cannot read", "dangling.png"]);
+}
+
+#[test]
+fn a_cancelled_load_says_so() {
+    let dir = TempDir::new().unwrap();
+    let path = dir.path().join("big.png");
+    GrayImage::from_fn(256, 256, |x, y| Luma([(x * 7 + y * 13) as u8]))
         .save(&path)
         .unwrap();
-    let field = load(&path, 12.5).unwrap();
-    assert_field(&field, &rows, 255, 12.5);
-}
-
-#[test]
-fn sixteen_bit_png_loads_with_its_heights() {
-    let dir = TempDir::new().unwrap();
-    let rows = test_rows(65535);
-    let path = dir.path().join("sixteen.png");
-    ImageBuffer::<Luma<u16>, Vec<u16>>::from_fn(5, 3, |x, y| {
-        Luma([rows[y as usize][x as usize] as u16])
-    })
-    .save(&path)
-    .unwrap();
-    let field = load(&path, 3000.0).unwrap();
-    assert_field(&field, &rows, 65535, 3000.0);
-}
-
-#[test]
-fn ascii_pgm_with_maxval_1000_loads_with_its_heights() {
-    let dir = TempDir::new().unwrap();
-    let rows = test_rows(1000);
-    let mut text = String::from("P2\n# written by bad_input.rs\n5 3\n1000\n");
-    for row in &rows {
-        text += &row.iter().map(u32::to_string).collect::<Vec<_>>().join(" ");
-        text += "\n";
-    }
-    let path = write(&dir, "ascii.pgm", text.as_bytes());
-    let field = load(&path, 0.7).unwrap();
-    assert_field(&field, &rows, 1000, 0.7);
-}
-
-#[test]
-fn binary_pgm_with_maxval_1000_loads_with_its_heights() {
-    let dir = TempDir::new().unwrap();
-    let rows = test_rows(1000);
-    let mut bytes = b"P5\n5 3\n1000\n".to_vec();
-    for &s in rows.iter().flatten() {
-        bytes.extend((s as u16).to_be_bytes());
-    }
-    let path = write(&dir, "binary.pgm", &bytes);
-    let field = load(&path, 25.0).unwrap();
-    assert_field(&field, &rows, 1000, 25.0);
+    // Cancel once a tenth of the file has been decoded.
+    let cancel = |fraction: f64| {
+        if fraction > 0.1 {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    };
+    let msg = message(load_with(&path, &LoadOptions::new(1.0), &cancel));
+    assert_mentions(&msg, &["loading", "big.png", "cancelled"]);
 }

@@ -3,10 +3,12 @@
 mod accuracy;
 mod bench;
 mod generate;
+mod loading;
 mod render;
 mod trace;
 
 use clap::{Parser, Subcommand};
+use heightray::heightfield::{ColourEncoding, NoDataValue};
 use heightray::{Arith, Method};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -167,13 +169,28 @@ pub struct RenderArgs {
     pub stats: Option<PathBuf>,
 }
 
+/// How to read a height map.
+#[derive(clap::Args, Debug)]
+pub struct MapArgs {
+    /// Which value means no data: auto (a GeoTIFF's own, else -32768 for signed and float
+    /// rasters), none, or a number.
+    #[arg(long, value_parser = parse_nodata, default_value = "auto", allow_hyphen_values = true)]
+    pub nodata: NoDataValue,
+    /// How RGB images become heights: luminance, mapbox or terrarium (terrain-RGB).
+    #[arg(long, value_parser = parse_rgb, default_value = "luminance")]
+    pub rgb: ColourEncoding,
+}
+
 #[derive(clap::Args, Debug)]
 pub struct TraceArgs {
-    /// Height map: 8- or 16-bit grayscale PNG, or PGM (P2/P5).
+    /// Height map: PNG (grayscale, or RGB), PGM (P2/P5) or TIFF (integer or float samples).
     pub map: PathBuf,
-    /// Height of the largest sample value (maxval).
+    /// Height of the largest sample value (maxval); for float and signed rasters, the factor
+    /// applied to their values.
     #[arg(long, allow_hyphen_values = true)]
     pub z_scale: f64,
+    #[command(flatten)]
+    pub loading: MapArgs,
     /// Ray origin X,Y,Z.
     #[arg(long, value_parser = parse_triple, allow_hyphen_values = true, requires = "dir", conflicts_with = "rays")]
     pub origin: Option<[f64; 3]>,
@@ -242,6 +259,28 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
         Some((w, h)) if w > 0 && h > 0 && w <= 16384 && h <= 16384 => Ok((w, h)),
         _ => Err(format!(
             "expected WIDTHxHEIGHT (1 to 16384 each), got '{s}'"
+        )),
+    }
+}
+
+fn parse_nodata(s: &str) -> Result<NoDataValue, String> {
+    match s {
+        "auto" => Ok(NoDataValue::Auto),
+        "none" => Ok(NoDataValue::Off),
+        _ => s
+            .parse::<f64>()
+            .map(NoDataValue::Value)
+            .map_err(|_| format!("expected auto, none or a number, got '{s}'")),
+    }
+}
+
+fn parse_rgb(s: &str) -> Result<ColourEncoding, String> {
+    match s {
+        "luminance" => Ok(ColourEncoding::Luminance),
+        "mapbox" => Ok(ColourEncoding::Mapbox),
+        "terrarium" => Ok(ColourEncoding::Terrarium),
+        _ => Err(format!(
+            "expected luminance, mapbox or terrarium, got '{s}'"
         )),
     }
 }

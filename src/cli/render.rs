@@ -1,6 +1,6 @@
 //! `heightray render`: a scene to a PNG and statistics in the paper's shape.
 
-use super::RenderArgs;
+use super::{loading, RenderArgs};
 use anyhow::Context;
 use heightray::render::{Culling, Frame, Renderer, Scene, Shader};
 use heightray::Terrain;
@@ -10,7 +10,11 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
-    let scene = Scene::load(&args.scene)?;
+    let start = Instant::now();
+    let scene = loading::stage(&format!("loading {}", args.scene.display()), || {
+        Scene::load(&args.scene)
+    })?;
+    let read_time = start.elapsed();
     let method = args.method.unwrap_or(scene.method);
     let arith = args.arith.unwrap_or(scene.arith);
     let mut pool = rayon::ThreadPoolBuilder::new();
@@ -20,7 +24,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     let pool = pool.build().context("cannot start worker threads")?;
 
-    let terrain = Terrain::new(scene.field);
+    let terrain = loading::stage("building acceleration data", || Terrain::new(scene.field));
+    loading::summary(&args.scene, &terrain, read_time);
     let renderer = Renderer {
         shader: Shader {
             terrain: &terrain,

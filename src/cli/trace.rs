@@ -1,16 +1,15 @@
 //! `heightray trace`: one JSON object per ray (DESIGN 4).
 
-use super::TraceArgs;
+use super::{loading, TraceArgs};
 use anyhow::Context;
 use heightray::traverse::{trace, Trace, TraceOptions};
-use heightray::{heightfield, Ray, Terrain};
+use heightray::Ray;
 use serde_json::{json, Value};
 use std::io::Write;
 use std::process::ExitCode;
 
 pub fn run(args: &TraceArgs) -> anyhow::Result<ExitCode> {
-    let field = heightfield::load(&args.map, args.z_scale)?;
-    let terrain = Terrain::new(field);
+    let terrain = loading::map(&args.map, args.z_scale, &args.loading)?;
     let options = TraceOptions {
         record_cells: args.cells,
         ..TraceOptions::new(args.method, args.arith)

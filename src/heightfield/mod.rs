@@ -3,22 +3,27 @@
 
 mod builtin;
 mod generate;
+mod limits;
 mod load;
 mod maxima;
 mod mipmap;
+mod nodata;
+mod summary;
 mod terrain;
 
 pub use builtin::{Builtin, BUILTINS};
 pub use generate::landscape;
-pub use load::{load, load_bytes, LoadError};
+pub use limits::{MAX_DECODED_BYTES, MAX_SAMPLES};
+pub use load::{
+    load, load_bytes, load_bytes_with, load_with, ColourEncoding, LoadError, LoadOptions,
+    NoDataValue, Progress,
+};
 pub use maxima::{CellMaxima, LineMaxima};
 pub use mipmap::MaxMipmap;
+pub use nodata::NoDataMask;
 pub use terrain::{Lines, Terrain};
 
 use thiserror::Error;
-
-/// Largest number of samples accepted (2^31: a 46341x46341 map, 4 GiB of 16-bit samples).
-pub const MAX_SAMPLES: u64 = 1 << 31;
 
 /// Why a height field could not be built.
 #[derive(Debug, Error, Clone, PartialEq)]
@@ -40,23 +45,45 @@ pub enum HeightfieldError {
         y: usize,
         maxval: u16,
     },
+    #[error("heights must be finite with a step >= 0, got lowest {lowest} and step {step}")]
+    BadOffset { lowest: f64, step: f64 },
+    #[error("every sample is no-data: there is no terrain to show")]
+    AllNoData,
+}
+
+/// How a sample value becomes a height.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Quantisation {
+    /// An unsigned integer raster (PNG, PGM, unsigned TIFF): `z = sample / maxval * z_scale`
+    /// (DESIGN 2).
+    Maxval(u16),
+    /// A raster of heights in their own units (floats, signed integers, decoded terrain-RGB),
+    /// stored as `value = lowest + sample * step`: `z = value * z_scale`.
+    Offset { lowest: f64, step: f64 },
 }
 
 /// A grid of height samples (DESIGN 2).
 ///
 /// Sample `(i, j)` sits at `x = i`, `y = j` (y grows north; image row `r` is `j = H-1-r`), and
-/// its height is `sample as f64 * (z_scale / maxval)`, computed in `f64`. Those `f64` heights
-/// are the exact inputs of exact mode.
+/// its height is `base + sample * unit`, computed in `f64` (`base` is 0 for integer rasters,
+/// so their heights are `sample * (z_scale / maxval)` as before). Those `f64` heights are the
+/// exact inputs of exact mode. No-data samples hold the field's lowest valid sample, so
+/// maxima over samples stay conservative without knowing about holes; cells with a no-data
+/// corner are holes (`is_hole_cell`).
 #[derive(Clone, Debug)]
 pub struct Heightfield {
     width: usize,
     height: usize,
     /// Samples by `j * width + i` (y up).
     samples: Vec<u16>,
-    maxval: u16,
+    quantisation: Quantisation,
     z_scale: f64,
-    /// Height of one sample step: `z_scale / maxval`.
+    /// Height of sample value 0.
+    base: f64,
+    /// Height of one sample step.
     unit: f64,
+    /// No-data samples; `None` when there are none.
+    nodata: Option<NoDataMask>,
 }
 
 impl Heightfield {
@@ -89,35 +116,85 @@ impl Heightfield {
         sample: impl Fn(usize, usize) -> u16,
     ) -> Result<Self, HeightfieldError> {
         check_size(width, height)?;
-        if !(z_scale.is_finite() && z_scale >= 0.0) {
-            return Err(HeightfieldError::BadZScale(z_scale));
-        }
         let maxval = u16::try_from(maxval)
             .ok()
             .filter(|&m| m > 0)
             .ok_or(HeightfieldError::BadMaxval(maxval))?;
-        let mut samples = Vec::with_capacity(width * height);
-        for y in 0..height {
-            for x in 0..width {
-                let s = sample(x, y);
-                if s > maxval {
-                    return Err(HeightfieldError::SampleAboveMaxval {
-                        sample: s,
-                        x,
-                        y,
-                        maxval,
-                    });
+        let samples = (0..height)
+            .flat_map(|y| (0..width).map(move |x| (x, y)))
+            .map(|(x, y)| sample(x, y))
+            .collect();
+        Self::new(
+            width,
+            height,
+            samples,
+            Quantisation::Maxval(maxval),
+            z_scale,
+            None,
+        )
+    }
+
+    /// Builds a field from samples by `j * width + i` (y up) and their no-data samples,
+    /// whose values are replaced by the lowest valid sample.
+    pub fn new(
+        width: usize,
+        height: usize,
+        mut samples: Vec<u16>,
+        quantisation: Quantisation,
+        z_scale: f64,
+        nodata: Option<NoDataMask>,
+    ) -> Result<Self, HeightfieldError> {
+        check_size(width, height)?;
+        if samples.len() != width * height {
+            return Err(HeightfieldError::SampleCount {
+                expected: width * height,
+                got: samples.len(),
+            });
+        }
+        let (base, unit) = mapping(quantisation, z_scale)?;
+        if let Quantisation::Maxval(maxval) = quantisation {
+            if let Some(k) = samples.iter().position(|&s| s > maxval) {
+                return Err(HeightfieldError::SampleAboveMaxval {
+                    sample: samples[k],
+                    x: k % width,
+                    y: k / width,
+                    maxval,
+                });
+            }
+        }
+        let nodata = nodata.filter(|mask| mask.count() > 0);
+        if let Some(mask) = &nodata {
+            let lowest = (0..samples.len())
+                .filter(|&k| !mask.contains(k))
+                .map(|k| samples[k])
+                .min()
+                .ok_or(HeightfieldError::AllNoData)?;
+            for (k, s) in samples.iter_mut().enumerate() {
+                if mask.contains(k) {
+                    *s = lowest;
                 }
-                samples.push(s);
             }
         }
         Ok(Heightfield {
             width,
             height,
             samples,
-            maxval,
+            quantisation,
             z_scale,
-            unit: z_scale / f64::from(maxval),
+            base,
+            unit,
+            nodata,
+        })
+    }
+
+    /// The same samples and holes with another z scale.
+    pub fn with_z_scale(&self, z_scale: f64) -> Result<Self, HeightfieldError> {
+        let (base, unit) = mapping(self.quantisation, z_scale)?;
+        Ok(Heightfield {
+            z_scale,
+            base,
+            unit,
+            ..self.clone()
         })
     }
 
@@ -129,21 +206,33 @@ impl Heightfield {
     pub fn height(&self) -> usize {
         self.height
     }
-    /// The sample value that maps to `z_scale`.
+    /// The largest sample value: an integer raster's maxval, 65535 for a quantised one.
     pub fn maxval(&self) -> u16 {
-        self.maxval
+        match self.quantisation {
+            Quantisation::Maxval(maxval) => maxval,
+            Quantisation::Offset { .. } => u16::MAX,
+        }
     }
-    /// Height of the sample value `maxval`.
+    /// How samples map to the raster's values.
+    pub fn quantisation(&self) -> Quantisation {
+        self.quantisation
+    }
+    /// The z scale: the height of `maxval` for integer rasters, the factor applied to the
+    /// raster's own units otherwise.
     pub fn z_scale(&self) -> f64 {
         self.z_scale
     }
-    /// The raw sample at `(i, j)`.
+    /// The height between consecutive sample values (the quantisation step).
+    pub fn step(&self) -> f64 {
+        self.unit
+    }
+    /// The raw sample at `(i, j)` (the lowest valid sample where there is no data).
     pub fn sample(&self, i: usize, j: usize) -> u16 {
         self.samples[j * self.width + i]
     }
     /// The height a sample value maps to.
     pub fn height_of(&self, sample: u16) -> f64 {
-        f64::from(sample) * self.unit
+        self.base + f64::from(sample) * self.unit
     }
     /// The height at sample `(i, j)`.
     pub fn z(&self, i: usize, j: usize) -> f64 {
@@ -152,6 +241,49 @@ impl Heightfield {
     /// All samples, by `j * width + i`.
     pub fn samples(&self) -> &[u16] {
         &self.samples
+    }
+    /// How many samples hold no data.
+    pub fn nodata_count(&self) -> usize {
+        self.nodata.as_ref().map_or(0, NoDataMask::count)
+    }
+    /// Whether sample `(i, j)` holds no data.
+    pub fn is_nodata(&self, i: usize, j: usize) -> bool {
+        self.nodata
+            .as_ref()
+            .is_some_and(|mask| mask.contains(j * self.width + i))
+    }
+    /// Whether cell `(i, j)` is a hole (a corner holds no data): rays pass through it.
+    #[inline]
+    pub fn is_hole_cell(&self, i: usize, j: usize) -> bool {
+        let Some(mask) = &self.nodata else {
+            return false;
+        };
+        let k = j * self.width + i;
+        let above = k + self.width;
+        mask.contains(k) || mask.contains(k + 1) || mask.contains(above) || mask.contains(above + 1)
+    }
+    /// Bytes of samples and no-data mask.
+    pub fn bytes(&self) -> usize {
+        self.samples.len() * 2 + self.nodata.as_ref().map_or(0, NoDataMask::bytes)
+    }
+}
+
+/// `(base, unit)`: the height of sample 0 and of one sample step.
+fn mapping(quantisation: Quantisation, z_scale: f64) -> Result<(f64, f64), HeightfieldError> {
+    if !(z_scale.is_finite() && z_scale >= 0.0) {
+        return Err(HeightfieldError::BadZScale(z_scale));
+    }
+    match quantisation {
+        Quantisation::Maxval(0) => Err(HeightfieldError::BadMaxval(0)),
+        Quantisation::Maxval(maxval) => Ok((0.0, z_scale / f64::from(maxval))),
+        Quantisation::Offset { lowest, step } => {
+            let (base, unit) = (lowest * z_scale, step * z_scale);
+            if lowest.is_finite() && step >= 0.0 && base.is_finite() && unit.is_finite() {
+                Ok((base, unit))
+            } else {
+                Err(HeightfieldError::BadOffset { lowest, step })
+            }
+        }
     }
 }
 

@@ -22,6 +22,7 @@ impl Terrain {
     pub fn new(field: Heightfield) -> Self {
         let start = Instant::now();
         let mipmap = MaxMipmap::build(&field);
+        // No-data samples hold the lowest valid sample: they change neither extreme.
         let min_sample = field.samples().iter().copied().min().unwrap_or(0);
         let max_sample = field.samples().iter().copied().max().unwrap_or(0);
         let max_slope = max_slope(&field);
@@ -131,7 +132,7 @@ impl Lines {
     }
 }
 
-/// Largest gradient magnitude over all triangles. The gradient of `T0` is
+/// Largest gradient magnitude over all triangles (holes have none). The gradient of `T0` is
 /// `(z10 - z00, z11 - z10)`, of `T1` `(z11 - z01, z01 - z00)`; compared as exact integer
 /// squares of sample differences, so one square root is taken in all.
 fn max_slope(field: &Heightfield) -> f64 {
@@ -141,12 +142,12 @@ fn max_slope(field: &Heightfield) -> f64 {
         .samples()
         .windows(w + 2)
         .enumerate()
-        .filter(|(k, _)| k % w != w - 1)
+        .filter(|(k, _)| k % w != w - 1 && !field.is_hole_cell(k % w, k / w))
         .map(|(_, s)| {
             let (z00, z10, z01, z11) = (s[0], s[1], s[w], s[w + 1]);
             (d(z10, z00) + d(z11, z10)).max(d(z11, z01) + d(z01, z00))
         })
         .max()
         .unwrap_or(0);
-    (field.height_of(1) - field.height_of(0)) * (steepest as f64).sqrt()
+    field.step() * (steepest as f64).sqrt()
 }

@@ -220,18 +220,34 @@ impl Shader<'_> {
         n.normalize_or(DVec3::Z)
     }
 
-    /// Central-difference normal at sample `(i, j)` (one-sided at the border).
+    /// Central-difference normal at sample `(i, j)`, one-sided at the border and next to a
+    /// no-data sample (whose stand-in height is not terrain); flat where both sides are.
     fn vertex_normal(&self, i: usize, j: usize) -> DVec3 {
         let field = self.terrain.field();
         let (w, h) = (field.width() - 1, field.height() - 1);
         let (i0, i1, j0, j1) = (
-            i.saturating_sub(1),
-            (i + 1).min(w),
-            j.saturating_sub(1),
-            (j + 1).min(h),
+            Some(i.saturating_sub(1))
+                .filter(|&x| !field.is_nodata(x, j))
+                .unwrap_or(i),
+            Some((i + 1).min(w))
+                .filter(|&x| !field.is_nodata(x, j))
+                .unwrap_or(i),
+            Some(j.saturating_sub(1))
+                .filter(|&y| !field.is_nodata(i, y))
+                .unwrap_or(j),
+            Some((j + 1).min(h))
+                .filter(|&y| !field.is_nodata(i, y))
+                .unwrap_or(j),
         );
-        let dzdx = (field.z(i1, j) - field.z(i0, j)) / (i1 - i0) as f64;
-        let dzdy = (field.z(i, j1) - field.z(i, j0)) / (j1 - j0) as f64;
+        let slope = |z1: f64, z0: f64, run: usize| {
+            if run == 0 {
+                0.0
+            } else {
+                (z1 - z0) / run as f64
+            }
+        };
+        let dzdx = slope(field.z(i1, j), field.z(i0, j), i1 - i0);
+        let dzdy = slope(field.z(i, j1), field.z(i, j0), j1 - j0);
         DVec3::new(-dzdx, -dzdy, 1.0).normalize_or(DVec3::Z)
     }
 

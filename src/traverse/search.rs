@@ -151,6 +151,9 @@ impl<S: Scalar> Search<'_, S> {
 
     /// Tests both triangles of cell `(i, j)`.
     pub fn triangles(&mut self, i: usize, j: usize) -> ControlFlow<()> {
+        if self.terrain.field().is_hole_cell(i, j) {
+            return ControlFlow::Continue(());
+        }
         let [z00, z10, z01, z11] = self.terrain.corner_heights(i, j);
         let heights = [
             S::from_f64(z00),

@@ -278,7 +278,7 @@ mod tests {
         })
         .err()
         .expect("refused");
-        assert!(error.contains("not a PNG or PGM"), "{error}");
+        assert!(error.contains("not a PNG, PGM or TIFF"), "{error}");
     }
 
     #[test]

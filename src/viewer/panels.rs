@@ -134,8 +134,9 @@ fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         field.height()
     ));
     ui.label(format!(
-        "heights {lo:.2} .. {hi:.2} (maxval {})",
-        field.maxval()
+        "heights {lo:.2} .. {hi:.2} (step {:.3e}), {} no-data samples",
+        field.step(),
+        field.nodata_count()
     ));
     ui.label(format!(
         "read {:.1} ms, build {:.1} ms ({:.1} MB of acceleration data)",

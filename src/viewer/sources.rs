@@ -106,12 +106,5 @@ fn rescale(field: Heightfield, z_scale: f64) -> Result<Heightfield, String> {
     if field.z_scale() == z_scale {
         return Ok(field);
     }
-    Heightfield::from_fn(
-        field.width(),
-        field.height(),
-        u32::from(field.maxval()),
-        z_scale,
-        |i, j| field.sample(i, j),
-    )
-    .map_err(|e| e.to_string())
+    field.with_z_scale(z_scale).map_err(|e| e.to_string())
 }

@@ -4,6 +4,7 @@
 #![allow(dead_code)]
 
 pub mod families;
+pub mod files;
 pub mod random;
 pub mod reference;
 

@@ -11,6 +11,7 @@
 //! - the covered cells are the cells whose closed square the projected, box-clipped segment
 //!   touches, sorted by (t_enter, t_exit, minor, major) with indices negated on axes the ray
 //!   travels towards negative (a component of 0 or -0.0 counts as positive);
+//! - a hole cell (a corner holds no data) has no triangles: the ray passes through it;
 //! - a hit point shared by several (cell, triangle) pairs is reported in the first cell in
 //!   that order, T0 before T1;
 //! - the query counters follow the span/cell/triangle rules (see [`counters`]).
@@ -136,6 +137,8 @@ pub struct ExactField {
     pub w: usize,
     pub h: usize,
     z: Vec<Q>,
+    /// Cells with a no-data corner, by `j * (w-1) + i`.
+    holes: Vec<bool>,
     pub zmin: Q,
     pub zmax: Q,
 }
@@ -147,12 +150,17 @@ impl ExactField {
             .flat_map(|j| (0..w).map(move |i| (i, j)))
             .map(|(i, j)| q(field.z(i, j)))
             .collect();
+        let holes = (0..h - 1)
+            .flat_map(|j| (0..w - 1).map(move |i| (i, j)))
+            .map(|(i, j)| field.is_hole_cell(i, j))
+            .collect();
         let zmin = z.iter().min().expect("non-empty field").clone();
         let zmax = z.iter().max().expect("non-empty field").clone();
         ExactField {
             w,
             h,
             z,
+            holes,
             zmin,
             zmax,
         }
@@ -160,6 +168,11 @@ impl ExactField {
 
     pub fn z(&self, i: usize, j: usize) -> &Q {
         &self.z[j * self.w + i]
+    }
+
+    /// Whether the cell is a hole (a corner holds no data).
+    pub fn is_hole(&self, [i, j]: [usize; 2]) -> bool {
+        self.holes[j * (self.w - 1) + i]
     }
 
     /// Highest of the cell's four corner heights.
@@ -315,6 +328,9 @@ fn covered(field: &ExactField, ray: &ExactRay, t0: &Q, t1: &Q) -> Vec<Contact> {
 /// The least `t >= 0` at which the ray touches triangle `k` of `cell`, from the plane formula
 /// and the triangle's three half-planes.
 pub fn first_touch(field: &ExactField, ray: &ExactRay, [i, j]: [usize; 2], k: u8) -> Option<Q> {
+    if field.is_hole([i, j]) {
+        return None;
+    }
     let (z00, z10) = (field.z(i, j), field.z(i + 1, j));
     let (z01, z11) = (field.z(i, j + 1), field.z(i + 1, j + 1));
     // z = a + b*(x-i) + c*(y-j) over the triangle.
@@ -392,7 +408,8 @@ fn first_hit(cells: &[Contact], touches: &HashMap<[usize; 2], [Option<Q>; 2]>) -
 /// - `runs`: each span first gets a run query (the ray's lowest z over the span's t-range <=
 ///   highest cell maximum of its cells); a missed span's cells are skipped;
 /// - each remaining cell gets a cell query (lowest z over its contact interval <= its
-///   maximum); a hit cell gets a T0 and a T1 query (hit iff the ray touches it at t >= 0).
+///   maximum); a hit cell gets a T0 and a T1 query (hit iff the ray touches it at t >= 0),
+///   unless it is a hole.
 pub fn counters(answer: &Answer, runs: bool) -> Counters {
     let mut counters = Counters::default();
     if !counters.bbox.record(answer.clip.is_some()) {
@@ -433,7 +450,7 @@ pub fn counters(answer: &Answer, runs: bool) -> Counters {
             }
             let may_hit =
                 lowest(&contact.t_enter, &contact.t_exit) <= *answer.field.cell_max(contact.cell);
-            if !counters.cell.record(may_hit) {
+            if !counters.cell.record(may_hit) || answer.field.is_hole(contact.cell) {
                 continue;
             }
             let touches = answer

@@ -315,7 +315,7 @@ fn drop_a_non_image(
         .wait_for("the error message", |s| s["error"].is_string());
     let error = refused["error"].as_str().unwrap_or_default();
     assert!(
-        error.contains("notes.txt") && error.contains("not a PNG or PGM"),
+        error.contains("notes.txt") && error.contains("not a PNG, PGM or TIFF"),
         "{error}"
     );
     assert_eq!(

@@ -1,0 +1,216 @@
+//! Loading height fields from files: PNG (grayscale, or RGB as luminance or terrain-RGB), PGM
+//! (P2, P5) and TIFF (8/16-bit integer and floating-point samples, as DEMs use).
+//!
+//! Every format's size is checked from its header before decoding (see `limits`); whatever a
+//! file holds, loading returns a [`LoadError`] that names the file, never a panic.
+
+mod pgm;
+mod png;
+mod raster;
+mod tiff;
+mod watched;
+
+use super::limits::{self, MAX_DECODED_BYTES, MAX_SAMPLES};
+use super::{Heightfield, HeightfieldError};
+use std::ops::ControlFlow;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+use watched::Watched;
+
+/// Why a file could not be loaded as a height field.
+#[derive(Debug, Error)]
+pub enum LoadError {
+    // `reason`, not `source`: the message already says it, error chains must not repeat it.
+    #[error("cannot read {path}: {reason}; check that the file exists and can be read")]
+    Io {
+        path: PathBuf,
+        reason: std::io::Error,
+    },
+    #[error("{path} is a directory; choose a height map file (PNG, PGM or TIFF) instead")]
+    Directory { path: PathBuf },
+    #[error("{name} is empty (0 bytes); the file may not have been written completely")]
+    Empty { name: String },
+    #[error("{name} is not a PNG, PGM or TIFF image (its first bytes are {start}); heightray reads grayscale or RGB PNG, PGM and TIFF height maps")]
+    NotAnImage { name: String, start: String },
+    #[error("{name} is truncated or corrupt: cannot decode the image ({reason}); export or download it again")]
+    Decode { name: String, reason: String },
+    #[error("{name}: {what} is not a height map; use a grayscale image, or RGB (luminance or a terrain-RGB encoding), or a single-band TIFF")]
+    Unsupported { name: String, what: String },
+    #[error("{name} is {width}x{height}: a height field needs at least 2x2 samples")]
+    TooSmall {
+        name: String,
+        width: u64,
+        height: u64,
+    },
+    #[error("{name} is {width}x{height} = {} samples, more than the limit of {MAX_SAMPLES} (2^31); crop or downsample it", width.saturating_mul(*height))]
+    TooManySamples {
+        name: String,
+        width: u64,
+        height: u64,
+    },
+    #[error("{name}: decoding this {width}x{height} image would take {:.1} GiB, more than the limit of {} GiB; crop it, or store it as 16-bit grayscale", *bytes as f64 / (1u64 << 30) as f64, MAX_DECODED_BYTES >> 30)]
+    TooMuchMemory {
+        name: String,
+        width: u64,
+        height: u64,
+        bytes: u64,
+    },
+    #[error("{name}: {source}")]
+    Field {
+        name: String,
+        source: HeightfieldError,
+    },
+    #[error("loading {name} was cancelled")]
+    Cancelled { name: String },
+}
+
+/// How the three channels of an RGB image become heights.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ColourEncoding {
+    /// Rec. 709 luminance `(2126 R + 7152 G + 722 B) / 10000`, rounded, as a grayscale sample.
+    #[default]
+    Luminance,
+    /// Mapbox terrain-RGB: `-10000 + (R * 65536 + G * 256 + B) * 0.1` metres.
+    Mapbox,
+    /// Terrarium (Mapzen): `R * 256 + G + B / 256 - 32768` metres.
+    Terrarium,
+}
+
+/// Which raster value means "no data" (NaN and infinities always do).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum NoDataValue {
+    /// The file's own (a GeoTIFF's GDAL_NODATA tag), else SRTM's -32768 for signed and
+    /// floating-point rasters; none for unsigned ones.
+    #[default]
+    Auto,
+    /// No value means no data.
+    Off,
+    /// This raster value means no data.
+    Value(f64),
+}
+
+/// How to read a height map.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LoadOptions {
+    pub z_scale: f64,
+    pub colour: ColourEncoding,
+    pub nodata: NoDataValue,
+}
+
+impl LoadOptions {
+    /// The defaults with this z scale.
+    pub fn new(z_scale: f64) -> Self {
+        LoadOptions {
+            z_scale,
+            colour: ColourEncoding::default(),
+            nodata: NoDataValue::default(),
+        }
+    }
+}
+
+/// Called with the fraction of the file decoded so far; breaking cancels the load.
+pub type Progress<'a> = &'a dyn Fn(f64) -> ControlFlow<()>;
+
+/// Loads a height field from a file with the default options.
+pub fn load(path: &Path, z_scale: f64) -> Result<Heightfield, LoadError> {
+    load_with(path, &LoadOptions::new(z_scale), &|_| {
+        ControlFlow::Continue(())
+    })
+}
+
+/// Loads a height field from a file, reporting progress.
+pub fn load_with(
+    path: &Path,
+    options: &LoadOptions,
+    progress: Progress,
+) -> Result<Heightfield, LoadError> {
+    if path.is_dir() {
+        return Err(LoadError::Directory {
+            path: path.to_owned(),
+        });
+    }
+    let bytes = std::fs::read(path).map_err(|reason| LoadError::Io {
+        path: path.to_owned(),
+        reason,
+    })?;
+    load_bytes_with(&bytes, options, &path.display().to_string(), progress)
+}
+
+/// Loads a height field from the bytes of a file with the default options; `name` labels
+/// error messages.
+pub fn load_bytes(bytes: &[u8], z_scale: f64, name: &str) -> Result<Heightfield, LoadError> {
+    load_bytes_with(bytes, &LoadOptions::new(z_scale), name, &|_| {
+        ControlFlow::Continue(())
+    })
+}
+
+/// Loads a height field from the bytes of a file, reporting progress.
+pub fn load_bytes_with(
+    bytes: &[u8],
+    options: &LoadOptions,
+    name: &str,
+    progress: Progress,
+) -> Result<Heightfield, LoadError> {
+    if bytes.is_empty() {
+        return Err(LoadError::Empty { name: name.into() });
+    }
+    let input = Watched::new(bytes, progress);
+    let raster = match Format::of(bytes) {
+        Some(Format::Pgm) => pgm::decode(bytes, name),
+        Some(Format::Png) => png::decode(&input, name, options.colour),
+        Some(Format::Tiff) => tiff::decode(&input, name),
+        None => Err(LoadError::NotAnImage {
+            name: name.into(),
+            start: first_bytes(bytes),
+        }),
+    };
+    let raster = match raster {
+        Err(_) if input.cancelled() => Err(LoadError::Cancelled { name: name.into() }),
+        other => other,
+    }?;
+    raster
+        .into_field(options)
+        .map_err(|source| LoadError::Field {
+            name: name.into(),
+            source,
+        })
+}
+
+/// The formats read, told apart by their first bytes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Format {
+    Png,
+    Pgm,
+    Tiff,
+}
+
+impl Format {
+    fn of(bytes: &[u8]) -> Option<Format> {
+        if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+            Some(Format::Png)
+        } else if bytes.starts_with(b"P2") || bytes.starts_with(b"P5") {
+            Some(Format::Pgm)
+        } else if [b"II*\0", b"MM\0*", b"II+\0", b"MM\0+"]
+            .iter()
+            .any(|magic| bytes.starts_with(*magic))
+        {
+            Some(Format::Tiff)
+        } else {
+            None
+        }
+    }
+}
+
+/// Up to 8 leading bytes, for a message about a file that is not an image.
+fn first_bytes(bytes: &[u8]) -> String {
+    let start = &bytes[..bytes.len().min(8)];
+    format!("{:?}", String::from_utf8_lossy(start))
+}
+
+/// A decoding library's error as `LoadError::Decode`.
+fn decode_error(name: &str, error: impl std::fmt::Display) -> LoadError {
+    LoadError::Decode {
+        name: name.into(),
+        reason: error.to_string(),
+    }
+}

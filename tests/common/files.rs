@@ -1,0 +1,107 @@
+//! Height map files written by the tests, byte by byte where a library would refuse to write
+//! them (headers that promise more than any file holds).
+
+use tiff::encoder::colortype::ColorType;
+use tiff::encoder::{TiffEncoder, TiffValue};
+use tiff::tags::Tag;
+
+/// A single-band TIFF of `width` x `height` samples in image order, with a GDAL_NODATA tag
+/// when `nodata` is given.
+pub fn tiff<C: ColorType>(
+    width: u32,
+    height: u32,
+    data: &[C::Inner],
+    nodata: Option<&str>,
+) -> Vec<u8>
+where
+    [C::Inner]: TiffValue,
+{
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    let mut encoder = TiffEncoder::new(&mut bytes).expect("TIFF encoder");
+    let mut image = encoder.new_image::<C>(width, height).expect("TIFF image");
+    if let Some(text) = nodata {
+        image
+            .encoder()
+            .write_tag(Tag::GdalNodata, text)
+            .expect("GDAL_NODATA tag");
+    }
+    image.write_data(data).expect("TIFF data");
+    bytes.into_inner()
+}
+
+/// A PNG whose header declares `width` x `height` pixels of the given PNG colour type and bit
+/// depth, followed by a tiny IDAT chunk and IEND: what a decompression bomb or a damaged
+/// header looks like before decoding.
+pub fn png_header(width: u32, height: u32, bit_depth: u8, colour_type: u8) -> Vec<u8> {
+    let mut ihdr = Vec::new();
+    ihdr.extend(width.to_be_bytes());
+    ihdr.extend(height.to_be_bytes());
+    ihdr.extend([bit_depth, colour_type, 0, 0, 0]);
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    png_chunk(&mut png, b"IHDR", &ihdr);
+    // A zlib stream of one empty stored block: far fewer bytes than the header promises.
+    png_chunk(
+        &mut png,
+        b"IDAT",
+        &[0x78, 0x01, 0x01, 0x00, 0x00, 0xff, 0xff, 0, 0, 0, 1],
+    );
+    png_chunk(&mut png, b"IEND", &[]);
+    png
+}
+
+fn png_chunk(png: &mut Vec<u8>, kind: &[u8; 4], data: &[u8]) {
+    png.extend((data.len() as u32).to_be_bytes());
+    let start = png.len();
+    png.extend(kind);
+    png.extend(data);
+    let crc = crc32(&png[start..]);
+    png.extend(crc.to_be_bytes());
+}
+
+/// CRC-32 (IEEE), as PNG chunks carry it.
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &byte in bytes {
+        crc ^= u32::from(byte);
+        for _ in 0..8 {
+            crc = if crc & 1 == 1 {
+                (crc >> 1) ^ 0xedb8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+/// A little-endian classic TIFF with one directory declaring `width` x `height` 16-bit gray
+/// samples in one strip, and no sample data at all.
+pub fn tiff_header(width: u32, height: u32) -> Vec<u8> {
+    // (tag, type, value): type 3 is SHORT, 4 is LONG.
+    let entries: [(u16, u16, u32); 8] = [
+        (256, 4, width),    // ImageWidth
+        (257, 4, height),   // ImageLength
+        (258, 3, 16),       // BitsPerSample
+        (259, 3, 1),        // Compression: none
+        (262, 3, 1),        // PhotometricInterpretation: black is zero
+        (273, 4, 8),        // StripOffsets
+        (278, 4, height),   // RowsPerStrip
+        (279, 4, u32::MAX), // StripByteCounts
+    ];
+    let mut bytes = b"II*\0".to_vec();
+    bytes.extend(8u32.to_le_bytes());
+    bytes.extend((entries.len() as u16).to_le_bytes());
+    for (tag, kind, value) in entries {
+        bytes.extend(tag.to_le_bytes());
+        bytes.extend(kind.to_le_bytes());
+        bytes.extend(1u32.to_le_bytes());
+        if kind == 3 {
+            bytes.extend((value as u16).to_le_bytes());
+            bytes.extend([0, 0]);
+        } else {
+            bytes.extend(value.to_le_bytes());
+        }
+    }
+    bytes.extend(0u32.to_le_bytes());
+    bytes
+}
