@@ -205,14 +205,16 @@ fn load_loop(shared: &Shared) {
                 (shared.sink)(LoadEvent::Stage { generation, stage });
             }
         };
-        let result = Box::new(sources::load(request, &report));
+        // A newer request cancels this load while the file is decoded.
+        let superseded = || shared.requests.newest() != generation;
+        let result = Box::new(sources::load(request, &report, &superseded));
         (shared.sink)(LoadEvent::Done { generation, result });
     }
 }
 
 /// Loads on the calling thread (for the terrain named on the command line).
 pub fn load_now(request: LoadRequest) -> Result<Loaded, String> {
-    sources::load(request, &|_| {})
+    sources::load(request, &|_| {}, &|| false)
 }
 
 #[cfg(test)]

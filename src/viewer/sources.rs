@@ -3,15 +3,21 @@
 
 use super::loader::{LoadRequest, Loaded, SceneSetup, Source, Stage};
 use super::orbit::Orbit;
-use crate::heightfield::{self, Builtin};
+use crate::heightfield::{self, Builtin, LoadOptions};
 use crate::render::{Lighting, Scene, SceneFile};
 use crate::{Arith, Heightfield, Method, Terrain};
+use std::ops::ControlFlow;
 use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
 
-/// Loads a request to the end (on the loading thread).
-pub fn load(request: LoadRequest, report: &dyn Fn(Stage)) -> Result<Loaded, String> {
+/// Loads a request to the end (on the loading thread), or until `superseded` says a newer
+/// request makes it pointless (checked while a height map file is decoded).
+pub fn load(
+    request: LoadRequest,
+    report: &dyn Fn(Stage),
+    superseded: &dyn Fn() -> bool,
+) -> Result<Loaded, String> {
     let start = Instant::now();
     report(Stage::Reading);
     let (field, scene) = match (&request.source, &request.from_memory) {
@@ -22,7 +28,15 @@ pub fn load(request: LoadRequest, report: &dyn Fn(Stage)) -> Result<Loaded, Stri
         }
         (Source::File(path), None) if request.source.is_scene() => load_scene(path)?,
         (Source::File(path), None) => {
-            let field = heightfield::load(path, 1.0).map_err(|e| e.to_string())?;
+            let cancel = |_| {
+                if superseded() {
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            };
+            let field = heightfield::load_with(path, &LoadOptions::new(1.0), &cancel)
+                .map_err(|e| e.to_string())?;
             let (w, h) = (field.width(), field.height());
             // A plain image has no height unit: make relief visible whatever its size.
             let sensible = 0.25 * w.max(h) as f64;
