@@ -72,4 +72,8 @@ impl Scalar for Exact {
     fn to_exact(&self) -> Option<BigRational> {
         Some(self.0.clone())
     }
+    fn exact_f64(&self) -> Option<f64> {
+        let x = self.to_f64();
+        (x.is_finite() && exact_from_f64(x) == self.0).then_some(x)
+    }
 }

@@ -125,6 +125,14 @@ impl<S: Scalar> Frame<S> {
         }
     }
 
+    /// The same path from `t` on (`t` within the segment).
+    pub fn starting_at(mut self, t: S) -> Self {
+        self.us = self.ou.clone() + self.du.clone() * t.clone();
+        self.vs = self.ov.clone() + self.dv.clone() * t.clone();
+        self.t0 = t;
+        self
+    }
+
     /// The original cell `(i, j)` of frame cell `(cu, cv)` (which must be valid).
     pub fn cell(&self, cu: i64, cv: i64) -> (usize, usize) {
         let unmirror = |c: i64, flip: bool| (if flip { -c - 1 } else { c }) as usize;

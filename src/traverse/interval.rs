@@ -291,6 +291,9 @@ impl Scalar for Interval {
             hi: self.hi.max(other.hi),
         }
     }
+    fn exact_f64(&self) -> Option<f64> {
+        self.is_point().then_some(self.lo)
+    }
     fn rounding_error(_magnitude: f64) -> f64 {
         // It encloses the exact value: no lift needed, as in exact arithmetic.
         0.0

@@ -14,11 +14,13 @@
 //! are snapped onto the block face they lie on, so the next block is found without rounding in
 //! that coordinate, and a walk in a rounding arithmetic cannot step back into a skipped block.
 
+use super::counters::Counters;
 use super::degenerate::is_point;
 use super::frame::Frame;
 use super::runs;
 use super::scalar::{max, Scalar};
 use super::search::Search;
+use crate::heightfield::Terrain;
 use std::ops::ControlFlow;
 
 /// A point on the path: its ray parameter and frame coordinates, and whether it lies on the
@@ -32,17 +34,52 @@ struct Point<S> {
     on_v: bool,
 }
 
+/// What the block walk asks of whoever follows it.
+trait Follower<S: Scalar> {
+    /// Breaks when nothing at or after `t` can change the answer.
+    fn stop_before(&self, t: &S) -> ControlFlow<()>;
+    /// Whether block `(bi, bj)` of level `k` (a cell when `k` is 0) may be touched by the
+    /// path over `[t_lo, t_hi]`.
+    fn may_hit(&mut self, k: u32, block: (usize, usize), t_lo: &S, t_hi: &S) -> bool;
+    /// A cell that may be hit, crossed from `at` to `exit` (to the path's end if
+    /// `ends_inside`); `alone`: no other cell touches that part where no other part covers
+    /// it, so the cell's own triangles are all there is to test.
+    fn cell(&mut self, cell: (usize, usize), part: Part<'_, S>) -> ControlFlow<()>;
+    /// A cell the walk passed by at level 0 without testing its triangles.
+    fn passed(&mut self, cell: (usize, usize));
+    /// Whether the ray climbs (or is level): then its lowest point in a block changes as the
+    /// walk moves through the block.
+    fn climbs(&self) -> bool;
+}
+
+/// A cell's part of the path.
+struct Part<'a, S> {
+    frame: &'a Frame<S>,
+    at: &'a Point<S>,
+    exit: &'a Point<S>,
+    ends_inside: bool,
+    alone: bool,
+}
+
 /// Walks the path block by block, handing the cells of blocks that may be hit to `search`.
 pub fn walk<S: Scalar>(f: &Frame<S>, search: &mut Search<'_, S>) -> ControlFlow<()> {
-    // A point or a path along a row has nothing to skip over that the run walk's single run
-    // test would not skip as well.
-    // A path that starts on the grid's far edge (a float segment lengthened by its rounding
-    // past a corner it touches) has no block ahead: only the cells behind its start.
-    let beyond = f.us.floor_i64() > f.cols.1 || f.vs.floor_i64() > f.rows.1;
-    if is_point(f) || f.dv.is_zero() || beyond {
+    if !has_blocks(f) {
         return runs::walk(f, &mut |span| search.span(span));
     }
-    let top = search.terrain.mipmap().top();
+    descend(f, search.terrain.mipmap().top(), search)
+}
+
+/// Whether the path crosses blocks: a point or a path along a row has nothing to skip over
+/// that the run walk's single run test would not skip as well, and a path that starts on the
+/// grid's far edge (a float segment lengthened by its rounding past a corner it touches) has
+/// no block ahead, only the cells behind its start.
+fn has_blocks<S: Scalar>(f: &Frame<S>) -> bool {
+    let beyond = f.us.floor_i64() > f.cols.1 || f.vs.floor_i64() > f.rows.1;
+    !(is_point(f) || f.dv.is_zero() || beyond)
+}
+
+/// The block walk, from the top level down to cells and up again.
+fn descend<S: Scalar>(f: &Frame<S>, top: u32, follower: &mut impl Follower<S>) -> ControlFlow<()> {
     let mut at = Point {
         t: f.t0.clone(),
         u: f.us.clone(),
@@ -55,7 +92,7 @@ pub fn walk<S: Scalar>(f: &Frame<S>, search: &mut Search<'_, S>) -> ControlFlow<
     let mut k = top.saturating_sub(3);
     let mut first_part = true;
     loop {
-        search.stop_before(&at.t)?;
+        follower.stop_before(&at.t)?;
         // (Rounding, or an interval that cannot tell, may put a point on the grid's near
         // edge just outside it.)
         let (cu, cv) = (
@@ -80,36 +117,26 @@ pub fn walk<S: Scalar>(f: &Frame<S>, search: &mut Search<'_, S>) -> ControlFlow<
             f.ve <= exit.v
         };
         let t_hi = if ends_inside { &f.t1 } else { &exit.t };
-        if k > 0 {
-            let highest = search.terrain.mipmap().get(k, i >> k, j >> k);
-            if search.block_may_hit(&at.t, t_hi, highest) {
-                k -= 1;
-                continue;
-            }
-        } else {
-            // Only the cell's own triangles, unless the path touches other cells at an end
-            // of this part that no other part covers: the ray's start (no part before it),
-            // a lattice point it leaves through, or the segment's end. Cells touched where
-            // this part begins were covered by the part before, or lie in a skipped block.
+        let may_hit = follower.may_hit(k, (i >> k, j >> k), &at.t, t_hi);
+        if k > 0 && may_hit {
+            k -= 1;
+            continue;
+        }
+        if k == 0 && may_hit {
+            // Cells touched where this part begins were covered by the part before, or lie
+            // in a skipped block; others are touched at the ray's start (no part before it),
+            // at a lattice point it leaves through, or at the segment's end.
             let alone = !(first_part || (exit.on_u && exit.on_v) || ends_inside);
-            if alone {
-                search.reached(i, j);
-            }
-            if search.cell_may_hit(i, j, &at.t, t_hi) {
-                if alone {
-                    search.triangles(i, j)?;
-                } else {
-                    let mut part = f.clone();
-                    (part.t0, part.us, part.vs) = (at.t.clone(), at.u.clone(), at.v.clone());
-                    if !ends_inside {
-                        (part.t1, part.ue, part.ve) =
-                            (exit.t.clone(), exit.u.clone(), exit.v.clone());
-                    }
-                    runs::walk(&part, &mut |span| search.span(span))?;
-                }
-            } else if !alone {
-                search.reached(i, j);
-            }
+            let part = Part {
+                frame: f,
+                at: &at,
+                exit: &exit,
+                ends_inside,
+                alone,
+            };
+            follower.cell((i, j), part)?;
+        } else if k == 0 {
+            follower.passed((i, j));
         }
         if ends_inside {
             return ControlFlow::Continue(());
@@ -119,11 +146,128 @@ pub fn walk<S: Scalar>(f: &Frame<S>, search: &mut Search<'_, S>) -> ControlFlow<
         // failed its test.
         let parent = (1i64 << (k + 1)) - 1;
         let new_parent = (exit.on_u && eu & parent == 0) || (exit.on_v && ev & parent == 0);
-        if k < top && (new_parent || !search.dz.is_negative()) {
+        if k < top && (new_parent || follower.climbs()) {
             k += 1;
         }
         at = exit;
         first_part = false;
+    }
+}
+
+impl<S: Scalar> Follower<S> for Search<'_, S> {
+    fn stop_before(&self, t: &S) -> ControlFlow<()> {
+        Search::stop_before(self, t)
+    }
+    fn may_hit(&mut self, k: u32, (bi, bj): (usize, usize), t_lo: &S, t_hi: &S) -> bool {
+        if k == 0 {
+            self.cell_may_hit(bi, bj, t_lo, t_hi)
+        } else {
+            let highest = self.terrain.mipmap().get(k, bi, bj);
+            self.block_may_hit(t_lo, t_hi, highest)
+        }
+    }
+    fn cell(&mut self, (i, j): (usize, usize), part: Part<'_, S>) -> ControlFlow<()> {
+        if part.alone {
+            self.reached(i, j);
+            return self.triangles(i, j);
+        }
+        let (at, exit) = (part.at, part.exit);
+        let mut frame = part.frame.clone();
+        (frame.t0, frame.us, frame.vs) = (at.t.clone(), at.u.clone(), at.v.clone());
+        if !part.ends_inside {
+            (frame.t1, frame.ue, frame.ve) = (exit.t.clone(), exit.u.clone(), exit.v.clone());
+        }
+        runs::walk(&frame, &mut |span| self.span(span))
+    }
+    fn passed(&mut self, (i, j): (usize, usize)) {
+        self.reached(i, j);
+    }
+    fn climbs(&self) -> bool {
+        !self.dz.is_negative()
+    }
+}
+
+/// How far an `f64` walk clears the way for an exact one: where a ray given exactly in `f64`
+/// is traced in an arithmetic without rounding, the blocks an `f64` walk skips with every
+/// rounding allowed for need not be walked again.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Cleared {
+    /// Nothing touches the whole segment: the exact answer is a miss.
+    All,
+    /// Nothing touches the path before this `t`.
+    Until(f64),
+}
+
+/// Walks the `f64` frame of a ray that is exactly `o + t*d` in `f64`, skipping blocks only
+/// where the ray stays above them with room for every rounding the walk made: the positions
+/// (within `pos` of the exact path), the `t` of block faces (within `dt`) and the heights
+/// along the ray (within `dz_err`); the surface rises at most `max_slope` per unit of
+/// horizontal distance, so beyond a block by `pos` it is at most that much higher.
+pub fn clear_way(
+    f: &Frame<f64>,
+    terrain: &Terrain,
+    (oz, dz): (f64, f64),
+    counters: &mut Counters,
+) -> Cleared {
+    if !has_blocks(f) {
+        return Cleared::Until(f.t0);
+    }
+    let eps = f64::EPSILON;
+    let t_max = f.t1.abs().max(f.t0.abs());
+    let d_xy = f.du.abs().max(f.dv.abs());
+    // Face crossings `(k - o) * (1/d)` carry three roundings; clip ends as many.
+    let dt = 4.0 * eps * t_max + f64::MIN_POSITIVE;
+    let coords = f.ou.abs().max(f.ov.abs()) + d_xy * t_max;
+    // Two axes, each off by its own rounding and by the face crossing's `dt`; the tested
+    // span lengthened by `dt` at both ends moves as far again.
+    let pos = 2.0 * (4.0 * eps * coords + d_xy * dt) + 2.0 * d_xy * dt;
+    let rise = terrain.max_slope() * (1.0 + 1e-9) * pos;
+    let z_err = 4.0 * eps * (oz.abs() + dz.abs() * t_max) + dz.abs() * dt;
+    let mut clearing = Clearing {
+        terrain,
+        dz,
+        oz,
+        room: (z_err + rise) * (1.0 + 1e-6),
+        counters,
+        until: f.t0,
+    };
+    match descend(f, terrain.mipmap().top(), &mut clearing) {
+        ControlFlow::Continue(()) => Cleared::All,
+        ControlFlow::Break(()) => Cleared::Until(clearing.until),
+    }
+}
+
+/// Follows an `f64` walk to its first cell that may be hit.
+struct Clearing<'a> {
+    terrain: &'a Terrain,
+    oz: f64,
+    dz: f64,
+    /// What the ray must clear a block's highest sample by.
+    room: f64,
+    counters: &'a mut Counters,
+    until: f64,
+}
+
+impl Follower<f64> for Clearing<'_> {
+    fn stop_before(&self, _t: &f64) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
+    fn may_hit(&mut self, k: u32, (bi, bj): (usize, usize), t_lo: &f64, t_hi: &f64) -> bool {
+        let highest = self.terrain.block_max_sample(k, bi, bj);
+        let highest = self.terrain.field().height_of(highest);
+        let t = if self.dz < 0.0 { *t_hi } else { *t_lo };
+        let lowest = self.oz + self.dz * t;
+        // The comparison's own operands are rounded too.
+        let room = self.room + 4.0 * f64::EPSILON * (lowest.abs() + highest.abs());
+        self.counters.block.record(lowest - room <= highest)
+    }
+    fn cell(&mut self, _cell: (usize, usize), part: Part<'_, f64>) -> ControlFlow<()> {
+        self.until = part.at.t;
+        ControlFlow::Break(())
+    }
+    fn passed(&mut self, _cell: (usize, usize)) {}
+    fn climbs(&self) -> bool {
+        self.dz >= 0.0
     }
 }
 

@@ -326,6 +326,22 @@ pub fn trace_scalar<S: Scalar>(
         };
     };
     counters.bbox.record(true);
+    // (A walk asked to list its cells walks them all.)
+    let frame = match walk_options.method {
+        Method::Mipmap if !walk_options.record_cells => {
+            match cleared(terrain, o, d, dir_f64, frame, &mut counters) {
+                Some(frame) => frame,
+                None => {
+                    return ScalarTrace {
+                        hit: None,
+                        counters,
+                        cells: Vec::new(),
+                    }
+                }
+            }
+        }
+        _ => frame,
+    };
     let mut search = Search {
         terrain,
         frame: &frame,
@@ -350,6 +366,43 @@ pub fn trace_scalar<S: Scalar>(
         hit: search.found,
         counters: search.counters,
         cells: search.cells.unwrap_or_default(),
+    }
+}
+
+/// In an arithmetic without rounding, an `f64` walk first clears the way for the mipmap (see
+/// [`mipmap::clear_way`]) where the ray is exactly an `f64` ray: the frame from just before
+/// the first cell that may be hit, or `None` when nothing can be hit at all.
+fn cleared<S: Scalar>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    frame: Frame<S>,
+    counters: &mut Counters,
+) -> Option<Frame<S>> {
+    let exactly = |v: &[S; 3]| -> Option<[f64; 3]> {
+        Some([v[0].exact_f64()?, v[1].exact_f64()?, v[2].exact_f64()?])
+    };
+    let (Some(of), Some(df)) = (exactly(o), exactly(d)) else {
+        return Some(frame);
+    };
+    let Some(fast) = clip(terrain, &of, &df, dir_f64) else {
+        return Some(frame);
+    };
+    match mipmap::clear_way(&fast, terrain, (of[2], df[2]), counters) {
+        mipmap::Cleared::All => None,
+        mipmap::Cleared::Until(t) => {
+            // Start a little before that cell, inside the cleared block: on the face the
+            // `f64` walk found, intervals could not tell the two sides apart. (The exact
+            // segment starts within rounding of the `f64` one's start.)
+            let margin = 1e-9 * (t.abs() + 1.0);
+            let start = t - margin;
+            if start > fast.t0 + margin {
+                Some(frame.starting_at(S::from_f64(start)))
+            } else {
+                Some(frame)
+            }
+        }
     }
 }
 

@@ -66,6 +66,13 @@ pub trait Scalar:
     /// exact): what separates a computed point from the surface it was computed on.
     fn rounding_error(magnitude: f64) -> f64;
 
+    /// For the arithmetics without rounding (intervals, exact): the value if it is an `f64`
+    /// exactly, so that an `f64` walk may clear the way for them (see `mipmap::clear_until`).
+    /// `None` for the rounding arithmetics, which need no such help.
+    fn exact_f64(&self) -> Option<f64> {
+        None
+    }
+
     /// The exact value as a fraction, for arithmetics that have one.
     fn to_exact(&self) -> Option<BigRational> {
         None
