@@ -118,7 +118,7 @@ pub struct AccuracyArgs {
     #[arg(long, default_value_t = 64)]
     pub per_set: usize,
     /// Methods, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "runs,dda")]
+    #[arg(long, value_delimiter = ',', default_value = "mipmap,runs,dda")]
     pub methods: Vec<Method>,
     /// Arithmetics, comma-separated (exact is always measured: it is the reference).
     #[arg(
