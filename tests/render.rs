@@ -24,7 +24,15 @@ fn render_with(
     culling: Culling,
     threads: usize,
 ) -> Frame {
-    render_by(Method::Runs, terrain, camera, lighting, arith, culling, threads)
+    render_by(
+        Method::Runs,
+        terrain,
+        camera,
+        lighting,
+        arith,
+        culling,
+        threads,
+    )
 }
 
 fn render_by(

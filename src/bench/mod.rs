@@ -12,5 +12,5 @@ pub use accuracy::{
     Disagreement, PixelRow, View,
 };
 pub use ray_sets::{hard_cases, scene_sets, RaySet};
-pub use sizes::{method_build, sized_scene, SizedSceneError, SEED};
+pub use sizes::{sized_scene, SizedSceneError, SEED};
 pub use speed::{throughput, ThroughputRow};

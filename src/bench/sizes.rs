@@ -4,8 +4,6 @@
 use crate::heightfield::{landscape, HeightfieldError};
 use crate::render::{Camera, CameraError, Lighting, Normals, Ramp, Scene, SunSection};
 use crate::traverse::{Arith, Method};
-use crate::Terrain;
-use std::time::Duration;
 use thiserror::Error;
 
 /// The seed of every generated size (the built-in valley's).
@@ -51,18 +49,4 @@ pub fn sized_scene(samples: usize, image: u32) -> Result<Scene, SizedSceneError>
         method: Method::Mipmap,
         arith: Arith::F64,
     })
-}
-
-/// What a method needs beyond the samples: the time to build it (the terrain's shared part
-/// included) and its bytes.
-pub fn method_build(terrain: &Terrain, method: Method) -> (Duration, usize) {
-    match method {
-        Method::Mipmap => (terrain.build_time(), terrain.accel_bytes()),
-        Method::Runs => {
-            let lines = terrain.lines();
-            (terrain.build_time() + lines.build_time(), lines.bytes())
-        }
-        // The cell test reads the four corner samples: nothing to build.
-        Method::Dda => (terrain.build_time(), 0),
-    }
 }

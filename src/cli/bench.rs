@@ -2,9 +2,10 @@
 
 use super::SpeedArgs;
 use anyhow::Context;
-use heightray::bench::{method_build, sized_scene, throughput, ThroughputRow, SEED};
+use heightray::bench::{sized_scene, throughput, ThroughputRow, SEED};
 use heightray::heightfield::BUILTINS;
 use heightray::render::{Scene, SceneFile};
+use heightray::traverse::prepare;
 use heightray::traverse::Arith;
 use heightray::Terrain;
 use indicatif::ProgressBar;
@@ -86,7 +87,7 @@ fn print_table(label: &str, terrain: &Terrain, rows: &[ThroughputRow]) {
         let versus_one = same(row.arith, 1)
             .filter(|_| row.threads > 1)
             .map(|r| row.primary_per_second() / r.primary_per_second());
-        let (build, bytes) = method_build(terrain, row.method);
+        let (build, bytes) = prepare(terrain, row.method);
         println!(
             "| {} | {} | {} | {:.1} | {:.2} | {:.3} | {:.3} | {} | {} |",
             row.method,

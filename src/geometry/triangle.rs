@@ -10,6 +10,7 @@
 //! lying in a triangle's plane hits where it first touches the triangle.
 
 use crate::traverse::scalar::{max, min, Scalar};
+use std::ops::Sub;
 
 /// A ray prepared for many triangle tests: the axis permutation and shear of Woop et al.
 #[derive(Clone, Debug)]
@@ -177,7 +178,7 @@ impl<S: Scalar> CellTriangles<S> {
 /// The gradient `(dz/dx, dz/dy)` of triangle `k` of a cell with corner heights
 /// `[z00, z10, z01, z11]`: over `T0` the plane is `z = z00 + (z10-z00)(x-i) + (z11-z10)(y-j)`,
 /// over `T1` `z = z00 + (z11-z01)(x-i) + (z01-z00)(y-j)` (DESIGN 2).
-pub fn gradient<S: Scalar>(k: u8, [z00, z10, z01, z11]: [S; 4]) -> (S, S) {
+pub fn gradient<S: Clone + Sub<Output = S>>(k: u8, [z00, z10, z01, z11]: [S; 4]) -> (S, S) {
     if k == 0 {
         (z10.clone() - z00, z11 - z10)
     } else {

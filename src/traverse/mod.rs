@@ -4,6 +4,7 @@
 mod counters;
 mod dda;
 mod degenerate;
+mod dyadic;
 mod exact;
 mod frame;
 mod interval;
@@ -21,6 +22,7 @@ pub use scalar::Scalar;
 
 use crate::geometry::{clip_to_box, gradient, Ray, RaySpace};
 use crate::heightfield::Terrain;
+use dyadic::Dyadic;
 use frame::{Frame, Span};
 use num_rational::BigRational;
 pub use search::Found;
@@ -28,6 +30,7 @@ use search::{span_cells, Search};
 use std::fmt;
 use std::ops::ControlFlow;
 use std::str::FromStr;
+use std::time::Duration;
 
 /// How the grid is walked.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -196,6 +199,21 @@ pub fn covered_cells(
     }
 }
 
+/// Builds what `method` needs beyond the terrain's shared data (the run walk's row and column
+/// maxima are built on first use otherwise); returns the time the method's data took in all,
+/// the terrain's shared part included, and its bytes beyond the samples.
+pub fn prepare(terrain: &Terrain, method: Method) -> (Duration, usize) {
+    match method {
+        Method::Mipmap => (terrain.build_time(), terrain.accel_bytes()),
+        Method::Runs => {
+            let lines = terrain.lines();
+            (terrain.build_time() + lines.build_time(), lines.bytes())
+        }
+        // The cell test reads the four corner samples: nothing to build.
+        Method::Dda => (terrain.build_time(), 0),
+    }
+}
+
 /// The ray clipped to the terrain's box, in the octant frame.
 fn clip<S: Scalar>(
     terrain: &Terrain,
@@ -244,15 +262,19 @@ fn trace_exact(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
         return fast;
     };
     match exact_t(terrain, ray, hit.cell, hit.triangle) {
-        Some(t) => {
-            let (o, d) = (
-                ray.origin().map(Exact::from_f64),
-                ray.dir().map(Exact::from_f64),
-            );
+        Some((above, closing)) => {
+            // The point `o + d * above/closing`, each coordinate one exact fraction.
+            let point = [0, 1, 2].map(|k| {
+                let (o, d) = (ray.origin()[k], ray.dir()[k]);
+                let numerator =
+                    Dyadic::from_f64(o) * closing.clone() + Dyadic::from_f64(d) * above.clone();
+                numerator.over_to_f64(&closing)
+            });
+            let t = above.over(&closing);
             fast.hit = Some(Hit {
-                t: t.to_f64(),
-                point: [0, 1, 2].map(|k| (o[k].clone() + d[k].clone() * t.clone()).to_f64()),
-                t_exact: t.to_exact(),
+                t: num_traits::ToPrimitive::to_f64(&t).unwrap_or(f64::NAN),
+                point,
+                t_exact: Some(t),
                 ..hit
             });
             fast
@@ -262,18 +284,19 @@ fn trace_exact(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
     }
 }
 
-/// Where the ray meets the plane of triangle `k` of `cell`, exactly; `None` if it runs parallel.
-fn exact_t(terrain: &Terrain, ray: &Ray, [i, j]: [usize; 2], k: u8) -> Option<Exact> {
-    let heights = terrain.corner_heights(i, j).map(Exact::from_f64);
+/// Where the ray meets the plane of triangle `k` of `cell`, exactly, as `t = above / closing`;
+/// `None` if it runs parallel.
+fn exact_t(terrain: &Terrain, ray: &Ray, [i, j]: [usize; 2], k: u8) -> Option<(Dyadic, Dyadic)> {
+    let heights = terrain.corner_heights(i, j).map(Dyadic::from_f64);
     let z00 = heights[0].clone();
     let (gx, gy) = gradient(k, heights);
-    let [ox, oy, oz] = ray.origin().map(Exact::from_f64);
-    let [dx, dy, dz] = ray.dir().map(Exact::from_f64);
-    let (x0, y0) = (Exact::from_i64(i as i64), Exact::from_i64(j as i64));
+    let [ox, oy, oz] = ray.origin().map(Dyadic::from_f64);
+    let [dx, dy, dz] = ray.dir().map(Dyadic::from_f64);
+    let (x0, y0) = (Dyadic::from_i64(i as i64), Dyadic::from_i64(j as i64));
     // oz + t*dz = z00 + gx*(ox + t*dx - i) + gy*(oy + t*dy - j), solved for t.
     let above = oz - z00 - gx.clone() * (ox - x0) - gy.clone() * (oy - y0);
     let closing = gx * dx + gy * dy - dz;
-    (!closing.is_zero()).then(|| above / closing)
+    (!closing.is_zero()).then_some((above, closing))
 }
 
 fn trace_in<S: Scalar>(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
