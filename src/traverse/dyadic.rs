@@ -60,6 +60,11 @@ impl Dyadic {
         BigRational::new_raw(n, d).to_f64().unwrap_or(f64::NAN)
     }
 
+    /// The mantissa for the exponent `e` (at most `self.e`).
+    fn mantissa_at(self, e: i64) -> BigInt {
+        self.m << (self.e - e) as usize
+    }
+
     /// Integers `n`, `d` with `n / d == self / den`.
     fn scaled_pair(&self, den: &Dyadic) -> (BigInt, BigInt) {
         let shift = self.e - den.e;
@@ -75,9 +80,8 @@ impl Add for Dyadic {
     type Output = Dyadic;
     fn add(self, rhs: Dyadic) -> Dyadic {
         let e = self.e.min(rhs.e);
-        let lift = |d: Dyadic| d.m << (d.e - e) as usize;
         Dyadic {
-            m: lift(self) + lift(rhs),
+            m: self.mantissa_at(e) + rhs.mantissa_at(e),
             e,
         }
     }
