@@ -18,7 +18,7 @@ use super::counters::Counters;
 use super::degenerate::is_point;
 use super::frame::Frame;
 use super::runs;
-use super::scalar::{max, Scalar};
+use super::scalar::{max, Scalar, F64_TOLERANCE};
 use super::search::Search;
 use crate::heightfield::Terrain;
 use std::ops::ControlFlow;
@@ -219,8 +219,10 @@ pub fn clear_way(
     let dt = 4.0 * eps * t_max + f64::MIN_POSITIVE;
     let coords = f.ou.abs().max(f.ov.abs()) + d_xy * t_max;
     // Two axes, each off by its own rounding and by the face crossing's `dt`; the tested
-    // span lengthened by `dt` at both ends moves as far again.
-    let pos = 2.0 * (4.0 * eps * coords + d_xy * dt) + 2.0 * d_xy * dt;
+    // span lengthened by `dt` at both ends moves as far again. An exit within the `f64`
+    // tolerance of a corner is snapped onto it (`exit_point`): as far off as that tolerance.
+    let snap = F64_TOLERANCE * t_max.max(1.0) * d_xy;
+    let pos = 2.0 * (4.0 * eps * coords + d_xy * dt) + 2.0 * d_xy * dt + 2.0 * snap;
     let rise = terrain.max_slope() * (1.0 + 1e-9) * pos;
     let z_err = 4.0 * eps * (oz.abs() + dz.abs() * t_max) + dz.abs() * dt;
     let mut clearing = Clearing {

@@ -251,7 +251,11 @@ macro_rules! float_scalar {
     };
 }
 
-float_scalar!(f64, 1e-9, det2_f64);
+/// How close (relative) two `f64` values must be to count as equal in
+/// [`Scalar::nearly_equal`].
+pub const F64_TOLERANCE: f64 = 1e-9;
+
+float_scalar!(f64, F64_TOLERANCE, det2_f64);
 float_scalar!(f32, 1e-4, det2_f32);
 
 #[cfg(test)]
