@@ -414,3 +414,50 @@ fn the_colour_ramp_spans_the_heights_a_map_uses() {
         "west {west}, east {east}"
     );
 }
+
+/// A scene file chooses the encoding and the no-data value of its height map: the same
+/// terrain-RGB tile is Terrarium metres with `rgb = "terrarium"`, and one of its heights is a
+/// hole with `nodata = <that height>`; a misspelt encoding is an error naming the key.
+#[test]
+fn scene_files_choose_the_rgb_encoding_and_the_nodata_value() {
+    let dir = TempDir::new().unwrap();
+    let metres = |x: u32, y: u32| -400 + (x * 1500 + y * 600) as i32;
+    ImageBuffer::from_fn(5, 3, |x, y| {
+        let v = (metres(x, y) + 32768) as u32;
+        Rgb([(v >> 8) as u8, v as u8, 0])
+    })
+    .save(dir.path().join("tile.png"))
+    .unwrap();
+    let scene = |heightmap_keys: &str| {
+        let text = format!(
+            "[heightmap]\npath = \"tile.png\"\nz_scale = 1.0\n{heightmap_keys}\n\
+             [camera]\neye = [-5.0, -5.0, 9000.0]\ntarget = [2.0, 1.0, 0.0]\nwidth = 8\nheight = 8\n"
+        );
+        let path = write(&dir, "scene.toml", text.as_bytes());
+        heightray::render::Scene::load(&path)
+    };
+    let field = scene("rgb = \"terrarium\"").expect("loads").field;
+    assert_eq!(field.z(1, 2), f64::from(metres(1, 0)));
+    assert_eq!(field.nodata_count(), 0);
+    // Metres(1, 0) = 1100 (image row 0 is y = 2).
+    let field = scene("rgb = \"terrarium\"\nnodata = 1100")
+        .expect("loads")
+        .field;
+    assert_eq!(field.nodata_count(), 1);
+    assert!(field.is_nodata(1, 2));
+    let field = scene("rgb = \"terrarium\"\nnodata = \"none\"")
+        .expect("loads")
+        .field;
+    assert_eq!(field.nodata_count(), 0);
+    let error = scene("rgb = \"terraruim\"")
+        .expect_err("misspelt")
+        .to_string();
+    assert!(
+        error.contains("[heightmap] rgb") && error.contains("terraruim"),
+        "{error}"
+    );
+    let error = scene("nodata = \"never\"")
+        .expect_err("bad word")
+        .to_string();
+    assert!(error.contains("[heightmap] nodata"), "{error}");
+}

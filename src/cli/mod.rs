@@ -174,10 +174,10 @@ pub struct RenderArgs {
 pub struct MapArgs {
     /// Which value means no data: auto (a GeoTIFF's own, else -32768 for signed and float
     /// rasters), none, or a number.
-    #[arg(long, value_parser = parse_nodata, default_value = "auto", allow_hyphen_values = true)]
+    #[arg(long, default_value = "auto", allow_hyphen_values = true)]
     pub nodata: NoDataValue,
     /// How RGB images become heights: luminance, mapbox or terrarium (terrain-RGB).
-    #[arg(long, value_parser = parse_rgb, default_value = "luminance")]
+    #[arg(long, default_value = "luminance")]
     pub rgb: ColourEncoding,
 }
 
@@ -259,28 +259,6 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
         Some((w, h)) if w > 0 && h > 0 && w <= 16384 && h <= 16384 => Ok((w, h)),
         _ => Err(format!(
             "expected WIDTHxHEIGHT (1 to 16384 each), got '{s}'"
-        )),
-    }
-}
-
-fn parse_nodata(s: &str) -> Result<NoDataValue, String> {
-    match s {
-        "auto" => Ok(NoDataValue::Auto),
-        "none" => Ok(NoDataValue::Off),
-        _ => s
-            .parse::<f64>()
-            .map(NoDataValue::Value)
-            .map_err(|_| format!("expected auto, none or a number, got '{s}'")),
-    }
-}
-
-fn parse_rgb(s: &str) -> Result<ColourEncoding, String> {
-    match s {
-        "luminance" => Ok(ColourEncoding::Luminance),
-        "mapbox" => Ok(ColourEncoding::Mapbox),
-        "terrarium" => Ok(ColourEncoding::Terrarium),
-        _ => Err(format!(
-            "expected luminance, mapbox or terrarium, got '{s}'"
         )),
     }
 }

@@ -1,9 +1,10 @@
 //! Scene files (DESIGN 5): TOML, paths relative to the file, unknown keys refused by name.
 
 use super::camera::{Camera, CameraError};
-use crate::heightfield::{self, Builtin, Heightfield, LoadError};
+use crate::heightfield::{self, Builtin, Heightfield, LoadError, LoadOptions, NoDataValue};
 use crate::traverse::{Arith, Method};
 use serde::Deserialize;
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
@@ -47,6 +48,20 @@ pub struct HeightmapSection {
     /// A file, relative to the scene file; or `builtin:NAME` for a built-in terrain.
     pub path: String,
     pub z_scale: f64,
+    /// How RGB images become heights: `luminance` (the default), `mapbox` or `terrarium`.
+    #[serde(default)]
+    pub rgb: Option<String>,
+    /// Which raster value means no data: `"auto"` (the default), `"none"` or a number.
+    #[serde(default)]
+    pub nodata: Option<NoDataKey>,
+}
+
+/// `nodata` as written: a number, or a word.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(untagged)]
+pub enum NoDataKey {
+    Value(f64),
+    Word(String),
 }
 
 #[derive(Clone, Debug, Deserialize, PartialEq)]
@@ -212,11 +227,25 @@ impl Scene {
             message,
         };
         let map = &file.heightmap;
+        let mut options = LoadOptions::new(map.z_scale);
+        if let Some(rgb) = &map.rgb {
+            options.colour = rgb
+                .parse()
+                .map_err(|e| invalid(format!("[heightmap] rgb: {e}")))?;
+        }
+        options.nodata = match &map.nodata {
+            None => NoDataValue::Auto,
+            Some(NoDataKey::Value(v)) => NoDataValue::Value(*v),
+            Some(NoDataKey::Word(w)) => w
+                .parse()
+                .map_err(|e| invalid(format!("[heightmap] nodata: {e}")))?,
+        };
+        let keep_going = |_| ControlFlow::Continue(());
         let field = match map.path.strip_prefix("builtin:") {
             Some(name) => Builtin::named(name)
                 .ok_or_else(|| invalid(format!("[heightmap] path: no built-in terrain '{name}'")))?
                 .load_scaled(map.z_scale),
-            None => heightfield::load(&base.join(&map.path), map.z_scale),
+            None => heightfield::load_with(&base.join(&map.path), &options, &keep_going),
         }
         .map_err(|source| SceneError::Heightmap {
             path: path.to_owned(),

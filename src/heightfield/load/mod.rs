@@ -89,6 +89,36 @@ pub enum NoDataValue {
     Value(f64),
 }
 
+impl std::str::FromStr for ColourEncoding {
+    type Err = String;
+    /// `luminance`, `mapbox` or `terrarium`.
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "luminance" => Ok(ColourEncoding::Luminance),
+            "mapbox" => Ok(ColourEncoding::Mapbox),
+            "terrarium" => Ok(ColourEncoding::Terrarium),
+            _ => Err(format!(
+                "expected luminance, mapbox or terrarium, got '{s}'"
+            )),
+        }
+    }
+}
+
+impl std::str::FromStr for NoDataValue {
+    type Err = String;
+    /// `auto`, `none` or a number.
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "auto" => Ok(NoDataValue::Auto),
+            "none" => Ok(NoDataValue::Off),
+            _ => s
+                .parse::<f64>()
+                .map(NoDataValue::Value)
+                .map_err(|_| format!("expected auto, none or a number, got '{s}'")),
+        }
+    }
+}
+
 /// How to read a height map.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LoadOptions {
