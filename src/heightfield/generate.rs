@@ -1,26 +1,33 @@
 //! The project's own terrain generator: fractal noise, erosion-like ridges, a crater and a
 //! terraced slope, defined on the unit square so every size shows the same landscape.
 
-use super::{Heightfield, HeightfieldError};
+use super::{check_size, Heightfield, HeightfieldError};
 use rayon::prelude::*;
 
 /// A generated landscape of `size x size` 16-bit samples (maxval 65535).
 pub fn landscape(size: usize, seed: u64, z_scale: f64) -> Result<Heightfield, HeightfieldError> {
-    let scale = 1.0 / (size.max(2) - 1) as f64;
-    // Every sample is independent: computed in parallel (deterministic all the same).
-    let heights: Vec<f64> = (0..size * size)
+    // Refused before anything is allocated for it.
+    check_size(size, size)?;
+    let scale = 1.0 / (size - 1) as f64;
+    let at = |k: usize| shape((k % size) as f64 * scale, (k / size) as f64 * scale, seed);
+    // Every sample is independent: computed in parallel (deterministic all the same), twice
+    // rather than kept as f64 (8 bytes a sample): once for the range, once to quantise.
+    let (lo, hi) = (0..size * size)
         .into_par_iter()
-        .map(|k| shape((k % size) as f64 * scale, (k / size) as f64 * scale, seed))
-        .collect();
-    let (lo, hi) = heights
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &h| {
-            (lo.min(h), hi.max(h))
-        });
+        .map(|k| {
+            let h = at(k);
+            (h, h)
+        })
+        .reduce(
+            || (f64::INFINITY, f64::NEG_INFINITY),
+            |a, b| (a.0.min(b.0), a.1.max(b.1)),
+        );
     let range = (hi - lo).max(f64::MIN_POSITIVE);
-    Heightfield::from_fn(size, size, 65535, z_scale, |x, y| {
-        ((heights[y * size + x] - lo) / range * 65535.0).round() as u16
-    })
+    let samples: Vec<u16> = (0..size * size)
+        .into_par_iter()
+        .map(|k| ((at(k) - lo) / range * 65535.0).round() as u16)
+        .collect();
+    Heightfield::from_fn(size, size, 65535, z_scale, |x, y| samples[y * size + x])
 }
 
 /// Height (arbitrary units) at `(x, y)` in the unit square.
