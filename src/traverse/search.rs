@@ -180,7 +180,12 @@ impl<S: Scalar> Search<'_, S> {
                 continue;
             }
             let Some(hit) = hit else { continue };
-            let earlier = self.found.as_ref().is_none_or(|f| hit.t_first < f.t);
+            // (A walk may reach a cell twice where its parts meet: the same triangle's hit is
+            // the same, and comparing it with itself would be a tie intervals cannot settle.)
+            let earlier = self
+                .found
+                .as_ref()
+                .is_none_or(|f| (f.cell, f.triangle) != ((i, j), triangle) && hit.t_first < f.t);
             if earlier {
                 self.found = Some(Found {
                     t: hit.t_first,
