@@ -16,25 +16,6 @@ const ARITHS: [Arith; 4] = [
     Arith::Exact,
 ];
 
-fn render_with(
-    terrain: &Terrain,
-    camera: Camera,
-    lighting: Lighting,
-    arith: Arith,
-    culling: Culling,
-    threads: usize,
-) -> Frame {
-    render_by(
-        Method::Runs,
-        terrain,
-        camera,
-        lighting,
-        arith,
-        culling,
-        threads,
-    )
-}
-
 fn render_by(
     method: Method,
     terrain: &Terrain,
@@ -193,7 +174,8 @@ fn flat_lit_plane_has_the_lambert_shade() {
     let level = ((0.25 * (0.25 + s_z)).powf(1.0 / 2.2) * 255.0 + 0.5) as u32;
     let expected = level << 16 | level << 8 | level;
     for arith in ARITHS {
-        let frame = render_with(
+        let frame = render_by(
+            Method::Runs,
             &flat_field(10),
             looking_down(8),
             lighting(sun, true),
@@ -215,7 +197,8 @@ fn shadows_off_cast_no_shadow_rays() {
     let terrain = Terrain::new(scene.field.clone());
     let mut lighting = scene.lighting;
     lighting.shadows = false;
-    let frame = render_with(
+    let frame = render_by(
+        Method::Runs,
         &terrain,
         scene.camera,
         lighting,
@@ -236,7 +219,8 @@ fn no_shadow_rays_where_no_shadow_is_possible() {
     let terrain = Terrain::new(scene.field.clone());
     let steepest = terrain.max_slope();
     let sun = lighting([1.0, 0.0, steepest * 1.01], true);
-    let culled = render_with(
+    let culled = render_by(
+        Method::Runs,
         &terrain,
         scene.camera,
         sun,
@@ -249,7 +233,15 @@ fn no_shadow_rays_where_no_shadow_is_possible() {
         no_shadow_possible: false,
         above_terrain: false,
     };
-    let brute = render_with(&terrain, scene.camera, sun, Arith::F64, none, 2);
+    let brute = render_by(
+        Method::Runs,
+        &terrain,
+        scene.camera,
+        sun,
+        Arith::F64,
+        none,
+        2,
+    );
     assert_eq!(culled.totals.shadow_rays, 0);
     assert!(culled.totals.skipped.no_shadow_possible > 0);
     assert!(brute.totals.shadow_rays > 0);
@@ -264,7 +256,8 @@ fn no_shadow_rays_where_no_shadow_is_possible() {
 fn each_culling_rule_on_or_off_gives_the_same_image() {
     let scene = builtin_scene("small49", 64);
     let terrain = Terrain::new(scene.field.clone());
-    let all = render_with(
+    let all = render_by(
+        Method::Runs,
         &terrain,
         scene.camera,
         scene.lighting,
@@ -292,7 +285,8 @@ fn each_culling_rule_on_or_off_gives_the_same_image() {
         },
     ];
     for culling in rules {
-        let frame = render_with(
+        let frame = render_by(
+            Method::Runs,
             &terrain,
             scene.camera,
             scene.lighting,
@@ -325,7 +319,8 @@ fn gentle_slope_has_no_shadow_acne_in_any_arithmetic() {
     )
     .unwrap();
     for arith in ARITHS {
-        let frame = render_with(
+        let frame = render_by(
+            Method::Runs,
             &terrain,
             camera,
             lighting([-1.0, 0.1, 0.2], true),
@@ -358,10 +353,26 @@ fn contact_shadows_are_kept_in_float_arithmetic() {
     )
     .unwrap();
     let sun = lighting([1.0, 0.0, 0.3], true);
-    let exact = render_with(&terrain, camera, sun, Arith::Exact, Culling::default(), 2);
+    let exact = render_by(
+        Method::Runs,
+        &terrain,
+        camera,
+        sun,
+        Arith::Exact,
+        Culling::default(),
+        2,
+    );
     assert!(exact.totals.shadowed > 0, "the wall casts a shadow");
     for arith in [Arith::F32, Arith::F64] {
-        let frame = render_with(&terrain, camera, sun, arith, Culling::default(), 2);
+        let frame = render_by(
+            Method::Runs,
+            &terrain,
+            camera,
+            sun,
+            arith,
+            Culling::default(),
+            2,
+        );
         assert_eq!(frame.pixels, exact.pixels, "{arith}");
     }
 }

@@ -2,7 +2,9 @@
 //! memory and time per ray grow with the terrain.
 
 use crate::heightfield::{landscape, HeightfieldError};
-use crate::render::{Camera, CameraError, Lighting, Normals, Ramp, Scene, SunSection};
+use crate::render::{
+    Camera, CameraError, EffectsSection, Lighting, Scene, ShadingSection, SunSection,
+};
 use crate::traverse::{Arith, Method};
 use thiserror::Error;
 
@@ -31,21 +33,19 @@ pub fn sized_scene(samples: usize, image: u32) -> Result<Scene, SizedSceneError>
         45.0,
         (image, image),
     )?;
-    // The valley's sun is the default one.
-    let sun = SunSection::default();
-    let length = sun.direction.iter().map(|c| c * c).sum::<f64>().sqrt();
+    // The valley's sun and shading are the defaults; shadows on, no fog.
+    let effects = EffectsSection {
+        shadows: true,
+        fog: 0.0,
+    };
     Ok(Scene {
         field,
         camera,
-        lighting: Lighting {
-            sun: sun.direction.map(|c| c / length),
-            intensity: sun.intensity,
-            ambient: sun.ambient,
-            shadows: true,
-            fog: 0.0,
-            normals: Normals::default(),
-            ramp: Ramp::default(),
-        },
+        lighting: Lighting::from_sections(
+            &SunSection::default(),
+            &effects,
+            &ShadingSection::default(),
+        ),
         method: Method::Mipmap,
         arith: Arith::F64,
     })

@@ -9,6 +9,9 @@ mod stats;
 
 pub use camera::{Camera, CameraError};
 pub use passes::{Frame, Renderer, PASS_BLOCKS};
-pub use scene::{Lighting, Normals, Ramp, Scene, SceneError, SceneFile, SunSection};
+pub use scene::{
+    EffectsSection, Lighting, Normals, Ramp, Scene, SceneError, SceneFile, ShadingSection,
+    SunSection,
+};
 pub use shade::{Culling, Sample, Shader, Shadow, ShadowSkip};
 pub use stats::{FrameStats, PixelStats};

@@ -195,6 +195,27 @@ pub struct Lighting {
     pub ramp: Ramp,
 }
 
+impl Lighting {
+    /// The lighting a scene file's sections describe (the sun's direction non-zero: scene
+    /// files are checked for that first), with the direction normalised.
+    pub fn from_sections(
+        sun: &SunSection,
+        effects: &EffectsSection,
+        shading: &ShadingSection,
+    ) -> Lighting {
+        let length = sun.direction.iter().map(|c| c * c).sum::<f64>().sqrt();
+        Lighting {
+            sun: sun.direction.map(|c| c / length),
+            intensity: sun.intensity,
+            ambient: sun.ambient,
+            shadows: effects.shadows,
+            fog: effects.fog,
+            normals: shading.normals,
+            ramp: shading.ramp,
+        }
+    }
+}
+
 /// A scene ready to render.
 #[derive(Clone, Debug)]
 pub struct Scene {
@@ -283,15 +304,7 @@ impl Scene {
         Ok(Scene {
             field,
             camera,
-            lighting: Lighting {
-                sun: sun.direction.map(|c| c / length),
-                intensity: sun.intensity,
-                ambient: sun.ambient,
-                shadows: file.effects.shadows,
-                fog: file.effects.fog,
-                normals: file.shading.normals,
-                ramp: file.shading.ramp,
-            },
+            lighting: Lighting::from_sections(sun, &file.effects, &file.shading),
             method,
             arith,
         })

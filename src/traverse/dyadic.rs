@@ -120,6 +120,26 @@ mod tests {
     use crate::traverse::scalar::exact_from_f64;
 
     #[test]
+    fn f64_values_are_read_exactly() {
+        let one = Dyadic::from_i64(1);
+        let ratio =
+            |n: i64, shift: usize| BigRational::new(BigInt::from(n), BigInt::from(1) << shift);
+        // 0.1 is 3602879701896397 / 2^55; the least subnormal is 2^-1074.
+        assert_eq!(
+            Dyadic::from_f64(0.1).over(&one),
+            ratio(3602879701896397, 55)
+        );
+        assert_eq!(Dyadic::from_f64(-3.75).over(&one), ratio(-15, 2));
+        assert_eq!(Dyadic::from_f64(5e-324).over(&one), ratio(1, 1074));
+        assert_eq!(
+            Dyadic::from_f64(2f64.powi(60)).over(&one),
+            BigRational::from_integer(BigInt::from(1) << 60)
+        );
+        assert!(Dyadic::from_f64(-0.0).is_zero() && Dyadic::from_f64(f64::NAN).is_zero());
+    }
+
+    /// Against `BigRational` arithmetic on the same values.
+    #[test]
     fn sums_products_and_quotients_are_exact() {
         let values = [
             0.1,

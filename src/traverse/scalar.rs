@@ -5,9 +5,9 @@
 //! floor/ceil to cell indices, and one exact-sign primitive ([`Scalar::det2`]) on which the
 //! watertight triangle test rests.
 
-use num_bigint::BigInt;
+use super::dyadic::Dyadic;
 use num_rational::BigRational;
-use num_traits::{Signed, Zero};
+use num_traits::Signed;
 use std::cmp::Ordering;
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -121,29 +121,7 @@ pub fn max<S: Scalar>(a: S, b: S) -> S {
 /// The exact value of a finite `f64` as a fraction (non-finite values give zero; callers
 /// validate their inputs first).
 pub fn exact_from_f64(x: f64) -> BigRational {
-    if !x.is_finite() || x == 0.0 {
-        return BigRational::zero();
-    }
-    let bits = x.to_bits();
-    let negative = bits >> 63 == 1;
-    let exponent = ((bits >> 52) & 0x7ff) as i64;
-    let fraction = bits & ((1u64 << 52) - 1);
-    // Normal numbers carry an implicit leading 1; subnormals have the minimum exponent.
-    let (mantissa, exp2) = if exponent == 0 {
-        (fraction, -1074)
-    } else {
-        (fraction | (1u64 << 52), exponent - 1075)
-    };
-    let mantissa = if negative {
-        -BigInt::from(mantissa)
-    } else {
-        BigInt::from(mantissa)
-    };
-    if exp2 >= 0 {
-        BigRational::from_integer(mantissa << exp2 as usize)
-    } else {
-        BigRational::new(mantissa, BigInt::from(1u8) << (-exp2) as usize)
-    }
+    Dyadic::from_f64(x).over(&Dyadic::from_i64(1))
 }
 
 /// Exact sign of `a*b - c*d` for `f64` inputs.
@@ -261,6 +239,7 @@ float_scalar!(f32, 1e-4, det2_f32);
 #[cfg(test)]
 mod tests {
     use super::*;
+    use num_bigint::BigInt;
 
     #[test]
     fn exact_from_f64_is_exact() {
