@@ -13,6 +13,10 @@
 //! path touches no cell there, not even one meeting the block at a face or corner. Exit points
 //! are snapped onto the block face they lie on, so the next block is found without rounding in
 //! that coordinate, and a walk in a rounding arithmetic cannot step back into a skipped block.
+//!
+//! In arithmetics without rounding, an `f64` walk first clears the way ([`clear_way`]): it skips
+//! only blocks the ray clears with room for every rounding it made, so the exact walk may start
+//! just before the first cell that may be hit.
 
 use super::counters::Counters;
 use super::degenerate::is_point;
