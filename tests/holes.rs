@@ -40,6 +40,36 @@ fn load_spike(nodata: NoDataValue) -> Terrain {
     Terrain::new(field)
 }
 
+/// Every method and arithmetic hits `triangle` of `cell`, exact mode at `t_exact`, and exact
+/// mode agrees with the reference; returns each answer's `t`, named by method and arithmetic.
+fn assert_hits_everywhere(
+    terrain: &Terrain,
+    ray: &Ray,
+    cell: [usize; 2],
+    triangle: u8,
+    t_exact: &str,
+) -> Vec<(String, f64)> {
+    let mut answers = Vec::new();
+    for method in METHODS {
+        for arith in ARITHS {
+            let hit = trace(terrain, ray, &options(method, arith))
+                .hit
+                .unwrap_or_else(|| panic!("{method} {arith}: no hit"));
+            assert_eq!(
+                (hit.cell, hit.triangle),
+                (cell, triangle),
+                "{method} {arith}"
+            );
+            if arith == Arith::Exact {
+                assert_eq!(hit.t_exact.unwrap().to_string(), t_exact);
+            }
+            answers.push((format!("{method} {arith}"), hit.t));
+        }
+    }
+    assert_eq!(check_exact(terrain, ray), Vec::<String>::new());
+    answers
+}
+
 /// Worked by hand: the ray `(-1, 0.25, 5) + t (1, 0, 0)` flies level at z = 5 over a raster
 /// whose no-data value, read as data, would be a spike.
 /// - With 1000 as data, cell (1, 0) rises from 0 at x = 1 to 1000 at x = 2; at y - j = 0.25
@@ -61,27 +91,9 @@ fn a_nodata_value_is_a_hole_not_a_spike() {
         (&spike, 2.005, [1, 0], 1, "401/200"),
         (&holed, 5.5, [4, 0], 0, "11/2"),
     ] {
-        for method in METHODS {
-            for arith in ARITHS {
-                let hit = trace(terrain, &ray, &options(method, arith))
-                    .hit
-                    .unwrap_or_else(|| panic!("{method} {arith}: no hit"));
-                assert_eq!(
-                    (hit.cell, hit.triangle),
-                    (cell, triangle),
-                    "{method} {arith}"
-                );
-                assert!((hit.t - t).abs() < 1e-6, "{method} {arith}: t {}", hit.t);
-                if arith == Arith::Exact {
-                    assert_eq!(hit.t_exact.unwrap().to_string(), t_exact);
-                }
-            }
+        for (what, hit_t) in assert_hits_everywhere(terrain, &ray, cell, triangle, t_exact) {
+            assert!((hit_t - t).abs() < 1e-6, "{what}: t {hit_t}");
         }
-        assert!(
-            check_exact(terrain, &ray).is_empty(),
-            "{:?}",
-            check_exact(terrain, &ray)
-        );
     }
 }
 
@@ -116,22 +128,7 @@ fn a_ray_passes_through_a_hole_and_hits_what_lies_beyond() {
         (Terrain::new(field(None)), "2/9", [1, 0], 0),
         (Terrain::new(field(Some(mask))), "18/11", [3, 0], 1),
     ] {
-        for method in METHODS {
-            for arith in ARITHS {
-                let hit = trace(&terrain, &ray, &options(method, arith))
-                    .hit
-                    .unwrap_or_else(|| panic!("{method} {arith}: no hit"));
-                assert_eq!(
-                    (hit.cell, hit.triangle),
-                    (cell, triangle),
-                    "{method} {arith}"
-                );
-                if arith == Arith::Exact {
-                    assert_eq!(hit.t_exact.unwrap().to_string(), t);
-                }
-            }
-        }
-        assert_eq!(check_exact(&terrain, &ray), Vec::<String>::new());
+        assert_hits_everywhere(&terrain, &ray, cell, triangle, t);
     }
 }
 
