@@ -2,6 +2,7 @@
 //! and the statistics of a frame.
 
 mod camera;
+mod gamma;
 mod passes;
 mod scene;
 mod shade;

@@ -1,6 +1,7 @@
 //! From a ray to a colour: the primary ray, the shadow ray only where it can change the pixel,
 //! Lambert shading with an elevation ramp, sky and fog.
 
+use super::gamma;
 use super::scene::{Lighting, Normals, Ramp};
 use crate::geometry::{gradient, plane_height};
 use crate::heightfield::Terrain;
@@ -296,6 +297,6 @@ fn horizon() -> DVec3 {
 
 /// Linear colour to 0x00RRGGBB with a display gamma of 2.2.
 fn pack(c: DVec3) -> u32 {
-    let channel = |v: f64| (v.clamp(0.0, 1.0).powf(1.0 / 2.2) * 255.0 + 0.5) as u32;
+    let channel = |v: f64| u32::from(gamma::byte(v));
     (channel(c.x) << 16) | (channel(c.y) << 8) | channel(c.z)
 }

@@ -67,7 +67,7 @@ pub trait Scalar:
     fn rounding_error(magnitude: f64) -> f64;
 
     /// For the arithmetics without rounding (intervals, exact): the value if it is an `f64`
-    /// exactly, so that an `f64` walk may clear the way for them (see `mipmap::clear_until`).
+    /// exactly, so that an `f64` walk may clear the way for them (see `mipmap::clear_way`).
     /// `None` for the rounding arithmetics, which need no such help.
     fn exact_f64(&self) -> Option<f64> {
         None

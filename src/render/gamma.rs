@@ -1,0 +1,52 @@
+//! Linear light to display bytes with a gamma of 2.2, without a `powf` per channel: the byte
+//! of `v` is how many of 255 thresholds `v` reaches. The thresholds are found once, by
+//! bisection on the formula itself, so the table gives the formula's bytes exactly.
+
+use std::sync::LazyLock;
+
+/// The byte the formula gives: `v^(1/2.2)` scaled to 0..=255 and rounded.
+fn byte_by_formula(v: f64) -> u8 {
+    (v.clamp(0.0, 1.0).powf(1.0 / 2.2) * 255.0 + 0.5) as u8
+}
+
+/// `THRESHOLDS[k - 1]`: the least `v` in [0, 1] whose byte is at least `k`.
+static THRESHOLDS: LazyLock<[f64; 255]> = LazyLock::new(|| {
+    std::array::from_fn(|index| {
+        let k = index as u8 + 1;
+        // Non-negative floats order like their bits: bisect on those.
+        let (mut below, mut at) = (0u64, 1f64.to_bits());
+        while at - below > 1 {
+            let mid = below + (at - below) / 2;
+            if byte_by_formula(f64::from_bits(mid)) >= k {
+                at = mid;
+            } else {
+                below = mid;
+            }
+        }
+        f64::from_bits(at)
+    })
+});
+
+/// The display byte of linear value `v` (clamped to [0, 1]; NaN gives 0).
+pub fn byte(v: f64) -> u8 {
+    THRESHOLDS.partition_point(|&threshold| v >= threshold) as u8
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_table_gives_the_formulas_bytes() {
+        let mut values: Vec<f64> = (0..=100_000).map(|i| f64::from(i) / 100_000.0).collect();
+        // Either side of every threshold, and outside the range.
+        for &t in THRESHOLDS.iter() {
+            values.extend([t, t.next_down(), t.next_up()]);
+        }
+        values.extend([-1.0, 2.0, f64::INFINITY, f64::NEG_INFINITY, 1e-300]);
+        for v in values {
+            assert_eq!(byte(v), byte_by_formula(v), "v = {v:e}");
+        }
+        assert_eq!(byte(f64::NAN), 0);
+    }
+}
