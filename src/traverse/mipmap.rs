@@ -24,6 +24,7 @@ use super::frame::Frame;
 use super::runs;
 use super::scalar::{max, Scalar, F64_TOLERANCE};
 use super::search::Search;
+use super::Query;
 use crate::heightfield::Terrain;
 use std::ops::ControlFlow;
 
@@ -70,7 +71,16 @@ pub fn walk<S: Scalar>(f: &Frame<S>, search: &mut Search<'_, S>) -> ControlFlow<
     if !has_blocks(f) {
         return runs::walk(f, &mut |span| search.span(span));
     }
-    descend(f, search.terrain.mipmap().top(), search)
+    let top = search.terrain.mipmap().top();
+    // A shadow ray starts on the surface: every block around its start fails its test, so
+    // it starts among cells and climbs as it leaves. Other rays start at blocks an eighth of
+    // the grid wide: the two levels above them seldom pass a test (the ray is inside the box,
+    // so the top block always fails), and climbing is cheap.
+    let start = match search.query {
+        Query::Shadow => 0,
+        Query::FirstHit => top.saturating_sub(3),
+    };
+    descend(f, top, start, search)
 }
 
 /// Whether the path crosses blocks: a point or a path along a row has nothing to skip over
@@ -83,7 +93,12 @@ fn has_blocks<S: Scalar>(f: &Frame<S>) -> bool {
 }
 
 /// The block walk, from the top level down to cells and up again.
-fn descend<S: Scalar>(f: &Frame<S>, top: u32, follower: &mut impl Follower<S>) -> ControlFlow<()> {
+fn descend<S: Scalar>(
+    f: &Frame<S>,
+    top: u32,
+    start: u32,
+    follower: &mut impl Follower<S>,
+) -> ControlFlow<()> {
     let mut at = Point {
         t: f.t0.clone(),
         u: f.us.clone(),
@@ -91,9 +106,7 @@ fn descend<S: Scalar>(f: &Frame<S>, top: u32, follower: &mut impl Follower<S>) -
         on_u: false,
         on_v: false,
     };
-    // Blocks an eighth of the grid wide: the two levels above them seldom pass a test (the
-    // ray is inside the box, so the top block always fails), and climbing is cheap.
-    let mut k = top.saturating_sub(3);
+    let mut k = start;
     let mut first_part = true;
     loop {
         follower.stop_before(&at.t)?;
@@ -237,7 +250,8 @@ pub fn clear_way(
         counters,
         until: f.t0,
     };
-    match descend(f, terrain.mipmap().top(), &mut clearing) {
+    let top = terrain.mipmap().top();
+    match descend(f, top, top.saturating_sub(3), &mut clearing) {
         ControlFlow::Continue(()) => Cleared::All,
         ControlFlow::Break(()) => Cleared::Until(clearing.until),
     }
