@@ -10,7 +10,7 @@ use common::reference::{self, q};
 use common::{assert_family, check_exact, describe, options};
 use heightray::traverse::covered_cells;
 use heightray::traverse::HitMiss;
-use heightray::{trace, Arith, Counters, Heightfield, Method, Ray, Terrain, TraceOptions};
+use heightray::{trace, Arith, Counters, Heightfield, Method, Query, Ray, Terrain, TraceOptions};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 use proptest::test_runner::TestCaseError;
@@ -405,5 +405,59 @@ proptest! {
         // Listing its cells, and without (an f64 walk clears the way first).
         prop_assert_eq!(&answer(Method::Mipmap, true), &runs, "{}", describe(&ray));
         prop_assert_eq!(&answer(Method::Mipmap, false), &runs, "{}", describe(&ray));
+    }
+}
+
+/// Whether a shadow query of `method` in `arith` finds the surface.
+fn in_shadow(terrain: &Terrain, ray: &Ray, method: Method, arith: Arith) -> bool {
+    let options = TraceOptions {
+        query: Query::Shadow,
+        record_cells: false,
+        ..options(method, arith)
+    };
+    trace(terrain, ray, &options).hit.is_some()
+}
+
+proptest! {
+    #![proptest_config(config(3_000, 0x5348_4144))]
+
+    /// A shadow query finds the surface exactly when the reference's first touch comes after
+    /// the start (a touch at the start itself says nothing of later ones: not asked here).
+    /// Each method walks shadow rays its own way (the mipmap from among cells up).
+    #[test]
+    fn shadow_queries_match_the_reference((field, ray) in field_and_ray_up_to(24)) {
+        let answer = reference::solve(&field, &ray);
+        let touched_after_start = match &answer.hit {
+            Some(hit) if hit.t == q(0.0) => return Ok(()),
+            hit => hit.is_some(),
+        };
+        let terrain = Terrain::new(field);
+        for method in Method::ALL {
+            prop_assert_eq!(
+                in_shadow(&terrain, &ray, method, Arith::Exact),
+                touched_after_start,
+                "{} {}", method, describe(&ray)
+            );
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(config(1_000, 0x5348_4c47))]
+
+    /// On the deep hierarchy, the mipmap's shadow answers are the run walk's, exactly and in
+    /// `f64`.
+    #[test]
+    fn mipmap_shadow_queries_equal_runs_on_a_large_field(
+        ray in common::random::ray_on(&large_field())
+    ) {
+        let terrain = Terrain::new(large_field());
+        for arith in [Arith::Exact, Arith::F64] {
+            prop_assert_eq!(
+                in_shadow(&terrain, &ray, Method::Mipmap, arith),
+                in_shadow(&terrain, &ray, Method::Runs, arith),
+                "{} {}", arith, describe(&ray)
+            );
+        }
     }
 }
