@@ -47,14 +47,16 @@ pub enum Command {
 
 #[derive(clap::Args, Debug)]
 pub struct ViewArgs {
-    /// Height map (8/16-bit grayscale PNG or PGM) or scene file (.toml); default: the
-    /// built-in terrain.
+    /// Height map (PNG, PGM or TIFF, see `trace --help`) or scene file (.toml); default:
+    /// the built-in terrain.
     #[arg(value_name = "FILE_OR_SCENE")]
     pub source: Option<PathBuf>,
     /// Height of the largest sample value (default: a built-in's or scene's own; a quarter
     /// of the larger side for an image).
     #[arg(long)]
     pub z_scale: Option<f64>,
+    #[command(flatten)]
+    pub loading: MapArgs,
     /// Window size in logical pixels, WIDTHxHEIGHT.
     #[arg(long, value_parser = parse_size, default_value = "1280x720")]
     pub size: (u32, u32),
@@ -242,6 +244,10 @@ pub fn view(args: ViewArgs) -> anyhow::Result<ExitCode> {
     heightray::viewer::run(heightray::viewer::ViewerOptions {
         source: args.source,
         z_scale: args.z_scale,
+        decoding: heightray::viewer::Decoding {
+            colour: args.loading.rgb,
+            nodata: args.loading.nodata,
+        },
         size: args.size,
         render_scale: args.render_scale,
         exit_after_frames: args.exit_after_frames,

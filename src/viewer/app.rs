@@ -143,6 +143,7 @@ impl App {
                     z_scale: None,
                     reframe: true,
                     from_memory: None,
+                    decoding: self.model.decoding,
                 });
             }
             WindowEvent::Resized(_) | WindowEvent::ScaleFactorChanged { .. } => {
@@ -206,6 +207,7 @@ impl App {
         let model = &mut self.model;
         model.shown = Shown {
             source: loaded.request.source.clone(),
+            decoding: loaded.request.decoding,
             terrain: terrain.clone(),
             decode_time: loaded.decode_time,
         };
@@ -422,6 +424,7 @@ fn background_threads(
 fn initial_model(loaded: Loaded, settings: super::settings::Settings) -> Model {
     let shown = Shown {
         source: loaded.request.source.clone(),
+        decoding: loaded.request.decoding,
         terrain: loaded.terrain.clone(),
         decode_time: loaded.decode_time,
     };

@@ -3,6 +3,7 @@
 
 use super::accuracy::{ns_per_ray, AccuracyState, MeasureState};
 use super::compose::PixelRect;
+use super::decoding::Decoding;
 use super::model::Model;
 use image::{ImageBuffer, Rgb};
 use serde_json::{json, Value};
@@ -89,8 +90,10 @@ fn report(model: &Model, counts: &Counts) -> Value {
         "accuracy": accuracy_report(&model.accuracy),
         "terrain": {
             "name": model.shown.source.label(), "width": field.width(), "height": field.height(),
-            "z_scale": field.z_scale(),
+            "z_scale": field.z_scale(), "nodata_count": field.nodata_count(),
+            "decoded_as": decoding_report(model.shown.decoding),
         },
+        "decoding": decoding_report(model.decoding),
         "loading": model.progress.as_ref().map(|p| p.label.clone()),
         "error": model.error,
         "drop_hover": model.drop_hover,
@@ -184,4 +187,8 @@ fn widget_report(model: &Model) -> serde_json::Map<String, Value> {
             ((*name).to_owned(), json!(physical))
         })
         .collect()
+}
+
+fn decoding_report(decoding: Decoding) -> Value {
+    json!({ "colour": decoding.colour.to_string(), "nodata": decoding.nodata.to_string() })
 }

@@ -2,6 +2,7 @@
 //! read, decoded and built into acceleration data on a background thread. A newer load
 //! supersedes an older one: the older one's result is dropped when it arrives.
 
+use super::decoding::Decoding;
 use super::mailbox::Mailbox;
 use super::orbit::Orbit;
 use super::sources;
@@ -54,6 +55,8 @@ pub struct LoadRequest {
     pub reframe: bool,
     /// Rescale these samples instead of reading the source again (a z scale change).
     pub from_memory: Option<Arc<Terrain>>,
+    /// How a height map image is decoded (a scene file says so itself).
+    pub decoding: Decoding,
 }
 
 /// A scene file's camera, lighting and traversal.
@@ -251,6 +254,7 @@ mod tests {
             z_scale: Some(z_scale),
             reframe: true,
             from_memory: None,
+            decoding: Decoding::default(),
         }
     }
 
@@ -277,6 +281,7 @@ mod tests {
             z_scale: None,
             reframe: true,
             from_memory: None,
+            decoding: Decoding::default(),
         })
         .err()
         .expect("refused");
@@ -297,8 +302,36 @@ mod tests {
             z_scale: None,
             reframe: true,
             from_memory: None,
+            decoding: Decoding::default(),
         })
         .expect("loads");
         assert_eq!(loaded.terrain.field().z_scale(), 2.0);
+    }
+
+    #[test]
+    fn an_image_in_metres_gets_its_range_scaled_to_a_quarter_of_its_side() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("tile.png");
+        // Mapbox terrain-RGB, 40x8: heights 250 m to 2200 m along x.
+        let image = image::RgbImage::from_fn(40, 8, |x, _| {
+            let code = (250.0 + 50.0 * f64::from(x) + 10000.0) as u32 * 10;
+            image::Rgb([(code >> 16) as u8, (code >> 8) as u8, code as u8])
+        });
+        image.save(&path).expect("write");
+        let loaded = run(LoadRequest {
+            source: Source::File(path),
+            z_scale: None,
+            reframe: true,
+            from_memory: None,
+            decoding: Decoding {
+                colour: crate::heightfield::ColourEncoding::Mapbox,
+                nodata: crate::heightfield::NoDataValue::Off,
+            },
+        })
+        .expect("loads");
+        let (lo, hi) = loaded.terrain.z_range();
+        assert!((hi - lo - 10.0).abs() < 1e-9, "relief {lo} .. {hi}");
+        // Still the same shape: heights in proportion to the metres.
+        assert!((hi / lo - 2200.0 / 250.0).abs() < 1e-9, "{lo} .. {hi}");
     }
 }

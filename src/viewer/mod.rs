@@ -7,6 +7,7 @@ mod accuracy;
 mod app;
 mod background;
 mod compose;
+mod decoding;
 mod hooks;
 mod loader;
 mod mailbox;
@@ -22,6 +23,7 @@ mod stats_ui;
 mod view;
 mod worker;
 
+pub use decoding::Decoding;
 pub use loader::Source;
 pub use orbit::Orbit;
 
@@ -41,6 +43,8 @@ pub struct ViewerOptions {
     pub source: Option<PathBuf>,
     /// z scale for a height map (default: its own, or a quarter of the larger side).
     pub z_scale: Option<f64>,
+    /// How height map images are decoded (the panel can change it).
+    pub decoding: Decoding,
     /// Window size in logical pixels.
     pub size: (u32, u32),
     /// Rays per physical pixel along each axis (default: one per logical pixel).
@@ -58,6 +62,7 @@ impl Default for ViewerOptions {
         ViewerOptions {
             source: None,
             z_scale: None,
+            decoding: Decoding::default(),
             size: (1280, 720),
             render_scale: None,
             exit_after_frames: None,
@@ -87,6 +92,7 @@ pub fn run(options: ViewerOptions) -> anyhow::Result<()> {
         z_scale: options.z_scale,
         reframe: true,
         from_memory: None,
+        decoding: options.decoding,
     };
     let loaded = loader::load_now(request).map_err(anyhow::Error::msg)?;
     let event_loop = EventLoop::<UserEvent>::with_user_event()

@@ -3,6 +3,7 @@
 
 use super::accuracy::AccuracyState;
 use super::compose::HeatScale;
+use super::decoding::Decoding;
 use super::loader::{LoadRequest, Progress, Source};
 use super::orbit::Orbit;
 use super::probe::Probe;
@@ -16,6 +17,8 @@ use std::time::{Duration, Instant};
 /// The terrain on screen.
 pub struct Shown {
     pub source: Source,
+    /// How its file was decoded, if it is an image.
+    pub decoding: Decoding,
     pub terrain: Arc<Terrain>,
     /// Reading and decoding time of its file.
     pub decode_time: Duration,
@@ -91,6 +94,8 @@ pub struct Model {
     pub z_scale: f64,
     /// The path field of the heightmap panel.
     pub path_text: String,
+    /// How images opened or dropped from now on are decoded.
+    pub decoding: Decoding,
     pub panels_visible: bool,
     /// Show the hovered pixel's ray next to the pointer.
     pub show_probe: bool,
@@ -126,6 +131,7 @@ impl Model {
         let orbit = Orbit::framing(&shown.terrain);
         Model {
             z_scale: shown.terrain.field().z_scale(),
+            decoding: shown.decoding,
             shown,
             orbit,
             home: orbit,

@@ -1,6 +1,7 @@
 //! The side panel: camera, light, height map, traversal, effects and statistics.
 
 use super::accuracy::panel::accuracy_ui;
+use super::decoding::{decoding_ui, Decoding};
 use super::loader::{LoadRequest, Source};
 use super::model::{Action, Model};
 use super::settings::ArithKind;
@@ -48,7 +49,11 @@ fn section_closed(ui: &mut Ui, title: &str, add: impl FnOnce(&mut Ui)) -> egui::
 }
 
 /// Records where a named widget is, for scripted tests that drag it.
-fn named(model: &mut Model, name: &'static str, response: egui::Response) -> egui::Response {
+pub(super) fn named(
+    model: &mut Model,
+    name: &'static str,
+    response: egui::Response,
+) -> egui::Response {
     model.widget_rects.insert(name, response.rect);
     response
 }
@@ -112,6 +117,7 @@ fn light_ui(ui: &mut Ui, model: &mut Model) {
 
 fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     source_ui(ui, model, actions);
+    decoding_ui(ui, model, actions);
     z_scale_ui(ui, model, actions);
     let s = &mut model.settings;
     ui.horizontal(|ui| {
@@ -159,7 +165,7 @@ fn source_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             for builtin in BUILTINS {
                 let chosen = current == Source::Builtin(builtin.name);
                 if ui.selectable_label(chosen, builtin.name).clicked() && !chosen {
-                    actions.push(load(Source::Builtin(builtin.name)));
+                    actions.push(load(Source::Builtin(builtin.name), model.decoding));
                 }
             }
         });
@@ -171,7 +177,8 @@ fn source_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         );
         let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
         if (ui.button("Open").clicked() || entered) && !model.path_text.trim().is_empty() {
-            actions.push(load(Source::File(PathBuf::from(model.path_text.trim()))));
+            let path = PathBuf::from(model.path_text.trim());
+            actions.push(load(Source::File(path), model.decoding));
         }
     });
     ui.weak("or drop a file onto the window");
@@ -193,16 +200,19 @@ fn z_scale_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             z_scale: Some(model.z_scale),
             reframe: false,
             from_memory: Some(model.shown.terrain.clone()),
+            decoding: model.shown.decoding,
         }));
     }
 }
 
-fn load(source: Source) -> Action {
+/// Loads `source` (an image decoded as the panel says) and frames it.
+fn load(source: Source, decoding: Decoding) -> Action {
     Action::Load(LoadRequest {
         source,
         z_scale: None,
         reframe: true,
         from_memory: None,
+        decoding,
     })
 }
 

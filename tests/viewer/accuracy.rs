@@ -19,31 +19,10 @@ const ARITHS: [&str; 8] = [
     "rational:16777216",
 ];
 
-/// Clicks on a named widget's middle, as a hand does: egui decides from the previous frame's
-/// hover whether a press is its own, so the press waits until a frame has seen the pointer.
-fn click(session: &mut Session, state: &Value, name: &str) {
-    let [x0, y0, x1, y1] = widget(state, name);
-    let (x, y) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
-    // Two moves: the pointer may already rest on the spot, and then no motion would arrive.
-    session.x.move_to(session.screen((x - 2.0, y)));
-    std::thread::sleep(std::time::Duration::from_millis(30));
-    let frames = num(&session.state(), "/frames_presented");
-    session.x.move_to(session.screen((x, y)));
-    session
-        .viewer
-        .wait_for("a frame after the pointer moved", |s| {
-            num(s, "/frames_presented") > frames
-        });
-    std::thread::sleep(std::time::Duration::from_millis(100));
-    session.x.press(1);
-    std::thread::sleep(std::time::Duration::from_millis(40));
-    session.x.release(1);
-}
-
 /// Opens the Traversal section and scrolls the panel until `name` is on screen.
 fn reveal(session: &mut Session, name: &str) -> Value {
     let state = session.state();
-    click(session, &state, "traversal_section");
+    session.click(&state, "traversal_section");
     let state = session
         .viewer
         .wait_for("the Traversal section to open", |s| {
@@ -91,17 +70,17 @@ fn measure_state(s: &Value) -> &str {
 fn measuring_fills_a_table_of_every_arithmetic_while_the_window_answers() {
     let mut session = Session::start(&[]);
     let state = reveal(&mut session, "measure_button");
-    click(&mut session, &state, "measure_button");
+    session.click(&state, "measure_button");
     let running = session.viewer.wait_for("the measurement to start", |s| {
         measure_state(s) == "running"
     });
 
     // A second click cancels it, a third starts it again.
-    click(&mut session, &running, "measure_button");
+    session.click(&running, "measure_button");
     session.viewer.wait_for("the second click to cancel", |s| {
         measure_state(s) == "cancelled"
     });
-    click(&mut session, &running, "measure_button");
+    session.click(&running, "measure_button");
     let running = session
         .viewer
         .wait_for("the measurement to start again", |s| {
@@ -198,7 +177,7 @@ fn compare(arith: &str) -> (Session, Value) {
     let mut session = Session::start(&[&scene_arg, "--render-scale", "0.5"]);
     let state = reveal(&mut session, "compare_toggle");
     assert_eq!(state["arith"], arith);
-    click(&mut session, &state, "compare_toggle");
+    session.click(&state, "compare_toggle");
     let compared = session.viewer.wait_for("the comparison with exact", |s| {
         s["accuracy"]["compare"]["differing"].is_u64()
     });

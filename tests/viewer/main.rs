@@ -7,6 +7,7 @@
 
 mod accuracy;
 mod app;
+mod decoding;
 mod x11;
 mod xdnd;
 
@@ -66,6 +67,27 @@ impl Session {
     fn view_centre(&self, state: &Value) -> (f64, f64) {
         let (x0, y0, x1, y1) = self.view(state);
         ((x0 + x1) as f64 / 2.0, (y0 + y1) as f64 / 2.0)
+    }
+
+    /// Clicks on a named widget's middle, as a hand does: egui decides from the previous
+    /// frame's hover whether a press is its own, so the press waits until a frame has seen the
+    /// pointer.
+    fn click(&mut self, state: &Value, name: &str) {
+        let [x0, y0, x1, y1] = widget(state, name);
+        let (x, y) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+        // Two moves: the pointer may already rest on the spot, and then no motion would arrive.
+        self.x.move_to(self.screen((x - 2.0, y)));
+        std::thread::sleep(std::time::Duration::from_millis(30));
+        let frames = num(&self.state(), "/frames_presented");
+        self.x.move_to(self.screen((x, y)));
+        self.viewer
+            .wait_for("a frame after the pointer moved", |s| {
+                num(s, "/frames_presented") > frames
+            });
+        std::thread::sleep(std::time::Duration::from_millis(100));
+        self.x.press(1);
+        std::thread::sleep(std::time::Duration::from_millis(40));
+        self.x.release(1);
     }
 
     fn capture(&self, name: &str) -> Shot {

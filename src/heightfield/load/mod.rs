@@ -119,6 +119,28 @@ impl std::str::FromStr for NoDataValue {
     }
 }
 
+/// The name [`ColourEncoding::from_str`](std::str::FromStr) reads.
+impl std::fmt::Display for ColourEncoding {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            ColourEncoding::Luminance => "luminance",
+            ColourEncoding::Mapbox => "mapbox",
+            ColourEncoding::Terrarium => "terrarium",
+        })
+    }
+}
+
+/// What [`NoDataValue::from_str`](std::str::FromStr) reads.
+impl std::fmt::Display for NoDataValue {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            NoDataValue::Auto => f.write_str("auto"),
+            NoDataValue::Off => f.write_str("none"),
+            NoDataValue::Value(v) => write!(f, "{v}"),
+        }
+    }
+}
+
 /// How to read a height map.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LoadOptions {

@@ -1,0 +1,81 @@
+//! How the viewer decodes height map images: the colour encoding of RGB images and the value
+//! that means no data. Chosen on the command line (`--rgb`, `--nodata`) or in the height map
+//! panel, it applies to every image opened or dropped from then on, and the panel can read the
+//! image on screen again with it. A scene file's own `[heightmap]` keys take precedence.
+
+use super::loader::{LoadRequest, Source};
+use super::model::{Action, Model};
+use super::panels::named;
+use crate::heightfield::{ColourEncoding, NoDataValue};
+use egui::{DragValue, Ui};
+
+/// The decoding choices for height map images.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Decoding {
+    pub colour: ColourEncoding,
+    pub nodata: NoDataValue,
+}
+
+/// The choices, and a button that reads the shown image again when they differ from how it
+/// was read.
+pub fn decoding_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
+    ui.horizontal(|ui| {
+        ui.label("RGB images as");
+        for colour in [
+            ColourEncoding::Luminance,
+            ColourEncoding::Mapbox,
+            ColourEncoding::Terrarium,
+        ] {
+            let name = match colour {
+                ColourEncoding::Luminance => "decode_luminance",
+                ColourEncoding::Mapbox => "decode_mapbox",
+                ColourEncoding::Terrarium => "decode_terrarium",
+            };
+            let label = colour.to_string();
+            let radio = ui.radio_value(&mut model.decoding.colour, colour, label);
+            named(model, name, radio);
+        }
+    });
+    ui.horizontal(|ui| nodata_ui(ui, model));
+    let image = matches!(model.shown.source, Source::File(_)) && !model.shown.source.is_scene();
+    if image && model.decoding != model.shown.decoding {
+        let again = ui.button(format!("read {} again", model.shown.source.label()));
+        if named(model, "decode_again", again).clicked() {
+            actions.push(Action::Load(LoadRequest {
+                source: model.shown.source.clone(),
+                z_scale: None,
+                reframe: true,
+                from_memory: None,
+                decoding: model.decoding,
+            }));
+        }
+    }
+}
+
+/// No data: the file's own (auto), none, or a value.
+fn nodata_ui(ui: &mut Ui, model: &mut Model) {
+    ui.label("no data");
+    let nodata = &mut model.decoding.nodata;
+    let auto = ui.radio(*nodata == NoDataValue::Auto, "auto");
+    if named(model, "nodata_auto", auto).clicked() {
+        model.decoding.nodata = NoDataValue::Auto;
+    }
+    let none = ui.radio(model.decoding.nodata == NoDataValue::Off, "none");
+    if named(model, "nodata_none", none).clicked() {
+        model.decoding.nodata = NoDataValue::Off;
+    }
+    let chosen = match model.decoding.nodata {
+        NoDataValue::Value(v) => Some(v),
+        _ => None,
+    };
+    let value = ui.radio(chosen.is_some(), "value");
+    if named(model, "nodata_value", value).clicked() && chosen.is_none() {
+        // SRTM's and most DEMs' marker.
+        model.decoding.nodata = NoDataValue::Value(-32768.0);
+    }
+    if let Some(mut v) = chosen {
+        if ui.add(DragValue::new(&mut v).speed(1.0)).changed() && v.is_finite() {
+            model.decoding.nodata = NoDataValue::Value(v);
+        }
+    }
+}
