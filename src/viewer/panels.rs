@@ -172,7 +172,7 @@ fn source_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     ui.horizontal(|ui| {
         let field = ui.add(
             egui::TextEdit::singleline(&mut model.path_text)
-                .hint_text("path to a PNG, PGM or .toml")
+                .hint_text("path to a PNG, PGM, TIFF or .toml")
                 .desired_width(190.0),
         );
         let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));

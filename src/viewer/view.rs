@@ -341,7 +341,7 @@ fn drop_hint_ui(ui: &Ui, rect: Rect) {
         egui::StrokeKind::Inside,
     );
     let lines = [
-        "Drop a height map (8/16-bit grayscale PNG or PGM)",
+        "Drop a height map (PNG, PGM or TIFF)",
         "or a scene (.toml) to open it",
     ];
     for (k, line) in lines.into_iter().enumerate() {
@@ -410,7 +410,7 @@ const HELP: &[(&str, &str)] = &[
     ),
     (
         "Drop a file",
-        "open a height map (PNG/PGM) or a scene (.toml)",
+        "open a height map (PNG, PGM, TIFF) or a scene (.toml)",
     ),
     ("R", "reset the view"),
     ("S", "save a screenshot (PNG)"),
