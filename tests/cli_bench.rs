@@ -71,6 +71,30 @@ fn speed_at_sizes_reports_every_method_with_its_memory_and_growth() {
             "{method}: {growth}"
         );
     }
+    // Queries per primary ray at each size: each method asks its own kind of span query.
+    let queries = growth
+        .split_once("queries per primary ray: block / run / cell / triangle")
+        .expect("a table of queries")
+        .1;
+    for (method, block, run) in [
+        ("mipmap", true, false),
+        ("runs", false, true),
+        ("dda", false, false),
+    ] {
+        let line = queries
+            .lines()
+            .find(|l| l.starts_with(&format!("| {method} |")))
+            .unwrap_or_else(|| panic!("{method}: {queries}"));
+        for size in line.split('|').skip(3).filter(|c| !c.trim().is_empty()) {
+            let per_ray: Vec<f64> = size
+                .split('/')
+                .map(|q| q.trim().parse().expect("a number"))
+                .collect();
+            assert_eq!(per_ray.len(), 4, "{line}");
+            assert_eq!((per_ray[0] > 0.0, per_ray[1] > 0.0), (block, run), "{line}");
+            assert!(per_ray[2] > 0.0 && per_ray[3] > 0.0, "{line}");
+        }
+    }
 }
 
 #[test]

@@ -2,7 +2,7 @@
 //! and thread count, measured in one run so the rows compare as ratios.
 
 use crate::render::{Culling, Frame, FrameStats, Renderer, Scene, Shader};
-use crate::traverse::{Arith, Method};
+use crate::traverse::{Arith, Counters, Method};
 use crate::Terrain;
 use std::time::{Duration, Instant};
 
@@ -14,6 +14,8 @@ pub struct ThroughputRow {
     pub threads: usize,
     pub primary_rays: u64,
     pub shadow_rays: u64,
+    /// The queries of the primary rays (frame without shadows).
+    pub primary_queries: Counters,
     /// The frame without shadows.
     pub primary_time: Duration,
     /// The frame with shadows.
@@ -91,6 +93,7 @@ pub fn throughput(
                     threads: count,
                     primary_rays: plain.primary_rays,
                     shadow_rays: shadowed.shadow_rays,
+                    primary_queries: plain.primary,
                     primary_time,
                     total_time,
                 });

@@ -6,7 +6,7 @@ use heightray::bench::{sized_scene, throughput, ThroughputRow, SEED};
 use heightray::heightfield::BUILTINS;
 use heightray::render::{Scene, SceneFile};
 use heightray::traverse::prepare;
-use heightray::traverse::Arith;
+use heightray::traverse::{Arith, HitMiss};
 use heightray::Terrain;
 use indicatif::ProgressBar;
 use indicatif::ProgressStyle;
@@ -103,39 +103,51 @@ fn print_table(label: &str, terrain: &Terrain, rows: &[ThroughputRow]) {
     }
 }
 
-/// Time per primary ray at each size against the smallest, per method (first arithmetic, one
-/// thread), beside the growth of log N.
+/// How each method's time per primary ray grows with the terrain size (first arithmetic, one
+/// thread) beside the growth of log N, and the queries per primary ray it grows with.
 fn print_growth(measured: &[(String, Terrain, Vec<ThroughputRow>)]) {
     let first = &measured[0];
     let side = |t: &Terrain| t.field().width() as f64;
-    println!("\ngrowth of time per primary ray with the terrain size (x the smallest)");
     let mut header = "| method | arith |".to_string();
     for (_, terrain, _) in measured {
         header += &format!(" {0}x{0} |", side(terrain));
     }
-    println!("{header}");
-    println!("|---|---|{}", "---:|".repeat(measured.len()));
-    for base in first.2.iter().filter(|r| r.threads == 1) {
-        let mut line = format!("| {} | {} |", base.method, base.arith);
-        for (_, _, rows) in measured {
-            let row = rows.iter().find(|r| {
-                r.method == base.method && r.arith == base.arith && r.threads == base.threads
-            });
-            line += &match row {
-                Some(r) => format!(
-                    " {:.2} |",
-                    base.primary_per_second() / r.primary_per_second()
-                ),
-                None => " - |".into(),
-            };
+    header += &format!("\n|---|---|{}", "---:|".repeat(measured.len()));
+    // One line per method: `cell` of its row at each size.
+    let lines = |cell: &dyn Fn(&ThroughputRow, &ThroughputRow) -> String| {
+        for base in first.2.iter().filter(|r| r.threads == 1) {
+            let mut line = format!("| {} | {} |", base.method, base.arith);
+            for (_, _, rows) in measured {
+                let row = rows.iter().find(|r| {
+                    r.method == base.method && r.arith == base.arith && r.threads == base.threads
+                });
+                line += &row.map_or(" - |".into(), |r| format!(" {} |", cell(base, r)));
+            }
+            println!("{line}");
         }
-        println!("{line}");
-    }
+    };
+
+    println!("\ngrowth of time per primary ray with the terrain size (x the smallest)\n{header}");
+    lines(&|base, r| format!("{:.2}", base.primary_per_second() / r.primary_per_second()));
     let mut line = "| log2 N | - |".to_string();
     for (_, terrain, _) in measured {
         line += &format!(" {:.2} |", side(terrain).log2() / side(&first.1).log2());
     }
     println!("{line}");
+
+    // What the time grows with: the finer terrain has more near misses per ray.
+    println!("\nqueries per primary ray: block / run / cell / triangle\n{header}");
+    lines(&|_, r| {
+        let per_ray = |queries: HitMiss| queries.total() as f64 / r.primary_rays as f64;
+        let q = &r.primary_queries;
+        format!(
+            "{:.1} / {:.1} / {:.1} / {:.1}",
+            per_ray(q.block),
+            per_ray(q.run),
+            per_ray(q.cell),
+            per_ray(q.triangle)
+        )
+    });
 }
 
 /// The given scene files, or the built-in scenes.
