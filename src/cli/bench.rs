@@ -75,8 +75,8 @@ fn print_table(label: &str, terrain: &Terrain, rows: &[ThroughputRow]) {
     let field = terrain.field();
     let samples = (field.width() * field.height()) as f64;
     println!("\n{label}: {}x{} samples", field.width(), field.height());
-    println!("| method | arith | threads | build ms | bytes/sample | primary Mrays/s | shadow Mrays/s | time x f64 | 2 threads x 1 |");
-    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|");
+    println!("| method | arith | threads | build ms | bytes/sample | primary Mrays/s | shadow Mrays/s | frame with shadows ms | time x f64 | 2 threads x 1 |");
+    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for row in rows {
         let same = |arith, threads| {
             rows.iter()
@@ -89,7 +89,7 @@ fn print_table(label: &str, terrain: &Terrain, rows: &[ThroughputRow]) {
             .map(|r| row.primary_per_second() / r.primary_per_second());
         let (build, bytes) = prepare(terrain, row.method);
         println!(
-            "| {} | {} | {} | {:.1} | {:.2} | {:.3} | {:.3} | {} | {} |",
+            "| {} | {} | {} | {:.1} | {:.2} | {:.3} | {:.3} | {:.1} | {} | {} |",
             row.method,
             row.arith,
             row.threads,
@@ -97,6 +97,7 @@ fn print_table(label: &str, terrain: &Terrain, rows: &[ThroughputRow]) {
             bytes as f64 / samples,
             row.primary_per_second() / 1e6,
             row.shadow_per_second() / 1e6,
+            row.total_time.as_secs_f64() * 1e3,
             versus_f64.map_or("-".into(), |r| format!("{r:.2}")),
             versus_one.map_or("-".into(), |r| format!("{r:.2}")),
         );
