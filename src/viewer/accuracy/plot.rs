@@ -83,17 +83,58 @@ pub fn plot_ui(ui: &mut Ui, measurement: &Measurement) {
         Align2::CENTER_BOTTOM,
         "time per ray (log) against pixels ≠ exact (log)".into(),
     );
+    // Points that coincide (f64, exact and the fine rationals often do) share one label.
+    let mut marks: Vec<(Pos2, String)> = Vec::new();
     for (name, x, y) in &points {
         let p = at(*x, *y);
         painter.circle_filled(p, 3.5, DIFFERING);
-        painter.text(
-            p + Vec2::new(5.0, -2.0),
-            Align2::LEFT_BOTTOM,
-            name,
-            font.clone(),
-            Color32::WHITE,
-        );
+        match marks.iter_mut().find(|(q, _)| q.distance(p) < 4.0) {
+            Some((_, names)) => *names += &format!(", {name}"),
+            None => marks.push((p, name.clone())),
+        }
     }
+    let galleys: Vec<_> = marks
+        .iter()
+        .map(|(_, names)| painter.layout_no_wrap(names.clone(), font.clone(), Color32::WHITE))
+        .collect();
+    let anchors: Vec<(Pos2, Vec2)> = marks
+        .iter()
+        .zip(&galleys)
+        .map(|((p, _), g)| (*p, g.size()))
+        .collect();
+    for (spot, galley) in place_labels(&anchors, frame).into_iter().zip(galleys) {
+        if let Some(spot) = spot {
+            painter.galley(spot, galley, Color32::WHITE);
+        }
+    }
+}
+
+/// Where to put each label of `size` next to its point: the first spot around it that stays
+/// inside `bounds` and clear of the labels placed before it (`None`: no room, the table has
+/// it anyway).
+fn place_labels(anchors: &[(Pos2, Vec2)], bounds: Rect) -> Vec<Option<Pos2>> {
+    let mut placed: Vec<Rect> = Vec::new();
+    anchors
+        .iter()
+        .map(|&(p, size)| {
+            let (right, left) = (5.0, -5.0 - size.x);
+            let (above, below) = (-2.0 - size.y, 2.0);
+            let offsets = [
+                Vec2::new(right, above),
+                Vec2::new(right, below),
+                Vec2::new(left, above),
+                Vec2::new(left, below),
+                Vec2::new(right, above - size.y),
+                Vec2::new(right, below + size.y),
+            ];
+            let spot = offsets
+                .iter()
+                .map(|&offset| Rect::from_min_size(p + offset, size))
+                .find(|r| bounds.contains_rect(*r) && placed.iter().all(|q| !q.intersects(*r)))?;
+            placed.push(spot);
+            Some(spot.min)
+        })
+        .collect()
 }
 
 /// The range of `values` with a margin, never empty.
@@ -103,4 +144,36 @@ fn span(values: impl Iterator<Item = f64>) -> (f64, f64) {
     });
     let margin = ((hi - lo) * 0.08).max(0.1);
     (lo - margin, hi + margin)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn labels_do_not_overlap_and_stay_inside() {
+        let bounds = Rect::from_min_max(Pos2::ZERO, Pos2::new(200.0, 100.0));
+        let size = Vec2::new(40.0, 10.0);
+        // Three points close together, one near the right edge.
+        let anchors = [
+            (Pos2::new(50.0, 50.0), size),
+            (Pos2::new(56.0, 52.0), size),
+            (Pos2::new(60.0, 48.0), size),
+            (Pos2::new(195.0, 50.0), size),
+        ];
+        let spots = place_labels(&anchors, bounds);
+        let rects: Vec<Rect> = spots
+            .iter()
+            .zip(&anchors)
+            .map(|(spot, (_, size))| Rect::from_min_size(spot.expect("room for each"), *size))
+            .collect();
+        for (k, a) in rects.iter().enumerate() {
+            assert!(bounds.contains_rect(*a), "{a:?}");
+            for b in &rects[k + 1..] {
+                assert!(!a.intersects(*b), "{a:?} and {b:?}");
+            }
+        }
+        // The one at the right edge goes to the left of its point.
+        assert!(rects[3].max.x <= 195.0);
+    }
 }
