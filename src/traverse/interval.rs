@@ -67,13 +67,14 @@ impl Interval {
 }
 
 /// `a + b` rounded down and up: `s + e` is the exact sum (TwoSum).
+#[inline]
 fn sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
     let bb = s - a;
     let e = (a - (s - bb)) + (b - bb);
     (
-        if e < 0.0 { s.next_down() } else { s },
-        if e > 0.0 { s.next_up() } else { s },
+        if e < 0.0 { below(s) } else { s },
+        if e > 0.0 { above(s) } else { s },
     )
 }
 
@@ -196,8 +197,8 @@ fn product(a: f64, b: f64) -> (f64, f64) {
     }
     let e = product_error(a, b, p);
     (
-        if e < 0.0 { p.next_down() } else { p },
-        if e > 0.0 { p.next_up() } else { p },
+        if e < 0.0 { below(p) } else { p },
+        if e > 0.0 { above(p) } else { p },
     )
 }
 
@@ -219,8 +220,8 @@ fn quotient(a: f64, b: f64) -> (f64, f64) {
     let above = (r > 0.0) == (b > 0.0) && r != 0.0; // exact quotient above q
     let below = r != 0.0 && !above;
     (
-        if below { q.next_down() } else { q },
-        if above { q.next_up() } else { q },
+        if below { self::below(q) } else { q },
+        if above { self::above(q) } else { q },
     )
 }
 

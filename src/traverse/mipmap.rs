@@ -66,11 +66,30 @@ struct Part<'a, S> {
 }
 
 /// Walks the path block by block, handing the cells of blocks that may be hit to `search`.
-pub fn walk<S: Scalar>(f: &Frame<S>, search: &mut Search<'_, S>) -> ControlFlow<()> {
+/// `near_terrain`: the path starts next to the surface (on it, or just before a cell an `f64`
+/// walk found may be hit), where every block around the start would fail its test: the walk
+/// starts on single cells and climbs from there.
+pub fn walk<S: Scalar>(
+    f: &Frame<S>,
+    search: &mut Search<'_, S>,
+    near_terrain: bool,
+) -> ControlFlow<()> {
     if !has_blocks(f) {
         return runs::walk(f, &mut |span| search.span(span));
     }
-    descend(f, search.terrain.mipmap().top(), search)
+    let top = search.terrain.mipmap().top();
+    descend(
+        f,
+        top,
+        if near_terrain { 0 } else { first_level(top) },
+        search,
+    )
+}
+
+/// Blocks an eighth of the grid wide: the two levels above them seldom pass a test (the ray
+/// is inside the box, so the top block always fails), and climbing is cheap.
+fn first_level(top: u32) -> u32 {
+    top.saturating_sub(3)
 }
 
 /// Whether the path crosses blocks: a point or a path along a row has nothing to skip over
@@ -82,8 +101,13 @@ fn has_blocks<S: Scalar>(f: &Frame<S>) -> bool {
     !(is_point(f) || f.dv.is_zero() || beyond)
 }
 
-/// The block walk, from the top level down to cells and up again.
-fn descend<S: Scalar>(f: &Frame<S>, top: u32, follower: &mut impl Follower<S>) -> ControlFlow<()> {
+/// The block walk from level `k`, down to cells and up again (at most to `top`).
+fn descend<S: Scalar>(
+    f: &Frame<S>,
+    top: u32,
+    mut k: u32,
+    follower: &mut impl Follower<S>,
+) -> ControlFlow<()> {
     let mut at = Point {
         t: f.t0.clone(),
         u: f.us.clone(),
@@ -91,9 +115,6 @@ fn descend<S: Scalar>(f: &Frame<S>, top: u32, follower: &mut impl Follower<S>) -
         on_u: false,
         on_v: false,
     };
-    // Blocks an eighth of the grid wide: the two levels above them seldom pass a test (the
-    // ray is inside the box, so the top block always fails), and climbing is cheap.
-    let mut k = top.saturating_sub(3);
     let mut first_part = true;
     loop {
         follower.stop_before(&at.t)?;
@@ -237,7 +258,8 @@ pub fn clear_way(
         counters,
         until: f.t0,
     };
-    match descend(f, terrain.mipmap().top(), &mut clearing) {
+    let top = terrain.mipmap().top();
+    match descend(f, top, first_level(top), &mut clearing) {
         ControlFlow::Continue(()) => Cleared::All,
         ControlFlow::Break(()) => Cleared::Until(clearing.until),
     }
