@@ -78,8 +78,8 @@ fn sum(a: f64, b: f64) -> (f64, f64) {
     )
 }
 
-/// Products below this may lose bits of their FMA residual to underflow, and below it a step
-/// of `|x| * 2^-52` might not be exact.
+/// Products below this may lose bits of their FMA residual to underflow, and below it the
+/// relative step of [`below`] could lose accuracy to underflow.
 const TINY: f64 = 1e-280;
 
 /// Operands above this could overflow when split for [`product_error`].
