@@ -68,11 +68,16 @@ impl<S: Scalar> RaySpace<S> {
     /// images are `q`. Hits at `t >= 0` only.
     pub fn intersect(&self, p: [&[S; 3]; 3], q: [&[S; 3]; 3]) -> Option<TriangleHit<S>> {
         let [a, b, c] = q;
-        // Compute edge functions, signs exact.
+        // Compute edge functions, signs exact. Two of opposite signs already tell a miss (the
+        // comparisons are the ones the full test makes first, so none more is asked of an
+        // arithmetic that may not settle it).
+        let zero = S::zero();
         let u = S::det2(&c[0], &b[1], &c[1], &b[0]);
         let v = S::det2(&a[0], &c[1], &a[1], &c[0]);
+        if (u < zero && v > zero) || (u > zero && v < zero) {
+            return None;
+        }
         let w = S::det2(&b[0], &a[1], &b[1], &a[0]);
-        let zero = S::zero();
         let any_negative = u < zero || v < zero || w < zero;
         let any_positive = u > zero || v > zero || w > zero;
         if any_negative && any_positive {

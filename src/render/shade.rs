@@ -42,6 +42,8 @@ pub struct Sample {
     pub shadow: Shadow,
     pub primary: Counters,
     pub secondary: Counters,
+    /// Exact mode traced the pixel again in rationals: intervals left a decision unsettled.
+    pub redone: bool,
 }
 
 /// Which shadow rays to leave out where they cannot change the pixel (all on by default;
@@ -77,7 +79,10 @@ impl Shader<'_> {
     pub fn sample_exact(&self, ray: &Ray) -> Sample {
         match settled(|| self.sample::<Interval>(ray)) {
             (sample, true) => sample,
-            (_, false) => self.sample::<Exact>(ray),
+            (_, false) => Sample {
+                redone: true,
+                ..self.sample::<Exact>(ray)
+            },
         }
     }
 
@@ -93,6 +98,7 @@ impl Shader<'_> {
                 shadow: Shadow::NotAsked,
                 primary: primary.counters,
                 secondary: Counters::default(),
+                redone: false,
             };
         };
         let point = found.point(&o, &d);
@@ -118,6 +124,7 @@ impl Shader<'_> {
             shadow,
             primary: primary.counters,
             secondary,
+            redone: false,
         }
     }
 

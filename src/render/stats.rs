@@ -48,6 +48,8 @@ pub struct FrameStats {
     pub skipped: Skipped,
     pub primary: Counters,
     pub shadow: Counters,
+    /// Pixels exact mode traced again in rationals (see [`Sample::redone`]).
+    pub redone: u64,
 }
 
 impl FrameStats {
@@ -55,6 +57,7 @@ impl FrameStats {
     pub fn add(&mut self, sample: &Sample) {
         self.primary_rays += 1;
         self.primary_hits += u64::from(sample.hit);
+        self.redone += u64::from(sample.redone);
         self.primary += sample.primary;
         self.shadow += sample.secondary;
         match sample.shadow {
@@ -92,6 +95,7 @@ impl FrameStats {
             "queries": {"bbox": q.bbox, "block": q.block, "run": q.run, "cell": q.cell, "triangle": q.triangle},
             "primary_queries": self.primary,
             "shadow_queries": self.shadow,
+            "exact_redone": self.redone,
         })
     }
 
@@ -150,5 +154,6 @@ impl AddAssign for FrameStats {
         self.skipped.above_terrain += rhs.skipped.above_terrain;
         self.primary += rhs.primary;
         self.shadow += rhs.shadow;
+        self.redone += rhs.redone;
     }
 }

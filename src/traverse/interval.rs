@@ -1,9 +1,12 @@
 //! The fast path of exact arithmetic: `f64` intervals that always contain the exact value.
 //!
-//! Every operation rounds its lower end down and its upper end up, exactly, using error-free
-//! transformations (TwoSum, and the FMA residual of products and quotients). A comparison
-//! whose answer the intervals cannot settle raises a per-thread flag; exact mode then answers
-//! the ray again with [`super::Exact`] rationals. Every decision made without the flag is the
+//! Every operation rounds its lower end down and its upper end up. Operations on points (exact
+//! values) do it exactly, with error-free transformations (TwoSum, and the residual of products
+//! and quotients), so that an exact result stays a point and ties between exact values settle.
+//! Ends of wider intervals take the cheaper way: sums still by TwoSum, products and quotients
+//! one float outwards unless their operands show them exact (the residual was most of exact
+//! mode's time). A comparison whose answer the intervals cannot settle raises a per-thread
+//! flag; exact mode then answers the ray again with [`super::Exact`] rationals. Every decision made without the flag is the
 //! exact decision, so a ray traced without raising it gets the exact answer (and counters) at
 //! interval speed.
 
@@ -64,21 +67,103 @@ impl Interval {
 }
 
 /// `a + b` rounded down and up: `s + e` is the exact sum (TwoSum).
+#[inline]
 fn sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
     let bb = s - a;
     let e = (a - (s - bb)) + (b - bb);
     (
-        if e < 0.0 { s.next_down() } else { s },
-        if e > 0.0 { s.next_up() } else { s },
+        if e < 0.0 { below(s) } else { s },
+        if e > 0.0 { above(s) } else { s },
     )
 }
 
-/// Products below this may lose bits of their FMA residual to underflow.
+/// Products below this may lose bits of their FMA residual to underflow, and below it the
+/// relative step of [`below`] could lose accuracy to underflow.
 const TINY: f64 = 1e-280;
 
 /// Operands above this could overflow when split for [`product_error`].
 const HUGE: f64 = 1e290;
+
+/// A step of `|x| * STEP` moves any normal `x` at least to its neighbour float and no further:
+/// a little over half an ulp relative to `x`, never a tie to round back onto `x` (see [`below`]).
+const STEP: f64 = f64::EPSILON / 2.0 * (1.0 + 1.0 / 1024.0);
+
+/// Below the exact value `y` of one operation whose result `x` was rounded to nearest: the
+/// float just below `x`.
+///
+/// Why it holds without knowing the rounding error: `|y - x|` is at most half the spacing of
+/// the floats on `y`'s side of `x`, and `x - |x| * STEP` lies more than half a spacing and less
+/// than one and a half below `x`, so it rounds to `x`'s lower neighbour (the product `|x| *
+/// STEP` is accurate: `x` is far from underflow). Ends of intervals that are not points need
+/// no more than this; the exact residual is only worth its cost for keeping exact results
+/// exact, which [`product_below`] and [`quotient_end`] do where the operands show it.
+#[inline]
+fn below(x: f64) -> f64 {
+    if x.abs() >= TINY {
+        x - x.abs() * STEP
+    } else {
+        x.next_down()
+    }
+}
+
+/// Above the exact value of one operation whose result `x` was rounded to nearest: the float
+/// just above `x` (see [`below`]).
+#[inline]
+fn above(x: f64) -> f64 {
+    if x.abs() >= TINY {
+        x + x.abs() * STEP
+    } else {
+        x.next_up()
+    }
+}
+
+/// Whether `x * y` is exact whatever the exponents (barring underflow): one factor is a power of
+/// two or zero, or both have at most 26 significant bits. Grid coordinates, halves and
+/// quarters of hand-made rays are such numbers, and their products must stay exact for ties
+/// between them to settle.
+#[inline]
+fn short_product(x: f64, y: f64) -> bool {
+    const FRACTION: u64 = (1 << 52) - 1;
+    const LOW: u64 = (1 << 27) - 1;
+    let (fx, fy) = (x.to_bits() & FRACTION, y.to_bits() & FRACTION);
+    fx == 0 || fy == 0 || (fx | fy) & LOW == 0
+}
+
+/// `x * y` rounded down: exact where [`short_product`] says so, else one step below.
+#[inline]
+fn product_below(x: f64, y: f64) -> f64 {
+    let p = x * y;
+    if x == 0.0 || y == 0.0 || (short_product(x, y) && p.abs() >= TINY) {
+        p
+    } else {
+        below(p)
+    }
+}
+
+/// `x * y` rounded up, like [`product_below`].
+#[inline]
+fn product_above(x: f64, y: f64) -> f64 {
+    let p = x * y;
+    if x == 0.0 || y == 0.0 || (short_product(x, y) && p.abs() >= TINY) {
+        p
+    } else {
+        above(p)
+    }
+}
+
+/// `x / y` moved outwards by `outward` unless exact by its operands alone: a zero dividend
+/// (a hit at `t = 0`) or a power-of-two divisor.
+#[inline]
+fn quotient_end(x: f64, y: f64, outward: fn(f64) -> f64) -> f64 {
+    const FRACTION: u64 = (1 << 52) - 1;
+    let q = x / y;
+    if x == 0.0 || (y.to_bits() & FRACTION == 0 && q.abs() >= TINY) {
+        q
+    } else {
+        outward(q)
+    }
+}
 
 /// The rounding error `a*b - p` of the product `p = a*b`, exactly: one fused multiply-add
 /// where the target has it, else Dekker's splitting (a library `fma` call is several times
@@ -98,25 +183,35 @@ fn product_error(a: f64, b: f64, p: f64) -> f64 {
     ((ah * bh - p) + ah * bl + al * bh) + al * bl
 }
 
-/// `a * b` rounded down and up: `p + e` is the exact product.
+/// `a * b` rounded down and up: `p + e` is the exact product, so an exact product stays a
+/// point.
 #[inline]
 fn product(a: f64, b: f64) -> (f64, f64) {
     let p = a * b;
-    if p != 0.0 && p.abs() < TINY {
+    if p.abs() < TINY {
+        if a == 0.0 || b == 0.0 {
+            return (0.0, 0.0);
+        }
+        // (Underflow: even a zero `p` is not exact.)
         return (p.next_down().min(0.0), p.next_up().max(0.0));
     }
     let e = product_error(a, b, p);
     (
-        if e < 0.0 { p.next_down() } else { p },
-        if e > 0.0 { p.next_up() } else { p },
+        if e < 0.0 { below(p) } else { p },
+        if e > 0.0 { above(p) } else { p },
     )
 }
 
 /// `a / b` (b non-zero) rounded down and up: the residual `a - q*b` gives the side of `q`.
 fn quotient(a: f64, b: f64) -> (f64, f64) {
     let q = a / b;
-    if q != 0.0 && q.abs() < TINY {
-        return (q.next_down().min(0.0), q.next_up().max(0.0));
+    if a == 0.0 {
+        return (q, q);
+    }
+    // The residual is a multiple of the dividend's ulp times 2^-104 or so: near underflow it
+    // is not a float. `q` is still rounded to nearest, so its neighbours enclose the quotient.
+    if a.abs() < TINY || q.abs() < TINY {
+        return (q.next_down(), q.next_up());
     }
     // `a - q*b`: `a - p` is exact (Sterbenz: `p` is within a factor 2 of `a`), so the
     // difference with the product's error has the residual's sign.
@@ -125,14 +220,19 @@ fn quotient(a: f64, b: f64) -> (f64, f64) {
     let above = (r > 0.0) == (b > 0.0) && r != 0.0; // exact quotient above q
     let below = r != 0.0 && !above;
     (
-        if below { q.next_down() } else { q },
-        if above { q.next_up() } else { q },
+        if below { self::below(q) } else { q },
+        if above { self::above(q) } else { q },
     )
 }
 
 impl Add for Interval {
     type Output = Interval;
     fn add(self, rhs: Interval) -> Interval {
+        if self.is_point() && rhs.is_point() {
+            let (lo, hi) = sum(self.lo, rhs.lo);
+            return Interval::checked(lo, hi);
+        }
+        // (TwoSum is cheap, and keeps ends that are exact sums exact.)
         Interval::checked(sum(self.lo, rhs.lo).0, sum(self.hi, rhs.hi).1)
     }
 }
@@ -164,7 +264,7 @@ impl Mul for Interval {
         // Where the signs are known, two end products bound it (the usual case).
         let (a, b) = (self, rhs);
         let ends = |(x, y): (f64, f64), (z, w): (f64, f64)| {
-            Interval::checked(product(x, y).0, product(z, w).1)
+            Interval::checked(product_below(x, y), product_above(z, w))
         };
         match (a.lo >= 0.0, a.hi <= 0.0, b.lo >= 0.0, b.hi <= 0.0) {
             (true, _, true, _) => return ends((a.lo, b.lo), (a.hi, b.hi)),
@@ -173,14 +273,15 @@ impl Mul for Interval {
             (_, true, _, true) => return ends((a.hi, b.hi), (a.lo, b.lo)),
             _ => {}
         }
-        let ends = [
-            product(self.lo, rhs.lo),
-            product(self.lo, rhs.hi),
-            product(self.hi, rhs.lo),
-            product(self.hi, rhs.hi),
-        ];
-        let lo = ends.iter().map(|e| e.0).fold(f64::INFINITY, f64::min);
-        let hi = ends.iter().map(|e| e.1).fold(f64::NEG_INFINITY, f64::max);
+        let pairs = [(a.lo, b.lo), (a.lo, b.hi), (a.hi, b.lo), (a.hi, b.hi)];
+        let lo = pairs
+            .iter()
+            .map(|&(x, y)| product_below(x, y))
+            .fold(f64::INFINITY, f64::min);
+        let hi = pairs
+            .iter()
+            .map(|&(x, y)| product_above(x, y))
+            .fold(f64::NEG_INFINITY, f64::max);
         Interval::checked(lo, hi)
     }
 }
@@ -192,14 +293,18 @@ impl Div for Interval {
             unsettled();
             return Interval::EVERYTHING;
         }
-        let ends = [
-            quotient(self.lo, rhs.lo),
-            quotient(self.lo, rhs.hi),
-            quotient(self.hi, rhs.lo),
-            quotient(self.hi, rhs.hi),
-        ];
-        let lo = ends.iter().map(|e| e.0).fold(f64::INFINITY, f64::min);
-        let hi = ends.iter().map(|e| e.1).fold(f64::NEG_INFINITY, f64::max);
+        if self.is_point() && rhs.is_point() {
+            let (lo, hi) = quotient(self.lo, rhs.lo);
+            return Interval::checked(lo, hi);
+        }
+        // The divisor has one sign: `a / b` falls with `b` where `a` is positive.
+        let (a, b) = if rhs.lo > 0.0 {
+            (self, rhs)
+        } else {
+            (-self, -rhs)
+        };
+        let lo = quotient_end(a.lo, if a.lo >= 0.0 { b.hi } else { b.lo }, below);
+        let hi = quotient_end(a.hi, if a.hi >= 0.0 { b.lo } else { b.hi }, above);
         Interval::checked(lo, hi)
     }
 }
@@ -303,6 +408,158 @@ impl Scalar for Interval {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::traverse::scalar::exact_from_f64;
+    use num_rational::BigRational;
+    use proptest::prelude::*;
+    use proptest::test_runner::RngSeed;
+
+    /// Inputs that stress the end rounding: ties and short significands (grid coordinates,
+    /// halves, powers of two), neighbours of each other, tiny, subnormal and huge values, and
+    /// arbitrary ones.
+    fn value() -> impl Strategy<Value = f64> {
+        let special = prop::sample::select(vec![
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            2.0,
+            0.5,
+            3.0,
+            -3.0,
+            0.1,
+            1.0 / 3.0,
+            1e-300,
+            -1e-300,
+            1e-290,
+            5e-324,
+            -5e-324,
+            2.2e-308,
+            1e300,
+            -1e300,
+            1e200,
+            134_217_729.0,
+            0.75,
+            1.75,
+        ]);
+        prop_oneof![
+            special,
+            (-64i32..64).prop_map(f64::from),
+            (-64i32..64).prop_map(|n| f64::from(n) / 4.0),
+            -1e6f64..1e6,
+            (-1.0f64..1.0, -300i32..300).prop_map(|(m, e)| m * 2f64.powi(e)),
+            (-1e6f64..1e6, 0u8..3).prop_map(|(x, k)| (0..k).fold(x, |x, _| x.next_up())),
+        ]
+    }
+
+    /// A point, or an interval between two values (or a value and its neighbour).
+    fn interval() -> impl Strategy<Value = Interval> {
+        prop_oneof![
+            value().prop_map(Interval::point),
+            (value(), value()).prop_map(|(a, b)| Interval {
+                lo: a.min(b),
+                hi: a.max(b)
+            }),
+            value().prop_map(|a| Interval {
+                lo: a,
+                hi: a.next_up()
+            }),
+        ]
+    }
+
+    fn exact(x: f64) -> BigRational {
+        exact_from_f64(x)
+    }
+
+    /// `r` (untouched when the operation could not be trusted) contains every `exact` value;
+    /// a point result is the one exact value.
+    fn check(r: Interval, values: &[BigRational], what: &str) -> Result<(), TestCaseError> {
+        if r.lo == f64::NEG_INFINITY && r.hi == f64::INFINITY {
+            return Ok(());
+        }
+        prop_assert!(r.lo <= r.hi, "{what}: {r:?}");
+        for v in values {
+            prop_assert!(
+                exact(r.lo) <= *v && *v <= exact(r.hi),
+                "{what}: {r:?} misses {v}"
+            );
+        }
+        if r.is_point() {
+            prop_assert!(
+                values.iter().all(|v| *v == exact(r.lo)),
+                "{what}: {r:?} not exact"
+            );
+        }
+        Ok(())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 20000, rng_seed: RngSeed::Fixed(6), ..ProptestConfig::default() })]
+
+        #[test]
+        fn operations_enclose_the_exact_results(a in interval(), b in interval()) {
+            let ends = |x: Interval| [exact(x.lo), exact(x.hi)];
+            let (ea, eb) = (ends(a), ends(b));
+            let pairs = || ea.iter().flat_map(|x| eb.iter().map(move |y| (x, y)));
+            let ((sum, product), _) = settled(|| (a + b, a * b));
+            check(sum, &pairs().map(|(x, y)| x + y).collect::<Vec<_>>(), "sum")?;
+            check(product, &pairs().map(|(x, y)| x * y).collect::<Vec<_>>(), "product")?;
+            if b.lo > 0.0 || b.hi < 0.0 {
+                let (quotient, _) = settled(|| a / b);
+                check(quotient, &pairs().map(|(x, y)| x / y).collect::<Vec<_>>(), "quotient")?;
+            }
+        }
+
+        #[test]
+        fn exact_results_of_points_stay_points(x in value(), y in value()) {
+            let (a, b) = (Interval::point(x), Interval::point(y));
+            let ((sum, product), _) = settled(|| (a + b, a * b));
+            let exact_sum = exact(x) + exact(y);
+            let exact_product = exact(x) * exact(y);
+            prop_assert_eq!(sum.is_point(), exact(x + y) == exact_sum, "{} + {}", x, y);
+            // (Near underflow exact results may be left a little wide.)
+            let fits = (x * y).is_finite() && exact(x * y) == exact_product;
+            prop_assert!(!product.is_point() || fits, "{} * {}", x, y);
+            if (x * y).abs() >= TINY || x == 0.0 || y == 0.0 {
+                prop_assert_eq!(product.is_point(), fits, "{} * {}", x, y);
+            }
+            if y != 0.0 {
+                let (quotient, _) = settled(|| a / b);
+                let fits = (x / y).is_finite() && exact(x / y) == exact(x) / exact(y);
+                prop_assert!(!quotient.is_point() || fits, "{} / {}", x, y);
+                if ((x / y).abs() >= TINY && x.abs() >= TINY) || x == 0.0 {
+                    prop_assert_eq!(quotient.is_point(), fits, "{} / {}", x, y);
+                }
+            }
+        }
+
+        /// Ends one float outwards at most: wider intervals would leave more rays unsettled.
+        #[test]
+        fn inexact_ends_move_one_float(x in -1e6f64..1e6, y in -1e6f64..1e6) {
+            let a = Interval { lo: x, hi: x.next_up() };
+            let b = Interval::point(y);
+            let (p, _) = settled(|| a * b);
+            let (lo, hi) = ((x * y).min(x.next_up() * y), (x * y).max(x.next_up() * y));
+            prop_assert!(p.lo >= lo.next_down() && p.hi <= hi.next_up(), "{:?} {}", p, y);
+        }
+    }
+
+    #[test]
+    fn short_products_and_power_of_two_quotients_stay_exact_at_the_ends() {
+        let a = Interval { lo: 1.5, hi: 2.25 };
+        let p = a * Interval::point(3.0);
+        assert_eq!((p.lo, p.hi), (4.5, 6.75));
+        let q = a / Interval::point(-4.0);
+        assert_eq!((q.lo, q.hi), (-0.5625, -0.375));
+        // A hit at `t = 0` stays exactly zero.
+        let zero = Interval::point(0.0) / Interval { lo: 2.0, hi: 3.0 };
+        assert_eq!((zero.lo, zero.hi), (0.0, 0.0));
+        // Underflow is never exact.
+        let tiny = Interval {
+            lo: 1e-200,
+            hi: 2e-200,
+        } * Interval::point(1e-200);
+        assert!(tiny.lo <= 0.0 && tiny.hi > 0.0);
+    }
 
     #[test]
     fn intervals_enclose_inexact_results_and_keep_exact_ones() {

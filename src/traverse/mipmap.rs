@@ -24,7 +24,6 @@ use super::frame::Frame;
 use super::runs;
 use super::scalar::{max, Scalar, F64_TOLERANCE};
 use super::search::Search;
-use super::Query;
 use crate::heightfield::Terrain;
 use std::ops::ControlFlow;
 
@@ -67,20 +66,30 @@ struct Part<'a, S> {
 }
 
 /// Walks the path block by block, handing the cells of blocks that may be hit to `search`.
-pub fn walk<S: Scalar>(f: &Frame<S>, search: &mut Search<'_, S>) -> ControlFlow<()> {
+/// `near_terrain`: the path starts next to the surface (on it, or just before a cell an `f64`
+/// walk found may be hit), where every block around the start would fail its test: the walk
+/// starts on single cells and climbs from there.
+pub fn walk<S: Scalar>(
+    f: &Frame<S>,
+    search: &mut Search<'_, S>,
+    near_terrain: bool,
+) -> ControlFlow<()> {
     if !has_blocks(f) {
         return runs::walk(f, &mut |span| search.span(span));
     }
     let top = search.terrain.mipmap().top();
-    // A shadow ray starts on the surface: every block around its start fails its test, so
-    // it starts among cells and climbs as it leaves. Other rays start at blocks an eighth of
-    // the grid wide: the two levels above them seldom pass a test (the ray is inside the box,
-    // so the top block always fails), and climbing is cheap.
-    let start = match search.query {
-        Query::Shadow => 0,
-        Query::FirstHit => top.saturating_sub(3),
-    };
-    descend(f, top, start, search)
+    descend(
+        f,
+        top,
+        if near_terrain { 0 } else { first_level(top) },
+        search,
+    )
+}
+
+/// Blocks an eighth of the grid wide: the two levels above them seldom pass a test (the ray
+/// is inside the box, so the top block always fails), and climbing is cheap.
+fn first_level(top: u32) -> u32 {
+    top.saturating_sub(3)
 }
 
 /// Whether the path crosses blocks: a point or a path along a row has nothing to skip over
@@ -92,11 +101,11 @@ fn has_blocks<S: Scalar>(f: &Frame<S>) -> bool {
     !(is_point(f) || f.dv.is_zero() || beyond)
 }
 
-/// The block walk, from the top level down to cells and up again.
+/// The block walk from level `k`, down to cells and up again (at most to `top`).
 fn descend<S: Scalar>(
     f: &Frame<S>,
     top: u32,
-    start: u32,
+    mut k: u32,
     follower: &mut impl Follower<S>,
 ) -> ControlFlow<()> {
     let mut at = Point {
@@ -106,7 +115,6 @@ fn descend<S: Scalar>(
         on_u: false,
         on_v: false,
     };
-    let mut k = start;
     let mut first_part = true;
     loop {
         follower.stop_before(&at.t)?;
@@ -251,7 +259,7 @@ pub fn clear_way(
         until: f.t0,
     };
     let top = terrain.mipmap().top();
-    match descend(f, top, top.saturating_sub(3), &mut clearing) {
+    match descend(f, top, first_level(top), &mut clearing) {
         ControlFlow::Continue(()) => Cleared::All,
         ControlFlow::Break(()) => Cleared::Until(clearing.until),
     }

@@ -349,11 +349,12 @@ pub fn trace_scalar<S: Scalar>(
         };
     };
     counters.bbox.record(true);
-    // (A walk asked to list its cells walks them all.)
-    let frame = match walk_options.method {
+    // (A walk asked to list its cells walks them all.) A shadow ray starts on the surface.
+    let on_surface = walk_options.query == Query::Shadow;
+    let (frame, near_terrain) = match walk_options.method {
         Method::Mipmap if !walk_options.record_cells => {
             match cleared(terrain, o, d, dir_f64, frame, &mut counters) {
-                Some(frame) => frame,
+                Some((frame, cleared)) => (frame, cleared || on_surface),
                 None => {
                     return ScalarTrace {
                         hit: None,
@@ -363,7 +364,7 @@ pub fn trace_scalar<S: Scalar>(
                 }
             }
         }
-        _ => frame,
+        _ => (frame, on_surface),
     };
     let mut search = Search {
         terrain,
@@ -381,7 +382,7 @@ pub fn trace_scalar<S: Scalar>(
     };
     if walk_options.method == Method::Mipmap {
         // Ends by itself or at the answer; both are fine here.
-        let _ = mipmap::walk(&frame, &mut search);
+        let _ = mipmap::walk(&frame, &mut search, near_terrain);
     } else {
         walk(&frame, walk_options.method, &mut |span| search.span(span));
     }
@@ -394,7 +395,8 @@ pub fn trace_scalar<S: Scalar>(
 
 /// In an arithmetic without rounding, an `f64` walk first clears the way for the mipmap (see
 /// [`mipmap::clear_way`]) where the ray is exactly an `f64` ray: the frame from just before
-/// the first cell that may be hit, or `None` when nothing can be hit at all.
+/// the first cell that may be hit, and whether the walk ran (then that cell is next to the
+/// frame's start), or `None` when nothing can be hit at all.
 fn cleared<S: Scalar>(
     terrain: &Terrain,
     o: &[S; 3],
@@ -402,15 +404,15 @@ fn cleared<S: Scalar>(
     dir_f64: [f64; 3],
     frame: Frame<S>,
     counters: &mut Counters,
-) -> Option<Frame<S>> {
+) -> Option<(Frame<S>, bool)> {
     let exactly = |v: &[S; 3]| -> Option<[f64; 3]> {
         Some([v[0].exact_f64()?, v[1].exact_f64()?, v[2].exact_f64()?])
     };
     let (Some(of), Some(df)) = (exactly(o), exactly(d)) else {
-        return Some(frame);
+        return Some((frame, false));
     };
     let Some(fast) = clip(terrain, &of, &df, dir_f64) else {
-        return Some(frame);
+        return Some((frame, false));
     };
     match mipmap::clear_way(&fast, terrain, (of[2], df[2]), counters) {
         mipmap::Cleared::All => None,
@@ -421,9 +423,9 @@ fn cleared<S: Scalar>(
             let margin = 1e-9 * (t.abs() + 1.0);
             let start = t - margin;
             if start > fast.t0 + margin {
-                Some(frame.starting_at(S::from_f64(start)))
+                Some((frame.starting_at(S::from_f64(start)), true))
             } else {
-                Some(frame)
+                Some((frame, true))
             }
         }
     }
