@@ -64,8 +64,8 @@ impl Renderer<'_> {
         }
     }
 
-    /// Renders the next pass. Returns false, leaving the frame as it was, when `cancelled`
-    /// turned true (checked before each band).
+    /// Renders the next pass. Returns false when `cancelled` turned true (asked before each
+    /// row): the pass is then partly painted, and the frame is to be dropped.
     pub fn render_pass(&self, frame: &mut Frame, cancelled: &(dyn Fn() -> bool + Sync)) -> bool {
         let pass = frame.passes_done;
         let Some(&block) = PASS_BLOCKS.get(pass) else {
@@ -79,9 +79,6 @@ impl Renderer<'_> {
             .zip(frame.stats.par_chunks_mut(rows))
             .enumerate()
             .map(|(band, (pixels, stats))| {
-                if cancelled() {
-                    return None;
-                }
                 let y0 = band as u32 * BAND;
                 let mut out = BandOut {
                     pixels,
@@ -91,17 +88,18 @@ impl Renderer<'_> {
                     height: frame.height,
                 };
                 let shader = &self.shader;
-                Some(match self.arith {
-                    Arith::F32 => self.band(&mut out, pass, block, |r| shader.sample::<f32>(r)),
-                    Arith::F64 => self.band(&mut out, pass, block, |r| shader.sample::<f64>(r)),
-                    Arith::Exact => self.band(&mut out, pass, block, |r| shader.sample_exact(r)),
-                    Arith::Rational { bound } => {
-                        with_bound(bound, || {
-                            self.band(&mut out, pass, block, |r| shader.sample::<Rational>(r))
-                        })
-                        .0
+                let o = &mut out;
+                match self.arith {
+                    Arith::F32 => self.band(o, pass, block, |r| shader.sample::<f32>(r), cancelled),
+                    Arith::F64 => self.band(o, pass, block, |r| shader.sample::<f64>(r), cancelled),
+                    Arith::Exact => {
+                        self.band(o, pass, block, |r| shader.sample_exact(r), cancelled)
                     }
-                })
+                    Arith::Rational { bound } => {
+                        let sample = |r: &Ray| shader.sample::<Rational>(r);
+                        with_bound(bound, || self.band(o, pass, block, sample, cancelled)).0
+                    }
+                }
             })
             .collect();
         if bands.iter().any(Option::is_none) {
@@ -114,17 +112,22 @@ impl Renderer<'_> {
         true
     }
 
-    /// Traces this pass's pixels of one band and paints their blocks.
+    /// Traces this pass's pixels of one band and paints their blocks; `None` if cancelled.
     fn band(
         &self,
         out: &mut BandOut<'_>,
         pass: usize,
         block: u32,
         sample: impl Fn(&Ray) -> Sample,
-    ) -> FrameStats {
+        cancelled: &(dyn Fn() -> bool + Sync),
+    ) -> Option<FrameStats> {
         let mut totals = FrameStats::default();
         let y_end = (out.y0 + BAND).min(out.height);
         for y in (out.y0..y_end).filter(|y| y % block == 0) {
+            // Asked row by row: a row of slow rays (small rational bounds) takes long enough.
+            if cancelled() {
+                return None;
+            }
             for x in (0..out.width).step_by(block as usize) {
                 let traced_before = pass > 0 && x % (2 * block) == 0 && y % (2 * block) == 0;
                 if traced_before {
@@ -135,7 +138,7 @@ impl Renderer<'_> {
                 out.paint(x, y, block, sample.rgb, PixelStats::of(&sample));
             }
         }
-        totals
+        Some(totals)
     }
 }
 

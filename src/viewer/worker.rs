@@ -2,7 +2,7 @@
 //! publishes each pass, so the window always has something to show and never waits.
 //!
 //! A job carries a generation number; submitting a new job bumps the shared counter, which the
-//! running pass sees through `render_pass`'s `cancelled` check within one band of rows. Only
+//! running pass sees through `render_pass`'s `cancelled` check within one row. Only
 //! the refining passes are cancelled: the first, coarse one is always shown.
 
 use super::mailbox::Mailbox;
