@@ -12,8 +12,21 @@ fn main() -> ExitCode {
     match cli::run(command) {
         Ok(code) => code,
         Err(error) => {
-            eprintln!("heightray: {error:#}");
+            eprintln!("heightray: {}", message(&error));
             ExitCode::FAILURE
         }
     }
+}
+
+/// The error and the causes it does not already tell: most of the library's errors name their
+/// cause in their own message, and printing the chain would say it twice.
+fn message(error: &anyhow::Error) -> String {
+    let mut message = error.to_string();
+    for cause in error.chain().skip(1) {
+        let cause = cause.to_string();
+        if !message.contains(&cause) {
+            message = format!("{message}: {cause}");
+        }
+    }
+    message
 }

@@ -357,3 +357,36 @@ fn malformed_arguments_are_errors() {
         &["z-scale"],
     );
 }
+
+/// A scene whose height map is missing, or too small: the message names the scene, the
+/// section and the file, and says the cause once (the error chain must not repeat it).
+#[test]
+fn scene_errors_say_their_cause_once() {
+    let dir = TempDir::new().unwrap();
+    let tiny = dir.path().join("tiny.pgm");
+    std::fs::write(&tiny, "P2\n1 1\n255\n7\n").unwrap();
+    let missing = dir.path().join("missing.png");
+    for (map, cause) in [(&missing, "No such file"), (&tiny, "at least 2x2")] {
+        let scene = dir.path().join("scene.toml");
+        let text = format!(
+            "[heightmap]\npath = {:?}\nz_scale = 1.0\n[camera]\neye = [0.0, 0.0, 5.0]\n\
+             target = [1.0, 1.0, 0.0]\nwidth = 8\nheight = 8\n",
+            map.to_str().unwrap()
+        );
+        std::fs::write(&scene, text).unwrap();
+        let out = dir.path().join("out.png");
+        let output = heightray(&[
+            "render",
+            scene.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(!output.status.success());
+        let message = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            message.contains("scene.toml") && message.contains("[heightmap]"),
+            "{message}"
+        );
+        assert_eq!(message.matches(cause).count(), 1, "{message}");
+    }
+}
