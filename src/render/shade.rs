@@ -150,15 +150,13 @@ impl Shader<'_> {
             return skip(ShadowSkip::NoShadowPossible);
         }
         // Lift the start above the surface by what rounding may have moved it below (zero in
-        // exact arithmetic): the surface is a height field, so up is always outside.
-        // |o + t*d| is at most max(|o|, |d|) * (1 + |t|) per component.
+        // exact arithmetic): the surface is a height field, so up is always outside. The point
+        // is `o + t*d`, each component within a few roundings of `|o| + |t*d|`; off by that
+        // across an edge, the surface may be higher by the steepest slope times it.
         let t = found.t.to_f64().abs();
-        let largest = ray
-            .origin()
-            .iter()
-            .chain(&ray.dir())
-            .fold(0.0f64, |m, c| m.max(c.abs()));
-        let lift = 64.0 * S::rounding_error(largest * (1.0 + t)) * (1.0 + self.terrain.max_slope());
+        let (o, d) = (ray.origin(), ray.dir());
+        let largest = (0..3).fold(0.0f64, |m, k| m.max(o[k].abs() + t * d[k].abs()));
+        let lift = 64.0 * S::rounding_error(largest) * (1.0 + self.terrain.max_slope());
         // On the hit triangle's plane: exact height on flat ground in every arithmetic.
         let [x, y, _] = point;
         let heights = self
