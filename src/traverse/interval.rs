@@ -97,7 +97,7 @@ const STEP: f64 = f64::EPSILON / 2.0 * (1.0 + 1.0 / 1024.0);
 /// than one and a half below `x`, so it rounds to `x`'s lower neighbour (the product `|x| *
 /// STEP` is accurate: `x` is far from underflow). Ends of intervals that are not points need
 /// no more than this; the exact residual is only worth its cost for keeping exact results
-/// exact, which [`product_below`] and [`quotient_end`] do where the operands show it.
+/// exact, which [`product_end`] and [`quotient_end`] do where the operands show it.
 #[inline]
 fn below(x: f64) -> f64 {
     if x.abs() >= TINY {
@@ -118,37 +118,29 @@ fn above(x: f64) -> f64 {
     }
 }
 
+/// The fraction bits of an `f64`.
+const FRACTION: u64 = (1 << 52) - 1;
+
 /// Whether `x * y` is exact whatever the exponents (barring underflow): one factor is a power of
 /// two or zero, or both have at most 26 significant bits. Grid coordinates, halves and
 /// quarters of hand-made rays are such numbers, and their products must stay exact for ties
 /// between them to settle.
 #[inline]
 fn short_product(x: f64, y: f64) -> bool {
-    const FRACTION: u64 = (1 << 52) - 1;
     const LOW: u64 = (1 << 27) - 1;
     let (fx, fy) = (x.to_bits() & FRACTION, y.to_bits() & FRACTION);
     fx == 0 || fy == 0 || (fx | fy) & LOW == 0
 }
 
-/// `x * y` rounded down: exact where [`short_product`] says so, else one step below.
+/// `x * y` moved outwards by `outward` ([`below`] or [`above`]) unless [`short_product`]
+/// says it is exact.
 #[inline]
-fn product_below(x: f64, y: f64) -> f64 {
+fn product_end(x: f64, y: f64, outward: fn(f64) -> f64) -> f64 {
     let p = x * y;
     if x == 0.0 || y == 0.0 || (short_product(x, y) && p.abs() >= TINY) {
         p
     } else {
-        below(p)
-    }
-}
-
-/// `x * y` rounded up, like [`product_below`].
-#[inline]
-fn product_above(x: f64, y: f64) -> f64 {
-    let p = x * y;
-    if x == 0.0 || y == 0.0 || (short_product(x, y) && p.abs() >= TINY) {
-        p
-    } else {
-        above(p)
+        outward(p)
     }
 }
 
@@ -156,7 +148,6 @@ fn product_above(x: f64, y: f64) -> f64 {
 /// (a hit at `t = 0`) or a power-of-two divisor.
 #[inline]
 fn quotient_end(x: f64, y: f64, outward: fn(f64) -> f64) -> f64 {
-    const FRACTION: u64 = (1 << 52) - 1;
     let q = x / y;
     if x == 0.0 || (y.to_bits() & FRACTION == 0 && q.abs() >= TINY) {
         q
@@ -264,7 +255,7 @@ impl Mul for Interval {
         // Where the signs are known, two end products bound it (the usual case).
         let (a, b) = (self, rhs);
         let ends = |(x, y): (f64, f64), (z, w): (f64, f64)| {
-            Interval::checked(product_below(x, y), product_above(z, w))
+            Interval::checked(product_end(x, y, below), product_end(z, w, above))
         };
         match (a.lo >= 0.0, a.hi <= 0.0, b.lo >= 0.0, b.hi <= 0.0) {
             (true, _, true, _) => return ends((a.lo, b.lo), (a.hi, b.hi)),
@@ -276,11 +267,11 @@ impl Mul for Interval {
         let pairs = [(a.lo, b.lo), (a.lo, b.hi), (a.hi, b.lo), (a.hi, b.hi)];
         let lo = pairs
             .iter()
-            .map(|&(x, y)| product_below(x, y))
+            .map(|&(x, y)| product_end(x, y, below))
             .fold(f64::INFINITY, f64::min);
         let hi = pairs
             .iter()
-            .map(|&(x, y)| product_above(x, y))
+            .map(|&(x, y)| product_end(x, y, above))
             .fold(f64::NEG_INFINITY, f64::max);
         Interval::checked(lo, hi)
     }
