@@ -6,10 +6,11 @@ mod common;
 
 use common::families::{self, ray, terrain};
 use common::random::{field_and_ray, field_and_ray_up_to};
-use common::reference::{self, q};
+use common::reference::{self, q, Q};
 use common::{assert_family, check_exact, describe, options};
-use heightray::traverse::covered_cells;
-use heightray::traverse::HitMiss;
+use heightray::traverse::{
+    covered_cells, settled, trace_scalar, Exact, HitMiss, Interval, Scalar, WalkOptions,
+};
 use heightray::{trace, Arith, Counters, Heightfield, Method, Query, Ray, Terrain, TraceOptions};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
@@ -458,6 +459,101 @@ proptest! {
                 in_shadow(&terrain, &ray, Method::Runs, arith),
                 "{} {}", arith, describe(&ray)
             );
+        }
+    }
+}
+
+/// Whether a shadow query from `origin` towards `sun`, walked by `method`, finds the surface.
+fn in_shadow_from<S: Scalar>(
+    terrain: &Terrain,
+    origin: &[S; 3],
+    sun: [f64; 3],
+    method: Method,
+) -> bool {
+    let walk = WalkOptions::new(method, Query::Shadow);
+    trace_scalar(terrain, origin, &sun.map(S::from_f64), sun, walk)
+        .hit
+        .is_some()
+}
+
+proptest! {
+    #![proptest_config(config(1_000, 0x5348_5850))]
+
+    /// Shadow rays start where camera rays hit: a point that is no `f64`, exactly (or, in
+    /// intervals, a box around it). The mipmap's `f64` walk clears their way with room for
+    /// the distance to an `f64` origin; its answers are the run walk's, which follows every
+    /// cell exactly, in rationals and in intervals.
+    #[test]
+    fn shadow_queries_from_exact_points_equal_runs(
+        ray in common::random::ray_on(&large_field()),
+        (sx, sy, sz) in (-1.0f64..1.0, -1.0f64..1.0, 0.05f64..1.0),
+    ) {
+        let terrain = Terrain::new(large_field());
+        let sun = [sx, sy, sz];
+        let Some(hit) = trace(&terrain, &ray, &options(Method::Runs, Arith::Exact)).hit else {
+            return Ok(());
+        };
+        let t = hit.t_exact.expect("exact t");
+        let (o, d) = (ray.origin(), ray.dir());
+        let at = |t: &Q| [0, 1, 2].map(|k| Exact(q(o[k]) + q(d[k]) * t.clone()));
+        // On the surface, and a third of the way there (above it, or below it for rays that
+        // start below the surface).
+        let third = t.clone() / Q::from_integer(3.into());
+        for origin in [at(&t), at(&third)] {
+            prop_assert_eq!(
+                in_shadow_from(&terrain, &origin, sun, Method::Mipmap),
+                in_shadow_from(&terrain, &origin, sun, Method::Runs),
+                "{} sun {:?}", describe(&ray), sun
+            );
+        }
+        // The renderer's way: the hit point in intervals.
+        let ((mipmap, runs), settled) = settled(|| {
+            let (o, d) = (o.map(Interval::from_f64), d.map(Interval::from_f64));
+            let walk = WalkOptions::new(Method::Runs, Query::FirstHit);
+            // (Unsettled, it may find none.)
+            let Some(found) = trace_scalar(&terrain, &o, &d, ray.dir(), walk).hit else {
+                return (false, false);
+            };
+            let point = found.point(&o, &d);
+            (
+                in_shadow_from(&terrain, &point, sun, Method::Mipmap),
+                in_shadow_from(&terrain, &point, sun, Method::Runs),
+            )
+        });
+        if settled {
+            prop_assert_eq!(mipmap, runs, "intervals: {} sun {:?}", describe(&ray), sun);
+        }
+    }
+}
+
+/// A level shadow ray whose origin is known only within 0.01 in height, across a plateau it
+/// passes 0.005 above from the middle of that range: from the bottom it hits the plateau,
+/// from the top it misses, so no answer holds for every origin in the range and intervals
+/// must not settle one. (The mipmap's `f64` walk follows the middle; without room for the
+/// origin's range it would skip the plateau and settle "lit".)
+#[test]
+fn a_shadow_ray_from_an_uncertain_origin_settles_nothing_it_cannot_tell() {
+    let plateau = |x, y| (3..=8).contains(&x) && (2..=9).contains(&y);
+    // (A tall spike off the path keeps the box's top above the plateau.)
+    let terrain = terrain(12, 12, 20, 20.0, |x, y| match (x, y) {
+        (0, 11) => 20,
+        _ if plateau(x, y) => 10,
+        _ => 0,
+    });
+    let sun = [1.0, 0.37, 0.0];
+    let [x, y] = [0.5, 3.1].map(Interval::from_f64);
+    let z = Interval::between(9.995, 10.015).expect("an interval");
+    for method in Method::ALL {
+        let (_, settled) = settled(|| in_shadow_from(&terrain, &[x, y, z], sun, method));
+        assert!(!settled, "{method}");
+    }
+    // The ends of the range, exactly.
+    for (z, shadowed) in [(9.995, true), (10.015, false)] {
+        let origin = [0.5, 3.1, z].map(Interval::from_f64);
+        for method in Method::ALL {
+            let (answer, settled) = settled(|| in_shadow_from(&terrain, &origin, sun, method));
+            assert!(settled, "{method} from z = {z}");
+            assert_eq!(answer, shadowed, "{method} from z = {z}");
         }
     }
 }

@@ -475,3 +475,37 @@ fn scene_errors_name_the_key_and_the_file() {
         "{bad_camera}"
     );
 }
+
+/// Exact frames are the same whichever method walks the grid: the mipmap's shadow rays start
+/// where the camera rays hit exactly (not at an `f64` point), and an `f64` walk clears their
+/// way with room for that; the run walk and the DDA follow every cell exactly.
+#[test]
+fn exact_frames_are_the_same_with_every_method() {
+    for name in ["small49", "valley513"] {
+        let scene = builtin_scene(name, 80);
+        let terrain = Terrain::new(scene.field.clone());
+        let render = |method| {
+            render_by(
+                method,
+                &terrain,
+                scene.camera,
+                scene.lighting,
+                Arith::Exact,
+                Culling::default(),
+                2,
+            )
+        };
+        let mipmap = render(Method::Mipmap);
+        assert!(mipmap.totals.shadow_rays > 1000, "{name}: shadow rays cast");
+        assert!(mipmap.totals.shadowed > 0, "{name}: some pixels in shadow");
+        for method in [Method::Runs, Method::Dda] {
+            let other = render(method);
+            assert_eq!(
+                (other.totals.primary_hits, other.totals.shadowed),
+                (mipmap.totals.primary_hits, mipmap.totals.shadowed),
+                "{name}, {method}: hits and shadows"
+            );
+            assert!(other.pixels == mipmap.pixels, "{name}, {method}: pixels");
+        }
+    }
+}

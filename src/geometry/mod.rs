@@ -1,9 +1,11 @@
 //! Rays, box clipping, and the watertight two-triangle cell test.
 
+mod certain_miss;
 mod clip;
 mod ray;
 mod triangle;
 
+pub use certain_miss::{CellImages, CertainMiss};
 pub use clip::{clip_to_box, Clipped};
 pub use ray::{Ray, RayError};
 pub use triangle::{gradient, plane_height, CellTriangles, RaySpace, TriangleHit};

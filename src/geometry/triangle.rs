@@ -52,6 +52,11 @@ impl<S: Scalar> RaySpace<S> {
         }
     }
 
+    /// The ray's origin.
+    pub fn origin(&self) -> &[S; 3] {
+        &self.origin
+    }
+
     /// A vertex in ray space.
     pub fn vertex(&self, p: [S; 3]) -> [S; 3] {
         let [kx, ky, kz] = self.axes;

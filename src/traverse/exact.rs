@@ -39,6 +39,7 @@ impl Neg for Exact {
 }
 
 impl Scalar for Exact {
+    const EXACT: bool = true;
     fn from_f64(x: f64) -> Self {
         Exact(exact_from_f64(x))
     }
@@ -72,8 +73,17 @@ impl Scalar for Exact {
     fn to_exact(&self) -> Option<BigRational> {
         Some(self.0.clone())
     }
-    fn exact_f64(&self) -> Option<f64> {
+    fn f64_enclosure(&self) -> Option<(f64, f64)> {
         let x = self.to_f64();
-        (x.is_finite() && exact_from_f64(x) == self.0).then_some(x)
+        if !x.is_finite() {
+            return None;
+        }
+        let off = (&self.0 - exact_from_f64(x)).abs();
+        if off.is_zero() {
+            return Some((x, 0.0));
+        }
+        // (The conversion of the offset may round down by half a unit, and then once more.)
+        let radius = off.to_f64()?.next_up().next_up();
+        radius.is_finite().then_some((x, radius))
     }
 }

@@ -133,6 +133,32 @@ impl<S: Scalar> Frame<S> {
         self
     }
 
+    /// The same path up to `t` (`t` within the segment).
+    pub fn ending_at(mut self, t: S) -> Self {
+        self.ue = self.ou.clone() + self.du.clone() * t.clone();
+        self.ve = self.ov.clone() + self.dv.clone() * t.clone();
+        self.t1 = t;
+        self
+    }
+
+    /// The part of the path from `from` to `to`, given in `f64` with room for the rounding of
+    /// the segment's ends (an end beyond the segment's keeps the segment's); `None` if the
+    /// part lies wholly outside the segment.
+    pub fn stretch(&self, from: f64, to: f64) -> Option<Self> {
+        let (t0, t1) = (self.t0.to_f64(), self.t1.to_f64());
+        if to < t0 || from > t1 {
+            return None;
+        }
+        let mut part = self.clone();
+        if from > t0 {
+            part = part.starting_at(S::from_f64(from));
+        }
+        if to < t1 {
+            part = part.ending_at(S::from_f64(to));
+        }
+        Some(part)
+    }
+
     /// The original cell `(i, j)` of frame cell `(cu, cv)` (which must be valid).
     pub fn cell(&self, cu: i64, cv: i64) -> (usize, usize) {
         let unmirror = |c: i64, flip: bool| (if flip { -c - 1 } else { c }) as usize;

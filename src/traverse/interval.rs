@@ -47,6 +47,12 @@ impl Interval {
         hi: f64::INFINITY,
     };
 
+    /// Every value from `lo` to `hi`: an input known only that well (`None` unless
+    /// `lo <= hi`, both finite).
+    pub fn between(lo: f64, hi: f64) -> Option<Interval> {
+        (lo.is_finite() && hi.is_finite() && lo <= hi).then_some(Interval { lo, hi })
+    }
+
     fn point(x: f64) -> Interval {
         Interval { lo: x, hi: x }
     }
@@ -322,6 +328,7 @@ impl PartialOrd for Interval {
 }
 
 impl Scalar for Interval {
+    const EXACT: bool = true;
     fn from_f64(x: f64) -> Self {
         Interval::point(x)
     }
@@ -387,8 +394,14 @@ impl Scalar for Interval {
             hi: self.hi.max(other.hi),
         }
     }
-    fn exact_f64(&self) -> Option<f64> {
-        self.is_point().then_some(self.lo)
+    fn f64_enclosure(&self) -> Option<(f64, f64)> {
+        if self.is_point() {
+            return Some((self.lo, 0.0));
+        }
+        let mid = self.lo + (self.hi - self.lo) / 2.0;
+        // (Each difference is rounded to nearest: its neighbour above is no less.)
+        let radius = (self.hi - mid).max(mid - self.lo).next_up();
+        radius.is_finite().then_some((mid, radius))
     }
     fn rounding_error(_magnitude: f64) -> f64 {
         // It encloses the exact value: no lift needed, as in exact arithmetic.

@@ -14,9 +14,10 @@
 //! are snapped onto the block face they lie on, so the next block is found without rounding in
 //! that coordinate, and a walk in a rounding arithmetic cannot step back into a skipped block.
 //!
-//! In arithmetics without rounding, an `f64` walk first clears the way ([`clear_way`]): it skips
-//! only blocks the ray clears with room for every rounding it made, so the exact walk may start
-//! just before the first cell that may be hit.
+//! In arithmetics without rounding, an `f64` walk clears the way ([`clear_way`]): it skips only
+//! blocks the ray clears with room for every rounding it made and for the exact ray's distance
+//! from it, so the exact walk follows only the stretches between (from just before the first
+//! cell that may be hit, for a camera ray).
 
 use super::counters::Counters;
 use super::degenerate::is_point;
@@ -24,6 +25,7 @@ use super::frame::Frame;
 use super::runs;
 use super::scalar::{max, Scalar, F64_TOLERANCE};
 use super::search::Search;
+use super::Query;
 use crate::heightfield::Terrain;
 use std::ops::ControlFlow;
 
@@ -41,7 +43,7 @@ struct Point<S> {
 /// What the block walk asks of whoever follows it.
 trait Follower<S: Scalar> {
     /// Breaks when nothing at or after `t` can change the answer.
-    fn stop_before(&self, t: &S) -> ControlFlow<()>;
+    fn stop_before(&mut self, t: &S) -> ControlFlow<()>;
     /// Whether block `(bi, bj)` of level `k` (a cell when `k` is 0) may be touched by the
     /// path over `[t_lo, t_hi]`.
     fn may_hit(&mut self, k: u32, block: (usize, usize), t_lo: &S, t_hi: &S) -> bool;
@@ -180,7 +182,7 @@ fn descend<S: Scalar>(
 }
 
 impl<S: Scalar> Follower<S> for Search<'_, S> {
-    fn stop_before(&self, t: &S) -> ControlFlow<()> {
+    fn stop_before(&mut self, t: &S) -> ControlFlow<()> {
         Search::stop_before(self, t)
     }
     fn may_hit(&mut self, k: u32, (bi, bj): (usize, usize), t_lo: &S, t_hi: &S) -> bool {
@@ -212,30 +214,65 @@ impl<S: Scalar> Follower<S> for Search<'_, S> {
     }
 }
 
-/// How far an `f64` walk clears the way for an exact one: where a ray given exactly in `f64`
-/// is traced in an arithmetic without rounding, the blocks an `f64` walk skips with every
-/// rounding allowed for need not be walked again.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Cleared {
-    /// Nothing touches the whole segment: the exact answer is a miss.
-    All,
-    /// Nothing touches the path before this `t`.
-    Until(f64),
+/// A stretch of the path that may touch the surface, as an `f64` walk found it: `t` from
+/// `from` to `to`, and the room to leave around it.
+#[derive(Clone, Copy, Debug)]
+pub struct Stretch {
+    pub from: f64,
+    pub to: f64,
+    /// Far more than the rounding of any `t` the `f64` walk computed and than the exact
+    /// ray's distance from its path (divided by the smaller direction component, as a `t`):
+    /// an exact walk from `from - margin` to `to + margin` starts and ends inside blocks the
+    /// `f64` walk skipped (or cells it found may be hit), clear of the faces between them.
+    pub margin: f64,
 }
 
-/// Walks the `f64` frame of a ray that is exactly `o + t*d` in `f64`, skipping blocks only
-/// where the ray stays above them with room for every rounding the walk made: the positions
-/// (within `pos` of the exact path), the `t` of block faces (within `dt`) and the heights
-/// along the ray (within `dz_err`); the surface rises at most `max_slope` per unit of
-/// horizontal distance, so beyond a block by `pos` it is at most that much higher.
+impl Stretch {
+    /// The stretch with room around it, from..to.
+    pub fn widened(&self) -> (f64, f64) {
+        (self.from - self.margin, self.to + self.margin)
+    }
+}
+
+/// An `f64` ray near an exact one, for an `f64` walk to clear the way for it.
+pub struct Approximation {
+    /// Its frame, covering the exact ray's segment.
+    pub frame: Frame<f64>,
+    pub oz: f64,
+    pub dz: f64,
+    /// How far the exact origin may be from this ray's, per axis (the direction is the same).
+    pub radius: [f64; 3],
+}
+
+/// Walks the `f64` ray near one traced in an arithmetic without rounding, and hands each
+/// [`Stretch`] of the path that may touch the surface, in order, to `search`; breaks when
+/// `search` does. Between the stretches the exact ray touches nothing, so an exact walk only
+/// follows the stretches: the approach to the first hit, and what lies between the places a
+/// shadow ray grazes the surface, are left to the `f64` walk. For a first-hit query the first
+/// stretch runs to the segment's end: a camera ray mostly hits where it first may, and
+/// measured, its exact walk is faster on from there than an `f64` walk gathering more
+/// stretches.
+///
+/// The exact ray is `o + t*d` with `d` an `f64` and `o` within `radius` (per axis) of the
+/// `f64` origin. The walk skips blocks only where the ray stays above them with room for that
+/// and for every rounding it made: the positions (within `pos` of the exact path), the `t` of
+/// block faces (within `dt`) and the heights along the ray (within `z_err`). The surface rises
+/// at most `max_slope` per unit of horizontal distance, so beyond a block by `pos` it is at
+/// most that much higher.
 pub fn clear_way(
-    f: &Frame<f64>,
+    ray: &Approximation,
     terrain: &Terrain,
-    (oz, dz): (f64, f64),
+    query: Query,
     counters: &mut Counters,
-) -> Cleared {
+    search: &mut impl FnMut(Stretch) -> ControlFlow<()>,
+) -> ControlFlow<()> {
+    let (f, oz, dz, radius) = (&ray.frame, ray.oz, ray.dz, ray.radius);
     if !has_blocks(f) {
-        return Cleared::Until(f.t0);
+        return search(Stretch {
+            from: f64::NEG_INFINITY,
+            to: f64::INFINITY,
+            margin: 0.0,
+        });
     }
     let eps = f64::EPSILON;
     let t_max = f.t1.abs().max(f.t0.abs());
@@ -246,39 +283,72 @@ pub fn clear_way(
     // Two axes, each off by its own rounding and by the face crossing's `dt`; the tested
     // span lengthened by `dt` at both ends moves as far again. An exit within the `f64`
     // tolerance of a corner is snapped onto it (`exit_point`): as far off as that tolerance.
+    // The exact origin is off by its radius.
     let snap = F64_TOLERANCE * t_max.max(1.0) * d_xy;
-    let pos = 2.0 * (4.0 * eps * coords + d_xy * dt) + 2.0 * d_xy * dt + 2.0 * snap;
+    let off = radius[0].max(radius[1]);
+    let pos = 2.0 * (4.0 * eps * coords + d_xy * dt) + 2.0 * d_xy * dt + 2.0 * snap + off;
     let rise = terrain.max_slope() * (1.0 + 1e-9) * pos;
-    let z_err = 4.0 * eps * (oz.abs() + dz.abs() * t_max) + dz.abs() * dt;
+    let z_err = 4.0 * eps * (oz.abs() + dz.abs() * t_max) + dz.abs() * dt + radius[2];
     let mut clearing = Clearing {
         terrain,
         dz,
         oz,
         room: (z_err + rise) * (1.0 + 1e-6),
         counters,
-        until: f.t0,
+        // (`has_blocks`: neither component is zero.)
+        off_faces: 4.0 * (off + 4.0 * eps * coords) / f.du.abs().min(f.dv.abs()),
+        first_only: query == Query::FirstHit,
+        stretch: None,
+        search,
     };
     let top = terrain.mipmap().top();
-    match descend(f, top, first_level(top), &mut clearing) {
-        ControlFlow::Continue(()) => Cleared::All,
-        ControlFlow::Break(()) => Cleared::Until(clearing.until),
-    }
+    // A shadow ray starts on the surface, where every block around it fails its test.
+    let first = if query == Query::Shadow {
+        0
+    } else {
+        first_level(top)
+    };
+    descend(f, top, first, &mut clearing)?;
+    clearing.flush()
 }
 
-/// Follows an `f64` walk to its first cell that may be hit.
-struct Clearing<'a> {
+/// The most cells a stretch gathers before it is searched.
+const STRETCH_CELLS: u32 = 4;
+
+/// Follows an `f64` walk, gathering the parts of cells that may be hit into stretches.
+struct Clearing<'a, F> {
     terrain: &'a Terrain,
     oz: f64,
     dz: f64,
     /// What the ray must clear a block's highest sample by.
     room: f64,
     counters: &'a mut Counters,
-    until: f64,
+    /// The `t` that moves the exact path off a face it may lie on as far as intervals tell.
+    off_faces: f64,
+    /// Hand the search only one stretch, from the first cell that may be hit to the end.
+    first_only: bool,
+    /// The stretch gathered since the last skipped block, and its cells.
+    stretch: Option<(Stretch, u32)>,
+    search: &'a mut F,
 }
 
-impl Follower<f64> for Clearing<'_> {
-    fn stop_before(&self, _t: &f64) -> ControlFlow<()> {
-        ControlFlow::Continue(())
+impl<F: FnMut(Stretch) -> ControlFlow<()>> Clearing<'_, F> {
+    /// Hands the stretch gathered to the search.
+    fn flush(&mut self) -> ControlFlow<()> {
+        match self.stretch.take() {
+            Some((stretch, _)) => (self.search)(stretch),
+            None => ControlFlow::Continue(()),
+        }
+    }
+}
+
+impl<F: FnMut(Stretch) -> ControlFlow<()>> Follower<f64> for Clearing<'_, F> {
+    fn stop_before(&mut self, t: &f64) -> ControlFlow<()> {
+        // The walk moved on past the stretch and its room: a block was skipped since.
+        match self.stretch {
+            Some((stretch, _)) if *t > stretch.to + 2.0 * stretch.margin => self.flush(),
+            _ => ControlFlow::Continue(()),
+        }
     }
     fn may_hit(&mut self, k: u32, (bi, bj): (usize, usize), t_lo: &f64, t_hi: &f64) -> bool {
         let highest = self.terrain.block_max_sample(k, bi, bj);
@@ -290,8 +360,31 @@ impl Follower<f64> for Clearing<'_> {
         self.counters.block.record(lowest - room <= highest)
     }
     fn cell(&mut self, _cell: (usize, usize), part: Part<'_, f64>) -> ControlFlow<()> {
-        self.until = part.at.t;
-        ControlFlow::Break(())
+        let to = if part.ends_inside {
+            part.frame.t1
+        } else {
+            part.exit.t
+        };
+        let (from, cells) = match self.stretch {
+            Some((stretch, cells)) => (stretch.from, cells + 1),
+            None => (part.at.t, 1),
+        };
+        let margin = 1e-9 * (from.abs().max(to.abs()) + 1.0) + self.off_faces;
+        if self.first_only {
+            let rest = Stretch {
+                to: f64::INFINITY,
+                ..Stretch { from, to, margin }
+            };
+            (self.search)(rest)?;
+            return ControlFlow::Break(());
+        }
+        self.stretch = Some((Stretch { from, to, margin }, cells));
+        // A long stretch is searched before it ends: past a hit the ray runs inside the
+        // terrain, where every block fails its test, to the end of the segment.
+        if cells >= STRETCH_CELLS {
+            return self.flush();
+        }
+        ControlFlow::Continue(())
     }
     fn passed(&mut self, _cell: (usize, usize)) {}
     fn climbs(&self) -> bool {

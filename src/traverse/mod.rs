@@ -20,7 +20,7 @@ pub use interval::{settled, Interval};
 pub use rational::{with_bound, Rational, RationalEvents, DEFAULT_BOUND};
 pub use scalar::Scalar;
 
-use crate::geometry::{clip_to_box, gradient, Ray, RaySpace};
+use crate::geometry::{clip_to_box, gradient, CertainMiss, Ray, RaySpace};
 use crate::heightfield::Terrain;
 use dyadic::Dyadic;
 use frame::{Frame, Span};
@@ -221,15 +221,25 @@ fn clip<S: Scalar>(
     d: &[S; 3],
     dir_f64: [f64; 3],
 ) -> Option<Frame<S>> {
+    clip_grown(terrain, o, d, dir_f64, [0.0; 3])
+}
+
+/// The ray clipped to the terrain's box grown by `grow` on every side.
+fn clip_grown<S: Scalar>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    grow: [f64; 3],
+) -> Option<Frame<S>> {
     let field = terrain.field();
     let (w, h) = (field.width(), field.height());
     let (z_lo, z_hi) = terrain.z_range();
-    let lo = [S::zero(), S::zero(), S::from_f64(z_lo)];
-    let hi = [
-        S::from_i64(w as i64 - 1),
-        S::from_i64(h as i64 - 1),
-        S::from_f64(z_hi),
-    ];
+    // Rounded outwards: the grown box contains every point within `grow` of the box.
+    let outwards = |x: f64, by: f64, step: fn(f64) -> f64| if by > 0.0 { step(x) } else { x };
+    let (lo, hi) = ([0.0, 0.0, z_lo], [(w - 1) as f64, (h - 1) as f64, z_hi]);
+    let lo = [0, 1, 2].map(|k| S::from_f64(outwards(lo[k] - grow[k], grow[k], f64::next_down)));
+    let hi = [0, 1, 2].map(|k| S::from_f64(outwards(hi[k] + grow[k], grow[k], f64::next_up)));
     let mut clipped = clip_to_box(o, d, &lo, &hi)?;
     // Floats lengthen the segment by their own rounding, so that the last cells before a box
     // face (flat ground at the lowest height) are not cut off.
@@ -349,27 +359,11 @@ pub fn trace_scalar<S: Scalar>(
         };
     };
     counters.bbox.record(true);
-    // (A walk asked to list its cells walks them all.) A shadow ray starts on the surface.
-    let on_surface = walk_options.query == Query::Shadow;
-    let (frame, near_terrain) = match walk_options.method {
-        Method::Mipmap if !walk_options.record_cells => {
-            match cleared(terrain, o, d, dir_f64, frame, &mut counters) {
-                Some((frame, cleared)) => (frame, cleared || on_surface),
-                None => {
-                    return ScalarTrace {
-                        hit: None,
-                        counters,
-                        cells: Vec::new(),
-                    }
-                }
-            }
-        }
-        _ => (frame, on_surface),
-    };
     let mut search = Search {
         terrain,
         frame: &frame,
         ray: RaySpace::new(o.clone(), d.clone(), dir_f64),
+        certain_miss: certain_miss(o, d),
         oz: o[2].clone(),
         dz: d[2].clone(),
         query: walk_options.query,
@@ -381,8 +375,16 @@ pub fn trace_scalar<S: Scalar>(
         slack: search::slack(&o[2], &d[2], &frame.t1),
     };
     if walk_options.method == Method::Mipmap {
-        // Ends by itself or at the answer; both are fine here.
-        let _ = mipmap::walk(&frame, &mut search, near_terrain);
+        // (A walk asked to list its cells walks them all.)
+        let cleared = S::EXACT
+            && !walk_options.record_cells
+            && walk_cleared(terrain, o, d, dir_f64, &frame, &mut search);
+        if !cleared {
+            // A shadow ray starts on the surface, where every block around it fails its test.
+            let on_surface = walk_options.query == Query::Shadow;
+            // Ends by itself or at the answer; both are fine here.
+            let _ = mipmap::walk(&frame, &mut search, on_surface);
+        }
     } else {
         walk(&frame, walk_options.method, &mut |span| search.span(span));
     }
@@ -393,42 +395,87 @@ pub fn trace_scalar<S: Scalar>(
     }
 }
 
-/// In an arithmetic without rounding, an `f64` walk first clears the way for the mipmap (see
-/// [`mipmap::clear_way`]) where the ray is exactly an `f64` ray: the frame from just before
-/// the first cell that may be hit, and whether the walk ran (then that cell is next to the
-/// frame's start), or `None` when nothing can be hit at all.
-fn cleared<S: Scalar>(
+/// The mipmap walk in an arithmetic without rounding, where an `f64` walk clears the way
+/// (see [`mipmap::clear_way`]): the exact walk follows only the stretches the `f64` walk
+/// could not clear. `false` where it cannot help (the ray is not near enough an `f64` ray).
+fn walk_cleared<S: Scalar>(
     terrain: &Terrain,
     o: &[S; 3],
     d: &[S; 3],
     dir_f64: [f64; 3],
-    frame: Frame<S>,
-    counters: &mut Counters,
-) -> Option<(Frame<S>, bool)> {
-    let exactly = |v: &[S; 3]| -> Option<[f64; 3]> {
-        Some([v[0].exact_f64()?, v[1].exact_f64()?, v[2].exact_f64()?])
+    frame: &Frame<S>,
+    search: &mut Search<'_, S>,
+) -> bool {
+    let Some(near) = approximation(terrain, o, d, dir_f64) else {
+        return false;
     };
-    let (Some(of), Some(df)) = (exactly(o), exactly(d)) else {
-        return Some((frame, false));
-    };
-    let Some(fast) = clip(terrain, &of, &df, dir_f64) else {
-        return Some((frame, false));
-    };
-    match mipmap::clear_way(&fast, terrain, (of[2], df[2]), counters) {
-        mipmap::Cleared::All => None,
-        mipmap::Cleared::Until(t) => {
-            // Start a little before that cell, inside the cleared block: on the face the
-            // `f64` walk found, intervals could not tell the two sides apart. (The exact
-            // segment starts within rounding of the `f64` one's start.)
-            let margin = 1e-9 * (t.abs() + 1.0);
-            let start = t - margin;
-            if start > fast.t0 + margin {
-                Some((frame.starting_at(S::from_f64(start)), true))
-            } else {
-                Some((frame, true))
+    let mut clearing = Counters::default();
+    // Ends by itself or at the answer; both are fine here.
+    let _ = mipmap::clear_way(
+        &near,
+        terrain,
+        search.query,
+        &mut clearing,
+        &mut |stretch| {
+            let (from, to) = stretch.widened();
+            // A hit before the stretch is the first.
+            if search.found.as_ref().is_some_and(|f| f.t.to_f64() < from) {
+                return ControlFlow::Break(());
             }
-        }
+            if let Some(part) = frame.stretch(from, to) {
+                mipmap::walk(&part, search, true)?;
+            }
+            // The walk covered every cell the path touches up to `to`: a hit before that is
+            // the first. One past it (in a cell the walk ended in) waits for the next
+            // stretch, whose cells may be touched before it.
+            match &search.found {
+                Some(f) if f.t.to_f64() < to - stretch.margin / 2.0 => ControlFlow::Break(()),
+                _ => ControlFlow::Continue(()),
+            }
+        },
+    );
+    search.counters += clearing;
+    true
+}
+
+/// An `f64` ray near one in an arithmetic without rounding: its origin, how far the exact
+/// origin may be from it per axis, and its direction, which must be the exact one. `None`
+/// for the rounding arithmetics, and where the direction is not an `f64` exactly.
+fn f64_ray<S: Scalar>(o: &[S; 3], d: &[S; 3]) -> Option<([f64; 3], [f64; 3], [f64; 3])> {
+    if !S::EXACT {
+        return None;
     }
+    let exact = |c: &S| c.f64_enclosure().filter(|&(_, r)| r == 0.0).map(|(x, _)| x);
+    let dir = [exact(&d[0])?, exact(&d[1])?, exact(&d[2])?];
+    let [x, y, z] = [&o[0], &o[1], &o[2]].map(|c| c.f64_enclosure());
+    let [(x, rx), (y, ry), (z, rz)] = [x?, y?, z?];
+    Some(([x, y, z], [rx, ry, rz], dir))
+}
+
+/// The `f64` filter of certain triangle misses, where [`f64_ray`] gives a ray.
+fn certain_miss<S: Scalar>(o: &[S; 3], d: &[S; 3]) -> Option<CertainMiss> {
+    let (origin, [rx, ry, rz], dir) = f64_ray(o, d)?;
+    Some(CertainMiss::new(origin, rx.max(ry).max(rz), dir))
+}
+
+/// The `f64` ray an `f64` walk follows to clear the way for the mipmap, where [`f64_ray`]
+/// gives one.
+fn approximation<S: Scalar>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+) -> Option<mipmap::Approximation> {
+    let (origin, radius, dir) = f64_ray(o, d)?;
+    // Every point of the exact segment is within `radius` of this ray at the same `t`, so
+    // inside the grown box: the `f64` segment covers it.
+    let frame = clip_grown(terrain, &origin, &dir, dir_f64, radius)?;
+    Some(mipmap::Approximation {
+        frame,
+        oz: origin[2],
+        dz: dir[2],
+        radius,
+    })
 }
 
 impl fmt::Display for Method {

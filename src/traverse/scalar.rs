@@ -23,6 +23,11 @@ pub trait Scalar:
     + Div<Output = Self>
     + Neg<Output = Self>
 {
+    /// Whether this arithmetic decides exactly (intervals that flag what they cannot settle,
+    /// rationals): the `f64` shortcuts that only such arithmetics use are compiled out of the
+    /// others.
+    const EXACT: bool = false;
+
     /// Converts an input (a ray component or a height), rounding as this arithmetic must.
     fn from_f64(x: f64) -> Self;
     /// Converts a grid coordinate (exact in every arithmetic for the sizes we accept).
@@ -66,10 +71,11 @@ pub trait Scalar:
     /// exact): what separates a computed point from the surface it was computed on.
     fn rounding_error(magnitude: f64) -> f64;
 
-    /// For the arithmetics without rounding (intervals, exact): the value if it is an `f64`
-    /// exactly, so that an `f64` walk may clear the way for them (see `mipmap::clear_way`).
-    /// `None` for the rounding arithmetics, which need no such help.
-    fn exact_f64(&self) -> Option<f64> {
+    /// For the arithmetics without rounding (intervals, exact): an `f64` and a radius within
+    /// which the exact value lies (zero when it is that `f64` exactly), so that an `f64` walk
+    /// may clear the way for them (see `mipmap::clear_way`). `None` for the rounding
+    /// arithmetics, which need no such help.
+    fn f64_enclosure(&self) -> Option<(f64, f64)> {
         None
     }
 

@@ -5,7 +5,7 @@ use super::counters::Counters;
 use super::frame::{Frame, Span};
 use super::scalar::{max, min, Scalar};
 use super::Query;
-use crate::geometry::{CellTriangles, RaySpace};
+use crate::geometry::{CellTriangles, CertainMiss, RaySpace};
 use crate::heightfield::Terrain;
 use std::ops::ControlFlow;
 
@@ -29,6 +29,8 @@ pub struct Search<'a, S> {
     pub terrain: &'a Terrain,
     pub frame: &'a Frame<S>,
     pub ray: RaySpace<S>,
+    /// For arithmetics without rounding: settles most misses in `f64`.
+    pub certain_miss: Option<CertainMiss>,
     pub oz: S,
     pub dz: S,
     pub query: Query,
@@ -154,16 +156,27 @@ impl<S: Scalar> Search<'_, S> {
         if self.terrain.field().is_hole_cell(i, j) {
             return ControlFlow::Continue(());
         }
-        let [z00, z10, z01, z11] = self.terrain.corner_heights(i, j);
-        let heights = [
-            S::from_f64(z00),
-            S::from_f64(z10),
-            S::from_f64(z01),
-            S::from_f64(z11),
-        ];
-        let cell = CellTriangles::new(&self.ray, i, j, heights);
+        let heights = self.terrain.corner_heights(i, j);
+        let tested = |triangle| self.start_triangle != Some(((i, j), triangle));
+        let certain_misses = match &self.certain_miss {
+            Some(filter) if S::EXACT => {
+                let images = filter.cell(i, j, heights);
+                [0, 1].map(|k| tested(k) && images.misses(k))
+            }
+            _ => [false; 2],
+        };
+        let misses = certain_misses.iter().filter(|&&miss| miss).count();
+        if misses > 0 && (0..2).all(|k| certain_misses[k as usize] || !tested(k)) {
+            (0..misses).for_each(|_| _ = self.counters.triangle.record(false));
+            return ControlFlow::Continue(());
+        }
+        let cell = CellTriangles::new(&self.ray, i, j, heights.map(S::from_f64));
         for triangle in 0..2 {
-            if self.start_triangle == Some(((i, j), triangle)) {
+            if !tested(triangle) {
+                continue;
+            }
+            if certain_misses[triangle as usize] {
+                self.counters.triangle.record(false);
                 continue;
             }
             let hit = cell.intersect(&self.ray, triangle);

@@ -1,0 +1,214 @@
+//! Triangle misses certain in `f64`, for rays traced in an arithmetic without rounding.
+//!
+//! Most triangles a walk tests are misses, and a miss is plain in the edge functions of the
+//! watertight test ([`super::RaySpace`]): two of them have opposite signs. This filter computes
+//! them in `f64` with a bound on their error, from a ray within a known radius of the exact
+//! one; where two signs are certain and opposite, the exact test would find them so too, and
+//! the miss is the exact answer. Every other case is left to the exact test.
+//!
+//! The bound. The exact ray-space image of a vertex `p` is `x' = (p_x - o_x) - s (p_z - o_z)`
+//! with `s = d_x / d_z`, `|s| <= 1` (z is the direction's largest component). The filter's
+//! origin is within `r` of `o` on each axis and each of its operations rounds by at most
+//! `eps` relative, so with `m` the largest magnitude of `p - o` over the cell,
+//! `|x' - X'| <= 2r + 7 eps m` (a few more `eps` for the products of small terms): the
+//! filter takes `e = 2.01 r + 16 eps m`. An edge function `c0 b1 - c1 b0` of coordinates each
+//! off by at most `e` is off by at most `e (|c0| + |b1| + |c1| + |b0|) + 2 e^2`, and its own
+//! two products and difference round by at most `3 eps (|c0 b1| + |c1 b0|)`.
+
+use super::RaySpace;
+
+/// The `f64` stand-in of one ray.
+pub struct CertainMiss {
+    space: RaySpace<f64>,
+    /// How far the exact origin may be from `space`'s, on any axis.
+    radius: f64,
+}
+
+/// The four corners of one cell in the filter's ray space, with the error of every coordinate.
+pub struct CellImages {
+    images: [[f64; 3]; 4],
+    error: f64,
+}
+
+impl CertainMiss {
+    /// For the exact ray `o + t*d` with `o` within `radius` of `origin` on each axis and `d`
+    /// given exactly.
+    pub fn new(origin: [f64; 3], radius: f64, dir: [f64; 3]) -> Self {
+        CertainMiss {
+            space: RaySpace::new(origin, dir, dir),
+            radius,
+        }
+    }
+
+    /// Cell `(i, j)` with corner heights `[z00, z10, z01, z11]`.
+    pub fn cell(&self, i: usize, j: usize, heights: [f64; 4]) -> CellImages {
+        let (x0, y0) = (i as f64, j as f64);
+        let [z00, z10, z01, z11] = heights;
+        let corners = [
+            [x0, y0, z00],
+            [x0 + 1.0, y0, z10],
+            [x0, y0 + 1.0, z01],
+            [x0 + 1.0, y0 + 1.0, z11],
+        ];
+        let origin = self.space.origin();
+        let largest = corners
+            .iter()
+            .flat_map(|p| (0..3).map(move |k| (p[k] - origin[k]).abs()))
+            .fold(0.0, f64::max);
+        CellImages {
+            images: corners.map(|p| self.space.vertex(p)),
+            error: 2.01 * self.radius + 16.0 * f64::EPSILON * largest,
+        }
+    }
+}
+
+impl CellImages {
+    /// Whether triangle `k` (0 or 1, corners as in [`super::CellTriangles`]) certainly misses.
+    pub fn misses(&self, k: u8) -> bool {
+        let [a, b, c] = if k == 0 { [0, 1, 3] } else { [0, 3, 2] };
+        let [a, b, c] = [a, b, c].map(|n| &self.images[n]);
+        let signs = [
+            self.sign(c[0], b[1], c[1], b[0]),
+            self.sign(a[0], c[1], a[1], c[0]),
+            self.sign(b[0], a[1], b[1], a[0]),
+        ];
+        signs.contains(&Some(true)) && signs.contains(&Some(false))
+    }
+
+    /// The sign of `p*q - r*s` (`true`: positive) where it is certain.
+    fn sign(&self, p: f64, q: f64, r: f64, s: f64) -> Option<bool> {
+        let e = self.error;
+        let (pq, rs) = (p * q, r * s);
+        let value = pq - rs;
+        let bound = (e * (p.abs() + q.abs() + r.abs() + s.abs())
+            + 2.0 * e * e
+            + 3.0 * f64::EPSILON * (pq.abs() + rs.abs()))
+            * (1.0 + 1e-9)
+            + 1e-300;
+        // (NaN compares false both ways: uncertain.)
+        if value > bound {
+            Some(true)
+        } else if value < -bound {
+            Some(false)
+        } else {
+            None
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::CellTriangles;
+    use crate::traverse::scalar::exact_from_f64;
+    use crate::traverse::Exact;
+    use num_rational::BigRational;
+    use proptest::prelude::*;
+    use proptest::test_runner::RngSeed;
+
+    /// Whether the exact test hits triangle `k` of cell `(i, j)`, for the ray from `origin`
+    /// moved by `offset` (exactly) along `dir`.
+    fn exact_hits(
+        origin: [f64; 3],
+        offset: [BigRational; 3],
+        dir: [f64; 3],
+        (i, j): (usize, usize),
+        heights: [f64; 4],
+        k: u8,
+    ) -> bool {
+        let o = [0, 1, 2].map(|n| Exact(exact_from_f64(origin[n]) + offset[n].clone()));
+        let space = RaySpace::new(o, dir.map(|x| Exact(exact_from_f64(x))), dir);
+        let cell = CellTriangles::new(&space, i, j, heights.map(|z| Exact(exact_from_f64(z))));
+        cell.intersect(&space, k).is_some()
+    }
+
+    /// Coordinates that stress the bound: on grid lines and vertices, just off them, and
+    /// arbitrary.
+    fn coordinate() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            (0i32..6).prop_map(f64::from),
+            (0i32..24).prop_map(|n| f64::from(n) / 4.0),
+            (0i32..6, 1u8..4).prop_map(|(n, k)| (0..k).fold(f64::from(n), |x, _| x.next_up())),
+            -2.0f64..8.0,
+        ]
+    }
+
+    fn component() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            Just(0.0),
+            (-4i32..5).prop_map(f64::from),
+            -1.0f64..1.0,
+            (-1.0f64..1.0).prop_map(|x| x * 1e-9),
+        ]
+    }
+
+    fn height() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            (0i32..4).prop_map(f64::from),
+            (0u16..1000).prop_map(|s| f64::from(s) * 0.0625),
+            0.0f64..4.0,
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 6000, rng_seed: RngSeed::Fixed(11), ..ProptestConfig::default() })]
+
+        /// A certain miss is a miss of the exact test, for the exact origin anywhere within
+        /// the radius.
+        #[test]
+        fn certain_misses_are_exact_misses(
+            origin in [coordinate(), coordinate(), coordinate()],
+            dir in [component(), component(), component()],
+            heights in [height(), height(), height(), height()],
+            (i, j) in (0usize..5, 0usize..5),
+            radius in prop_oneof![Just(0.0), Just(1e-12), Just(1e-6), Just(0.25)],
+            fractions in [-8i64..=8, -8i64..=8, -8i64..=8],
+        ) {
+            prop_assume!(dir.iter().any(|&x| x != 0.0));
+            let filter = CertainMiss::new(origin, radius, dir);
+            let images = filter.cell(i, j, heights);
+            let offset = fractions.map(|n| exact_from_f64(radius) * BigRational::new(n.into(), 8.into()));
+            for k in 0..2 {
+                if images.misses(k) {
+                    prop_assert!(
+                        !exact_hits(origin, offset.clone(), dir, (i, j), heights, k),
+                        "triangle {} of ({}, {}) is hit", k, i, j
+                    );
+                }
+            }
+        }
+    }
+
+    /// The filter is worth its cost: it settles nearly every miss of rays that pass a cell
+    /// at some distance (the usual case of a walk), and none of its hits.
+    #[test]
+    fn it_settles_most_misses() {
+        let (mut misses, mut settled) = (0, 0);
+        for n in 0..2000u32 {
+            let f = |a: u32, m: u32| f64::from((n * a + 7) % m) / f64::from(m);
+            let origin = [
+                2.0 + 4.0 * f(37, 101),
+                2.0 + 4.0 * f(53, 97),
+                5.0 + f(11, 89),
+            ];
+            let dir = [f(13, 83) - 0.5, f(29, 79) - 0.5, -0.2 - f(17, 73)];
+            let heights = [f(3, 71), f(5, 67), f(7, 61), f(19, 59)];
+            let filter = CertainMiss::new(origin, 1e-9, dir);
+            let images = filter.cell(3, 3, heights);
+            for k in 0..2 {
+                let zero = [0, 1, 2].map(|_| BigRational::from_integer(0.into()));
+                if !exact_hits(origin, zero, dir, (3, 3), heights, k) {
+                    misses += 1;
+                    settled += usize::from(images.misses(k));
+                } else {
+                    assert!(!images.misses(k), "ray {n} hits triangle {k}");
+                }
+            }
+        }
+        assert!(misses > 1000, "{misses} misses");
+        assert!(
+            settled * 100 >= misses * 95,
+            "{settled} of {misses} misses settled"
+        );
+    }
+}
