@@ -57,8 +57,7 @@ pub fn byte(v: f64) -> u8 {
     if v >= 1.0 {
         return 255;
     }
-    // (NaN compares false.)
-    if !(v >= LOWEST) {
+    if v.is_nan() || v < LOWEST {
         return 0;
     }
     let start = BUCKET_START[bucket(v)];
