@@ -359,11 +359,14 @@ pub fn trace_scalar<S: Scalar>(
         };
     };
     counters.bbox.record(true);
+    // (Once per ray: for rationals each component's enclosure is a fraction's subtraction.)
+    let near = f64_ray(o, d);
     let mut search = Search {
         terrain,
         frame: &frame,
         ray: RaySpace::new(o.clone(), d.clone(), dir_f64),
-        certain_miss: certain_miss(o, d),
+        certain_miss: near
+            .map(|(origin, [rx, ry, rz], dir)| CertainMiss::new(origin, rx.max(ry).max(rz), dir)),
         oz: o[2].clone(),
         dz: d[2].clone(),
         query: walk_options.query,
@@ -378,7 +381,7 @@ pub fn trace_scalar<S: Scalar>(
         // (A walk asked to list its cells walks them all.)
         let cleared = S::EXACT
             && !walk_options.record_cells
-            && walk_cleared(terrain, o, d, dir_f64, &frame, &mut search);
+            && near.is_some_and(|near| walk_cleared(terrain, near, dir_f64, &frame, &mut search));
         if !cleared {
             // A shadow ray starts on the surface, where every block around it fails its test.
             let on_surface = walk_options.query == Query::Shadow;
@@ -400,13 +403,12 @@ pub fn trace_scalar<S: Scalar>(
 /// could not clear. `false` where it cannot help (the ray is not near enough an `f64` ray).
 fn walk_cleared<S: Scalar>(
     terrain: &Terrain,
-    o: &[S; 3],
-    d: &[S; 3],
+    near: F64Ray,
     dir_f64: [f64; 3],
     frame: &Frame<S>,
     search: &mut Search<'_, S>,
 ) -> bool {
-    let Some(near) = approximation(terrain, o, d, dir_f64) else {
+    let Some(near) = approximation(terrain, near, dir_f64) else {
         return false;
     };
     let mut clearing = Counters::default();
@@ -438,10 +440,13 @@ fn walk_cleared<S: Scalar>(
     true
 }
 
+/// Origin, radius per axis and direction of an `f64` ray near an exact one (see [`f64_ray`]).
+type F64Ray = ([f64; 3], [f64; 3], [f64; 3]);
+
 /// An `f64` ray near one in an arithmetic without rounding: its origin, how far the exact
 /// origin may be from it per axis, and its direction, which must be the exact one. `None`
 /// for the rounding arithmetics, and where the direction is not an `f64` exactly.
-fn f64_ray<S: Scalar>(o: &[S; 3], d: &[S; 3]) -> Option<([f64; 3], [f64; 3], [f64; 3])> {
+fn f64_ray<S: Scalar>(o: &[S; 3], d: &[S; 3]) -> Option<F64Ray> {
     if !S::EXACT {
         return None;
     }
@@ -452,21 +457,12 @@ fn f64_ray<S: Scalar>(o: &[S; 3], d: &[S; 3]) -> Option<([f64; 3], [f64; 3], [f6
     Some(([x, y, z], [rx, ry, rz], dir))
 }
 
-/// The `f64` filter of certain triangle misses, where [`f64_ray`] gives a ray.
-fn certain_miss<S: Scalar>(o: &[S; 3], d: &[S; 3]) -> Option<CertainMiss> {
-    let (origin, [rx, ry, rz], dir) = f64_ray(o, d)?;
-    Some(CertainMiss::new(origin, rx.max(ry).max(rz), dir))
-}
-
-/// The `f64` ray an `f64` walk follows to clear the way for the mipmap, where [`f64_ray`]
-/// gives one.
-fn approximation<S: Scalar>(
+/// The `f64` ray an `f64` walk follows to clear the way for the mipmap, from [`f64_ray`]'s.
+fn approximation(
     terrain: &Terrain,
-    o: &[S; 3],
-    d: &[S; 3],
+    (origin, radius, dir): F64Ray,
     dir_f64: [f64; 3],
 ) -> Option<mipmap::Approximation> {
-    let (origin, radius, dir) = f64_ray(o, d)?;
     // Every point of the exact segment is within `radius` of this ray at the same `t`, so
     // inside the grown box: the `f64` segment covers it.
     let frame = clip_grown(terrain, &origin, &dir, dir_f64, radius)?;
