@@ -71,9 +71,10 @@ fn speed_at_sizes_reports_every_method_with_its_memory_and_growth() {
             "{method}: {growth}"
         );
     }
-    // Queries per primary ray at each size: each method asks its own kind of span query.
+    // Queries per primary ray at each size: each method asks its own kind of span query,
+    // and the hierarchy's camera rays share beams.
     let queries = growth
-        .split_once("queries per primary ray: block / run / cell / triangle")
+        .split_once("queries per primary ray: block / run / cell / triangle / beam")
         .expect("a table of queries")
         .1;
     for (method, block, run) in [
@@ -90,8 +91,9 @@ fn speed_at_sizes_reports_every_method_with_its_memory_and_growth() {
                 .split('/')
                 .map(|q| q.trim().parse().expect("a number"))
                 .collect();
-            assert_eq!(per_ray.len(), 4, "{line}");
-            assert_eq!((per_ray[0] > 0.0, per_ray[1] > 0.0), (block, run), "{line}");
+            assert_eq!(per_ray.len(), 5, "{line}");
+            let asked = (per_ray[0] > 0.0, per_ray[1] > 0.0, per_ray[4] > 0.0);
+            assert_eq!(asked, (block, run, block), "{line}");
             assert!(per_ray[2] > 0.0 && per_ray[3] > 0.0, "{line}");
         }
     }

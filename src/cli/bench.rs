@@ -137,16 +137,17 @@ fn print_growth(measured: &[(String, Terrain, Vec<ThroughputRow>)]) {
     println!("{line}");
 
     // What the time grows with: the finer terrain has more near misses per ray.
-    println!("\nqueries per primary ray: block / run / cell / triangle\n{header}");
+    println!("\nqueries per primary ray: block / run / cell / triangle / beam (once per tile of rays)\n{header}");
     lines(&|_, r| {
         let per_ray = |queries: HitMiss| queries.total() as f64 / r.primary_rays as f64;
         let q = &r.primary_queries;
         format!(
-            "{:.1} / {:.1} / {:.1} / {:.1}",
+            "{:.1} / {:.1} / {:.1} / {:.1} / {:.2}",
             per_ray(q.block),
             per_ray(q.run),
             per_ray(q.cell),
-            per_ray(q.triangle)
+            per_ray(q.triangle),
+            per_ray(q.beam)
         )
     });
 }

@@ -6,7 +6,7 @@ use super::camera::Camera;
 use super::shade::Sample;
 use super::shade::Shader;
 use super::stats::{FrameStats, PixelStats};
-use crate::traverse::{with_bound, Arith, Rational};
+use crate::traverse::{with_bound, Arith, Clearance, Method, Rational};
 use crate::Ray;
 use rayon::prelude::*;
 
@@ -16,6 +16,16 @@ pub const PASS_BLOCKS: [u32; 4] = [8, 4, 2, 1];
 
 /// Rows per unit of parallel work (a multiple of the coarsest block, so blocks never straddle).
 const BAND: u32 = 8;
+
+/// Columns per tile: a band is traced tile by tile.
+const TILE: u32 = 16;
+
+/// The passes whose pixels lie at most this far apart trace each tile's rays behind a beam
+/// (a coarser pass has too few rays per tile to pay for the beam's march).
+const BEAM_BLOCK: u32 = 2;
+
+/// A beam over more pixels than this is split in halves, each with a beam of its own.
+const BEAM_PIXELS: usize = 128;
 
 /// An image with its per-pixel statistics and running totals.
 #[derive(Clone, Debug)]
@@ -90,13 +100,17 @@ impl Renderer<'_> {
                 let shader = &self.shader;
                 let o = &mut out;
                 match self.arith {
-                    Arith::F32 => self.band(o, pass, block, |r| shader.sample::<f32>(r), cancelled),
-                    Arith::F64 => self.band(o, pass, block, |r| shader.sample::<f64>(r), cancelled),
+                    Arith::F32 => {
+                        self.band(o, pass, block, |r, c| shader.sample::<f32>(r, c), cancelled)
+                    }
+                    Arith::F64 => {
+                        self.band(o, pass, block, |r, c| shader.sample::<f64>(r, c), cancelled)
+                    }
                     Arith::Exact => {
-                        self.band(o, pass, block, |r| shader.sample_exact(r), cancelled)
+                        self.band(o, pass, block, |r, c| shader.sample_exact(r, c), cancelled)
                     }
                     Arith::Rational { bound } => {
-                        let sample = |r: &Ray| shader.sample::<Rational>(r);
+                        let sample = |r: &Ray, c| shader.sample::<Rational>(r, c);
                         with_bound(bound, || self.band(o, pass, block, sample, cancelled)).0
                     }
                 }
@@ -113,32 +127,97 @@ impl Renderer<'_> {
     }
 
     /// Traces this pass's pixels of one band and paints their blocks; `None` if cancelled.
+    /// The band is traced tile by tile; in the finer passes the rays of a tile share a beam
+    /// ([`Camera::beam`]) that clears the way to where any of them may first touch the
+    /// surface.
     fn band(
         &self,
         out: &mut BandOut<'_>,
         pass: usize,
         block: u32,
-        sample: impl Fn(&Ray) -> Sample,
+        sample: impl Fn(&Ray, Option<Clearance>) -> Sample,
         cancelled: &(dyn Fn() -> bool + Sync),
     ) -> Option<FrameStats> {
-        let mut totals = FrameStats::default();
         let y_end = (out.y0 + BAND).min(out.height);
-        for y in (out.y0..y_end).filter(|y| y % block == 0) {
-            // Asked row by row: a row of slow rays (small rational bounds) takes long enough.
+        let rows: Vec<u32> = (out.y0..y_end).filter(|y| y % block == 0).collect();
+        let beams = block <= BEAM_BLOCK && self.shader.method == Method::Mipmap;
+        let mut tiles = Tiles {
+            renderer: self,
+            out,
+            pass,
+            block,
+            sample,
+            totals: FrameStats::default(),
+        };
+        for x0 in (0..tiles.out.width).step_by(TILE as usize) {
+            // Asked tile by tile: a tile of slow rays (small rational bounds) takes long enough.
             if cancelled() {
                 return None;
             }
-            for x in (0..out.width).step_by(block as usize) {
+            let columns: Vec<u32> = (x0..(x0 + TILE).min(tiles.out.width))
+                .step_by(block as usize)
+                .collect();
+            if beams {
+                tiles.beam(&columns, &rows, None);
+            } else {
+                tiles.trace(&columns, &rows, None);
+            }
+        }
+        Some(tiles.totals)
+    }
+}
+
+/// Traces the pixels of a pass tile by tile.
+struct Tiles<'r, 'o, 'b, F> {
+    renderer: &'r Renderer<'r>,
+    out: &'o mut BandOut<'b>,
+    pass: usize,
+    block: u32,
+    sample: F,
+    totals: FrameStats,
+}
+
+impl<F: Fn(&Ray, Option<Clearance>) -> Sample> Tiles<'_, '_, '_, F> {
+    /// Clears the beam of the pixels `columns x rows` (on from where the beam holding it
+    /// stopped, if any), and traces them behind it, split in halves along the longer side
+    /// each with a beam of its own while they hold more than [`BEAM_PIXELS`].
+    fn beam(&mut self, columns: &[u32], rows: &[u32], from: Option<Clearance>) {
+        let (Some(&first), Some(&last)) = (columns.first(), rows.last()) else {
+            return;
+        };
+        let corners = ((first, rows[0]), (columns[columns.len() - 1], last));
+        let beam = self.renderer.camera.beam(corners.0, corners.1);
+        let (cleared, tests) = beam.clear_until(self.renderer.shader.terrain, from);
+        self.totals.primary.beam += tests;
+        if columns.len() * rows.len() <= BEAM_PIXELS {
+            return self.trace(columns, rows, Some(cleared));
+        }
+        if columns.len() >= rows.len() {
+            let (left, right) = columns.split_at(columns.len() / 2);
+            self.beam(left, rows, Some(cleared));
+            self.beam(right, rows, Some(cleared));
+        } else {
+            let (top, bottom) = rows.split_at(rows.len() / 2);
+            self.beam(columns, top, Some(cleared));
+            self.beam(columns, bottom, Some(cleared));
+        }
+    }
+
+    /// Traces the pixels `columns x rows` this pass has not traced before and paints them.
+    fn trace(&mut self, columns: &[u32], rows: &[u32], beam: Option<Clearance>) {
+        let (pass, block) = (self.pass, self.block);
+        for &y in rows {
+            for &x in columns {
                 let traced_before = pass > 0 && x % (2 * block) == 0 && y % (2 * block) == 0;
                 if traced_before {
                     continue;
                 }
-                let sample = sample(&self.camera.ray(x, y));
-                totals.add(&sample);
-                out.paint(x, y, block, sample.rgb, PixelStats::of(&sample));
+                let sample = (self.sample)(&self.renderer.camera.ray(x, y), beam);
+                self.totals.add(&sample);
+                self.out
+                    .paint(x, y, block, sample.rgb, PixelStats::of(&sample));
             }
         }
-        Some(totals)
     }
 }
 

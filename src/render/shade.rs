@@ -6,7 +6,8 @@ use super::scene::{Lighting, Normals, Ramp};
 use crate::geometry::{gradient, plane_height};
 use crate::heightfield::Terrain;
 use crate::traverse::{
-    settled, trace_scalar, Counters, Exact, Found, Interval, Method, Query, Scalar, WalkOptions,
+    settled, trace_scalar, Clearance, Counters, Exact, Found, Interval, Method, Query, Scalar,
+    WalkOptions,
 };
 use crate::Ray;
 use glam::DVec3;
@@ -75,21 +76,25 @@ pub struct Shader<'a> {
 
 impl Shader<'_> {
     /// Traces and shades one primary ray exactly: in intervals, and again in rationals if
-    /// they left a decision unsettled.
-    pub fn sample_exact(&self, ray: &Ray) -> Sample {
-        match settled(|| self.sample::<Interval>(ray)) {
+    /// they left a decision unsettled. `beam`: see [`WalkOptions::beam`].
+    pub fn sample_exact(&self, ray: &Ray, beam: Option<Clearance>) -> Sample {
+        match settled(|| self.sample::<Interval>(ray, beam)) {
             (sample, true) => sample,
             (_, false) => Sample {
                 redone: true,
-                ..self.sample::<Exact>(ray)
+                ..self.sample::<Exact>(ray, beam)
             },
         }
     }
 
-    /// Traces and shades one primary ray in arithmetic `S`.
-    pub fn sample<S: Scalar>(&self, ray: &Ray) -> Sample {
+    /// Traces and shades one primary ray in arithmetic `S`, behind a beam that cleared the
+    /// way if given (see [`WalkOptions::beam`]).
+    pub fn sample<S: Scalar>(&self, ray: &Ray, beam: Option<Clearance>) -> Sample {
         let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
-        let walk = WalkOptions::new(self.method, Query::FirstHit);
+        let walk = WalkOptions {
+            beam,
+            ..WalkOptions::new(self.method, Query::FirstHit)
+        };
         let primary = trace_scalar(self.terrain, &o, &d, ray.dir(), walk);
         let Some(found) = primary.hit else {
             return Sample {

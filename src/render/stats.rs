@@ -92,7 +92,7 @@ impl FrameStats {
                 "no_shadow_possible": self.skipped.no_shadow_possible,
                 "above_terrain": self.skipped.above_terrain,
             },
-            "queries": {"bbox": q.bbox, "block": q.block, "run": q.run, "cell": q.cell, "triangle": q.triangle},
+            "queries": {"bbox": q.bbox, "block": q.block, "run": q.run, "cell": q.cell, "triangle": q.triangle, "beam": q.beam},
             "primary_queries": self.primary,
             "shadow_queries": self.shadow,
             "exact_redone": self.redone,
@@ -130,6 +130,12 @@ impl FrameStats {
             ratio(q.run),
             ratio(q.cell),
             ratio(q.triangle)
+        );
+        out += &format!(
+            "beam queries (once per tile of camera rays, shared by its rays): {} ({:.2} per primary ray), hits:misses {}\n",
+            q.beam.total(),
+            per(q.beam.total()),
+            ratio(q.beam)
         );
         out += &format!(
             "shadow rays: {} cast, {} in shadow; skipped {} facing away, {} no shadow possible, {} above terrain\n",

@@ -45,6 +45,10 @@ pub struct Counters {
     /// A block of the max-mipmap (the hierarchical method): the ray's lowest height over the
     /// block's part of the path against the block's highest sample.
     pub block: HitMiss,
+    /// A tile of camera rays as a whole (a beam, counted once per tile in the frame's
+    /// primary queries): its lowest height over a stretch against the highest sample under
+    /// the stretch.
+    pub beam: HitMiss,
     /// A run as a whole: the ray's lowest height over it against its highest sample.
     pub run: HitMiss,
     /// A cell: the ray's lowest height over it against its highest sample.
@@ -61,6 +65,7 @@ impl AddAssign for Counters {
     fn add_assign(&mut self, rhs: Counters) {
         self.bbox += rhs.bbox;
         self.block += rhs.block;
+        self.beam += rhs.beam;
         self.run += rhs.run;
         self.cell += rhs.cell;
         self.triangle += rhs.triangle;

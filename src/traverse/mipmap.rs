@@ -68,24 +68,21 @@ struct Part<'a, S> {
 }
 
 /// Walks the path block by block, handing the cells of blocks that may be hit to `search`.
-/// `near_terrain`: the path starts next to the surface (on it, or just before a cell an `f64`
-/// walk found may be hit), where every block around the start would fail its test: the walk
-/// starts on single cells and climbs from there.
+/// `level`: the level to start at where the caller knows better than the default: 0 where the
+/// path starts next to the surface (on it, or just before a cell an `f64` walk found may be
+/// hit), where every block around the start would fail its test, or the level of blocks a
+/// beam around the ray found may be touched.
 pub fn walk<S: Scalar>(
     f: &Frame<S>,
     search: &mut Search<'_, S>,
-    near_terrain: bool,
+    level: Option<u32>,
 ) -> ControlFlow<()> {
     if !has_blocks(f) {
         return runs::walk(f, &mut |span| search.span(span));
     }
     let top = search.terrain.mipmap().top();
-    descend(
-        f,
-        top,
-        if near_terrain { 0 } else { first_level(top) },
-        search,
-    )
+    let first = first_level(top);
+    descend(f, top, level.map_or(first, |k| k.min(first)), search)
 }
 
 /// Blocks an eighth of the grid wide: the two levels above them seldom pass a test (the ray
@@ -185,6 +182,9 @@ impl<S: Scalar> Follower<S> for Search<'_, S> {
     fn stop_before(&mut self, t: &S) -> ControlFlow<()> {
         Search::stop_before(self, t)
     }
+    // Inlined by hand: LLVM's choice flips with unrelated code elsewhere in the crate, and
+    // the call costs a fifth of the walk's time.
+    #[inline(always)]
     fn may_hit(&mut self, k: u32, (bi, bj): (usize, usize), t_lo: &S, t_hi: &S) -> bool {
         if k == 0 {
             self.cell_may_hit(bi, bj, t_lo, t_hi)

@@ -1,6 +1,7 @@
 //! Traversals of a ray across the grid (runs, cell DDA), the arithmetics they are generic
 //! over, and their query counters.
 
+mod beam;
 mod counters;
 mod dda;
 mod degenerate;
@@ -14,6 +15,7 @@ mod runs;
 pub mod scalar;
 mod search;
 
+pub use beam::{Beam, Clearance};
 pub use counters::{Counters, HitMiss};
 pub use exact::Exact;
 pub use interval::{settled, Interval};
@@ -71,7 +73,7 @@ pub enum Query {
 }
 
 /// How to walk, whatever the arithmetic.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WalkOptions {
     pub method: Method,
     pub query: Query,
@@ -80,6 +82,9 @@ pub struct WalkOptions {
     /// A triangle `(cell, k)` the ray starts on and leaves at once (it touches it only at
     /// `t = 0`), not to be tested: a shadow ray's own triangle.
     pub start_triangle: Option<((usize, usize), u8)>,
+    /// A [`Beam`] around the ray cleared the way: the ray touches nothing before its `t`, and
+    /// the hierarchical walk starts there, at the beam's last level.
+    pub beam: Option<Clearance>,
 }
 
 impl WalkOptions {
@@ -90,6 +95,7 @@ impl WalkOptions {
             query,
             record_cells: false,
             start_triangle: None,
+            beam: None,
         }
     }
 }
@@ -111,7 +117,7 @@ impl TraceOptions {
             method: self.method,
             query: self.query,
             record_cells: self.record_cells,
-            start_triangle: None,
+            ..WalkOptions::new(self.method, self.query)
         }
     }
 
@@ -359,6 +365,19 @@ pub fn trace_scalar<S: Scalar>(
         };
     };
     counters.bbox.record(true);
+    let start = beam_start::<S>(&walk_options);
+    let frame = match start {
+        Some((from, _)) => frame.stretch(from, f64::INFINITY),
+        None => Some(frame),
+    };
+    // (The beam cleared the whole segment.)
+    let Some(frame) = frame else {
+        return ScalarTrace {
+            hit: None,
+            counters,
+            cells: Vec::new(),
+        };
+    };
     // (Once per ray: for rationals each component's enclosure is a fraction's subtraction.)
     let near = f64_ray(o, d);
     let mut search = Search {
@@ -381,12 +400,24 @@ pub fn trace_scalar<S: Scalar>(
         // (A walk asked to list its cells walks them all.)
         let cleared = S::EXACT
             && !walk_options.record_cells
-            && near.is_some_and(|near| walk_cleared(terrain, near, dir_f64, &frame, &mut search));
+            && near.is_some_and(|near| {
+                walk_cleared(
+                    terrain,
+                    (near, start.map(|s| s.0)),
+                    dir_f64,
+                    &frame,
+                    &mut search,
+                )
+            });
         if !cleared {
             // A shadow ray starts on the surface, where every block around it fails its test.
-            let on_surface = walk_options.query == Query::Shadow;
+            let level = match start {
+                _ if walk_options.query == Query::Shadow => Some(0),
+                Some((_, level)) => Some(level),
+                None => None,
+            };
             // Ends by itself or at the answer; both are fine here.
-            let _ = mipmap::walk(&frame, &mut search, on_surface);
+            let _ = mipmap::walk(&frame, &mut search, level);
         }
     } else {
         walk(&frame, walk_options.method, &mut |span| search.span(span));
@@ -398,12 +429,21 @@ pub fn trace_scalar<S: Scalar>(
     }
 }
 
+/// Where the hierarchical walk starts when a beam around the ray cleared the way
+/// ([`WalkOptions::beam`]): `t` moved down by more than the rounding to `S` (the walk may
+/// start early, never late), and the level. The other methods walk the whole segment: they
+/// are what the hierarchy is measured against.
+fn beam_start<S: Scalar>(options: &WalkOptions) -> Option<(f64, u32)> {
+    let Clearance { t, level } = options.beam.filter(|b| b.t > 0.0)?;
+    (options.method == Method::Mipmap).then(|| (t - 4.0 * S::rounding_error(t), level))
+}
+
 /// The mipmap walk in an arithmetic without rounding, where an `f64` walk clears the way
 /// (see [`mipmap::clear_way`]): the exact walk follows only the stretches the `f64` walk
 /// could not clear. `false` where it cannot help (the ray is not near enough an `f64` ray).
 fn walk_cleared<S: Scalar>(
     terrain: &Terrain,
-    near: F64Ray,
+    near: (F64Ray, Option<f64>),
     dir_f64: [f64; 3],
     frame: &Frame<S>,
     search: &mut Search<'_, S>,
@@ -425,7 +465,7 @@ fn walk_cleared<S: Scalar>(
                 return ControlFlow::Break(());
             }
             if let Some(part) = frame.stretch(from, to) {
-                mipmap::walk(&part, search, true)?;
+                mipmap::walk(&part, search, Some(0))?;
             }
             // The walk covered every cell the path touches up to `to`: a hit before that is
             // the first. One past it (in a cell the walk ended in) waits for the next
@@ -457,15 +497,20 @@ fn f64_ray<S: Scalar>(o: &[S; 3], d: &[S; 3]) -> Option<F64Ray> {
     Some(([x, y, z], [rx, ry, rz], dir))
 }
 
-/// The `f64` ray an `f64` walk follows to clear the way for the mipmap, from [`f64_ray`]'s.
+/// The `f64` ray an `f64` walk follows to clear the way for the mipmap, from [`f64_ray`]'s,
+/// from the exact walk's beam start if it has one.
 fn approximation(
     terrain: &Terrain,
-    (origin, radius, dir): F64Ray,
+    ((origin, radius, dir), start): (F64Ray, Option<f64>),
     dir_f64: [f64; 3],
 ) -> Option<mipmap::Approximation> {
     // Every point of the exact segment is within `radius` of this ray at the same `t`, so
     // inside the grown box: the `f64` segment covers it.
     let frame = clip_grown(terrain, &origin, &dir, dir_f64, radius)?;
+    let frame = match start {
+        Some(from) => frame.stretch(from, f64::INFINITY)?,
+        None => frame,
+    };
     Some(mipmap::Approximation {
         frame,
         oz: origin[2],

@@ -96,6 +96,7 @@ impl<S: Scalar> Search<'_, S> {
 
     /// The cell test: the ray's lowest height over `[t_lo, t_hi]` against the cell's highest
     /// sample.
+    #[inline(always)]
     pub fn cell_may_hit(&mut self, i: usize, j: usize, t_lo: &S, t_hi: &S) -> bool {
         let lowest = self.lowest_z(t_lo, t_hi);
         let may_hit = lowest <= S::from_f64(self.terrain.cell_max(i, j));
@@ -104,6 +105,7 @@ impl<S: Scalar> Search<'_, S> {
 
     /// Breaks when a hit is already known at or before `t` (cells come in order of first
     /// contact, so nothing later can be earlier; equal `t` keeps the earlier cell).
+    #[inline(always)]
     pub fn stop_before(&self, t: &S) -> ControlFlow<()> {
         match &self.found {
             Some(found) if found.t <= *t => ControlFlow::Break(()),
@@ -112,6 +114,7 @@ impl<S: Scalar> Search<'_, S> {
     }
 
     /// The ray's lowest height over `[t_lo, t_hi]`, lowered by [`Search::slack`].
+    #[inline(always)]
     fn lowest_z(&self, t_lo: &S, t_hi: &S) -> S {
         let t = if self.dz.is_negative() { t_hi } else { t_lo };
         let z = self.oz.clone() + self.dz.clone() * t.clone();
@@ -124,6 +127,7 @@ impl<S: Scalar> Search<'_, S> {
 
     /// The block test of the hierarchical walk: the ray's lowest height over `[t_lo, t_hi]`
     /// against the block's highest sample.
+    #[inline(always)]
     pub fn block_may_hit(&mut self, t_lo: &S, t_hi: &S, highest: u16) -> bool {
         let lowest = self.lowest_z(t_lo, t_hi);
         let highest = self.terrain.field().height_of(highest);

@@ -5,6 +5,7 @@ use super::model::Model;
 use super::probe_ui::QUERY_KINDS;
 use super::settings::HeatMode;
 use crate::render::{FrameStats, PASS_BLOCKS};
+use crate::traverse::{Counters, HitMiss};
 use egui::Ui;
 
 pub fn statistics_ui(ui: &mut Ui, model: &mut Model) {
@@ -116,7 +117,10 @@ fn queries_ui(ui: &mut Ui, totals: &FrameStats) {
                 ui.strong(heading);
             }
             ui.end_row();
-            for (name, pick) in QUERY_KINDS {
+            // Beams are tested once per tile of camera rays, not per ray (a lone ray, as
+            // the probe traces it, has none).
+            let beam: (&str, fn(&Counters) -> HitMiss) = ("beam (per tile)", |c| c.beam);
+            for (name, pick) in QUERY_KINDS.iter().chain([&beam]) {
                 let h = pick(&all);
                 ui.label(*name);
                 ui.label(h.total().to_string());
