@@ -71,13 +71,37 @@ fn draw_svg(points: &[Point]) -> anyhow::Result<String> {
                 }))?
                 .label(*method)
                 .legend(move |(x, y)| Circle::new((x, y), 6, colour.filled()));
-            // Methods sit close together: one labels above its points, the next below.
-            let lift = if k % 2 == 0 { 1.3 } else { 0.62 };
-            chart.draw_series(mine.iter().map(|p| {
-                let name = short_name(p.label.trim_start_matches(*method).trim());
-                let at = (p.ns_per_ray * 1.08, p.error_rate.max(FLOOR) * lift);
-                Text::new(name, at, ("sans-serif", 13).into_font().color(&colour))
-            }))?;
+        }
+        // One label per arithmetic (the colours tell the methods apart), under its leftmost
+        // point (above, on the floor), as near as it fits without covering a label placed
+        // before it: the bounded rationals sit close together.
+        let mut ariths: Vec<(String, f64, f64)> = Vec::new();
+        for p in points {
+            let name = short_name(p.label.trim_start_matches(p.method.as_str()).trim());
+            let (x, y) = (p.ns_per_ray, p.error_rate.max(FLOOR));
+            match ariths.iter_mut().find(|a| a.0 == name) {
+                Some(a) if x < a.1 => (a.1, a.2) = (x, y),
+                Some(_) => {}
+                None => ariths.push((name, x, y)),
+            }
+        }
+        ariths.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let mut placed: Vec<(i32, i32, i32)> = Vec::new();
+        for (name, x, y) in &ariths {
+            let (px, py) = chart.backend_coord(&(x * 0.92, *y));
+            let width = 7 * name.len() as i32;
+            let down = *y > FLOOR;
+            let clear = |dy: i32| {
+                let top = if down { py + dy } else { py - dy - 14 };
+                let free = placed
+                    .iter()
+                    .all(|&(x0, x1, t)| px + width < x0 || px > x1 || top + 14 < t || top > t + 14);
+                free.then_some(top)
+            };
+            let top = (1..8).find_map(|k| clear(12 * k)).unwrap_or(py + 12);
+            placed.push((px, px + width, top));
+            let font = ("sans-serif", 13).into_font().color(&BLACK);
+            root.draw(&Text::new(name.clone(), (px, top), font))?;
         }
         chart
             .configure_series_labels()

@@ -154,7 +154,7 @@ fn highest_under(terrain: &Terrain, [x0, x1]: [f64; 2], [y0, y1]: [f64; 2]) -> O
     let (i0, i1, j0, j1) = (cell(x0, w), cell(x1, w), cell(y0, h), cell(y1, h));
     // The finest level at which the cells span at most two blocks each way.
     let mut k = 0;
-    while (i1 >> k) - (i0 >> k) > 1 || (j1 >> k) - (j0 >> k) > 1 {
+    while (i1 >> k).saturating_sub(i0 >> k) > 1 || (j1 >> k).saturating_sub(j0 >> k) > 1 {
         k += 1;
     }
     let mut highest = 0;
