@@ -24,9 +24,6 @@ const TILE: u32 = 16;
 /// (a coarser pass has too few rays per tile to pay for the beam's march).
 const BEAM_BLOCK: u32 = 2;
 
-/// A beam over more pixels than this is split in halves, each with a beam of its own.
-const BEAM_PIXELS: usize = 128;
-
 /// An image with its per-pixel statistics and running totals.
 #[derive(Clone, Debug)]
 pub struct Frame {
@@ -157,11 +154,8 @@ impl Renderer<'_> {
             let columns: Vec<u32> = (x0..(x0 + TILE).min(tiles.out.width))
                 .step_by(block as usize)
                 .collect();
-            if beams {
-                tiles.beam(&columns, &rows, None);
-            } else {
-                tiles.trace(&columns, &rows, None);
-            }
+            let beam = beams.then(|| tiles.beam(&columns, &rows)).flatten();
+            tiles.trace(&columns, &rows, beam);
         }
         Some(tiles.totals)
     }
@@ -178,29 +172,16 @@ struct Tiles<'r, 'o, 'b, F> {
 }
 
 impl<F: Fn(&Ray, Option<Clearance>) -> Sample> Tiles<'_, '_, '_, F> {
-    /// Clears the beam of the pixels `columns x rows` (on from where the beam holding it
-    /// stopped, if any), and traces them behind it, split in halves along the longer side
-    /// each with a beam of its own while they hold more than [`BEAM_PIXELS`].
-    fn beam(&mut self, columns: &[u32], rows: &[u32], from: Option<Clearance>) {
-        let (Some(&first), Some(&last)) = (columns.first(), rows.last()) else {
-            return;
-        };
-        let corners = ((first, rows[0]), (columns[columns.len() - 1], last));
-        let beam = self.renderer.camera.beam(corners.0, corners.1);
-        let (cleared, tests) = beam.clear_until(self.renderer.shader.terrain, from);
+    /// Clears the beam of the pixels `columns x rows` (`None` if there are none).
+    fn beam(&mut self, columns: &[u32], rows: &[u32]) -> Option<Clearance> {
+        let (first, last) = (
+            (*columns.first()?, *rows.first()?),
+            (*columns.last()?, *rows.last()?),
+        );
+        let beam = self.renderer.camera.beam(first, last);
+        let (cleared, tests) = beam.clear_until(self.renderer.shader.terrain);
         self.totals.primary.beam += tests;
-        if columns.len() * rows.len() <= BEAM_PIXELS {
-            return self.trace(columns, rows, Some(cleared));
-        }
-        if columns.len() >= rows.len() {
-            let (left, right) = columns.split_at(columns.len() / 2);
-            self.beam(left, rows, Some(cleared));
-            self.beam(right, rows, Some(cleared));
-        } else {
-            let (top, bottom) = rows.split_at(rows.len() / 2);
-            self.beam(columns, top, Some(cleared));
-            self.beam(columns, bottom, Some(cleared));
-        }
+        Some(cleared)
     }
 
     /// Traces the pixels `columns x rows` this pass has not traced before and paints them.

@@ -45,19 +45,14 @@ impl Beam {
     /// The march doubles its step past clear stretches and halves it where the footprint may
     /// touch the surface, and ends where a smaller step would not make the footprint much
     /// smaller: its own advance is below a quarter of the beam's width (or of a cell).
-    ///
-    /// `from`: how far a beam holding this one was cleared; the march starts there.
-    pub fn clear_until(&self, terrain: &Terrain, from: Option<Clearance>) -> (Clearance, HitMiss) {
+    pub fn clear_until(&self, terrain: &Terrain) -> (Clearance, HitMiss) {
         let mut tests = HitMiss::default();
         let field = terrain.field();
         let (w, h) = (field.width() as f64 - 1.0, field.height() as f64 - 1.0);
         let (z_lo, z_hi) = terrain.z_range();
         let c = &self.corners;
         let largest = c.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
-        let Clearance { mut t, mut level } = from.unwrap_or(Clearance {
-            t: 0.0,
-            level: terrain.mipmap().top(),
-        });
+        let (mut t, mut level) = (0.0, terrain.mipmap().top());
         if !(largest > 0.0 && largest.is_finite()) {
             return (Clearance { t, level }, tests);
         }
@@ -75,14 +70,8 @@ impl Beam {
         // What a point of the beam at `t` may be off by: its direction's room, and far more
         // than the rounding of `o + t * corner`.
         let room = |t: f64| (DIR_ROOM + 1e-12) * (o_size + t * largest) + DIR_ROOM * t * largest;
-        // A fresh march starts with a step of about a cell; one on from a wider beam's end
-        // with a step about the size of the blocks it ended on.
-        let blocks = if from.is_some() {
-            (1u64 << level) as f64 / 2.0
-        } else {
-            1.0
-        };
-        let mut step = blocks.max(1.0) / speed.max(climb);
+        // About a cell to begin with.
+        let mut step = 1.0 / speed.max(climb);
         for _ in 0..MAX_STEPS {
             let tb = t + step;
             let g = room(tb);

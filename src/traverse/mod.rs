@@ -343,6 +343,17 @@ pub struct ScalarTrace<S> {
     pub cells: Vec<[usize; 2]>,
 }
 
+impl<S> ScalarTrace<S> {
+    /// No hit, after the queries counted.
+    fn missed(counters: Counters) -> Self {
+        ScalarTrace {
+            hit: None,
+            counters,
+            cells: Vec::new(),
+        }
+    }
+}
+
 /// Traces a ray given in the traversal's own arithmetic (for rays that start where another
 /// ray hit: exact mode keeps the exact point). `dir_f64` is the direction as given, which
 /// picks the octant and axes identically in every arithmetic. For [`Rational`] the caller
@@ -358,11 +369,7 @@ pub fn trace_scalar<S: Scalar>(
     let frame = clip(terrain, o, d, dir_f64);
     let Some(frame) = frame else {
         counters.bbox.record(false);
-        return ScalarTrace {
-            hit: None,
-            counters,
-            cells: Vec::new(),
-        };
+        return ScalarTrace::missed(counters);
     };
     counters.bbox.record(true);
     let start = beam_start::<S>(&walk_options);
@@ -372,11 +379,7 @@ pub fn trace_scalar<S: Scalar>(
     };
     // (The beam cleared the whole segment.)
     let Some(frame) = frame else {
-        return ScalarTrace {
-            hit: None,
-            counters,
-            cells: Vec::new(),
-        };
+        return ScalarTrace::missed(counters);
     };
     // (Once per ray: for rationals each component's enclosure is a fraction's subtraction.)
     let near = f64_ray(o, d);
