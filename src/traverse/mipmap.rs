@@ -81,8 +81,13 @@ pub fn walk<S: Scalar>(
         return runs::walk(f, &mut |span| search.span(span));
     }
     let top = search.terrain.mipmap().top();
+    descend(f, top, start_level(top, level), search)
+}
+
+/// The level a walk starts at: [`first_level`], or lower where the caller knows better.
+fn start_level(top: u32, level: Option<u32>) -> u32 {
     let first = first_level(top);
-    descend(f, top, level.map_or(first, |k| k.min(first)), search)
+    level.map_or(first, |k| k.min(first))
 }
 
 /// Blocks an eighth of the grid wide: the two levels above them seldom pass a test (the ray
@@ -242,6 +247,8 @@ pub struct Approximation {
     pub dz: f64,
     /// How far the exact origin may be from this ray's, per axis (the direction is the same).
     pub radius: [f64; 3],
+    /// The level to start at where it is known better than the default (a beam's).
+    pub level: Option<u32>,
 }
 
 /// Walks the `f64` ray near one traced in an arithmetic without rounding, and hands each
@@ -306,7 +313,7 @@ pub fn clear_way(
     let first = if query == Query::Shadow {
         0
     } else {
-        first_level(top)
+        start_level(top, ray.level)
     };
     descend(f, top, first, &mut clearing)?;
     clearing.flush()

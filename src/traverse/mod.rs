@@ -404,13 +404,7 @@ pub fn trace_scalar<S: Scalar>(
         let cleared = S::EXACT
             && !walk_options.record_cells
             && near.is_some_and(|near| {
-                walk_cleared(
-                    terrain,
-                    (near, start.map(|s| s.0)),
-                    dir_f64,
-                    &frame,
-                    &mut search,
-                )
+                walk_cleared(terrain, (near, start), dir_f64, &frame, &mut search)
             });
         if !cleared {
             // A shadow ray starts on the surface, where every block around it fails its test.
@@ -446,7 +440,7 @@ fn beam_start<S: Scalar>(options: &WalkOptions) -> Option<(f64, u32)> {
 /// could not clear. `false` where it cannot help (the ray is not near enough an `f64` ray).
 fn walk_cleared<S: Scalar>(
     terrain: &Terrain,
-    near: (F64Ray, Option<f64>),
+    near: (F64Ray, Option<(f64, u32)>),
     dir_f64: [f64; 3],
     frame: &Frame<S>,
     search: &mut Search<'_, S>,
@@ -501,17 +495,17 @@ fn f64_ray<S: Scalar>(o: &[S; 3], d: &[S; 3]) -> Option<F64Ray> {
 }
 
 /// The `f64` ray an `f64` walk follows to clear the way for the mipmap, from [`f64_ray`]'s,
-/// from the exact walk's beam start if it has one.
+/// from the exact walk's beam start and level if it has them.
 fn approximation(
     terrain: &Terrain,
-    ((origin, radius, dir), start): (F64Ray, Option<f64>),
+    ((origin, radius, dir), start): (F64Ray, Option<(f64, u32)>),
     dir_f64: [f64; 3],
 ) -> Option<mipmap::Approximation> {
     // Every point of the exact segment is within `radius` of this ray at the same `t`, so
     // inside the grown box: the `f64` segment covers it.
     let frame = clip_grown(terrain, &origin, &dir, dir_f64, radius)?;
     let frame = match start {
-        Some(from) => frame.stretch(from, f64::INFINITY)?,
+        Some((from, _)) => frame.stretch(from, f64::INFINITY)?,
         None => frame,
     };
     Some(mipmap::Approximation {
@@ -519,6 +513,7 @@ fn approximation(
         oz: origin[2],
         dz: dir[2],
         radius,
+        level: start.map(|(_, level)| level),
     })
 }
 
