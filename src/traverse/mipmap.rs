@@ -120,6 +120,8 @@ fn descend<S: Scalar>(
         on_v: false,
     };
     let mut first_part = true;
+    // A climbing ray moved on to a new block: whether it may move up a level there.
+    let mut try_climb = false;
     loop {
         follower.stop_before(&at.t)?;
         // (Rounding, or an interval that cannot tell, may put a point on the grid's near
@@ -134,6 +136,16 @@ fn descend<S: Scalar>(
         // Frame blocks are aligned like the grid's: mirroring maps multiples of 2^k to
         // multiples of 2^k.
         let (i, j) = f.cell(cu, cv);
+        // A climbing ray is lowest where it is now, so the parent block's test is the one it
+        // would fail or pass after moving up, asked before the exit from the parent is worked
+        // out: a ray that grazes the surface does not move up only to come down again.
+        let mut known_clear = false;
+        if std::mem::take(&mut try_climb) && k < top {
+            let parent = (i >> (k + 1), j >> (k + 1));
+            if !follower.may_hit(k + 1, parent, &at.t, &at.t) {
+                (k, known_clear) = (k + 1, true);
+            }
+        }
         let (eu, ev) = (((cu >> k) + 1) << k, ((cv >> k) + 1) << k);
         let exit = exit_point(f, &at, eu, ev);
         // The path is monotone in u and v: it ends in this block if its end lies before the
@@ -146,7 +158,7 @@ fn descend<S: Scalar>(
             f.ve <= exit.v
         };
         let t_hi = if ends_inside { &f.t1 } else { &exit.t };
-        let may_hit = follower.may_hit(k, (i >> k, j >> k), &at.t, t_hi);
+        let may_hit = !known_clear && follower.may_hit(k, (i >> k, j >> k), &at.t, t_hi);
         if k > 0 && may_hit {
             k -= 1;
             continue;
@@ -175,7 +187,9 @@ fn descend<S: Scalar>(
         // failed its test.
         let parent = (1i64 << (k + 1)) - 1;
         let new_parent = (exit.on_u && eu & parent == 0) || (exit.on_v && ev & parent == 0);
-        if k < top && (new_parent || follower.climbs()) {
+        if follower.climbs() {
+            try_climb = true;
+        } else if k < top && new_parent {
             k += 1;
         }
         at = exit;
@@ -357,6 +371,8 @@ impl<F: FnMut(Stretch) -> ControlFlow<()>> Follower<f64> for Clearing<'_, F> {
             _ => ControlFlow::Continue(()),
         }
     }
+    // (Inlined by hand, as the search's.)
+    #[inline(always)]
     fn may_hit(&mut self, k: u32, (bi, bj): (usize, usize), t_lo: &f64, t_hi: &f64) -> bool {
         let highest = self.terrain.block_max_sample(k, bi, bj);
         let highest = self.terrain.field().height_of(highest);
