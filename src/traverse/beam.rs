@@ -75,19 +75,20 @@ impl Beam {
         for _ in 0..MAX_STEPS {
             let tb = t + step;
             let g = room(tb);
-            let ends = [t, tb];
-            let points = || {
-                c.iter()
-                    .flat_map(|d| ends.map(|s| [o[0] + s * d[0], o[1] + s * d[1]]))
-            };
-            let (x0, x1) = min_max(points().map(|p| p[0]));
-            let (y0, y1) = min_max(points().map(|p| p[1]));
-            let lowest = ends
-                .iter()
-                .flat_map(|&s| c.iter().map(move |d| o[2] + s * d[2]))
-                .fold(f64::INFINITY, f64::min)
-                - g;
-            let clear = match highest_under(terrain, [x0 - g, x1 + g], [y0 - g, y1 + g]) {
+            // The box around the corners' points at both ends, and the lowest of them.
+            let (mut xs, mut ys, mut lowest) = (
+                (f64::INFINITY, f64::NEG_INFINITY),
+                (f64::INFINITY, f64::NEG_INFINITY),
+                f64::INFINITY,
+            );
+            for d in c {
+                for s in [t, tb] {
+                    let [x, y, z] = [0, 1, 2].map(|k| o[k] + s * d[k]);
+                    (xs, ys) = ((xs.0.min(x), xs.1.max(x)), (ys.0.min(y), ys.1.max(y)));
+                    lowest = lowest.min(z - g);
+                }
+            }
+            let clear = match highest_under(terrain, [xs.0 - g, xs.1 + g], [ys.0 - g, ys.1 + g]) {
                 None => true,
                 Some((highest, k)) => {
                     level = k;
