@@ -365,6 +365,12 @@ pub fn trace_scalar<S: Scalar>(
     dir_f64: [f64; 3],
     walk_options: WalkOptions,
 ) -> ScalarTrace<S> {
+    // (Once per ray: for rationals each component's enclosure is a fraction's subtraction.)
+    let near = f64_ray(o, d);
+    let certified = near.and_then(|near| trace_certified(terrain, o, d, near, &walk_options));
+    if let Some(answer) = certified {
+        return answer;
+    }
     let mut counters = Counters::default();
     let frame = clip(terrain, o, d, dir_f64);
     let Some(frame) = frame else {
@@ -373,32 +379,12 @@ pub fn trace_scalar<S: Scalar>(
     };
     counters.bbox.record(true);
     let start = beam_start::<S>(&walk_options);
-    let frame = match start {
-        Some((from, _)) => frame.stretch(from, f64::INFINITY),
-        None => Some(frame),
-    };
     // (The beam cleared the whole segment.)
-    let Some(frame) = frame else {
+    let Some(frame) = after_beam(frame, start) else {
         return ScalarTrace::missed(counters);
     };
-    // (Once per ray: for rationals each component's enclosure is a fraction's subtraction.)
-    let near = f64_ray(o, d);
-    let mut search = Search {
-        terrain,
-        frame: &frame,
-        ray: RaySpace::new(o.clone(), d.clone(), dir_f64),
-        certain_miss: near
-            .map(|(origin, [rx, ry, rz], dir)| CertainMiss::new(origin, rx.max(ry).max(rz), dir)),
-        oz: o[2].clone(),
-        dz: d[2].clone(),
-        query: walk_options.query,
-        run_test: walk_options.method == Method::Runs,
-        counters,
-        found: None,
-        cells: walk_options.record_cells.then(Vec::new),
-        start_triangle: walk_options.start_triangle,
-        slack: search::slack(&o[2], &d[2], &frame.t1),
-    };
+    let mut search = new_search(terrain, o, d, dir_f64, near, &walk_options, counters);
+    search.slack = search::slack(&o[2], &d[2], &frame.t1);
     if walk_options.method == Method::Mipmap {
         // (A walk asked to list its cells walks them all.)
         let cleared = S::EXACT
@@ -417,13 +403,94 @@ pub fn trace_scalar<S: Scalar>(
             let _ = mipmap::walk(&frame, &mut search, level);
         }
     } else {
-        walk(&frame, walk_options.method, &mut |span| search.span(span));
+        walk(&frame, walk_options.method, &mut |span| {
+            search.span(&frame, span)
+        });
     }
     ScalarTrace {
         hit: search.found,
         counters: search.counters,
         cells: search.cells.unwrap_or_default(),
     }
+}
+
+/// A search for the ray's answer, before any walk.
+fn new_search<'a, S: Scalar>(
+    terrain: &'a Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    near: Option<F64Ray>,
+    options: &WalkOptions,
+    counters: Counters,
+) -> Search<'a, S> {
+    Search {
+        terrain,
+        ray: RaySpace::new(o.clone(), d.clone(), dir_f64),
+        certain_miss: near
+            .map(|(origin, [rx, ry, rz], dir)| CertainMiss::new(origin, rx.max(ry).max(rz), dir)),
+        oz: o[2].clone(),
+        dz: d[2].clone(),
+        query: options.query,
+        run_test: options.method == Method::Runs,
+        counters,
+        found: None,
+        tied: false,
+        cells: options.record_cells.then(Vec::new),
+        start_triangle: options.start_triangle,
+        slack: 0.0,
+    }
+}
+
+/// The mipmap in an arithmetic without rounding, answered from an `f64` walk alone (see
+/// [`mipmap::certify`]): `None` where that cannot answer (the path crosses no blocks, a walk
+/// must list its cells, or two triangles are hit at the same `t`, which the exact walk's
+/// order of cells decides).
+fn trace_certified<S: Scalar>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    near: F64Ray,
+    options: &WalkOptions,
+) -> Option<ScalarTrace<S>> {
+    if options.method != Method::Mipmap || options.record_cells {
+        return None;
+    }
+    let (origin, radius, dir) = near;
+    let mut counters = Counters::default();
+    // Every point of the exact segment is within `radius` of the `f64` ray at the same `t`,
+    // so inside the grown box: its clipped segment covers the exact one.
+    let Some(frame) = clip_grown(terrain, &origin, &dir, dir, radius) else {
+        counters.bbox.record(false);
+        return Some(ScalarTrace::missed(counters));
+    };
+    counters.bbox.record(true);
+    if !mipmap::has_blocks(&frame) {
+        return None;
+    }
+    let start = beam_start::<S>(options);
+    // (The beam cleared the whole segment.)
+    let Some(frame) = after_beam(frame, start) else {
+        return Some(ScalarTrace::missed(counters));
+    };
+    let near_ray = mipmap::Approximation {
+        frame,
+        oz: origin[2],
+        dz: dir[2],
+        radius,
+        level: start.map(|(_, level)| level),
+    };
+    let mut search = new_search(terrain, o, d, dir, Some(near), options, counters);
+    // Ends by itself or at the answer; both are fine here.
+    let _ = mipmap::certify(&near_ray, &mut search);
+    if search.tied && options.query == Query::FirstHit {
+        return None;
+    }
+    Some(ScalarTrace {
+        hit: search.found,
+        counters: search.counters,
+        cells: Vec::new(),
+    })
 }
 
 /// Where the hierarchical walk starts when a beam around the ray cleared the way
@@ -433,6 +500,15 @@ pub fn trace_scalar<S: Scalar>(
 fn beam_start<S: Scalar>(options: &WalkOptions) -> Option<(f64, u32)> {
     let Clearance { t, level } = options.beam.filter(|b| b.t > 0.0)?;
     (options.method == Method::Mipmap).then(|| (t - 4.0 * S::rounding_error(t), level))
+}
+
+/// The part of the segment from [`beam_start`]'s `t` on (all of it without a beam); `None` if
+/// the beam cleared it all.
+fn after_beam<S: Scalar>(frame: Frame<S>, start: Option<(f64, u32)>) -> Option<Frame<S>> {
+    match start {
+        Some((from, _)) => frame.stretch(from, f64::INFINITY),
+        None => Some(frame),
+    }
 }
 
 /// The mipmap walk in an arithmetic without rounding, where an `f64` walk clears the way
@@ -504,10 +580,7 @@ fn approximation(
     // Every point of the exact segment is within `radius` of this ray at the same `t`, so
     // inside the grown box: the `f64` segment covers it.
     let frame = clip_grown(terrain, &origin, &dir, dir_f64, radius)?;
-    let frame = match start {
-        Some((from, _)) => frame.stretch(from, f64::INFINITY)?,
-        None => frame,
-    };
+    let frame = after_beam(frame, start)?;
     Some(mipmap::Approximation {
         frame,
         oz: origin[2],

@@ -7,6 +7,7 @@ use super::scalar::{max, min, Scalar};
 use super::Query;
 use crate::geometry::{CellTriangles, CertainMiss, RaySpace};
 use crate::heightfield::Terrain;
+use std::cmp::Ordering;
 use std::ops::ControlFlow;
 
 /// A hit: the ray parameter, the cell `(i, j)` and its triangle (0 or 1).
@@ -27,7 +28,6 @@ impl<S: Scalar> Found<S> {
 /// Searches the spans of one walk for the first hit (or any hit, for shadow queries).
 pub struct Search<'a, S> {
     pub terrain: &'a Terrain,
-    pub frame: &'a Frame<S>,
     pub ray: RaySpace<S>,
     /// For arithmetics without rounding: settles most misses in `f64`.
     pub certain_miss: Option<CertainMiss>,
@@ -38,6 +38,9 @@ pub struct Search<'a, S> {
     pub run_test: bool,
     pub counters: Counters,
     pub found: Option<Found<S>>,
+    /// Two hits on different triangles were found at the same `t`: which one is the answer
+    /// then depends on the order the cells were visited in.
+    pub tied: bool,
     /// Cells the walk covered, in order, when asked for.
     pub cells: Option<Vec<[usize; 2]>>,
     /// The triangle the ray starts on and leaves at once: not tested.
@@ -57,28 +60,28 @@ pub fn slack<S: Scalar>(oz: &S, dz: &S, t_max: &S) -> f64 {
 }
 
 impl<S: Scalar> Search<'_, S> {
-    /// Visits one span; breaks when the answer is known.
-    pub fn span(&mut self, span: Span<S>) -> ControlFlow<()> {
+    /// Visits one span of the walk of `frame`; breaks when the answer is known.
+    pub fn span(&mut self, frame: &Frame<S>, span: Span<S>) -> ControlFlow<()> {
         self.stop_before(&span.t_lo)?;
-        if self.run_test && !self.run_may_hit(&span) {
+        if self.run_test && !self.run_may_hit(frame, &span) {
             if let Some(cells) = &mut self.cells {
-                cells.extend(span_cells(self.frame, &span).map(|(i, j)| [i, j]));
+                cells.extend(span_cells(frame, &span).map(|(i, j)| [i, j]));
             }
             return ControlFlow::Continue(());
         }
-        let several_columns = span.cols.0 != span.cols.1 && !self.frame.du.is_zero();
+        let several_columns = span.cols.0 != span.cols.1 && !frame.du.is_zero();
         for (cu, cv) in frame_cells(&span) {
             // The part of the span's ray inside this cell's column.
             let (t_lo, t_hi) = if several_columns {
                 (
-                    max(span.t_lo.clone(), self.frame.t_at_u(cu)),
-                    min(span.t_hi.clone(), self.frame.t_at_u(cu + 1)),
+                    max(span.t_lo.clone(), frame.t_at_u(cu)),
+                    min(span.t_hi.clone(), frame.t_at_u(cu + 1)),
                 )
             } else {
                 (span.t_lo.clone(), span.t_hi.clone())
             };
             self.stop_before(&t_lo)?;
-            let (i, j) = self.frame.cell(cu, cv);
+            let (i, j) = frame.cell(cu, cv);
             self.reached(i, j);
             if self.cell_may_hit(i, j, &t_lo, &t_hi) {
                 self.triangles(i, j)?;
@@ -135,15 +138,14 @@ impl<S: Scalar> Search<'_, S> {
     }
 
     /// The run test: the ray's lowest height over the run against the highest cell under it.
-    fn run_may_hit(&mut self, span: &Span<S>) -> bool {
+    fn run_may_hit(&mut self, frame: &Frame<S>, span: &Span<S>) -> bool {
         let lowest = self.lowest_z(&span.t_lo, &span.t_hi);
         let (a, b) = (
-            self.frame.cell(span.cols.0, span.row),
-            self.frame
-                .cell(span.cols.1, span.row + i64::from(span.rows) - 1),
+            frame.cell(span.cols.0, span.row),
+            frame.cell(span.cols.1, span.row + i64::from(span.rows) - 1),
         );
         let (lo_i, hi_i, lo_j, hi_j) = (a.0.min(b.0), a.0.max(b.0), a.1.min(b.1), a.1.max(b.1));
-        let highest = if self.frame.swap {
+        let highest = if frame.swap {
             (lo_i..=hi_i)
                 .map(|i| self.terrain.column_max(i, lo_j, hi_j))
                 .fold(f64::NEG_INFINITY, f64::max)
@@ -199,10 +201,15 @@ impl<S: Scalar> Search<'_, S> {
             let Some(hit) = hit else { continue };
             // (A walk may reach a cell twice where its parts meet: the same triangle's hit is
             // the same, and comparing it with itself would be a tie intervals cannot settle.)
+            let other = |f: &Found<S>| (f.cell, f.triangle) != ((i, j), triangle);
             let earlier = self
                 .found
                 .as_ref()
-                .is_none_or(|f| (f.cell, f.triangle) != ((i, j), triangle) && hit.t_first < f.t);
+                .is_none_or(|f| other(f) && hit.t_first < f.t);
+            self.tied |= !earlier
+                && self.found.as_ref().is_some_and(|f| {
+                    other(f) && f.t.partial_cmp(&hit.t_first) == Some(Ordering::Equal)
+                });
             if earlier {
                 self.found = Some(Found {
                     t: hit.t_first,

@@ -14,19 +14,26 @@
 //! are snapped onto the block face they lie on, so the next block is found without rounding in
 //! that coordinate, and a walk in a rounding arithmetic cannot step back into a skipped block.
 //!
-//! In arithmetics without rounding, an `f64` walk clears the way ([`clear_way`]): it skips only
-//! blocks the ray clears with room for every rounding it made and for the exact ray's distance
-//! from it, so the exact walk follows only the stretches between (from just before the first
-//! cell that may be hit, for a camera ray).
+//! In arithmetics without rounding the walk is made in `f64`, skipping only blocks the ray
+//! clears with room for every rounding it made and for the exact ray's distance from it
+//! ([`Approximation`]). Where it cannot skip, the triangles of the cells the exact ray may be
+//! in are tested exactly ([`certify`]); where two triangles are hit at the same `t`, which the
+//! order of the cells decides, the `f64` walk only clears the way ([`clear_way`]) and an exact
+//! walk follows the stretches between the blocks it skipped.
 
-use super::counters::Counters;
+mod approximation;
+mod certified;
+mod stretches;
+
+pub use approximation::Approximation;
+pub use certified::certify;
+pub use stretches::clear_way;
+
 use super::degenerate::is_point;
 use super::frame::Frame;
 use super::runs;
-use super::scalar::{max, Scalar, F64_TOLERANCE};
+use super::scalar::{max, Scalar};
 use super::search::Search;
-use super::Query;
-use crate::heightfield::Terrain;
 use std::ops::ControlFlow;
 
 /// A point on the path: its ray parameter and frame coordinates, and whether it lies on the
@@ -56,11 +63,18 @@ trait Follower<S: Scalar> {
     /// Whether the ray climbs (or is level): then its lowest point in a block changes as the
     /// walk moves through the block.
     fn climbs(&self) -> bool;
+    /// The path left the grid before its end, at the start of `part` (a path lengthened by
+    /// rounding, or grown to cover an exact ray near it); by default nothing is left to do.
+    fn left_grid(&mut self, _part: Part<'_, S>) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
 }
 
 /// A cell's part of the path.
 struct Part<'a, S> {
     frame: &'a Frame<S>,
+    /// The cell in frame indices.
+    uv: (i64, i64),
     at: &'a Point<S>,
     exit: &'a Point<S>,
     ends_inside: bool,
@@ -78,7 +92,7 @@ pub fn walk<S: Scalar>(
     level: Option<u32>,
 ) -> ControlFlow<()> {
     if !has_blocks(f) {
-        return runs::walk(f, &mut |span| search.span(span));
+        return runs::walk(f, &mut |span| search.span(f, span));
     }
     let top = search.terrain.mipmap().top();
     descend(f, top, start_level(top, level), search)
@@ -100,7 +114,7 @@ fn first_level(top: u32) -> u32 {
 /// that the run walk's single run test would not skip as well, and a path that starts on the
 /// grid's far edge (a float segment lengthened by its rounding past a corner it touches) has
 /// no block ahead, only the cells behind its start.
-fn has_blocks<S: Scalar>(f: &Frame<S>) -> bool {
+pub fn has_blocks<S: Scalar>(f: &Frame<S>) -> bool {
     let beyond = f.us.floor_i64() > f.cols.1 || f.vs.floor_i64() > f.rows.1;
     !(is_point(f) || f.dv.is_zero() || beyond)
 }
@@ -131,7 +145,14 @@ fn descend<S: Scalar>(
             at.v.floor_i64().max(f.rows.0),
         );
         if cu > f.cols.1 || cv > f.rows.1 {
-            return ControlFlow::Continue(());
+            return follower.left_grid(Part {
+                frame: f,
+                uv: (cu, cv),
+                at: &at,
+                exit: &at,
+                ends_inside: true,
+                alone: false,
+            });
         }
         // Frame blocks are aligned like the grid's: mirroring maps multiples of 2^k to
         // multiples of 2^k.
@@ -170,6 +191,7 @@ fn descend<S: Scalar>(
             let alone = !(first_part || (exit.on_u && exit.on_v) || ends_inside);
             let part = Part {
                 frame: f,
+                uv: (cu, cv),
                 at: &at,
                 exit: &exit,
                 ends_inside,
@@ -194,6 +216,17 @@ fn descend<S: Scalar>(
         }
         at = exit;
         first_part = false;
+    }
+}
+
+impl<S: Scalar> Part<'_, S> {
+    /// The `t` where the part ends.
+    fn end_t(&self) -> &S {
+        if self.ends_inside {
+            &self.frame.t1
+        } else {
+            &self.exit.t
+        }
     }
 }
 
@@ -223,195 +256,13 @@ impl<S: Scalar> Follower<S> for Search<'_, S> {
         if !part.ends_inside {
             (frame.t1, frame.ue, frame.ve) = (exit.t.clone(), exit.u.clone(), exit.v.clone());
         }
-        runs::walk(&frame, &mut |span| self.span(span))
+        runs::walk(&frame, &mut |span| self.span(&frame, span))
     }
     fn passed(&mut self, (i, j): (usize, usize)) {
         self.reached(i, j);
     }
     fn climbs(&self) -> bool {
         !self.dz.is_negative()
-    }
-}
-
-/// A stretch of the path that may touch the surface, as an `f64` walk found it: `t` from
-/// `from` to `to`, and the room to leave around it.
-#[derive(Clone, Copy, Debug)]
-pub struct Stretch {
-    pub from: f64,
-    pub to: f64,
-    /// Far more than the rounding of any `t` the `f64` walk computed and than the exact
-    /// ray's distance from its path (divided by the smaller direction component, as a `t`):
-    /// an exact walk from `from - margin` to `to + margin` starts and ends inside blocks the
-    /// `f64` walk skipped (or cells it found may be hit), clear of the faces between them.
-    pub margin: f64,
-}
-
-impl Stretch {
-    /// The stretch with room around it, from..to.
-    pub fn widened(&self) -> (f64, f64) {
-        (self.from - self.margin, self.to + self.margin)
-    }
-}
-
-/// An `f64` ray near an exact one, for an `f64` walk to clear the way for it.
-pub struct Approximation {
-    /// Its frame, covering the exact ray's segment.
-    pub frame: Frame<f64>,
-    pub oz: f64,
-    pub dz: f64,
-    /// How far the exact origin may be from this ray's, per axis (the direction is the same).
-    pub radius: [f64; 3],
-    /// The level to start at where it is known better than the default (a beam's).
-    pub level: Option<u32>,
-}
-
-/// Walks the `f64` ray near one traced in an arithmetic without rounding, and hands each
-/// [`Stretch`] of the path that may touch the surface, in order, to `search`; breaks when
-/// `search` does. Between the stretches the exact ray touches nothing, so an exact walk only
-/// follows the stretches: the approach to the first hit, and what lies between the places a
-/// shadow ray grazes the surface, are left to the `f64` walk. For a first-hit query the first
-/// stretch runs to the segment's end: a camera ray mostly hits where it first may, and
-/// measured, its exact walk is faster on from there than an `f64` walk gathering more
-/// stretches.
-///
-/// The exact ray is `o + t*d` with `d` an `f64` and `o` within `radius` (per axis) of the
-/// `f64` origin. The walk skips blocks only where the ray stays above them with room for that
-/// and for every rounding it made: the positions (within `pos` of the exact path), the `t` of
-/// block faces (within `dt`) and the heights along the ray (within `z_err`). The surface rises
-/// at most `max_slope` per unit of horizontal distance, so beyond a block by `pos` it is at
-/// most that much higher.
-pub fn clear_way(
-    ray: &Approximation,
-    terrain: &Terrain,
-    query: Query,
-    counters: &mut Counters,
-    search: &mut impl FnMut(Stretch) -> ControlFlow<()>,
-) -> ControlFlow<()> {
-    let (f, oz, dz, radius) = (&ray.frame, ray.oz, ray.dz, ray.radius);
-    if !has_blocks(f) {
-        return search(Stretch {
-            from: f64::NEG_INFINITY,
-            to: f64::INFINITY,
-            margin: 0.0,
-        });
-    }
-    let eps = f64::EPSILON;
-    let t_max = f.t1.abs().max(f.t0.abs());
-    let d_xy = f.du.abs().max(f.dv.abs());
-    // Face crossings `(k - o) * (1/d)` carry three roundings; clip ends as many.
-    let dt = 4.0 * eps * t_max + f64::MIN_POSITIVE;
-    let coords = f.ou.abs().max(f.ov.abs()) + d_xy * t_max;
-    // Two axes, each off by its own rounding and by the face crossing's `dt`; the tested
-    // span lengthened by `dt` at both ends moves as far again. An exit within the `f64`
-    // tolerance of a corner is snapped onto it (`exit_point`): as far off as that tolerance.
-    // The exact origin is off by its radius.
-    let snap = F64_TOLERANCE * t_max.max(1.0) * d_xy;
-    let off = radius[0].max(radius[1]);
-    let pos = 2.0 * (4.0 * eps * coords + d_xy * dt) + 2.0 * d_xy * dt + 2.0 * snap + off;
-    let rise = terrain.max_slope() * (1.0 + 1e-9) * pos;
-    let z_err = 4.0 * eps * (oz.abs() + dz.abs() * t_max) + dz.abs() * dt + radius[2];
-    let mut clearing = Clearing {
-        terrain,
-        dz,
-        oz,
-        room: (z_err + rise) * (1.0 + 1e-6),
-        counters,
-        // (`has_blocks`: neither component is zero.)
-        off_faces: 4.0 * (off + 4.0 * eps * coords) / f.du.abs().min(f.dv.abs()),
-        first_only: query == Query::FirstHit,
-        stretch: None,
-        search,
-    };
-    let top = terrain.mipmap().top();
-    // A shadow ray starts on the surface, where every block around it fails its test.
-    let first = if query == Query::Shadow {
-        0
-    } else {
-        start_level(top, ray.level)
-    };
-    descend(f, top, first, &mut clearing)?;
-    clearing.flush()
-}
-
-/// The most cells a stretch gathers before it is searched.
-const STRETCH_CELLS: u32 = 4;
-
-/// Follows an `f64` walk, gathering the parts of cells that may be hit into stretches.
-struct Clearing<'a, F> {
-    terrain: &'a Terrain,
-    oz: f64,
-    dz: f64,
-    /// What the ray must clear a block's highest sample by.
-    room: f64,
-    counters: &'a mut Counters,
-    /// The `t` that moves the exact path off a face it may lie on as far as intervals tell.
-    off_faces: f64,
-    /// Hand the search only one stretch, from the first cell that may be hit to the end.
-    first_only: bool,
-    /// The stretch gathered since the last skipped block, and its cells.
-    stretch: Option<(Stretch, u32)>,
-    search: &'a mut F,
-}
-
-impl<F: FnMut(Stretch) -> ControlFlow<()>> Clearing<'_, F> {
-    /// Hands the stretch gathered to the search.
-    fn flush(&mut self) -> ControlFlow<()> {
-        match self.stretch.take() {
-            Some((stretch, _)) => (self.search)(stretch),
-            None => ControlFlow::Continue(()),
-        }
-    }
-}
-
-impl<F: FnMut(Stretch) -> ControlFlow<()>> Follower<f64> for Clearing<'_, F> {
-    fn stop_before(&mut self, t: &f64) -> ControlFlow<()> {
-        // The walk moved on past the stretch and its room: a block was skipped since.
-        match self.stretch {
-            Some((stretch, _)) if *t > stretch.to + 2.0 * stretch.margin => self.flush(),
-            _ => ControlFlow::Continue(()),
-        }
-    }
-    // (Inlined by hand, as the search's.)
-    #[inline(always)]
-    fn may_hit(&mut self, k: u32, (bi, bj): (usize, usize), t_lo: &f64, t_hi: &f64) -> bool {
-        let highest = self.terrain.block_max_sample(k, bi, bj);
-        let highest = self.terrain.field().height_of(highest);
-        let t = if self.dz < 0.0 { *t_hi } else { *t_lo };
-        let lowest = self.oz + self.dz * t;
-        // The comparison's own operands are rounded too.
-        let room = self.room + 4.0 * f64::EPSILON * (lowest.abs() + highest.abs());
-        self.counters.block.record(lowest - room <= highest)
-    }
-    fn cell(&mut self, _cell: (usize, usize), part: Part<'_, f64>) -> ControlFlow<()> {
-        let to = if part.ends_inside {
-            part.frame.t1
-        } else {
-            part.exit.t
-        };
-        let (from, cells) = match self.stretch {
-            Some((stretch, cells)) => (stretch.from, cells + 1),
-            None => (part.at.t, 1),
-        };
-        let margin = 1e-9 * (from.abs().max(to.abs()) + 1.0) + self.off_faces;
-        if self.first_only {
-            let rest = Stretch {
-                to: f64::INFINITY,
-                ..Stretch { from, to, margin }
-            };
-            (self.search)(rest)?;
-            return ControlFlow::Break(());
-        }
-        self.stretch = Some((Stretch { from, to, margin }, cells));
-        // A long stretch is searched before it ends: past a hit the ray runs inside the
-        // terrain, where every block fails its test, to the end of the segment.
-        if cells >= STRETCH_CELLS {
-            return self.flush();
-        }
-        ControlFlow::Continue(())
-    }
-    fn passed(&mut self, _cell: (usize, usize)) {}
-    fn climbs(&self) -> bool {
-        self.dz >= 0.0
     }
 }
 

@@ -1,0 +1,102 @@
+//! The `f64` ray near an exact one, and the room an `f64` walk along it leaves: what it skips,
+//! the exact ray does not touch.
+
+use super::super::counters::Counters;
+use super::super::frame::Frame;
+use super::super::scalar::F64_TOLERANCE;
+use crate::heightfield::Terrain;
+
+/// An `f64` ray near an exact one, for an `f64` walk to clear the way for it.
+pub struct Approximation {
+    /// Its frame, covering the exact ray's segment.
+    pub frame: Frame<f64>,
+    pub oz: f64,
+    pub dz: f64,
+    /// How far the exact origin may be from this ray's, per axis (the direction is the same).
+    pub radius: [f64; 3],
+    /// The level to start at where it is known better than the default (a beam's).
+    pub level: Option<u32>,
+}
+
+/// How far the exact ray may be from the points an `f64` walk along its [`Approximation`]
+/// computes, worked out once per ray.
+///
+/// The exact ray is `o + t*d` with `d` an `f64` and `o` within `radius` (per axis) of the
+/// `f64` origin. The walk skips blocks only where the ray stays above them with room for that
+/// and for every rounding it made: the positions (within `pos` of the exact path), the `t` of
+/// block faces (within `dt`) and the heights along the ray (within `z_err`). The surface rises
+/// at most `max_slope` per unit of horizontal distance, so beyond a block by `pos` it is at
+/// most that much higher.
+pub(super) struct Bounds {
+    oz: f64,
+    dz: f64,
+    /// What the ray must clear a block's highest sample by.
+    room: f64,
+    /// How far, per axis, the exact path at a `t` may be from the point the walk computed for
+    /// that `t`.
+    pub pos: f64,
+    /// How far a `t` the walk computed may be from the exact one.
+    pub dt: f64,
+    /// The `t` that moves the exact path off a face it may lie on as far as intervals tell.
+    pub off_faces: f64,
+}
+
+impl Bounds {
+    /// The bounds for a ray whose path crosses blocks (neither frame component is zero).
+    pub fn new(ray: &Approximation, terrain: &Terrain) -> Self {
+        let (f, oz, dz, radius) = (&ray.frame, ray.oz, ray.dz, ray.radius);
+        let eps = f64::EPSILON;
+        let t_max = f.t1.abs().max(f.t0.abs());
+        let d_xy = f.du.abs().max(f.dv.abs());
+        // Face crossings `(k - o) * (1/d)` carry three roundings; clip ends as many.
+        let dt = 4.0 * eps * t_max + f64::MIN_POSITIVE;
+        let coords = f.ou.abs().max(f.ov.abs()) + d_xy * t_max;
+        // Two axes, each off by its own rounding and by the face crossing's `dt`; the tested
+        // span lengthened by `dt` at both ends moves as far again. An exit within the `f64`
+        // tolerance of a corner is snapped onto it (`exit_point`): as far off as that
+        // tolerance. The exact origin is off by its radius.
+        let snap = F64_TOLERANCE * t_max.max(1.0) * d_xy;
+        let off = radius[0].max(radius[1]);
+        let pos = 2.0 * (4.0 * eps * coords + d_xy * dt) + 2.0 * d_xy * dt + 2.0 * snap + off;
+        let rise = terrain.max_slope() * (1.0 + 1e-9) * pos;
+        let z_err = 4.0 * eps * (oz.abs() + dz.abs() * t_max) + dz.abs() * dt + radius[2];
+        Bounds {
+            oz,
+            dz,
+            room: (z_err + rise) * (1.0 + 1e-6),
+            pos,
+            dt,
+            off_faces: 4.0 * (off + 4.0 * eps * coords) / f.du.abs().min(f.dv.abs()),
+        }
+    }
+
+    /// Whether the exact ray may touch block `(bi, bj)` of level `k` (a cell at level 0) while
+    /// the walk's `t` runs over `[t_lo, t_hi]`; counted as a cell or block query.
+    #[inline(always)]
+    pub fn may_hit(
+        &self,
+        terrain: &Terrain,
+        k: u32,
+        (bi, bj): (usize, usize),
+        (t_lo, t_hi): (f64, f64),
+        counters: &mut Counters,
+    ) -> bool {
+        let highest = terrain.block_max_sample(k, bi, bj);
+        let highest = terrain.field().height_of(highest);
+        let t = if self.dz < 0.0 { t_hi } else { t_lo };
+        let lowest = self.oz + self.dz * t;
+        // The comparison's own operands are rounded too.
+        let room = self.room + 4.0 * f64::EPSILON * (lowest.abs() + highest.abs());
+        let counter = if k == 0 {
+            &mut counters.cell
+        } else {
+            &mut counters.block
+        };
+        counter.record(lowest - room <= highest)
+    }
+
+    /// Whether the ray climbs (or is level).
+    pub fn climbs(&self) -> bool {
+        self.dz >= 0.0
+    }
+}
