@@ -1,10 +1,14 @@
-//! Triangle misses certain in `f64`, for rays traced in an arithmetic without rounding.
+//! Triangle misses and hits certain in `f64`, for rays traced in an arithmetic without
+//! rounding.
 //!
 //! Most triangles a walk tests are misses, and a miss is plain in the edge functions of the
 //! watertight test ([`super::RaySpace`]): two of them have opposite signs. This filter computes
 //! them in `f64` with a bound on their error, from a ray within a known radius of the exact
 //! one; where two signs are certain and opposite, the exact test would find them so too, and
-//! the miss is the exact answer. Every other case is left to the exact test.
+//! the miss is the exact answer. Where all three are certain and alike, the exact ray's line
+//! crosses the triangle inside it, and the exact test hits it where the line meets the
+//! triangle's plane if that lies ahead: an enclosure of that `t`, computed in intervals, is
+//! the answer then. Every other case is left to the exact test.
 //!
 //! The bound. The exact ray-space image of a vertex `p` is `x' = (p_x - o_x) - s (p_z - o_z)`
 //! with `s = d_x / d_z`, `|s| <= 1` (z is the direction's largest component). The filter's
@@ -15,11 +19,13 @@
 //! off by at most `e` is off by at most `e (|c0| + |b1| + |c1| + |b0|) + 2 e^2`, and its own
 //! two products and difference round by at most `3 eps (|c0 b1| + |c1 b0|)`.
 
-use super::RaySpace;
+use super::{gradient, RaySpace};
+use crate::traverse::{Interval, Scalar};
 
 /// The `f64` stand-in of one ray.
 pub struct CertainMiss {
     space: RaySpace<f64>,
+    dir: [f64; 3],
     /// How far the exact origin may be from `space`'s, on any axis.
     radius: f64,
 }
@@ -36,8 +42,42 @@ impl CertainMiss {
     pub fn new(origin: [f64; 3], radius: f64, dir: [f64; 3]) -> Self {
         CertainMiss {
             space: RaySpace::new(origin, dir, dir),
+            dir,
             radius,
         }
+    }
+
+    /// An enclosure `(lo, hi)` of the `t` where the exact ray meets the plane of triangle `k`
+    /// of cell `(i, j)` (corner heights `[z00, z10, z01, z11]`), where it certainly lies ahead
+    /// of the origin (`t > 0`).
+    pub fn plane_t(&self, (i, j): (usize, usize), k: u8, heights: [f64; 4]) -> Option<(f64, f64)> {
+        let point = Interval::from_f64;
+        let near = |x: f64| {
+            if self.radius == 0.0 {
+                Some(point(x))
+            } else {
+                Interval::between((x - self.radius).next_down(), (x + self.radius).next_up())
+            }
+        };
+        let [ox, oy, oz] = self.space.origin();
+        let (ox, oy, oz) = (near(*ox)?, near(*oy)?, near(*oz)?);
+        let [dx, dy, dz] = self.dir.map(point);
+        let heights = heights.map(point);
+        let z00 = heights[0];
+        let (gx, gy) = gradient(k, heights);
+        // oz + t*dz = z00 + gx*(ox + t*dx - i) + gy*(oy + t*dy - j), solved for t.
+        let above = oz
+            - z00
+            - gx * (ox - Interval::from_i64(i as i64))
+            - gy * (oy - Interval::from_i64(j as i64));
+        let closing = gx * dx + gy * dy - dz;
+        // (Asked without a comparison, which would flag the ray where it cannot tell.)
+        let (c, r) = closing.f64_enclosure()?;
+        if c.abs() <= r {
+            return None;
+        }
+        let (lo, hi) = (above / closing).ends();
+        (lo > 0.0 && hi.is_finite()).then_some((lo, hi))
     }
 
     /// Cell `(i, j)` with corner heights `[z00, z10, z01, z11]`.
@@ -65,14 +105,26 @@ impl CertainMiss {
 impl CellImages {
     /// Whether triangle `k` (0 or 1, corners as in [`super::CellTriangles`]) certainly misses.
     pub fn misses(&self, k: u8) -> bool {
+        let signs = self.signs(k);
+        signs.contains(&Some(true)) && signs.contains(&Some(false))
+    }
+
+    /// Whether the exact ray's line certainly crosses triangle `k` inside it (not on an edge,
+    /// and not in its plane).
+    pub fn crosses(&self, k: u8) -> bool {
+        let signs = self.signs(k);
+        signs.iter().all(|&s| s == Some(true)) || signs.iter().all(|&s| s == Some(false))
+    }
+
+    /// The signs of triangle `k`'s three edge functions, where they are certain.
+    fn signs(&self, k: u8) -> [Option<bool>; 3] {
         let [a, b, c] = if k == 0 { [0, 1, 3] } else { [0, 3, 2] };
         let [a, b, c] = [a, b, c].map(|n| &self.images[n]);
-        let signs = [
+        [
             self.sign(c[0], b[1], c[1], b[0]),
             self.sign(a[0], c[1], a[1], c[0]),
             self.sign(b[0], a[1], b[1], a[0]),
-        ];
-        signs.contains(&Some(true)) && signs.contains(&Some(false))
+        ]
     }
 
     /// The sign of `p*q - r*s` (`true`: positive) where it is certain.
@@ -106,20 +158,32 @@ mod tests {
     use proptest::prelude::*;
     use proptest::test_runner::RngSeed;
 
-    /// Whether the exact test hits triangle `k` of cell `(i, j)`, for the ray from `origin`
+    /// Where the exact test hits triangle `k` of cell `(i, j)`, for the ray from `origin`
     /// moved by `offset` (exactly) along `dir`.
-    fn exact_hits(
+    fn exact_hit(
         origin: [f64; 3],
         offset: [BigRational; 3],
         dir: [f64; 3],
         (i, j): (usize, usize),
         heights: [f64; 4],
         k: u8,
-    ) -> bool {
+    ) -> Option<BigRational> {
         let o = [0, 1, 2].map(|n| Exact(exact_from_f64(origin[n]) + offset[n].clone()));
         let space = RaySpace::new(o, dir.map(|x| Exact(exact_from_f64(x))), dir);
         let cell = CellTriangles::new(&space, i, j, heights.map(|z| Exact(exact_from_f64(z))));
-        cell.intersect(&space, k).is_some()
+        cell.intersect(&space, k).map(|hit| hit.t_first.0)
+    }
+
+    /// Whether the exact test hits triangle `k` (see [`exact_hit`]).
+    fn exact_hits(
+        origin: [f64; 3],
+        offset: [BigRational; 3],
+        dir: [f64; 3],
+        cell: (usize, usize),
+        heights: [f64; 4],
+        k: u8,
+    ) -> bool {
+        exact_hit(origin, offset, dir, cell, heights, k).is_some()
     }
 
     /// Coordinates that stress the bound: on grid lines and vertices, just off them, and
@@ -175,6 +239,38 @@ mod tests {
                         "triangle {} of ({}, {}) is hit", k, i, j
                     );
                 }
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 6000, rng_seed: RngSeed::Fixed(12), ..ProptestConfig::default() })]
+
+        /// A certain crossing ahead of the origin is a hit of the exact test, at a `t` inside
+        /// the enclosure, for the exact origin anywhere within the radius.
+        #[test]
+        fn certain_crossings_are_exact_hits_inside_the_enclosure(
+            origin in [coordinate(), coordinate(), coordinate()],
+            dir in [component(), component(), component()],
+            heights in [height(), height(), height(), height()],
+            (i, j) in (0usize..5, 0usize..5),
+            radius in prop_oneof![Just(0.0), Just(1e-12), Just(1e-6), Just(0.25)],
+            fractions in [-8i64..=8, -8i64..=8, -8i64..=8],
+        ) {
+            prop_assume!(dir.iter().any(|&x| x != 0.0));
+            let filter = CertainMiss::new(origin, radius, dir);
+            let images = filter.cell(i, j, heights);
+            let offset = fractions.map(|n| exact_from_f64(radius) * BigRational::new(n.into(), 8.into()));
+            for k in 0..2 {
+                let Some((lo, hi)) = images.crosses(k).then(|| filter.plane_t((i, j), k, heights)).flatten() else {
+                    continue;
+                };
+                let t = exact_hit(origin, offset.clone(), dir, (i, j), heights, k);
+                let t = t.unwrap_or_else(|| panic!("triangle {k} of ({i}, {j}) is missed"));
+                prop_assert!(
+                    exact_from_f64(lo) <= t && t <= exact_from_f64(hi),
+                    "t {} outside [{}, {}]", t, lo, hi
+                );
             }
         }
     }

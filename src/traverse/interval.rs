@@ -53,6 +53,11 @@ impl Interval {
         (lo.is_finite() && hi.is_finite() && lo <= hi).then_some(Interval { lo, hi })
     }
 
+    /// The ends `(lo, hi)`.
+    pub fn ends(&self) -> (f64, f64) {
+        (self.lo, self.hi)
+    }
+
     fn point(x: f64) -> Interval {
         Interval { lo: x, hi: x }
     }
@@ -393,6 +398,9 @@ impl Scalar for Interval {
             lo: self.lo.max(other.lo),
             hi: self.hi.max(other.hi),
         }
+    }
+    fn from_enclosure(lo: f64, hi: f64) -> Option<Self> {
+        Interval::between(lo, hi)
     }
     fn f64_enclosure(&self) -> Option<(f64, f64)> {
         if self.is_point() {

@@ -79,6 +79,12 @@ pub trait Scalar:
         None
     }
 
+    /// A value known only to lie in `[lo, hi]`, in the arithmetics that can hold one
+    /// (intervals); `None` in the others.
+    fn from_enclosure(_lo: f64, _hi: f64) -> Option<Self> {
+        None
+    }
+
     /// The exact value as a fraction, for arithmetics that have one.
     fn to_exact(&self) -> Option<BigRational> {
         None

@@ -5,7 +5,7 @@ use super::counters::Counters;
 use super::frame::{Frame, Span};
 use super::scalar::{max, min, Scalar};
 use super::Query;
-use crate::geometry::{CellTriangles, CertainMiss, RaySpace};
+use crate::geometry::{CellTriangles, CertainMiss, RaySpace, TriangleHit};
 use crate::heightfield::Terrain;
 use std::cmp::Ordering;
 use std::ops::ControlFlow;
@@ -164,28 +164,44 @@ impl<S: Scalar> Search<'_, S> {
         }
         let heights = self.terrain.corner_heights(i, j);
         let tested = |triangle| self.start_triangle != Some(((i, j), triangle));
-        let certain_misses = match &self.certain_miss {
+        // What the `f64` filter settles: a certain miss (`Some(None)`), or a certain hit and
+        // an enclosure of its `t` (`Some(Some(t))`).
+        let certain: [Option<Option<S>>; 2] = match &self.certain_miss {
             Some(filter) if S::EXACT => {
                 let images = filter.cell(i, j, heights);
-                [0, 1].map(|k| tested(k) && images.misses(k))
+                [0, 1].map(|k| {
+                    if !tested(k) {
+                        None
+                    } else if images.misses(k) {
+                        Some(None)
+                    } else if images.crosses(k) {
+                        let (lo, hi) = filter.plane_t((i, j), k, heights)?;
+                        S::from_enclosure(lo, hi).map(Some)
+                    } else {
+                        None
+                    }
+                })
             }
-            _ => [false; 2],
+            _ => [None, None],
         };
-        let misses = certain_misses.iter().filter(|&&miss| miss).count();
-        if misses > 0 && (0..2).all(|k| certain_misses[k as usize] || !tested(k)) {
-            (0..misses).for_each(|_| _ = self.counters.triangle.record(false));
-            return ControlFlow::Continue(());
-        }
-        let cell = CellTriangles::new(&self.ray, i, j, heights.map(S::from_f64));
+        // (Built only for a triangle the filter leaves open.)
+        let mut cell = None;
         for triangle in 0..2 {
             if !tested(triangle) {
                 continue;
             }
-            if certain_misses[triangle as usize] {
-                self.counters.triangle.record(false);
-                continue;
-            }
-            let hit = cell.intersect(&self.ray, triangle);
+            let hit = match &certain[triangle as usize] {
+                Some(None) => None,
+                Some(Some(t)) => Some(TriangleHit {
+                    t_first: t.clone(),
+                    t_last: Some(t.clone()),
+                }),
+                None => cell
+                    .get_or_insert_with(|| {
+                        CellTriangles::new(&self.ray, i, j, heights.map(S::from_f64))
+                    })
+                    .intersect(&self.ray, triangle),
+            };
             let counts = match (&hit, self.query) {
                 (None, _) => false,
                 (Some(_), Query::FirstHit) => true,

@@ -125,26 +125,31 @@ impl<S: Scalar> Certifying<'_, '_, S> {
             reach * f.inv_du.abs() + slack,
             reach * f.inv_dv.abs() + slack,
         );
-        let (all, inf) = (f64::NEG_INFINITY, f64::INFINITY);
         // The `t` over which the exact path may be in the column before, this one and the
-        // one after; the same for rows.
-        let cols: [(f64, f64); 3] = [
-            (all, f.t_at_u(cu) + wu),
-            (all, inf),
-            (f.t_at_u(cu + 1) - wu, inf),
+        // one after, within the part; `None` where it cannot be there. The same for rows.
+        let within = |lo: f64, hi: f64| {
+            let (lo, hi) = (lo.max(span.0), hi.min(span.1));
+            (lo <= hi).then_some((lo, hi))
+        };
+        let (all, inf) = (f64::NEG_INFINITY, f64::INFINITY);
+        let cols = [
+            within(all, f.t_at_u(cu) + wu),
+            within(all, inf),
+            within(f.t_at_u(cu + 1) - wu, inf),
         ];
         let rows = [
-            (all, f.t_at_v(cv) + wv),
-            (all, inf),
-            (f.t_at_v(cv + 1) - wv, inf),
+            within(all, f.t_at_v(cv) + wv),
+            within(all, inf),
+            within(f.t_at_v(cv + 1) - wv, inf),
         ];
         // The part's own cell first: a hit there ends the search in most neighbours.
         for (a, b) in NEIGHBOURHOOD {
-            let (col, row) = (cols[a], rows[b]);
+            let (Some(col), Some(row)) = (cols[a], rows[b]) else {
+                continue;
+            };
             let (nu, nv) = (cu + a as i64 - 1, cv + b as i64 - 1);
             let inside = (f.cols.0..=f.cols.1).contains(&nu) && (f.rows.0..=f.rows.1).contains(&nv);
-            let lo = span.0.max(col.0).max(row.0);
-            let hi = span.1.min(col.1).min(row.1);
+            let (lo, hi) = (col.0.max(row.0), col.1.min(row.1));
             // (Past the first hit found, nothing in the cell can come first.)
             if !inside || lo > hi || lo > self.found_before || self.recent.contains(&(nu, nv)) {
                 continue;
