@@ -22,13 +22,13 @@ pub use interval::{settled, Interval};
 pub use rational::{with_bound, Rational, RationalEvents, DEFAULT_BOUND};
 pub use scalar::Scalar;
 
-use crate::geometry::{clip_to_box, gradient, CertainMiss, Ray, RaySpace};
+use crate::geometry::{clip_to_box, gradient, CertainMiss, Ray};
 use crate::heightfield::Terrain;
 use dyadic::Dyadic;
 use frame::{Frame, Span};
 use num_rational::BigRational;
 pub use search::Found;
-use search::{span_cells, Search};
+use search::{span_cells, LazyRaySpace, Search};
 use std::fmt;
 use std::ops::ControlFlow;
 use std::str::FromStr;
@@ -426,7 +426,7 @@ fn new_search<'a, S: Scalar>(
 ) -> Search<'a, S> {
     Search {
         terrain,
-        ray: RaySpace::new(o.clone(), d.clone(), dir_f64),
+        ray: LazyRaySpace::new(o, d, dir_f64),
         certain_miss: near
             .map(|(origin, [rx, ry, rz], dir)| CertainMiss::new(origin, rx.max(ry).max(rz), dir)),
         oz: o[2].clone(),

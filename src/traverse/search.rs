@@ -7,6 +7,7 @@ use super::scalar::{max, min, Scalar};
 use super::Query;
 use crate::geometry::{CellTriangles, CertainMiss, RaySpace, TriangleHit};
 use crate::heightfield::Terrain;
+use std::cell::OnceCell;
 use std::cmp::Ordering;
 use std::ops::ControlFlow;
 
@@ -25,10 +26,36 @@ impl<S: Scalar> Found<S> {
     }
 }
 
+/// The ray in ray space for the triangle tests, prepared on first use: in exact mode the
+/// `f64` filter settles most rays' tests without it, and preparing it divides in intervals.
+pub struct LazyRaySpace<S> {
+    origin: [S; 3],
+    dir: [S; 3],
+    dir_f64: [f64; 3],
+    space: OnceCell<RaySpace<S>>,
+}
+
+impl<S: Scalar> LazyRaySpace<S> {
+    /// The ray `origin + t*dir`; `dir_f64` picks the axes (see [`RaySpace::new`]).
+    pub fn new(origin: &[S; 3], dir: &[S; 3], dir_f64: [f64; 3]) -> Self {
+        LazyRaySpace {
+            origin: origin.clone(),
+            dir: dir.clone(),
+            dir_f64,
+            space: OnceCell::new(),
+        }
+    }
+
+    fn get(&self) -> &RaySpace<S> {
+        self.space
+            .get_or_init(|| RaySpace::new(self.origin.clone(), self.dir.clone(), self.dir_f64))
+    }
+}
+
 /// Searches the spans of one walk for the first hit (or any hit, for shadow queries).
 pub struct Search<'a, S> {
     pub terrain: &'a Terrain,
-    pub ray: RaySpace<S>,
+    pub ray: LazyRaySpace<S>,
     /// For arithmetics without rounding: settles most misses in `f64`.
     pub certain_miss: Option<CertainMiss>,
     pub oz: S,
@@ -198,9 +225,9 @@ impl<S: Scalar> Search<'_, S> {
                 }),
                 None => cell
                     .get_or_insert_with(|| {
-                        CellTriangles::new(&self.ray, i, j, heights.map(S::from_f64))
+                        CellTriangles::new(self.ray.get(), i, j, heights.map(S::from_f64))
                     })
-                    .intersect(&self.ray, triangle),
+                    .intersect(self.ray.get(), triangle),
             };
             let counts = match (&hit, self.query) {
                 (None, _) => false,
