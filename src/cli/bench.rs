@@ -12,6 +12,7 @@ use indicatif::ProgressBar;
 use indicatif::ProgressStyle;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::time::{Duration, Instant};
 
 pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
     anyhow::ensure!(
@@ -38,7 +39,7 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
         for &samples in &args.sizes {
             bar.set_message(format!("generating {samples}x{samples}"));
             let scene = sized_scene(samples, size)?;
-            let terrain = Terrain::new(scene.field.clone());
+            let terrain = fastest_build(&scene);
             bar.set_message(format!("{samples}x{samples}"));
             let rows = measure(args, &scene, &terrain, &bar)?;
             let label = format!("valley landscape (seed {SEED}) at {samples}x{samples}");
@@ -53,6 +54,24 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
         print_growth(&measured);
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The scene's terrain, built as many times as fit in a second (at least three): the one
+/// whose build was fastest, as every frame time is the fastest of many (a 2 ms build is
+/// half page faults on a fresh allocation on one run, and not on the next).
+fn fastest_build(scene: &Scene) -> Terrain {
+    let start = Instant::now();
+    let mut fastest = Terrain::new(scene.field.clone());
+    for built in 1.. {
+        if built >= 3 && start.elapsed() > Duration::from_secs(1) {
+            break;
+        }
+        let terrain = Terrain::new(scene.field.clone());
+        if terrain.build_time() < fastest.build_time() {
+            fastest = terrain;
+        }
+    }
+    fastest
 }
 
 fn measure(
