@@ -4,6 +4,8 @@
 use super::super::counters::Counters;
 use super::super::frame::Frame;
 use super::super::scalar::F64_TOLERANCE;
+use super::super::Query;
+use super::start_level;
 use crate::heightfield::Terrain;
 
 /// An `f64` ray near an exact one, for an `f64` walk to clear the way for it.
@@ -16,6 +18,18 @@ pub struct Approximation {
     pub radius: [f64; 3],
     /// The level to start at where it is known better than the default (a beam's).
     pub level: Option<u32>,
+}
+
+impl Approximation {
+    /// The level its walk starts at, for a query of the given kind: a shadow ray starts on
+    /// the surface, where every block around it fails its test.
+    pub(super) fn first_level(&self, query: Query, top: u32) -> u32 {
+        if query == Query::Shadow {
+            0
+        } else {
+            start_level(top, self.level)
+        }
+    }
 }
 
 /// How far the exact ray may be from the points an `f64` walk along its [`Approximation`]

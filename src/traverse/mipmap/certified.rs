@@ -15,10 +15,9 @@
 //! tie is left to the caller ([`Search::tied`]).
 
 use super::approximation::{Approximation, Bounds};
-use super::{descend, start_level, Follower, Part};
+use super::{descend, Follower, Part};
 use crate::traverse::scalar::Scalar;
 use crate::traverse::search::{Found, Search};
-use crate::traverse::Query;
 use std::ops::ControlFlow;
 
 /// Searches the exact ray near `ray` for its answer, walking only in `f64`; breaks when the
@@ -26,12 +25,7 @@ use std::ops::ControlFlow;
 pub fn certify<S: Scalar>(ray: &Approximation, search: &mut Search<'_, S>) -> ControlFlow<()> {
     let terrain = search.terrain;
     let top = terrain.mipmap().top();
-    // A shadow ray starts on the surface, where every block around it fails its test.
-    let first = if search.query == Query::Shadow {
-        0
-    } else {
-        start_level(top, ray.level)
-    };
+    let first = ray.first_level(search.query, top);
     let mut certifying = Certifying {
         bounds: Bounds::new(ray, terrain),
         search,

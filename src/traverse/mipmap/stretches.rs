@@ -2,7 +2,7 @@
 //! may touch the surface, and the exact walk follows only those.
 
 use super::approximation::{Approximation, Bounds};
-use super::{descend, has_blocks, start_level, Follower, Part};
+use super::{descend, has_blocks, Follower, Part};
 use crate::heightfield::Terrain;
 use crate::traverse::counters::Counters;
 use crate::traverse::Query;
@@ -60,13 +60,7 @@ pub fn clear_way(
         search,
     };
     let top = terrain.mipmap().top();
-    // A shadow ray starts on the surface, where every block around it fails its test.
-    let first = if query == Query::Shadow {
-        0
-    } else {
-        start_level(top, ray.level)
-    };
-    descend(f, top, first, &mut clearing)?;
+    descend(f, top, ray.first_level(query, top), &mut clearing)?;
     clearing.flush()
 }
 
