@@ -19,7 +19,7 @@
 //! off by at most `e` is off by at most `e (|c0| + |b1| + |c1| + |b0|) + 2 e^2`, and its own
 //! two products and difference round by at most `3 eps (|c0 b1| + |c1 b0|)`.
 
-use super::{gradient, RaySpace};
+use super::{plane_crossing, RaySpace};
 use crate::traverse::{Interval, Scalar};
 
 /// The `f64` stand-in of one ray.
@@ -60,17 +60,13 @@ impl CertainMiss {
             }
         };
         let [ox, oy, oz] = self.space.origin();
-        let (ox, oy, oz) = (near(*ox)?, near(*oy)?, near(*oz)?);
-        let [dx, dy, dz] = self.dir.map(point);
-        let heights = heights.map(point);
-        let z00 = heights[0];
-        let (gx, gy) = gradient(k, heights);
-        // oz + t*dz = z00 + gx*(ox + t*dx - i) + gy*(oy + t*dy - j), solved for t.
-        let above = oz
-            - z00
-            - gx * (ox - Interval::from_i64(i as i64))
-            - gy * (oy - Interval::from_i64(j as i64));
-        let closing = gx * dx + gy * dy - dz;
+        let (above, closing) = plane_crossing(
+            k,
+            heights.map(point),
+            (Interval::from_i64(i as i64), Interval::from_i64(j as i64)),
+            [near(*ox)?, near(*oy)?, near(*oz)?],
+            self.dir.map(point),
+        );
         // (Asked without a comparison, which would flag the ray where it cannot tell.)
         let (c, r) = closing.f64_enclosure()?;
         if c.abs() <= r {

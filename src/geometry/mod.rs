@@ -8,4 +8,4 @@ mod triangle;
 pub use certain_miss::{CellImages, CertainMiss};
 pub use clip::{clip_to_box, Clipped};
 pub use ray::{Ray, RayError};
-pub use triangle::{gradient, plane_height, CellTriangles, RaySpace, TriangleHit};
+pub use triangle::{gradient, plane_crossing, plane_height, CellTriangles, RaySpace, TriangleHit};

@@ -10,7 +10,7 @@
 //! lying in a triangle's plane hits where it first touches the triangle.
 
 use crate::traverse::scalar::{max, min, Scalar};
-use std::ops::Sub;
+use std::ops::{Add, Mul, Sub};
 
 /// A ray prepared for many triangle tests: the axis permutation and shear of Woop et al.
 #[derive(Clone, Debug)]
@@ -194,6 +194,22 @@ pub fn gradient<S: Clone + Sub<Output = S>>(k: u8, [z00, z10, z01, z11]: [S; 4])
     } else {
         (z11 - z01.clone(), z01 - z00)
     }
+}
+
+/// Where the line `o + t*d` meets the plane of triangle `k` of the cell whose corner `P00` is
+/// at `corner` with corner heights `[z00, z10, z01, z11]`: `t = above / closing`, returned as
+/// `(above, closing)` (`closing` is zero where the line runs parallel to the plane).
+pub fn plane_crossing<T>(k: u8, heights: [T; 4], corner: (T, T), o: [T; 3], d: [T; 3]) -> (T, T)
+where
+    T: Clone + Add<Output = T> + Sub<Output = T> + Mul<Output = T>,
+{
+    let z00 = heights[0].clone();
+    let (gx, gy) = gradient(k, heights);
+    let ([ox, oy, oz], [dx, dy, dz]) = (o, d);
+    // oz + t*dz = z00 + gx*(ox + t*dx - x0) + gy*(oy + t*dy - y0), solved for t.
+    let above = oz - z00 - gx.clone() * (ox - corner.0) - gy.clone() * (oy - corner.1);
+    let closing = gx * dx + gy * dy - dz;
+    (above, closing)
 }
 
 /// The height of triangle `k`'s plane over `(x, y)`, for the cell `(i, j)` with corner heights

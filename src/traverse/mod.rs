@@ -22,7 +22,7 @@ pub use interval::{settled, Interval};
 pub use rational::{with_bound, Rational, RationalEvents, DEFAULT_BOUND};
 pub use scalar::Scalar;
 
-use crate::geometry::{clip_to_box, gradient, CertainMiss, Ray};
+use crate::geometry::{clip_to_box, plane_crossing, CertainMiss, Ray};
 use crate::heightfield::Terrain;
 use dyadic::Dyadic;
 use frame::{Frame, Span};
@@ -303,15 +303,13 @@ fn trace_exact(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
 /// Where the ray meets the plane of triangle `k` of `cell`, exactly, as `t = above / closing`;
 /// `None` if it runs parallel.
 fn exact_t(terrain: &Terrain, ray: &Ray, [i, j]: [usize; 2], k: u8) -> Option<(Dyadic, Dyadic)> {
-    let heights = terrain.corner_heights(i, j).map(Dyadic::from_f64);
-    let z00 = heights[0].clone();
-    let (gx, gy) = gradient(k, heights);
-    let [ox, oy, oz] = ray.origin().map(Dyadic::from_f64);
-    let [dx, dy, dz] = ray.dir().map(Dyadic::from_f64);
-    let (x0, y0) = (Dyadic::from_i64(i as i64), Dyadic::from_i64(j as i64));
-    // oz + t*dz = z00 + gx*(ox + t*dx - i) + gy*(oy + t*dy - j), solved for t.
-    let above = oz - z00 - gx.clone() * (ox - x0) - gy.clone() * (oy - y0);
-    let closing = gx * dx + gy * dy - dz;
+    let (above, closing) = plane_crossing(
+        k,
+        terrain.corner_heights(i, j).map(Dyadic::from_f64),
+        (Dyadic::from_i64(i as i64), Dyadic::from_i64(j as i64)),
+        ray.origin().map(Dyadic::from_f64),
+        ray.dir().map(Dyadic::from_f64),
+    );
     (!closing.is_zero()).then_some((above, closing))
 }
 
