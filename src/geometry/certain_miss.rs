@@ -94,29 +94,37 @@ impl CertainMiss {
     }
 }
 
+/// What the filter settles of one triangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Certain {
+    /// The exact ray misses it.
+    Miss,
+    /// The exact ray's line crosses it inside (not on an edge, and not in its plane).
+    Crossing,
+    /// Left to the exact test.
+    Open,
+}
+
 impl CellImages {
-    /// Whether triangle `k` (0 or 1, corners as in [`super::CellTriangles`]) certainly misses.
-    pub fn misses(&self, k: u8) -> bool {
-        let signs = self.signs(k);
-        signs.contains(&Some(true)) && signs.contains(&Some(false))
-    }
-
-    /// Whether the exact ray's line certainly crosses triangle `k` inside it (not on an edge,
-    /// and not in its plane).
-    pub fn crosses(&self, k: u8) -> bool {
-        let signs = self.signs(k);
-        signs.iter().all(|&s| s == Some(true)) || signs.iter().all(|&s| s == Some(false))
-    }
-
-    /// The signs of triangle `k`'s three edge functions, where they are certain.
-    fn signs(&self, k: u8) -> [Option<bool>; 3] {
+    /// What is certain of triangle `k` (0 or 1, corners as in [`super::CellTriangles`]).
+    pub fn triangle(&self, k: u8) -> Certain {
         let [a, b, c] = if k == 0 { [0, 1, 3] } else { [0, 3, 2] };
         let [a, b, c] = [a, b, c].map(|n| &self.images[n]);
-        [
-            self.sign(c[0], b[1], c[1], b[0]),
-            self.sign(a[0], c[1], a[1], c[0]),
-            self.sign(b[0], a[1], b[1], a[0]),
-        ]
+        let first = self.sign(c[0], b[1], c[1], b[0]);
+        let second = self.sign(a[0], c[1], a[1], c[0]);
+        let opposite = |x: Option<bool>, y: Option<bool>| x.is_some() && y.is_some() && x != y;
+        // (Two edge functions of opposite signs already tell a miss.)
+        if opposite(first, second) {
+            return Certain::Miss;
+        }
+        let third = self.sign(b[0], a[1], b[1], a[0]);
+        if opposite(first, third) || opposite(second, third) {
+            Certain::Miss
+        } else if first.is_some() && first == second && second == third {
+            Certain::Crossing
+        } else {
+            Certain::Open
+        }
     }
 
     /// The sign of `p*q - r*s` (`true`: positive) where it is certain.
@@ -290,10 +298,10 @@ mod tests {
             let offset = fractions.map(|n| exact_from_f64(radius) * BigRational::new(n.into(), 8.into()));
             for k in 0..2 {
                 let exact = exact_hit(origin, offset.clone(), dir, (i, j), heights, k);
-                if images.misses(k) {
+                if images.triangle(k) == Certain::Miss {
                     prop_assert!(exact.is_none(), "triangle {} of ({}, {}) is hit", k, i, j);
                 }
-                let crossing = images.crosses(k).then(|| filter.plane_t((i, j), k, heights));
+                let crossing = (images.triangle(k) == Certain::Crossing).then(|| filter.plane_t((i, j), k, heights));
                 if let Some((lo, hi)) = crossing.flatten() {
                     let t = exact.unwrap_or_else(|| panic!("triangle {k} of ({i}, {j}) is missed"));
                     prop_assert!(
@@ -325,9 +333,13 @@ mod tests {
                 let zero = [0, 1, 2].map(|_| BigRational::from_integer(0.into()));
                 if exact_hit(origin, zero, dir, (3, 3), heights, k).is_none() {
                     misses += 1;
-                    settled += usize::from(images.misses(k));
+                    settled += usize::from(images.triangle(k) == Certain::Miss);
                 } else {
-                    assert!(!images.misses(k), "ray {n} hits triangle {k}");
+                    assert_ne!(
+                        images.triangle(k),
+                        Certain::Miss,
+                        "ray {n} hits triangle {k}"
+                    );
                 }
             }
         }

@@ -5,7 +5,7 @@ mod clip;
 mod ray;
 mod triangle;
 
-pub use certain_miss::{CellImages, CertainMiss};
+pub use certain_miss::{CellImages, Certain, CertainMiss};
 pub use clip::{clip_to_box, Clipped};
 pub use ray::{Ray, RayError};
 pub use triangle::{gradient, plane_crossing, plane_height, CellTriangles, RaySpace, TriangleHit};

@@ -5,7 +5,7 @@ use super::counters::Counters;
 use super::frame::{Frame, Span};
 use super::scalar::{max, min, Scalar};
 use super::Query;
-use crate::geometry::{CellTriangles, CertainMiss, RaySpace, TriangleHit};
+use crate::geometry::{CellTriangles, Certain, CertainMiss, RaySpace, TriangleHit};
 use crate::heightfield::Terrain;
 use std::cell::OnceCell;
 use std::cmp::Ordering;
@@ -198,14 +198,15 @@ impl<S: Scalar> Search<'_, S> {
                 let images = filter.cell(i, j, heights);
                 [0, 1].map(|k| {
                     if !tested(k) {
-                        None
-                    } else if images.misses(k) {
-                        Some(None)
-                    } else if images.crosses(k) {
-                        let (lo, hi) = filter.plane_t((i, j), k, heights)?;
-                        S::from_enclosure(lo, hi).map(Some)
-                    } else {
-                        None
+                        return None;
+                    }
+                    match images.triangle(k) {
+                        Certain::Miss => Some(None),
+                        Certain::Crossing => {
+                            let (lo, hi) = filter.plane_t((i, j), k, heights)?;
+                            S::from_enclosure(lo, hi).map(Some)
+                        }
+                        Certain::Open => None,
                     }
                 })
             }

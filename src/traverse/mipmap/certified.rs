@@ -16,6 +16,7 @@
 
 use super::approximation::{Approximation, Bounds};
 use super::{descend, Follower, Part};
+use crate::traverse::frame::Frame;
 use crate::traverse::scalar::Scalar;
 use crate::traverse::search::{Found, Search};
 use std::ops::ControlFlow;
@@ -31,6 +32,7 @@ pub fn certify<S: Scalar>(ray: &Approximation, search: &mut Search<'_, S>) -> Co
         search,
         found_before: f64::INFINITY,
         recent: [(i64::MIN, i64::MIN); RECENT],
+        oldest: 0,
     };
     descend(&ray.frame, top, first, &mut certifying)
 }
@@ -39,28 +41,16 @@ pub fn certify<S: Scalar>(ray: &Approximation, search: &mut Search<'_, S>) -> Co
 /// neighbour of one part is often the next part's cell).
 const RECENT: usize = 4;
 
-/// A cell and its neighbours, as the column and row one before it (0), its own (1) or after
-/// it (2); itself first.
-const NEIGHBOURHOOD: [(usize, usize); 9] = [
-    (1, 1),
-    (0, 0),
-    (0, 1),
-    (0, 2),
-    (1, 0),
-    (1, 2),
-    (2, 0),
-    (2, 1),
-    (2, 2),
-];
-
 /// Follows an `f64` walk, testing the triangles of the cells the exact ray may touch.
 struct Certifying<'s, 'a, S> {
     bounds: Bounds,
     search: &'s mut Search<'a, S>,
     /// A `t` the first hit found so far certainly lies before (infinite while none is).
     found_before: f64,
-    /// The frame cells whose triangles were tested last, the latest first.
+    /// The frame cells whose triangles were tested last, in a ring.
     recent: [(i64, i64); RECENT],
+    /// The ring's slot the next tested cell goes in.
+    oldest: usize,
 }
 
 /// A `t` that the hit certainly lies before.
@@ -120,49 +110,62 @@ impl<S: Scalar> Certifying<'_, '_, S> {
             reach * f.inv_dv.abs() + slack,
         );
         // The `t` over which the exact path may be in the column before, this one and the
-        // one after, within the part; `None` where it cannot be there. The same for rows.
-        let within = |lo: f64, hi: f64| {
-            let (lo, hi) = (lo.max(span.0), hi.min(span.1));
-            (lo <= hi).then_some((lo, hi))
-        };
-        let (all, inf) = (f64::NEG_INFINITY, f64::INFINITY);
+        // one after, within the part (empty unless `lo <= hi`). The same for rows.
         let cols = [
-            within(all, f.t_at_u(cu) + wu),
-            within(all, inf),
-            within(f.t_at_u(cu + 1) - wu, inf),
+            (span.0, span.1.min(f.t_at_u(cu) + wu)),
+            span,
+            (span.0.max(f.t_at_u(cu + 1) - wu), span.1),
         ];
         let rows = [
-            within(all, f.t_at_v(cv) + wv),
-            within(all, inf),
-            within(f.t_at_v(cv + 1) - wv, inf),
+            (span.0, span.1.min(f.t_at_v(cv) + wv)),
+            span,
+            (span.0.max(f.t_at_v(cv + 1) - wv), span.1),
         ];
         // The part's own cell first: a hit there ends the search in most neighbours.
-        for (a, b) in NEIGHBOURHOOD {
-            let (Some(col), Some(row)) = (cols[a], rows[b]) else {
-                continue;
-            };
-            let (nu, nv) = (cu + a as i64 - 1, cv + b as i64 - 1);
-            let inside = (f.cols.0..=f.cols.1).contains(&nu) && (f.rows.0..=f.rows.1).contains(&nv);
-            let (lo, hi) = (col.0.max(row.0), col.1.min(row.1));
-            // (Past the first hit found, nothing in the cell can come first.)
-            if !inside || lo > hi || lo > self.found_before || self.recent.contains(&(nu, nv)) {
+        self.candidate(f, (cu, cv), span, true)?;
+        for (a, col) in cols.into_iter().enumerate() {
+            // (Written so that NaN is empty.)
+            if !(col.0 <= col.1) {
                 continue;
             }
-            let cell = f.cell(nu, nv);
-            // (The walk tested the part's own cell.)
-            let own = (a, b) == (1, 1);
-            let (terrain, counters) = (self.search.terrain, &mut self.search.counters);
-            if own || self.bounds.may_hit(terrain, 0, cell, (lo, hi), counters) {
-                self.test(cell, (nu, nv))?;
+            for (b, row) in rows.into_iter().enumerate() {
+                if (a, b) != (1, 1) {
+                    let window = (col.0.max(row.0), col.1.min(row.1));
+                    let uv = (cu + a as i64 - 1, cv + b as i64 - 1);
+                    self.candidate(f, uv, window, false)?;
+                }
             }
+        }
+        ControlFlow::Continue(())
+    }
+
+    /// Tests the triangles of frame cell `uv` if the exact path may touch it over the `t` of
+    /// `window`; `own`: the part's own cell, which the walk found may be hit.
+    fn candidate(
+        &mut self,
+        f: &Frame<f64>,
+        uv: (i64, i64),
+        window: (f64, f64),
+        own: bool,
+    ) -> ControlFlow<()> {
+        let inside = (f.cols.0..=f.cols.1).contains(&uv.0) && (f.rows.0..=f.rows.1).contains(&uv.1);
+        let (lo, hi) = window;
+        // (Past the first hit found, nothing in the cell can come first.)
+        if !inside || !(lo <= hi) || lo > self.found_before || self.recent.contains(&uv) {
+            return ControlFlow::Continue(());
+        }
+        let cell = f.cell(uv.0, uv.1);
+        let (terrain, counters) = (self.search.terrain, &mut self.search.counters);
+        if own || self.bounds.may_hit(terrain, 0, cell, window, counters) {
+            self.test(cell, uv)?;
         }
         ControlFlow::Continue(())
     }
 
     /// Tests the triangles of cell `(i, j)`, frame cell `uv`.
     fn test(&mut self, (i, j): (usize, usize), uv: (i64, i64)) -> ControlFlow<()> {
-        self.recent.rotate_right(1);
-        self.recent[0] = uv;
+        self.recent[self.oldest] = uv;
+        self.oldest = (self.oldest + 1) % RECENT;
         let flow = self.search.triangles(i, j);
         self.found_before = self.search.found.as_ref().map_or(f64::INFINITY, before);
         flow
