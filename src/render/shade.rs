@@ -106,12 +106,19 @@ impl Shader<'_> {
                 redone: false,
             };
         };
-        let point = found.point(&o, &d);
-        let p = DVec3::from(point.clone().map(|c| c.to_f64()));
+        // Shading needs the point only in `f64`. Arithmetics that round shade the point they
+        // computed; for the others, `t` to the nearest `f64` is as good and much cheaper than
+        // the point in intervals, which only a shadow ray needs.
+        let t = found.t.to_f64();
+        let p = if S::EXACT {
+            DVec3::from(ray.origin()) + DVec3::from(ray.dir()) * t
+        } else {
+            DVec3::from(found.point(&o, &d).map(|c| c.to_f64()))
+        };
         let normal = self.normal(&found, p);
         let sun = DVec3::from(self.lighting.sun);
         let facing = normal.dot(sun);
-        let (shadow, secondary) = self.shadow::<S>(&found, point, ray, facing);
+        let (shadow, secondary) = self.shadow::<S>(&found, (&o, &d), ray, facing);
         let lit = match shadow {
             Shadow::Cast { shadowed: true } => 0.0,
             _ => facing.max(0.0),
@@ -119,7 +126,7 @@ impl Shader<'_> {
         let light = self.lighting.ambient + self.lighting.intensity * lit;
         let mut colour = self.ramp(p.z) * light;
         if self.lighting.fog > 0.0 {
-            let distance = found.t.to_f64() * DVec3::from(ray.dir()).length();
+            let distance = t * DVec3::from(ray.dir()).length();
             let clear = (-self.lighting.fog * distance).exp();
             colour = colour * clear + horizon() * (1.0 - clear);
         }
@@ -137,7 +144,7 @@ impl Shader<'_> {
     fn shadow<S: Scalar>(
         &self,
         found: &Found<S>,
-        point: [S; 3],
+        (o, d): (&[S; 3], &[S; 3]),
         ray: &Ray,
         facing: f64,
     ) -> (Shadow, Counters) {
@@ -159,11 +166,11 @@ impl Shader<'_> {
         // is `o + t*d`, each component within a few roundings of `|o| + |t*d|`; off by that
         // across an edge, the surface may be higher by the steepest slope times it.
         let t = found.t.to_f64().abs();
-        let (o, d) = (ray.origin(), ray.dir());
-        let largest = (0..3).fold(0.0f64, |m, k| m.max(o[k].abs() + t * d[k].abs()));
+        let (ray_o, ray_d) = (ray.origin(), ray.dir());
+        let largest = (0..3).fold(0.0f64, |m, k| m.max(ray_o[k].abs() + t * ray_d[k].abs()));
         let lift = 64.0 * S::rounding_error(largest) * (1.0 + self.terrain.max_slope());
         // On the hit triangle's plane: exact height on flat ground in every arithmetic.
-        let [x, y, _] = point;
+        let [x, y, _] = found.point(o, d);
         let heights = self
             .terrain
             .corner_heights(found.cell.0, found.cell.1)
