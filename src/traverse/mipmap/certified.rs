@@ -53,6 +53,11 @@ struct Certifying<'s, 'a, S> {
     oldest: usize,
 }
 
+/// Whether a window of `t` holds any (not where an end is NaN).
+fn nonempty((lo, hi): (f64, f64)) -> bool {
+    lo <= hi
+}
+
 /// A `t` that the hit certainly lies before.
 fn before<S: Scalar>(found: &Found<S>) -> f64 {
     match found.t.f64_enclosure() {
@@ -124,8 +129,7 @@ impl<S: Scalar> Certifying<'_, '_, S> {
         // The part's own cell first: a hit there ends the search in most neighbours.
         self.candidate(f, (cu, cv), span, true)?;
         for (a, col) in cols.into_iter().enumerate() {
-            // (Written so that NaN is empty.)
-            if !(col.0 <= col.1) {
+            if !nonempty(col) {
                 continue;
             }
             for (b, row) in rows.into_iter().enumerate() {
@@ -149,9 +153,9 @@ impl<S: Scalar> Certifying<'_, '_, S> {
         own: bool,
     ) -> ControlFlow<()> {
         let inside = (f.cols.0..=f.cols.1).contains(&uv.0) && (f.rows.0..=f.rows.1).contains(&uv.1);
-        let (lo, hi) = window;
         // (Past the first hit found, nothing in the cell can come first.)
-        if !inside || !(lo <= hi) || lo > self.found_before || self.recent.contains(&uv) {
+        if !inside || !nonempty(window) || window.0 > self.found_before || self.recent.contains(&uv)
+        {
             return ControlFlow::Continue(());
         }
         let cell = f.cell(uv.0, uv.1);
