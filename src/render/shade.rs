@@ -6,11 +6,12 @@ use super::scene::{Lighting, Normals, Ramp};
 use crate::geometry::{gradient, plane_height};
 use crate::heightfield::Terrain;
 use crate::traverse::{
-    settled, trace_scalar, Clearance, Counters, Exact, Found, Interval, Method, Query, Scalar,
-    WalkOptions,
+    crosses_plane, plane_t_exact, settled, trace_scalar, Clearance, Counters, Exact, Found,
+    Interval, Method, Query, Scalar, WalkOptions,
 };
 use crate::Ray;
 use glam::DVec3;
+use std::convert::Infallible as Never;
 
 /// Why a shadow ray was not cast although the scene has shadows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -76,20 +77,69 @@ pub struct Shader<'a> {
 
 impl Shader<'_> {
     /// Traces and shades one primary ray exactly: in intervals, and again in rationals if
-    /// they left a decision unsettled. `beam`: see [`WalkOptions::beam`].
+    /// they left a decision unsettled. A shadow ray they cannot settle is cast again alone,
+    /// from the exact hit point (the primary ray's settled answer is the exact one, and its
+    /// exact `t` is one plane solve): a whole pixel in rationals costs about a millisecond.
+    /// `beam`: see [`WalkOptions::beam`].
     pub fn sample_exact(&self, ray: &Ray, beam: Option<Clearance>) -> Sample {
-        match settled(|| self.sample::<Interval>(ray, beam)) {
-            (sample, true) => sample,
-            (_, false) => Sample {
+        let cast = |found: &Found<Interval>, start: (&[Interval; 3], &[Interval; 3]), facing| {
+            match settled(|| self.shadow::<Interval>(found, start, ray, facing)) {
+                ((shadow, counters), true) => Ok((shadow, counters, false)),
+                (_, false) => self.shadow_in_rationals(found, ray, facing),
+            }
+        };
+        match settled(|| self.sample_with::<Interval, ()>(ray, beam, cast)) {
+            (Ok(sample), true) => sample,
+            _ => Sample {
                 redone: true,
                 ..self.sample::<Exact>(ray, beam)
             },
         }
     }
 
+    /// The shadow ray of a hit found in intervals, cast again in rationals from the exact hit
+    /// point. `Err` where the primary ray runs in the hit triangle's plane, whose exact hit
+    /// only the walk tells.
+    fn shadow_in_rationals(
+        &self,
+        found: &Found<Interval>,
+        ray: &Ray,
+        facing: f64,
+    ) -> Result<(Shadow, Counters, bool), ()> {
+        let t = plane_t_exact(self.terrain, ray, found.cell, found.triangle).ok_or(())?;
+        let exact = Found {
+            t: Exact(t),
+            cell: found.cell,
+            triangle: found.triangle,
+        };
+        let (o, d) = (
+            ray.origin().map(Exact::from_f64),
+            ray.dir().map(Exact::from_f64),
+        );
+        let (shadow, counters) = self.shadow::<Exact>(&exact, (&o, &d), ray, facing);
+        Ok((shadow, counters, true))
+    }
+
     /// Traces and shades one primary ray in arithmetic `S`, behind a beam that cleared the
     /// way if given (see [`WalkOptions::beam`]).
     pub fn sample<S: Scalar>(&self, ray: &Ray, beam: Option<Clearance>) -> Sample {
+        let cast = |found: &Found<S>, start: (&[S; 3], &[S; 3]), facing| {
+            let (shadow, counters) = self.shadow::<S>(found, start, ray, facing);
+            Ok::<_, Never>((shadow, counters, false))
+        };
+        let Ok(sample) = self.sample_with(ray, beam, cast);
+        sample
+    }
+
+    /// [`Shader::sample`], with the shadow ray of a hit cast by `cast` (given the hit, the
+    /// ray's origin and direction in `S`, and how the surface faces the sun), which also tells
+    /// whether it was cast again in rationals, or fails.
+    fn sample_with<S: Scalar, E>(
+        &self,
+        ray: &Ray,
+        beam: Option<Clearance>,
+        cast: impl FnOnce(&Found<S>, (&[S; 3], &[S; 3]), f64) -> Result<(Shadow, Counters, bool), E>,
+    ) -> Result<Sample, E> {
         let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
         let walk = WalkOptions {
             beam,
@@ -97,14 +147,14 @@ impl Shader<'_> {
         };
         let primary = trace_scalar(self.terrain, &o, &d, ray.dir(), walk);
         let Some(found) = primary.hit else {
-            return Sample {
+            return Ok(Sample {
                 rgb: pack(self.sky(ray.dir())),
                 hit: false,
                 shadow: Shadow::NotAsked,
                 primary: primary.counters,
                 secondary: Counters::default(),
                 redone: false,
-            };
+            });
         };
         // Shading needs the point only in `f64`. Arithmetics that round shade the point they
         // computed; for the others, `t` to the nearest `f64` is as good and much cheaper than
@@ -118,7 +168,7 @@ impl Shader<'_> {
         let normal = self.normal(&found, p);
         let sun = DVec3::from(self.lighting.sun);
         let facing = normal.dot(sun);
-        let (shadow, secondary) = self.shadow::<S>(&found, (&o, &d), ray, facing);
+        let (shadow, secondary, redone) = cast(&found, (&o, &d), facing)?;
         let lit = match shadow {
             Shadow::Cast { shadowed: true } => 0.0,
             _ => facing.max(0.0),
@@ -130,14 +180,14 @@ impl Shader<'_> {
             let clear = (-self.lighting.fog * distance).exp();
             colour = colour * clear + horizon() * (1.0 - clear);
         }
-        Sample {
+        Ok(Sample {
             rgb: pack(colour),
             hit: true,
             shadow,
             primary: primary.counters,
             secondary,
-            redone: false,
-        }
+            redone,
+        })
     }
 
     /// Decides whether a shadow ray can change the pixel, and casts it if so.
@@ -197,14 +247,19 @@ impl Shader<'_> {
     }
 
     /// Whether a ray towards the sun leaves the hit triangle's plane at once, so that it
-    /// touches the triangle it starts on only at its start (decided with room to spare for
-    /// rounding; when in doubt the triangle is tested like any other).
+    /// touches the triangle it starts on only at its start (in floats decided with room to
+    /// spare for rounding: when in doubt the triangle is tested like any other).
     fn leaves_at_once<S: Scalar>(&self, found: &Found<S>) -> bool {
         let n = self.geometric_normal(found);
         let s = DVec3::from(self.lighting.sun);
         let terms = [n.x * s.x, n.y * s.y, n.z * s.z];
         let sum: f64 = terms.iter().sum();
-        sum.abs() > 1e-9 * terms.iter().map(|t| t.abs()).sum::<f64>()
+        if sum.abs() > 1e-9 * terms.iter().map(|t| t.abs()).sum::<f64>() {
+            return true;
+        }
+        // Without rounding the ray starts on the plane itself, and leaves it at once unless it
+        // runs in it: asked exactly (intervals cannot tell the two apart in the tests).
+        S::EXACT && crosses_plane(self.terrain, found.cell, found.triangle, self.lighting.sun)
     }
 
     /// The (unnormalised) normal of the hit triangle's plane: `(-gx, -gy, 1)`.

@@ -300,6 +300,32 @@ fn trace_exact(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
     }
 }
 
+/// The `t` where the ray meets the plane of triangle `k` of `cell`, exactly; `None` if it
+/// runs parallel.
+pub fn plane_t_exact(
+    terrain: &Terrain,
+    ray: &Ray,
+    cell: (usize, usize),
+    k: u8,
+) -> Option<BigRational> {
+    let (above, closing) = exact_t(terrain, ray, [cell.0, cell.1], k)?;
+    Some(above.over(&closing))
+}
+
+/// Whether a ray of direction `dir` crosses the plane of triangle `k` of `cell` (does not
+/// run parallel to it), decided exactly.
+pub fn crosses_plane(terrain: &Terrain, cell: (usize, usize), k: u8, dir: [f64; 3]) -> bool {
+    let zero = || Dyadic::from_i64(0);
+    let (_, closing) = plane_crossing(
+        k,
+        terrain.corner_heights(cell.0, cell.1).map(Dyadic::from_f64),
+        (zero(), zero()),
+        [zero(), zero(), zero()],
+        dir.map(Dyadic::from_f64),
+    );
+    !closing.is_zero()
+}
+
 /// Where the ray meets the plane of triangle `k` of `cell`, exactly, as `t = above / closing`;
 /// `None` if it runs parallel.
 fn exact_t(terrain: &Terrain, ray: &Ray, [i, j]: [usize; 2], k: u8) -> Option<(Dyadic, Dyadic)> {
