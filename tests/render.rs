@@ -6,6 +6,7 @@
 use heightray::render::{
     Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Scene, SceneFile, Shader,
 };
+use heightray::traverse::Exact;
 use heightray::{Arith, Heightfield, Method, Terrain};
 use std::path::{Path, PathBuf};
 
@@ -508,4 +509,84 @@ fn exact_frames_are_the_same_with_every_method() {
             assert!(other.pixels == mipmap.pixels, "{name}, {method}: pixels");
         }
     }
+}
+
+/// Exact mode casts a shadow ray that intervals cannot settle again alone, in rationals from
+/// the exact hit point: the pixel, its shadow and the shadow ray's queries are those of the
+/// pixel traced wholly in rationals. (In this view they are shadow rays that graze a ridge
+/// within rounding of its edge.)
+#[test]
+fn shadow_rays_cast_again_in_rationals_give_the_rational_pixel() {
+    let scene = builtin_scene("valley513", 512);
+    let terrain = Terrain::new(scene.field.clone());
+    let shader = Shader {
+        terrain: &terrain,
+        lighting: scene.lighting,
+        method: Method::Mipmap,
+        culling: Culling::default(),
+    };
+    let mut again = 0;
+    for py in 0..512 {
+        for px in 0..512 {
+            let ray = scene.camera.ray(px, py);
+            let sample = shader.sample_exact(&ray, None);
+            if !sample.redone {
+                continue;
+            }
+            again += 1;
+            let rational = shader.sample::<Exact>(&ray, None);
+            assert_eq!(
+                (sample.rgb, sample.shadow, sample.primary, sample.secondary),
+                (
+                    rational.rgb,
+                    rational.shadow,
+                    rational.primary,
+                    rational.secondary
+                ),
+                "pixel ({px}, {py})"
+            );
+        }
+    }
+    assert!(again > 0, "no shadow ray was cast again");
+}
+
+/// A sun that runs exactly in a slope's plane grazes it: every shadow ray runs along the
+/// surface and touches it after its start, even one that starts on the last triangle before
+/// the grid's edge (it runs along its own triangle), so the whole slope is in shadow in exact
+/// arithmetic. Tilted up by a millionth of a millionth, each ray leaves the plane at once and
+/// the slope is lit.
+#[test]
+fn a_sun_in_the_slope_plane_shadows_it_exactly() {
+    // z = x, in whole steps.
+    let slope = Terrain::new(Heightfield::from_fn(9, 9, 255, 255.0, |i, _| i as u16).unwrap());
+    let whole_grid = Camera::look_at(
+        [4.0, 4.0, 30.0],
+        [4.0, 4.0, 0.0],
+        [0.0, 1.0, 0.0],
+        18.0,
+        (32, 32),
+    )
+    .unwrap();
+    let shadows = |sun: [f64; 3]| {
+        let frame = render_by(
+            Method::Mipmap,
+            &slope,
+            whole_grid,
+            lighting(sun, true),
+            Arith::Exact,
+            // (The grazing sun does not face the slope: its shadow rays would be culled.)
+            Culling {
+                facing_away: false,
+                ..Culling::default()
+            },
+            1,
+        );
+        (frame.totals.shadow_rays, frame.totals.shadowed)
+    };
+    let (cast, shadowed) = shadows([1.0, 0.0, 1.0]);
+    assert!(cast > 500, "{cast} shadow rays");
+    assert_eq!(shadowed, cast, "shadowed of cast, sun in the plane");
+    let (cast, shadowed) = shadows([1.0, 0.0, 1.0 + 1e-12]);
+    assert!(cast > 500, "{cast} shadow rays");
+    assert_eq!(shadowed, 0, "shadowed, sun tilted");
 }
