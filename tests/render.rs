@@ -513,8 +513,8 @@ fn exact_frames_are_the_same_with_every_method() {
 
 /// Exact mode casts a shadow ray that intervals cannot settle again alone, in rationals from
 /// the exact hit point: the pixel, its shadow and the shadow ray's queries are those of the
-/// pixel traced wholly in rationals. (In this view they are shadow rays that graze a ridge
-/// within rounding of its edge.)
+/// pixel traced wholly in rationals. (In this view they are shadow rays that run within 1e-14
+/// of their start triangle's plane and meet its far edge within rounding.)
 #[test]
 fn shadow_rays_cast_again_in_rationals_give_the_rational_pixel() {
     let scene = builtin_scene("valley513", 512);
