@@ -35,6 +35,10 @@ pub enum Shadow {
     },
 }
 
+/// A pixel's shadow as cast: what became of it, the shadow ray's queries, and whether the ray
+/// was cast again in rationals (see [`Sample::redone`]).
+type Cast = (Shadow, Counters, bool);
+
 /// One traced pixel.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample {
@@ -44,7 +48,8 @@ pub struct Sample {
     pub shadow: Shadow,
     pub primary: Counters,
     pub secondary: Counters,
-    /// Exact mode traced the pixel again in rationals: intervals left a decision unsettled.
+    /// Exact mode traced the pixel, or only its shadow ray, again in rationals: intervals left
+    /// a decision unsettled.
     pub redone: bool,
 }
 
@@ -105,7 +110,7 @@ impl Shader<'_> {
         found: &Found<Interval>,
         ray: &Ray,
         facing: f64,
-    ) -> Result<(Shadow, Counters, bool), ()> {
+    ) -> Result<Cast, ()> {
         let t = plane_t_exact(self.terrain, ray, found.cell, found.triangle).ok_or(())?;
         let exact = Found {
             t: Exact(t),
@@ -138,7 +143,7 @@ impl Shader<'_> {
         &self,
         ray: &Ray,
         beam: Option<Clearance>,
-        cast: impl FnOnce(&Found<S>, (&[S; 3], &[S; 3]), f64) -> Result<(Shadow, Counters, bool), E>,
+        cast: impl FnOnce(&Found<S>, (&[S; 3], &[S; 3]), f64) -> Result<Cast, E>,
     ) -> Result<Sample, E> {
         let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
         let walk = WalkOptions {
