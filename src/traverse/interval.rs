@@ -402,6 +402,13 @@ impl Scalar for Interval {
     fn from_enclosure(lo: f64, hi: f64) -> Option<Self> {
         Interval::between(lo, hi)
     }
+    fn along(o: f64, d: f64, t: &Interval) -> Interval {
+        // Each end from one product and one sum of floats: less than half the work of the
+        // general interval product and sum (every shadow ray starts at such a point).
+        let (first, last) = if d >= 0.0 { (t.lo, t.hi) } else { (t.hi, t.lo) };
+        let (lo, hi) = (product_end(d, first, below), product_end(d, last, above));
+        Interval::checked(sum(o, lo).0, sum(o, hi).1)
+    }
     fn f64_enclosure(&self) -> Option<(f64, f64)> {
         if self.is_point() {
             return Some((self.lo, 0.0));
@@ -519,6 +526,14 @@ mod tests {
                 let (quotient, _) = settled(|| a / b);
                 check(quotient, &pairs().map(|(x, y)| x / y).collect::<Vec<_>>(), "quotient")?;
             }
+        }
+
+        /// The point `o + d*t` on a ray given in `f64` (a shadow ray's start).
+        #[test]
+        fn points_along_a_ray_enclose_the_exact_points(o in value(), d in value(), t in interval()) {
+            let (point, _) = settled(|| Interval::along(o, d, &t));
+            let exact_at = |t: f64| exact(o) + exact(d) * exact(t);
+            check(point, &[exact_at(t.lo), exact_at(t.hi)], "along")?;
         }
 
         #[test]

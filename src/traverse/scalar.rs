@@ -108,6 +108,11 @@ pub trait Scalar:
         }
     }
 
+    /// `o + d*t` on a ray given in `f64` (where a hit found at `t` lies).
+    fn along(o: f64, d: f64, t: &Self) -> Self {
+        Self::from_f64(o) + Self::from_f64(d) * t.clone()
+    }
+
     fn zero() -> Self {
         Self::from_i64(0)
     }
