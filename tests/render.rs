@@ -511,12 +511,12 @@ fn exact_frames_are_the_same_with_every_method() {
     }
 }
 
-/// Exact mode casts a shadow ray that intervals cannot settle again alone, in rationals from
-/// the exact hit point: the pixel, its shadow and the shadow ray's queries are those of the
-/// pixel traced wholly in rationals. (In this view they are shadow rays that run within 1e-14
-/// of their start triangle's plane and meet its far edge within rounding.)
+/// Exact mode decides a shadow ray's triangle test that intervals cannot settle exactly on its
+/// own, from the exact hit point: the pixel, its shadow and the shadow ray's queries are those
+/// of the pixel traced wholly in rationals. (In this view they are shadow rays that run within
+/// 1e-14 of their start triangle's plane and meet its far edge within rounding.)
 #[test]
-fn shadow_rays_cast_again_in_rationals_give_the_rational_pixel() {
+fn shadow_ray_tests_decided_exactly_give_the_rational_pixel() {
     let scene = builtin_scene("valley513", 512);
     let terrain = Terrain::new(scene.field.clone());
     let shader = Shader {
@@ -547,7 +547,7 @@ fn shadow_rays_cast_again_in_rationals_give_the_rational_pixel() {
             );
         }
     }
-    assert!(again > 0, "no shadow ray was cast again");
+    assert!(again > 0, "no shadow ray had a test decided exactly");
 }
 
 /// A sun that runs exactly in a slope's plane grazes it: every shadow ray runs along the

@@ -20,7 +20,7 @@
 //! off by at most `e` is off by at most `e (|c0| + |b1| + |c1| + |b0|) + 2 e^2`, and its own
 //! two products and difference round by at most `3 eps (|c0 b1| + |c1 b0|)`.
 
-use super::{plane_crossing, RaySpace};
+use super::{plane_crossing, triangle_corners, RaySpace};
 use crate::traverse::Interval;
 use std::ops::{Add, Mul, Sub};
 
@@ -108,7 +108,7 @@ pub enum Certain {
 impl CellImages {
     /// What is certain of triangle `k` (0 or 1, corners as in [`super::CellTriangles`]).
     pub fn triangle(&self, k: u8) -> Certain {
-        let [a, b, c] = if k == 0 { [0, 1, 3] } else { [0, 3, 2] };
+        let [a, b, c] = triangle_corners(k);
         let [a, b, c] = [a, b, c].map(|n| &self.images[n]);
         let first = self.sign(c[0], b[1], c[1], b[0]);
         let second = self.sign(a[0], c[1], a[1], c[0]);

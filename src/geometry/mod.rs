@@ -8,4 +8,7 @@ mod triangle;
 pub use certain_miss::{CellImages, Certain, CertainMiss};
 pub use clip::{clip_to_box, Clipped};
 pub use ray::{Ray, RayError};
-pub use triangle::{gradient, plane_crossing, plane_height, CellTriangles, RaySpace, TriangleHit};
+pub use triangle::{
+    gradient, plane_crossing, plane_height, ray_space_axes, triangle_corners, CellTriangles,
+    RaySpace, TriangleHit,
+};

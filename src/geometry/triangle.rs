@@ -29,14 +29,30 @@ pub struct TriangleHit<S> {
     pub t_last: Option<S>,
 }
 
+/// The axes of ray space `[x, y, z]`: the direction's largest component becomes z, and the
+/// order stays cyclic, so orientations keep their sign.
+#[inline]
+pub fn ray_space_axes(dir: [f64; 3]) -> [usize; 3] {
+    let kz = (0..3)
+        .max_by(|&a, &b| dir[a].abs().total_cmp(&dir[b].abs()))
+        .unwrap_or(2);
+    [(kz + 1) % 3, (kz + 2) % 3, kz]
+}
+
+/// The corners of triangle `k` (0 or 1) of a cell, counter-clockwise seen from +z, as indices
+/// into its corners `[P00, P10, P01, P11]` (DESIGN 2).
+pub fn triangle_corners(k: u8) -> [usize; 3] {
+    if k == 0 {
+        [0, 1, 3]
+    } else {
+        [0, 3, 2]
+    }
+}
+
 impl<S: Scalar> RaySpace<S> {
     /// `dir_f64` picks the axes the same way in every arithmetic.
     pub fn new(origin: [S; 3], dir: [S; 3], dir_f64: [f64; 3]) -> Self {
-        // Permute components so the ray direction's largest is z.
-        let kz = (0..3)
-            .max_by(|&a, &b| dir_f64[a].abs().total_cmp(&dir_f64[b].abs()))
-            .unwrap_or(2);
-        let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
+        let [kx, ky, kz] = ray_space_axes(dir_f64);
         // Shear so the direction becomes (0, 0, 1).
         let dz = dir[kz].clone();
         let shear = [
@@ -177,7 +193,7 @@ impl<S: Scalar> CellTriangles<S> {
     /// Intersects triangle `k` (0 or 1).
     pub fn intersect(&self, ray: &RaySpace<S>, k: u8) -> Option<TriangleHit<S>> {
         // Corner indices: 0 = P00, 1 = P10, 2 = P01, 3 = P11; both counter-clockwise.
-        let [a, b, c] = if k == 0 { [0, 1, 3] } else { [0, 3, 2] };
+        let [a, b, c] = triangle_corners(k);
         ray.intersect(
             [&self.corners[a], &self.corners[b], &self.corners[c]],
             [&self.images[a], &self.images[b], &self.images[c]],

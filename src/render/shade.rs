@@ -7,7 +7,7 @@ use crate::geometry::{gradient, plane_height};
 use crate::heightfield::Terrain;
 use crate::traverse::{
     crosses_plane, plane_t_exact, settled, trace_scalar, Clearance, Counters, Exact, Found,
-    Interval, Method, Query, Scalar, WalkOptions,
+    Interval, Method, PlanePoint, Query, Scalar, WalkOptions,
 };
 use crate::Ray;
 use glam::DVec3;
@@ -35,8 +35,8 @@ pub enum Shadow {
     },
 }
 
-/// A pixel's shadow as cast: what became of it, the shadow ray's queries, and whether the ray
-/// was cast again in rationals (see [`Sample::redone`]).
+/// A pixel's shadow as cast: what became of it, the shadow ray's queries, and whether a
+/// decision on it was made exactly after intervals left it unsettled (see [`Sample::redone`]).
 type Cast = (Shadow, Counters, bool);
 
 /// One traced pixel.
@@ -48,8 +48,9 @@ pub struct Sample {
     pub shadow: Shadow,
     pub primary: Counters,
     pub secondary: Counters,
-    /// Exact mode traced the pixel, or only its shadow ray, again in rationals: intervals left
-    /// a decision unsettled.
+    /// Intervals left a decision unsettled, and exact mode made it again exactly: it traced
+    /// the pixel again in rationals, or cast only its shadow ray again, or decided one of the
+    /// shadow ray's triangle tests on its own.
     pub redone: bool,
 }
 
@@ -82,15 +83,17 @@ pub struct Shader<'a> {
 
 impl Shader<'_> {
     /// Traces and shades one primary ray exactly: in intervals, and again in rationals if
-    /// they left a decision unsettled. A shadow ray they cannot settle is cast again alone,
-    /// from the exact hit point (the primary ray's settled answer is the exact one, and its
-    /// exact `t` is one plane solve): a whole pixel in rationals costs about a millisecond.
+    /// they left a decision unsettled. A shadow ray's triangle test they cannot settle is
+    /// decided exactly on its own, from the exact hit point (the primary ray's settled answer
+    /// is the exact one, and its exact `t` is one plane solve); a shadow ray that still has a
+    /// decision unsettled (one running in a triangle's plane) is cast again alone in
+    /// rationals: a whole pixel in rationals costs about a millisecond.
     /// `beam`: see [`WalkOptions::beam`].
     pub fn sample_exact(&self, ray: &Ray, beam: Option<Clearance>) -> Sample {
         let cast = |found: &Found<Interval>, facing| match settled(|| {
             self.shadow::<Interval>(found, ray, facing)
         }) {
-            ((shadow, counters), true) => Ok((shadow, counters, false)),
+            (cast, true) => Ok(cast),
             (_, false) => self.shadow_in_rationals(found, ray, facing),
         };
         match settled(|| self.sample_with::<Interval, ()>(ray, beam, cast)) {
@@ -117,17 +120,14 @@ impl Shader<'_> {
             cell: found.cell,
             triangle: found.triangle,
         };
-        let (shadow, counters) = self.shadow::<Exact>(&exact, ray, facing);
+        let (shadow, counters, _) = self.shadow::<Exact>(&exact, ray, facing);
         Ok((shadow, counters, true))
     }
 
     /// Traces and shades one primary ray in arithmetic `S`, behind a beam that cleared the
     /// way if given (see [`WalkOptions::beam`]).
     pub fn sample<S: Scalar>(&self, ray: &Ray, beam: Option<Clearance>) -> Sample {
-        let cast = |found: &Found<S>, facing| {
-            let (shadow, counters) = self.shadow::<S>(found, ray, facing);
-            Ok::<_, Never>((shadow, counters, false))
-        };
+        let cast = |found: &Found<S>, facing| Ok::<_, Never>(self.shadow::<S>(found, ray, facing));
         let Ok(sample) = self.sample_with(ray, beam, cast);
         sample
     }
@@ -192,10 +192,10 @@ impl Shader<'_> {
     }
 
     /// Decides whether a shadow ray can change the pixel, and casts it if so.
-    fn shadow<S: Scalar>(&self, found: &Found<S>, ray: &Ray, facing: f64) -> (Shadow, Counters) {
-        let skip = |why| (Shadow::Skipped(why), Counters::default());
+    fn shadow<S: Scalar>(&self, found: &Found<S>, ray: &Ray, facing: f64) -> Cast {
+        let skip = |why| (Shadow::Skipped(why), Counters::default(), false);
         if !self.lighting.shadows {
-            return (Shadow::NotAsked, Counters::default());
+            return (Shadow::NotAsked, Counters::default(), false);
         }
         if self.culling.facing_away && facing <= 0.0 {
             return skip(ShadowSkip::FacingAway);
@@ -234,6 +234,11 @@ impl Shader<'_> {
             start_triangle: self
                 .leaves_at_once(found)
                 .then_some((found.cell, found.triangle)),
+            exact_start: S::EXACT.then_some(PlanePoint {
+                ray: *ray,
+                cell: found.cell,
+                triangle: found.triangle,
+            }),
             ..WalkOptions::new(self.method, Query::Shadow)
         };
         let answer = trace_scalar(self.terrain, &origin, &sun.map(S::from_f64), sun, walk);
@@ -242,6 +247,7 @@ impl Shader<'_> {
                 shadowed: answer.hit.is_some(),
             },
             answer.counters,
+            answer.in_rationals,
         )
     }
 

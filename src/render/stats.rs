@@ -48,8 +48,8 @@ pub struct FrameStats {
     pub skipped: Skipped,
     pub primary: Counters,
     pub shadow: Counters,
-    /// Pixels exact mode traced again, or whose shadow ray it cast again, in rationals (see
-    /// [`Sample::redone`]).
+    /// Pixels with a decision exact mode made again exactly after intervals left it unsettled
+    /// (see [`Sample::redone`]).
     pub redone: u64,
 }
 

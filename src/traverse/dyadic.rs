@@ -47,6 +47,10 @@ impl Dyadic {
         self.m.is_zero()
     }
 
+    pub fn is_negative(&self) -> bool {
+        self.m.is_negative()
+    }
+
     /// `self / den` as a reduced fraction (`den` non-zero).
     pub fn over(&self, den: &Dyadic) -> BigRational {
         let (n, d) = self.scaled_pair(den);

@@ -2,7 +2,9 @@
 //! tests, and keeping the first hit.
 
 use super::counters::Counters;
+use super::exact_start::PlanePoint;
 use super::frame::{Frame, Span};
+use super::interval::settled;
 use super::scalar::{max, min, Scalar};
 use super::Query;
 use crate::geometry::{CellTriangles, Certain, CertainMiss, RaySpace, TriangleHit};
@@ -72,6 +74,10 @@ pub struct Search<'a, S> {
     pub cells: Option<Vec<[usize; 2]>>,
     /// The triangle the ray starts on and leaves at once: not tested.
     pub start_triangle: Option<((usize, usize), u8)>,
+    /// A shadow ray's exact start, for the triangle tests intervals cannot settle.
+    pub exact_start: Option<PlanePoint>,
+    /// A triangle test was decided in rationals.
+    pub in_rationals: bool,
     /// What rounding may have added to a height computed along the ray (zero in exact
     /// arithmetic), see [`slack`]: lowest heights are lowered by it, so that a rounding
     /// arithmetic never culls a run or cell the ray really touches (as a ray ending on flat
@@ -190,7 +196,8 @@ impl<S: Scalar> Search<'_, S> {
             return ControlFlow::Continue(());
         }
         let heights = self.terrain.corner_heights(i, j);
-        let tested = |triangle| self.start_triangle != Some(((i, j), triangle));
+        let start = self.start_triangle;
+        let tested = |triangle| start != Some(((i, j), triangle));
         // What the `f64` filter settles: a certain miss (`Some(None)`), or a certain hit and
         // an enclosure of its `t` (`Some(Some(t))`).
         let certain: [Option<Option<S>>; 2] = match &self.certain_miss {
@@ -224,21 +231,18 @@ impl<S: Scalar> Search<'_, S> {
                     t_first: t.clone(),
                     t_last: Some(t.clone()),
                 }),
-                None => cell
-                    .get_or_insert_with(|| {
+                None => {
+                    let cell = cell.get_or_insert_with(|| {
                         CellTriangles::new(self.ray.get(), i, j, heights.map(S::from_f64))
-                    })
-                    .intersect(self.ray.get(), triangle),
+                    });
+                    if S::EXACT && self.exact_start.is_some() {
+                        self.test_from_exact_start(cell, (i, j), triangle)
+                    } else {
+                        cell.intersect(self.ray.get(), triangle)
+                    }
+                }
             };
-            let counts = match (&hit, self.query) {
-                (None, _) => false,
-                (Some(_), Query::FirstHit) => true,
-                // A shadow ray must touch the surface after its start.
-                (Some(h), Query::Shadow) => h
-                    .t_last
-                    .as_ref()
-                    .is_none_or(|t| !t.is_negative() && !t.is_zero()),
-            };
+            let counts = hit.as_ref().is_some_and(|hit| self.counts(hit));
             if !self.counters.triangle.record(counts) {
                 continue;
             }
@@ -266,6 +270,50 @@ impl<S: Scalar> Search<'_, S> {
             }
         }
         ControlFlow::Continue(())
+    }
+}
+
+impl<S: Scalar> Search<'_, S> {
+    /// Tests triangle `k` of `cell` for a shadow ray whose start is known exactly: a hit that
+    /// counts, or none. A test the intervals cannot settle is decided exactly on its own.
+    #[inline(never)]
+    fn test_from_exact_start(
+        &mut self,
+        cell: &CellTriangles<S>,
+        at: (usize, usize),
+        k: u8,
+    ) -> Option<TriangleHit<S>> {
+        let test = || {
+            let hit = cell.intersect(self.ray.get(), k);
+            hit.filter(|hit| self.counts(hit))
+        };
+        if let (hit, true) = settled(test) {
+            return hit;
+        }
+        let start = self.exact_start.as_ref()?;
+        let decided = start.touches_after_start(self.terrain, self.ray.dir_f64, at, k);
+        let Some(first) = decided else {
+            // (Tested again to leave the decision unsettled: the ray is then cast again.)
+            return test();
+        };
+        self.in_rationals = true;
+        // (Rounded to nearest: its neighbours enclose it.)
+        let t = first.and_then(|t| S::from_enclosure(t.next_down(), t.next_up()))?;
+        Some(TriangleHit {
+            t_first: t,
+            t_last: None,
+        })
+    }
+
+    /// Whether a hit counts: a shadow ray must touch the surface after its start.
+    fn counts(&self, hit: &TriangleHit<S>) -> bool {
+        match self.query {
+            Query::FirstHit => true,
+            Query::Shadow => hit
+                .t_last
+                .as_ref()
+                .is_none_or(|t| !t.is_negative() && !t.is_zero()),
+        }
     }
 }
 
