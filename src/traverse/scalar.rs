@@ -167,6 +167,7 @@ fn with_sign(value: f64, sign: Ordering) -> f64 {
 
 /// `a*b - c*d` in `f64` with the exact sign: rounded where the error bound allows, decided
 /// exactly inside it (rare).
+#[inline]
 fn det2_f64(a: &f64, b: &f64, c: &f64, d: &f64) -> f64 {
     let (p, q) = (a * b, c * d);
     let value = p - q;
@@ -176,8 +177,16 @@ fn det2_f64(a: &f64, b: &f64, c: &f64, d: &f64) -> f64 {
     if value.abs() > bound {
         value
     } else {
-        with_sign(value, exact_det2_sign(*a, *b, *c, *d))
+        det2_in_doubt(value, [*a, *b, *c, *d])
     }
+}
+
+/// `value` with the exact sign of `a*b - c*d`, decided in rationals: out of line, so that the
+/// rounded case inlines into the triangle test.
+#[cold]
+#[inline(never)]
+fn det2_in_doubt(value: f64, [a, b, c, d]: [f64; 4]) -> f64 {
+    with_sign(value, exact_det2_sign(a, b, c, d))
 }
 
 /// `a*b - c*d` in `f32` with the exact sign.
@@ -236,6 +245,7 @@ macro_rules! float_scalar {
             fn is_negative(&self) -> bool {
                 *self < 0.0
             }
+            #[inline]
             fn det2(a: &Self, b: &Self, c: &Self, d: &Self) -> Self {
                 $det2(a, b, c, d)
             }
