@@ -226,6 +226,7 @@ impl Mul for Near {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::strategies::component;
     use crate::geometry::CellTriangles;
     use crate::traverse::scalar::exact_from_f64;
     use crate::traverse::Exact;
@@ -257,15 +258,6 @@ mod tests {
             (0i32..24).prop_map(|n| f64::from(n) / 4.0),
             (0i32..6, 1u8..4).prop_map(|(n, k)| (0..k).fold(f64::from(n), |x, _| x.next_up())),
             -2.0f64..8.0,
-        ]
-    }
-
-    fn component() -> impl Strategy<Value = f64> {
-        prop_oneof![
-            Just(0.0),
-            (-4i32..5).prop_map(f64::from),
-            -1.0f64..1.0,
-            (-1.0f64..1.0).prop_map(|x| x * 1e-9),
         ]
     }
 

@@ -3,6 +3,8 @@
 mod certain_miss;
 mod clip;
 mod ray;
+#[cfg(test)]
+pub mod strategies;
 mod triangle;
 
 pub use certain_miss::{CellImages, Certain, CertainMiss};

@@ -104,6 +104,7 @@ fn sign(x: &Dyadic) -> i8 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::strategies::component;
     use crate::geometry::{plane_crossing, CellTriangles, RaySpace};
     use crate::heightfield::Heightfield;
     use crate::traverse::scalar::exact_from_f64;
@@ -118,15 +119,6 @@ mod tests {
             (-1i32..7).prop_map(f64::from),
             (-4i32..28).prop_map(|n| f64::from(n) / 4.0),
             -1.0f64..7.0,
-        ]
-    }
-
-    fn component() -> impl Strategy<Value = f64> {
-        prop_oneof![
-            Just(0.0),
-            (-4i32..5).prop_map(f64::from),
-            -1.0f64..1.0,
-            (-1.0f64..1.0).prop_map(|x| x * 1e-9),
         ]
     }
 
