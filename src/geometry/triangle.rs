@@ -31,6 +31,7 @@ pub struct TriangleHit<S> {
 
 /// The axes of ray space `[x, y, z]`: the direction's largest component becomes z, and the
 /// order stays cyclic, so orientations keep their sign.
+// (Inlined by hand: out of line, LLVM stopped inlining `RaySpace::new` into the walk.)
 #[inline]
 pub fn ray_space_axes(dir: [f64; 3]) -> [usize; 3] {
     let kz = (0..3)

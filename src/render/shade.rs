@@ -247,7 +247,7 @@ impl Shader<'_> {
                 shadowed: answer.hit.is_some(),
             },
             answer.counters,
-            answer.in_rationals,
+            answer.decided_exactly,
         )
     }
 

@@ -130,7 +130,8 @@ mod tests {
 
     /// The answer of the `BigRational` test of triangle `k` of `cell` for the ray from where
     /// `ray` meets the plane of triangle `start.1` of `start.0` (all in rationals): `None`
-    /// where that ray lies in the triangle's plane.
+    /// where that ray lies in the triangle's plane and touches it (which ours leaves to
+    /// rationals).
     fn reference(
         terrain: &Terrain,
         ray: &Ray,

@@ -88,7 +88,7 @@ pub struct WalkOptions {
     /// the hierarchical walk starts there, at the beam's last level.
     pub beam: Option<Clearance>,
     /// For a shadow ray in intervals: its start, exactly (the hit point it starts at). A
-    /// triangle test the intervals cannot settle is then decided in rationals on its own.
+    /// triangle test the intervals cannot settle is then decided exactly on its own.
     pub exact_start: Option<PlanePoint>,
 }
 
@@ -373,8 +373,9 @@ pub struct ScalarTrace<S> {
     pub hit: Option<Found<S>>,
     pub counters: Counters,
     pub cells: Vec<[usize; 2]>,
-    /// A triangle test was decided in rationals (see [`WalkOptions::exact_start`]).
-    pub in_rationals: bool,
+    /// A triangle test intervals could not settle was decided exactly (see
+    /// [`WalkOptions::exact_start`]).
+    pub decided_exactly: bool,
 }
 
 impl<S> ScalarTrace<S> {
@@ -384,7 +385,7 @@ impl<S> ScalarTrace<S> {
             hit: None,
             counters,
             cells: Vec::new(),
-            in_rationals: false,
+            decided_exactly: false,
         }
     }
 }
@@ -446,7 +447,7 @@ pub fn trace_scalar<S: Scalar>(
         hit: search.found,
         counters: search.counters,
         cells: search.cells.unwrap_or_default(),
-        in_rationals: search.in_rationals,
+        decided_exactly: search.decided_exactly,
     }
 }
 
@@ -480,7 +481,7 @@ fn new_search<'a, S: Scalar>(
         exact_start: options
             .exact_start
             .filter(|_| S::EXACT && options.query == Query::Shadow),
-        in_rationals: false,
+        decided_exactly: false,
         slack: 0.0,
     }
 }
@@ -533,7 +534,7 @@ fn trace_certified<S: Scalar>(
         hit: search.found,
         counters: search.counters,
         cells: Vec::new(),
-        in_rationals: search.in_rationals,
+        decided_exactly: search.decided_exactly,
     })
 }
 

@@ -76,8 +76,8 @@ pub struct Search<'a, S> {
     pub start_triangle: Option<((usize, usize), u8)>,
     /// A shadow ray's exact start, for the triangle tests intervals cannot settle.
     pub exact_start: Option<PlanePoint>,
-    /// A triangle test was decided in rationals.
-    pub in_rationals: bool,
+    /// A triangle test intervals could not settle was decided exactly.
+    pub decided_exactly: bool,
     /// What rounding may have added to a height computed along the ray (zero in exact
     /// arithmetic), see [`slack`]: lowest heights are lowered by it, so that a rounding
     /// arithmetic never culls a run or cell the ray really touches (as a ray ending on flat
@@ -235,10 +235,9 @@ impl<S: Scalar> Search<'_, S> {
                     let cell = cell.get_or_insert_with(|| {
                         CellTriangles::new(self.ray.get(), i, j, heights.map(S::from_f64))
                     });
-                    if S::EXACT && self.exact_start.is_some() {
-                        self.test_from_exact_start(cell, (i, j), triangle)
-                    } else {
-                        cell.intersect(self.ray.get(), triangle)
+                    match self.exact_start.filter(|_| S::EXACT) {
+                        Some(start) => self.test_from(start, cell, (i, j), triangle),
+                        None => cell.intersect(self.ray.get(), triangle),
                     }
                 }
             };
@@ -276,9 +275,11 @@ impl<S: Scalar> Search<'_, S> {
 impl<S: Scalar> Search<'_, S> {
     /// Tests triangle `k` of `cell` for a shadow ray whose start is known exactly: a hit that
     /// counts, or none. A test the intervals cannot settle is decided exactly on its own.
+    // (Out of line: the interval walk's triangle loop stays as small as before.)
     #[inline(never)]
-    fn test_from_exact_start(
+    fn test_from(
         &mut self,
+        start: PlanePoint,
         cell: &CellTriangles<S>,
         at: (usize, usize),
         k: u8,
@@ -290,13 +291,12 @@ impl<S: Scalar> Search<'_, S> {
         if let (hit, true) = settled(test) {
             return hit;
         }
-        let start = self.exact_start.as_ref()?;
         let decided = start.touches_after_start(self.terrain, self.ray.dir_f64, at, k);
         let Some(first) = decided else {
             // (Tested again to leave the decision unsettled: the ray is then cast again.)
             return test();
         };
-        self.in_rationals = true;
+        self.decided_exactly = true;
         // (Rounded to nearest: its neighbours enclose it.)
         let t = first.and_then(|t| S::from_enclosure(t.next_down(), t.next_up()))?;
         Some(TriangleHit {
