@@ -403,11 +403,17 @@ impl Scalar for Interval {
         Interval::between(lo, hi)
     }
     fn along(o: f64, d: f64, t: &Interval) -> Interval {
-        // Each end from one product and one sum of floats: less than half the work of the
-        // general interval product and sum (every shadow ray starts at such a point).
+        if d == 0.0 {
+            return Interval::point(o);
+        }
+        if t.is_point() {
+            return Interval::point(o) + Interval::point(d) * *t;
+        }
+        // `t` is not a point, so no end is exact: each end one float outwards after each of
+        // its two roundings, a fraction of the work of the general product and sum (every
+        // shadow ray starts at such a point).
         let (first, last) = if d >= 0.0 { (t.lo, t.hi) } else { (t.hi, t.lo) };
-        let (lo, hi) = (product_end(d, first, below), product_end(d, last, above));
-        Interval::checked(sum(o, lo).0, sum(o, hi).1)
+        Interval::checked(below(o + below(d * first)), above(o + above(d * last)))
     }
     fn f64_enclosure(&self) -> Option<(f64, f64)> {
         if self.is_point() {
