@@ -478,6 +478,9 @@ fn new_search<'a, S: Scalar>(
         tied: false,
         cells: options.record_cells.then(Vec::new),
         start_triangle: options.start_triangle,
+        // (`S::EXACT` is asked again where the start is used, which compiles it out of the
+        // rounding arithmetics; left out here, LLVM inlined differently and `f64` rays ran 2%
+        // slower, measured.)
         exact_start: options
             .exact_start
             .filter(|_| S::EXACT && options.query == Query::Shadow),
