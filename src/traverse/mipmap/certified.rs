@@ -133,8 +133,9 @@ impl<S: Scalar> Certifying<'_, '_, S> {
                 continue;
             }
             for (b, row) in rows.into_iter().enumerate() {
-                if (a, b) != (1, 1) {
-                    let window = (col.0.max(row.0), col.1.min(row.1));
+                let window = (col.0.max(row.0), col.1.min(row.1));
+                // (Most neighbours' windows are empty: asked here, not in a call.)
+                if (a, b) != (1, 1) && nonempty(window) {
                     let uv = (cu + a as i64 - 1, cv + b as i64 - 1);
                     self.candidate(f, uv, window, false)?;
                 }
