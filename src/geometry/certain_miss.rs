@@ -18,7 +18,10 @@
 //! `|x' - X'| <= 2r + 7 eps m` (a few more `eps` for the products of small terms): the
 //! filter takes `e = 2.01 r + 16 eps m`. An edge function `c0 b1 - c1 b0` of coordinates each
 //! off by at most `e` is off by at most `e (|c0| + |b1| + |c1| + |b0|) + 2 e^2`, and its own
-//! two products and difference round by at most `3 eps (|c0 b1| + |c1 b0|)`.
+//! two products and difference round by at most `3 eps (|c0 b1| + |c1 b0|)`. Every computed
+//! image coordinate is at most `M = 2 m (1 + 4 eps)` in magnitude (two terms of at most `m`,
+//! `|s| <= 1`, three roundings), so one bound serves all six edge functions of a cell:
+//! `4 e M + 2 e^2 + 6.01 eps M^2`.
 
 use super::{plane_crossing, triangle_corners, RaySpace};
 use crate::traverse::Interval;
@@ -32,10 +35,11 @@ pub struct CertainMiss {
     radius: f64,
 }
 
-/// The four corners of one cell in the filter's ray space, with the error of every coordinate.
+/// The four corners of one cell in the filter's ray space, with a bound on the error of every
+/// edge function of them.
 pub struct CellImages {
     images: [[f64; 3]; 4],
-    error: f64,
+    bound: f64,
 }
 
 impl CertainMiss {
@@ -87,9 +91,13 @@ impl CertainMiss {
             .iter()
             .flat_map(|p| (0..3).map(move |k| (p[k] - origin[k]).abs()))
             .fold(0.0, f64::max);
+        let e = 2.01 * self.radius + 16.0 * f64::EPSILON * largest;
+        let m = 2.0 * largest * (1.0 + 4.0 * f64::EPSILON);
+        // (Widened for the rounding of the bound's own few operations.)
+        let bound = (4.0 * e * m + 2.0 * e * e + 6.01 * f64::EPSILON * m * m) * (1.0 + 1e-9);
         CellImages {
             images: corners.map(|p| self.space.vertex(p)),
-            error: 2.01 * self.radius + 16.0 * f64::EPSILON * largest,
+            bound: bound + 1e-300,
         }
     }
 }
@@ -129,18 +137,11 @@ impl CellImages {
 
     /// The sign of `p*q - r*s` (`true`: positive) where it is certain.
     fn sign(&self, p: f64, q: f64, r: f64, s: f64) -> Option<bool> {
-        let e = self.error;
-        let (pq, rs) = (p * q, r * s);
-        let value = pq - rs;
-        let bound = (e * (p.abs() + q.abs() + r.abs() + s.abs())
-            + 2.0 * e * e
-            + 3.0 * f64::EPSILON * (pq.abs() + rs.abs()))
-            * (1.0 + 1e-9)
-            + 1e-300;
+        let value = p * q - r * s;
         // (NaN compares false both ways: uncertain.)
-        if value > bound {
+        if value > self.bound {
             Some(true)
-        } else if value < -bound {
+        } else if value < -self.bound {
             Some(false)
         } else {
             None
