@@ -74,10 +74,17 @@ impl Bounds {
         let pos = 2.0 * (4.0 * eps * coords + d_xy * dt) + 2.0 * d_xy * dt + 2.0 * snap + off;
         let rise = terrain.max_slope() * (1.0 + 1e-9) * pos;
         let z_err = 4.0 * eps * (oz.abs() + dz.abs() * t_max) + dz.abs() * dt + radius[2];
+        // The block test's own operands, the ray's height and the block's, are rounded too:
+        // bounded once here for the whole segment (a `t` the walk computed may lie a rounding
+        // past its end) rather than at every test, where the sum sat on the walk's critical
+        // path.
+        let (z_lo, z_hi) = terrain.z_range();
+        let operands =
+            4.0 * eps * ((oz.abs() + dz.abs() * t_max) * 1.01 + z_lo.abs().max(z_hi.abs()));
         Bounds {
             oz,
             dz,
-            room: (z_err + rise) * (1.0 + 1e-6),
+            room: (z_err + rise + operands) * (1.0 + 1e-6),
             pos,
             dt,
             off_faces: 4.0 * (off + 4.0 * eps * coords) / f.du.abs().min(f.dv.abs()),
@@ -99,14 +106,12 @@ impl Bounds {
         let highest = terrain.field().height_of(highest);
         let t = if self.dz < 0.0 { t_hi } else { t_lo };
         let lowest = self.oz + self.dz * t;
-        // The comparison's own operands are rounded too.
-        let room = self.room + 4.0 * f64::EPSILON * (lowest.abs() + highest.abs());
         let counter = if k == 0 {
             &mut counters.cell
         } else {
             &mut counters.block
         };
-        counter.record(lowest - room <= highest)
+        counter.record(lowest - self.room <= highest)
     }
 
     /// Whether the ray climbs (or is level).
