@@ -420,7 +420,7 @@ pub fn trace_scalar<S: Scalar>(
         return ScalarTrace::missed(counters);
     };
     let mut search = new_search(terrain, o, d, dir_f64, near, &walk_options, counters);
-    search.slack = search::slack(&o[2], &d[2], &frame.t1);
+    search.lower_by(search::slack(&o[2], &d[2], &frame.t1));
     if walk_options.method == Method::Mipmap {
         // (A walk asked to list its cells walks them all.)
         let cleared = S::EXACT
@@ -485,7 +485,6 @@ fn new_search<'a, S: Scalar>(
             .exact_start
             .filter(|_| S::EXACT && options.query == Query::Shadow),
         decided_exactly: false,
-        slack: 0.0,
     }
 }
 

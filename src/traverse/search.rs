@@ -78,11 +78,6 @@ pub struct Search<'a, S> {
     pub exact_start: Option<PlanePoint>,
     /// A triangle test intervals could not settle was decided exactly.
     pub decided_exactly: bool,
-    /// What rounding may have added to a height computed along the ray (zero in exact
-    /// arithmetic), see [`slack`]: lowest heights are lowered by it, so that a rounding
-    /// arithmetic never culls a run or cell the ray really touches (as a ray ending on flat
-    /// ground at the lowest height does).
-    pub slack: f64,
 }
 
 /// The rounding a height `oz + dz*t` computed in `S` may carry, for `t` up to `t_max`: eight
@@ -149,16 +144,22 @@ impl<S: Scalar> Search<'_, S> {
         }
     }
 
-    /// The ray's lowest height over `[t_lo, t_hi]`, lowered by [`Search::slack`].
+    /// Lowers every height the search computes along the ray by `slack`: what rounding may
+    /// have added to it (zero in exact arithmetic), see [`slack`]. A rounding arithmetic then
+    /// never culls a run or cell the ray really touches (as a ray ending on flat ground at
+    /// the lowest height does). (The origin's height is lowered once: the slack of eight
+    /// roundings covers the rounding of that subtraction as well.)
+    pub fn lower_by(&mut self, slack: f64) {
+        if slack > 0.0 {
+            self.oz = self.oz.clone() - S::from_f64(slack);
+        }
+    }
+
+    /// The ray's lowest height over `[t_lo, t_hi]` (lowered, see [`Search::lower_by`]).
     #[inline(always)]
     fn lowest_z(&self, t_lo: &S, t_hi: &S) -> S {
         let t = if self.dz.is_negative() { t_hi } else { t_lo };
-        let z = self.oz.clone() + self.dz.clone() * t.clone();
-        if self.slack > 0.0 {
-            z - S::from_f64(self.slack)
-        } else {
-            z
-        }
+        self.oz.clone() + self.dz.clone() * t.clone()
     }
 
     /// The block test of the hierarchical walk: the ray's lowest height over `[t_lo, t_hi]`
