@@ -457,8 +457,8 @@ pub fn trace_scalar<S: Scalar>(
 #[inline(always)]
 fn new_search<'a, S: Scalar>(
     terrain: &'a Terrain,
-    o: &[S; 3],
-    d: &[S; 3],
+    o: &'a [S; 3],
+    d: &'a [S; 3],
     dir_f64: [f64; 3],
     near: Option<F64Ray>,
     options: &WalkOptions,
