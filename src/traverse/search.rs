@@ -62,6 +62,7 @@ pub struct Search<'a, S> {
     pub ray: LazyRaySpace<'a, S>,
     /// For arithmetics without rounding: settles most misses in `f64`.
     pub certain_miss: Option<CertainMiss>,
+    /// The origin's height, lowered by a rounding arithmetic's slack ([`Search::lower_by`]).
     pub oz: S,
     pub dz: S,
     pub query: Query,
