@@ -223,27 +223,26 @@ impl<S: Scalar> Search<'_, S> {
             }
             _ => [None, None],
         };
-        // (Built only for a triangle the filter leaves open.)
-        let mut cell = None;
+        // (Built only for a triangle the filter leaves open; built before the loop, not on
+        // first use in it: filling an `Option` there copied the cell's 24 values.)
+        let open = |k: u8| tested(k) && certain[k as usize].is_none();
+        let cell = (open(0) || open(1))
+            .then(|| CellTriangles::new(self.ray.get(), i, j, heights.map(S::from_f64)));
         for triangle in 0..2 {
             if !tested(triangle) {
                 continue;
             }
-            let hit = match &certain[triangle as usize] {
-                Some(None) => None,
-                Some(Some(t)) => Some(TriangleHit {
+            let hit = match (&certain[triangle as usize], &cell) {
+                (Some(None), _) => None,
+                (Some(Some(t)), _) => Some(TriangleHit {
                     t_first: t.clone(),
                     t_last: Some(t.clone()),
                 }),
-                None => {
-                    let cell = cell.get_or_insert_with(|| {
-                        CellTriangles::new(self.ray.get(), i, j, heights.map(S::from_f64))
-                    });
-                    match self.exact_start.filter(|_| S::EXACT) {
-                        Some(start) => self.test_from(start, cell, (i, j), triangle),
-                        None => cell.intersect(self.ray.get(), triangle),
-                    }
-                }
+                (None, None) => unreachable!("the cell is built for every open triangle"),
+                (None, Some(cell)) => match self.exact_start.filter(|_| S::EXACT) {
+                    Some(start) => self.test_from(start, cell, (i, j), triangle),
+                    None => cell.intersect(self.ray.get(), triangle),
+                },
             };
             let counts = hit.as_ref().is_some_and(|hit| self.counts(hit));
             if !self.counters.triangle.record(counts) {
