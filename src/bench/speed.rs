@@ -27,16 +27,15 @@ impl ThroughputRow {
     pub fn primary_per_second(&self) -> f64 {
         self.primary_rays as f64 / self.primary_time.as_secs_f64()
     }
-    /// Shadow rays per second: the extra time shadows took, per shadow ray.
-    pub fn shadow_per_second(&self) -> f64 {
+    /// Shadow rays per second: the extra time shadows took, per shadow ray; `None` where
+    /// there were none, or the frame with shadows was not the slower one (shadows were lost
+    /// in the noise of the two times).
+    pub fn shadow_per_second(&self) -> Option<f64> {
         let extra = self
             .total_time
             .saturating_sub(self.primary_time)
             .as_secs_f64();
-        if self.shadow_rays == 0 || extra <= 0.0 {
-            return f64::NAN;
-        }
-        self.shadow_rays as f64 / extra
+        (self.shadow_rays > 0 && extra > 0.0).then(|| self.shadow_rays as f64 / extra)
     }
 }
 
@@ -101,4 +100,34 @@ pub fn throughput(
         }
     }
     Ok(rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(shadow_rays: u64, primary_ms: u64, total_ms: u64) -> ThroughputRow {
+        ThroughputRow {
+            method: Method::Mipmap,
+            arith: Arith::F64,
+            threads: 1,
+            primary_rays: 1000,
+            shadow_rays,
+            primary_queries: Counters::default(),
+            primary_time: Duration::from_millis(primary_ms),
+            total_time: Duration::from_millis(total_ms),
+        }
+    }
+
+    #[test]
+    fn shadow_rays_per_second_come_from_the_extra_time_or_are_not_given() {
+        // 500 shadow rays in the 250 ms shadows added: 2000 per second.
+        assert_eq!(row(500, 1000, 1250).shadow_per_second(), Some(2000.0));
+        // Shadows lost in the noise: the frame with them was no slower.
+        assert_eq!(row(500, 1000, 1000).shadow_per_second(), None);
+        assert_eq!(row(500, 1000, 900).shadow_per_second(), None);
+        // No shadow rays at all.
+        assert_eq!(row(0, 1000, 1250).shadow_per_second(), None);
+        assert_eq!(row(0, 1000, 1000).primary_per_second(), 1000.0);
+    }
 }

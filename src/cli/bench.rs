@@ -108,18 +108,22 @@ fn print_table(label: &str, terrain: &Terrain, rows: &[ThroughputRow]) {
             .map(|r| row.primary_per_second() / r.primary_per_second());
         let (build, bytes) = prepare(terrain, row.method);
         println!(
-            "| {} | {} | {} | {:.1} | {:.2} | {:.3} | {:.3} | {:.1} | {} | {} |",
+            "| {} | {} | {} | {:.1} | {:.2} | {:.3} | {} | {:.1} | {} | {} |",
             row.method,
             row.arith,
             row.threads,
             build.as_secs_f64() * 1e3,
             bytes as f64 / samples,
             row.primary_per_second() / 1e6,
-            row.shadow_per_second() / 1e6,
+            row.shadow_per_second()
+                .map_or("-".into(), |r| format!("{:.3}", r / 1e6)),
             row.total_time.as_secs_f64() * 1e3,
             versus_f64.map_or("-".into(), |r| format!("{r:.2}")),
             versus_one.map_or("-".into(), |r| format!("{r:.2}")),
         );
+    }
+    if rows.iter().any(|r| r.shadow_per_second().is_none()) {
+        println!("(shadow Mrays/s \"-\": no shadow rays, or the frame with shadows was not slower than the one without: shadows were lost in the noise of the two times)");
     }
 }
 
