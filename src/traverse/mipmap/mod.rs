@@ -36,13 +36,17 @@ use super::scalar::{max, Scalar};
 use super::search::Search;
 use std::ops::ControlFlow;
 
-/// A point on the path: its ray parameter and frame coordinates, and whether it lies on the
-/// `u` or `v` face of the block it leaves (the start lies on neither).
+/// A point on the path: its ray parameter and frame coordinates, the frame cell they floor
+/// to, and whether it lies on the `u` or `v` face of the block it leaves (the start lies on
+/// neither).
+// (The cell is kept with the point: its two floors, worked out again at every test of a
+// descent, took 1.5% of an `f64` frame's instructions.)
 #[derive(Clone)]
 struct Point<S> {
     t: S,
     u: S,
     v: S,
+    cell: (i64, i64),
     on_u: bool,
     on_v: bool,
 }
@@ -130,6 +134,7 @@ fn descend<S: Scalar>(
         t: f.t0.clone(),
         u: f.us.clone(),
         v: f.vs.clone(),
+        cell: (f.us.floor_i64(), f.vs.floor_i64()),
         on_u: false,
         on_v: false,
     };
@@ -140,10 +145,7 @@ fn descend<S: Scalar>(
         follower.stop_before(&at.t)?;
         // (Rounding, or an interval that cannot tell, may put a point on the grid's near
         // edge just outside it.)
-        let (cu, cv) = (
-            at.u.floor_i64().max(f.cols.0),
-            at.v.floor_i64().max(f.rows.0),
-        );
+        let (cu, cv) = (at.cell.0.max(f.cols.0), at.cell.1.max(f.rows.0));
         if cu > f.cols.1 || cv > f.rows.1 {
             return follower.left_grid(Part {
                 frame: f,
@@ -275,19 +277,22 @@ fn exit_point<S: Scalar>(f: &Frame<S>, from: &Point<S>, eu: i64, ev: i64) -> Poi
     // A path through a lattice point as far as the arithmetic can tell leaves through the
     // corner: the cells meeting there are then all tested (a float walk that picked one face
     // could leave a hole at the vertex).
-    let (t, u, v, on_u, on_v) = if tu.nearly_equal(&tv) {
-        (tu, S::from_i64(eu), S::from_i64(ev), true, true)
+    let (t, u, v, cell, on_u, on_v) = if tu.nearly_equal(&tv) {
+        (tu, S::from_i64(eu), S::from_i64(ev), (eu, ev), true, true)
     } else if tu < tv {
         let v = at(&f.ov, &f.dv, &tu, &from.v);
-        (tu, S::from_i64(eu), v, true, false)
+        let cv = v.floor_i64();
+        (tu, S::from_i64(eu), v, (eu, cv), true, false)
     } else {
         let u = at(&f.ou, &f.du, &tv, &from.u);
-        (tv, u, S::from_i64(ev), false, true)
+        let cu = u.floor_i64();
+        (tv, u, S::from_i64(ev), (cu, ev), false, true)
     };
     Point {
         t: max(t, from.t.clone()),
         u,
         v,
+        cell,
         on_u,
         on_v,
     }
