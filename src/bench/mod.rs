@@ -13,4 +13,4 @@ pub use accuracy::{
 };
 pub use ray_sets::{hard_cases, scene_sets, RaySet};
 pub use sizes::{sized_scene, SizedSceneError, SEED};
-pub use speed::{throughput, ThroughputRow};
+pub use speed::{throughput, ThroughputRow, ROUNDS};

@@ -39,8 +39,17 @@ impl ThroughputRow {
     }
 }
 
-/// Renders the scene's view with and without shadows for each configuration; `progress` is
-/// told after each one.
+/// Rounds over all configurations: each time is the fastest frame of any round. On a shared
+/// machine a disturbance can last seconds; spread over rounds, a configuration's frames are
+/// not all taken inside one.
+pub const ROUNDS: usize = 3;
+
+/// Frames per configuration and round: as many as fit in this time, at least one; a
+/// configuration whose frames have taken `ROUNDS` times this is not measured again.
+const ROUND_TIME: Duration = Duration::from_millis(500);
+
+/// Renders the scene's view with and without shadows for each configuration, in
+/// [`ROUNDS`] rounds; `progress` is told after each configuration's round.
 pub fn throughput(
     scene: &Scene,
     terrain: &Terrain,
@@ -49,57 +58,89 @@ pub fn throughput(
     threads: &[usize],
     progress: &mut dyn FnMut(),
 ) -> anyhow::Result<Vec<ThroughputRow>> {
-    let mut rows = Vec::new();
+    let mut pools = Vec::new();
+    for &count in threads {
+        pools.push(rayon::ThreadPoolBuilder::new().num_threads(count).build()?);
+    }
+    let mut configs = Vec::new();
     for &method in methods {
         for &arith in ariths {
-            for &count in threads {
-                let pool = rayon::ThreadPoolBuilder::new().num_threads(count).build()?;
-                // The fastest of as many frames as fit in 1.5 s (at least one): the least
-                // disturbed by whatever else the machine does (on a shared machine a
-                // disturbance can last a second).
-                let time = |shadows: bool| {
-                    let mut lighting = scene.lighting;
-                    lighting.shadows = shadows;
-                    let renderer = Renderer {
-                        shader: Shader {
-                            terrain,
-                            lighting,
-                            method,
-                            culling: Culling::default(),
-                        },
-                        camera: scene.camera,
-                        arith,
-                    };
-                    let (w, h) = scene.camera.size();
-                    let (mut best, mut spent, mut runs) = (Duration::MAX, Duration::ZERO, 0);
-                    let mut totals = FrameStats::default();
-                    while runs == 0 || spent < Duration::from_millis(1500) {
-                        let mut frame = Frame::new(w, h);
-                        let start = Instant::now();
-                        pool.install(|| renderer.render(&mut frame));
-                        let elapsed = start.elapsed();
-                        (best, spent, runs, totals) =
-                            (best.min(elapsed), spent + elapsed, runs + 1, frame.totals);
-                    }
-                    (best, totals)
-                };
-                let (primary_time, plain) = time(false);
-                let (total_time, shadowed) = time(true);
-                rows.push(ThroughputRow {
-                    method,
-                    arith,
-                    threads: count,
-                    primary_rays: plain.primary_rays,
-                    shadow_rays: shadowed.shadow_rays,
-                    primary_queries: plain.primary,
-                    primary_time,
-                    total_time,
-                });
-                progress();
+            for (&count, pool) in threads.iter().zip(&pools) {
+                configs.push((method, arith, count, pool, [Timing::new(), Timing::new()]));
             }
         }
     }
-    Ok(rows)
+    for _ in 0..ROUNDS {
+        for (method, arith, _, pool, timings) in &mut configs {
+            for (shadows, timing) in [false, true].into_iter().zip(timings) {
+                let mut lighting = scene.lighting;
+                lighting.shadows = shadows;
+                let renderer = Renderer {
+                    shader: Shader {
+                        terrain,
+                        lighting,
+                        method: *method,
+                        culling: Culling::default(),
+                    },
+                    camera: scene.camera,
+                    arith: *arith,
+                };
+                timing.round(&renderer, pool);
+            }
+            progress();
+        }
+    }
+    let rows =
+        configs.into_iter().map(
+            |(method, arith, threads, _, [plain, shadowed])| ThroughputRow {
+                method,
+                arith,
+                threads,
+                primary_rays: plain.totals.primary_rays,
+                shadow_rays: shadowed.totals.shadow_rays,
+                primary_queries: plain.totals.primary,
+                primary_time: plain.best,
+                total_time: shadowed.best,
+            },
+        );
+    Ok(rows.collect())
+}
+
+/// The frames of one configuration so far.
+struct Timing {
+    best: Duration,
+    spent: Duration,
+    /// The statistics of a frame (every frame's are the same).
+    totals: FrameStats,
+}
+
+impl Timing {
+    fn new() -> Self {
+        Timing {
+            best: Duration::MAX,
+            spent: Duration::ZERO,
+            totals: FrameStats::default(),
+        }
+    }
+
+    /// Renders as many frames as fit in [`ROUND_TIME`] (at least one), unless this
+    /// configuration has had its time already.
+    fn round(&mut self, renderer: &Renderer<'_>, pool: &rayon::ThreadPool) {
+        if self.spent >= ROUND_TIME * ROUNDS as u32 {
+            return;
+        }
+        let (w, h) = renderer.camera.size();
+        let mut spent = Duration::ZERO;
+        while spent < ROUND_TIME {
+            let mut frame = Frame::new(w, h);
+            let start = Instant::now();
+            pool.install(|| renderer.render(&mut frame));
+            let elapsed = start.elapsed();
+            (self.best, spent, self.totals) =
+                (self.best.min(elapsed), spent + elapsed, frame.totals);
+        }
+        self.spent += spent;
+    }
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 
 use super::SpeedArgs;
 use anyhow::Context;
-use heightray::bench::{sized_scene, throughput, ThroughputRow, SEED};
+use heightray::bench::{sized_scene, throughput, ThroughputRow, ROUNDS, SEED};
 use heightray::heightfield::BUILTINS;
 use heightray::render::{Scene, SceneFile};
 use heightray::traverse::prepare;
@@ -19,7 +19,7 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
         args.threads.iter().all(|&t| t > 0),
         "--threads counts must be at least 1"
     );
-    let configs = args.methods.len() * args.ariths.len() * args.threads.len();
+    let configs = args.methods.len() * args.ariths.len() * args.threads.len() * ROUNDS;
     let mut measured = Vec::new();
     if args.sizes.is_empty() {
         let scenes = scenes_or_builtins(&args.scenes);

@@ -66,7 +66,7 @@ pub struct Renderer<'a> {
 impl Renderer<'_> {
     /// Renders all remaining passes (on the current rayon pool). Each pixel is painted alone:
     /// nobody sees the frame between passes, where a coarse pass's blocks would show, and
-    /// painting them cost about 3% of a frame.
+    /// painting them took about 3% of a frame's instructions.
     pub fn render(&self, frame: &mut Frame) {
         while !frame.complete() {
             self.pass(frame, &|| false, Paint::Pixels);

@@ -221,8 +221,8 @@ macro_rules! float_scalar {
             fn nearly_equal(&self, other: &Self) -> bool {
                 // Infinities (a parameter step overflowing for a subnormal direction) are
                 // near nothing but themselves: a finite difference means both are finite.
-                // (`greater`, not `max`: neither is NaN where it matters, and `max`'s NaN
-                // handling took a third of this test's instructions on every block step.)
+                // (`greater`, not `max`: a NaN fails the last comparison anyway, and `max`'s
+                // handling of NaN cost instructions at every block step.)
                 let difference = (self - other).abs();
                 let scale = self.abs().greater(other.abs()).greater(1.0);
                 self == other

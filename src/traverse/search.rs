@@ -224,7 +224,7 @@ impl<S: Scalar> Search<'_, S> {
             _ => [None, None],
         };
         // (Built only for a triangle the filter leaves open; built before the loop, not on
-        // first use in it: filling an `Option` there copied the cell's 24 values.)
+        // first use in it, where filling an `Option` copied the cell's values.)
         let open = |k: u8| tested(k) && certain[k as usize].is_none();
         let cell = (open(0) || open(1))
             .then(|| CellTriangles::new(self.ray.get(), i, j, heights.map(S::from_f64)));
