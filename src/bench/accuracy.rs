@@ -74,6 +74,26 @@ impl AccuracyRow {
     }
 }
 
+/// Each configuration's time is the fastest of the passes over its rays that fit in this
+/// budget (at least one): a set of camera rays takes a millisecond or two in `f64`, and
+/// timed in a single pass, the same rays on the run walk took 4.2 µs each in one run and
+/// 2.3 µs in the next (eleventh session).
+const PASS_BUDGET: Duration = Duration::from_millis(100);
+
+/// The output of `pass` and the fastest time of the passes made (see [`PASS_BUDGET`]).
+fn fastest_pass<T>(mut pass: impl FnMut() -> T) -> (T, Duration) {
+    let begun = Instant::now();
+    let out = pass();
+    let mut fastest = begun.elapsed();
+    while begun.elapsed() < PASS_BUDGET {
+        let start = Instant::now();
+        // (The answers are the same every pass.)
+        drop(pass());
+        fastest = fastest.min(start.elapsed());
+    }
+    (out, fastest)
+}
+
 /// Traces every ray of `set` with each method and arithmetic, one thread, and compares each
 /// with exact arithmetic (if among `ariths`): answers, and cells of the exact walk skipped.
 pub fn accuracy(
@@ -87,13 +107,14 @@ pub fn accuracy(
         let mut answers = Vec::new();
         for &arith in ariths {
             let options = TraceOptions::new(method, arith);
-            let start = Instant::now();
-            let traces: Vec<_> = set
-                .rays
-                .iter()
-                .map(|ray| trace(&set.terrain, ray, &options))
-                .collect();
-            let time = start.elapsed();
+            let (traces, time) = fastest_pass(|| {
+                let traces: Vec<_> = set
+                    .rays
+                    .iter()
+                    .map(|ray| trace(&set.terrain, ray, &options))
+                    .collect();
+                traces
+            });
             let mut counters = Counters::default();
             for t in &traces {
                 counters += t.counters;
@@ -249,4 +270,26 @@ pub fn differing_pixels<'a>(
         .enumerate()
         .filter(|(_, (a, b))| a != b)
         .map(|(k, _)| k)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The first pass's output comes back with the fastest pass's time: here a first pass
+    /// that sleeps 30 ms and passes after it that do nothing.
+    #[test]
+    fn the_fastest_pass_is_timed_and_the_first_answer_kept() {
+        let mut passes = 0;
+        let (first, time) = fastest_pass(|| {
+            passes += 1;
+            if passes == 1 {
+                std::thread::sleep(Duration::from_millis(30));
+            }
+            passes
+        });
+        assert_eq!(first, 1);
+        assert!(passes > 1, "{passes} passes");
+        assert!(time < Duration::from_millis(30), "{time:?}");
+    }
 }
