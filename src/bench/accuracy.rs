@@ -74,24 +74,25 @@ impl AccuracyRow {
     }
 }
 
-/// Each configuration's time is the fastest of the passes over its rays that fit in this
-/// budget (at least one): a set of camera rays takes a millisecond or two in `f64`, and
-/// timed in a single pass, the same rays on the run walk took 4.2 µs each in one run and
-/// 2.3 µs in the next (eleventh session).
+/// Each configuration's time is the fastest of the passes over its rays (or renders of its
+/// frame) that fit in this budget (at least one): a set of camera rays takes a millisecond or
+/// two in `f64`, and timed in a single pass, the same rays on the run walk took 4.2 µs each in
+/// one run and 2.3 µs in the next (eleventh session).
 const PASS_BUDGET: Duration = Duration::from_millis(100);
 
-/// The output of `pass` and the fastest time of the passes made (see [`PASS_BUDGET`]).
-fn fastest_pass<T>(mut pass: impl FnMut() -> T) -> (T, Duration) {
+/// The first pass's output and the fastest pass's time (see [`PASS_BUDGET`]); `None` as soon
+/// as a pass gives none (a render cancelled).
+fn fastest_pass<T>(mut pass: impl FnMut() -> Option<T>) -> Option<(T, Duration)> {
     let begun = Instant::now();
-    let out = pass();
+    let out = pass()?;
     let mut fastest = begun.elapsed();
     while begun.elapsed() < PASS_BUDGET {
         let start = Instant::now();
         // (The answers are the same every pass.)
-        drop(pass());
+        pass()?;
         fastest = fastest.min(start.elapsed());
     }
-    (out, fastest)
+    Some((out, fastest))
 }
 
 /// Traces every ray of `set` with each method and arithmetic, one thread, and compares each
@@ -107,14 +108,16 @@ pub fn accuracy(
         let mut answers = Vec::new();
         for &arith in ariths {
             let options = TraceOptions::new(method, arith);
-            let (traces, time) = fastest_pass(|| {
-                let traces: Vec<_> = set
+            let trace_all = || {
+                let traces = set
                     .rays
                     .iter()
-                    .map(|ray| trace(&set.terrain, ray, &options))
-                    .collect();
-                traces
-            });
+                    .map(|ray| trace(&set.terrain, ray, &options));
+                Some(traces.collect::<Vec<_>>())
+            };
+            let Some((traces, time)) = fastest_pass(trace_all) else {
+                unreachable!("tracing is never cancelled")
+            };
             let mut counters = Counters::default();
             for t in &traces {
                 counters += t.counters;
@@ -168,7 +171,7 @@ pub struct PixelRow {
     /// Pixels whose colour differs from the exact render's.
     pub differing: u64,
     pub pixels: u64,
-    /// Wall time of the frame (all threads).
+    /// Wall time of the frame (all threads of the pool), the fastest of its renders.
     pub time: Duration,
 }
 
@@ -227,14 +230,15 @@ pub fn view_pixel_differences(
             arith,
         };
         let (w, h) = view.camera.size();
-        let mut frame = Frame::new(w, h);
-        let start = Instant::now();
-        while !frame.complete() {
-            if !renderer.render_pass(&mut frame, cancelled) {
-                return None;
+        fastest_pass(|| {
+            let mut frame = Frame::new(w, h);
+            while !frame.complete() {
+                if !renderer.render_pass(&mut frame, cancelled) {
+                    return None;
+                }
             }
-        }
-        Some((frame.pixels, start.elapsed()))
+            Some(frame.pixels)
+        })
     };
     let row = |arith, pixels: &[u32], exact: &[u32], time| PixelRow {
         method: view.method,
@@ -281,15 +285,30 @@ mod tests {
     #[test]
     fn the_fastest_pass_is_timed_and_the_first_answer_kept() {
         let mut passes = 0;
-        let (first, time) = fastest_pass(|| {
+        let measured = fastest_pass(|| {
             passes += 1;
             if passes == 1 {
                 std::thread::sleep(Duration::from_millis(30));
             }
-            passes
+            Some(passes)
         });
+        let Some((first, time)) = measured else {
+            panic!("no pass was cancelled")
+        };
         assert_eq!(first, 1);
         assert!(passes > 1, "{passes} passes");
         assert!(time < Duration::from_millis(30), "{time:?}");
+    }
+
+    /// A pass that gives nothing (a render cancelled) ends the measurement with nothing.
+    #[test]
+    fn a_cancelled_pass_gives_no_measurement() {
+        let mut passes = 0;
+        let measured = fastest_pass(|| {
+            passes += 1;
+            (passes < 3).then_some(passes)
+        });
+        assert_eq!(measured, None);
+        assert_eq!(passes, 3);
     }
 }

@@ -3,7 +3,7 @@
 
 use super::gamma;
 use super::scene::{Lighting, Normals, Ramp};
-use crate::geometry::{gradient, plane_height};
+use crate::geometry::{gradient, plane_height, triangle_corners};
 use crate::heightfield::Terrain;
 use crate::traverse::{
     crosses_plane, plane_t_exact, settled, trace_scalar, Clearance, Counters, Exact, Found,
@@ -217,9 +217,16 @@ impl Shader<'_> {
         let [x, y] = [0, 1].map(|k| S::along(ray_o[k], ray_d[k], &found.t));
         // Rounding arithmetics take the height on the hit triangle's plane: exact on flat
         // ground. Without rounding the ray's own point is on the plane, and enclosing it takes
-        // a fifth of the work of enclosing the plane's height over the enclosures of x and y.
+        // a fifth of the work of enclosing the plane's height over the enclosures of x and y;
+        // on a flat triangle the point's height is the triangle's, exactly: intervals must
+        // know it then, or the run and cell tests of a ray from a terrace's top, the highest
+        // sample of the runs and cells around it, cannot be settled (each such ray was cast
+        // again in rationals, at a millisecond a ray).
         let z = if S::EXACT {
-            S::along(ray_o[2], ray_d[2], &found.t)
+            match self.flat_height(found) {
+                Some(height) => S::from_f64(height),
+                None => S::along(ray_o[2], ray_d[2], &found.t),
+            }
         } else {
             let (i, j) = found.cell;
             let heights = self.terrain.corner_heights(i, j).map(S::from_f64);
@@ -265,6 +272,13 @@ impl Shader<'_> {
         // Without rounding the ray starts on the plane itself, and leaves it at once unless it
         // runs in it: asked exactly (intervals cannot tell the two apart in the tests).
         S::EXACT && crosses_plane(self.terrain, found.cell, found.triangle, self.lighting.sun)
+    }
+
+    /// The height of the hit triangle if it is flat (its three corners at one height).
+    fn flat_height<S: Scalar>(&self, found: &Found<S>) -> Option<f64> {
+        let heights = self.terrain.corner_heights(found.cell.0, found.cell.1);
+        let [a, b, c] = triangle_corners(found.triangle).map(|k| heights[k]);
+        (a == b && b == c).then_some(a)
     }
 
     /// The (unnormalised) normal of the hit triangle's plane: `(-gx, -gy, 1)`.
