@@ -57,6 +57,20 @@ fn builtin_scene(name: &str, size: u32) -> Scene {
     Scene::from_file(&file, path.parent().unwrap(), &path).unwrap()
 }
 
+/// The scene's view and light in exact arithmetic with `method`, on two threads.
+fn render_exact(method: Method, scene: &Scene, terrain: &Terrain) -> Frame {
+    let (camera, lighting) = (scene.camera, scene.lighting);
+    render_by(
+        method,
+        terrain,
+        camera,
+        lighting,
+        Arith::Exact,
+        Culling::default(),
+        2,
+    )
+}
+
 /// The scene as its file says, with `method`.
 fn render_scene_by(method: Method, scene: &Scene, threads: usize) -> Frame {
     let terrain = Terrain::new(scene.field.clone());
@@ -485,17 +499,7 @@ fn exact_frames_are_the_same_with_every_method() {
     for name in ["small49", "valley513"] {
         let scene = builtin_scene(name, 80);
         let terrain = Terrain::new(scene.field.clone());
-        let render = |method| {
-            render_by(
-                method,
-                &terrain,
-                scene.camera,
-                scene.lighting,
-                Arith::Exact,
-                Culling::default(),
-                2,
-            )
-        };
+        let render = |method| render_exact(method, &scene, &terrain);
         let mipmap = render(Method::Mipmap);
         assert!(mipmap.totals.shadow_rays > 1000, "{name}: shadow rays cast");
         assert!(mipmap.totals.shadowed > 0, "{name}: some pixels in shadow");
@@ -522,15 +526,7 @@ fn exact_shadow_rays_from_flat_ground_are_settled_by_intervals() {
     let scene = builtin_scene("valley513", 96);
     let terrain = Terrain::new(scene.field.clone());
     for method in Method::ALL {
-        let frame = render_by(
-            method,
-            &terrain,
-            scene.camera,
-            scene.lighting,
-            Arith::Exact,
-            Culling::default(),
-            2,
-        );
+        let frame = render_exact(method, &scene, &terrain);
         assert!(
             frame.totals.shadow_rays > 1000,
             "{method}: shadow rays cast"
