@@ -1,6 +1,6 @@
 //! `heightray bench speed --sizes`: the same landscape at several sizes, every method, with
 //! the memory each method needs per sample (a property of the data structures, asserted here;
-//! speeds are only reported, never asserted).
+//! speeds are only reported, never asserted). `heightray bench accuracy`: its report and plot.
 
 use std::process::Command;
 
@@ -110,4 +110,82 @@ fn sizes_too_large_or_too_small_are_refused_without_allocating() {
         let message = String::from_utf8_lossy(&output.stderr);
         assert!(message.contains("samples"), "{size}: {message}");
     }
+}
+
+/// The rows of the table under `heading` in a Markdown report, as cells.
+fn table(report: &str, heading: &str) -> Vec<Vec<String>> {
+    let (_, after) = report
+        .split_once(&format!("### {heading}\n"))
+        .unwrap_or_else(|| panic!("no table {heading}: {report}"));
+    let cells = |l: &str| {
+        l.split('|')
+            .map(|c| c.trim().to_string())
+            .collect::<Vec<_>>()
+    };
+    let lines = after
+        .trim_start()
+        .lines()
+        .take_while(|l| l.starts_with('|'));
+    // (Past the header and its rule; a row starts and ends with an empty cell.)
+    lines.skip(2).map(|l| cells(l)[1..].to_vec()).collect()
+}
+
+#[test]
+fn accuracy_reports_every_method_and_arithmetic_against_exact() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let (report, plot) = (dir.path().join("report.md"), dir.path().join("plot.svg"));
+    let output = Command::new(env!("CARGO_BIN_EXE_heightray"))
+        .args([
+            "bench",
+            "accuracy",
+            "--size",
+            "12",
+            "--per-set",
+            "4",
+            "--methods",
+            "mipmap,runs",
+            "--ariths",
+            "f64",
+        ])
+        .arg("--out")
+        .arg(&report)
+        .arg("--plot")
+        .arg(&plot)
+        .output()
+        .expect("runs");
+    assert!(output.status.success(), "{output:?}");
+    let text = std::fs::read_to_string(&report).expect("the report is written");
+    assert_eq!(
+        text,
+        String::from_utf8_lossy(&output.stdout),
+        "printed as written"
+    );
+    // Exact is measured though not asked for: it is the reference.
+    let all: Vec<_> = table(&text, "All sets")
+        .into_iter()
+        .map(|r| (r[0].clone(), r[1].clone()))
+        .collect();
+    let pairs = [
+        ("mipmap", "f64"),
+        ("mipmap", "exact"),
+        ("runs", "f64"),
+        ("runs", "exact"),
+    ];
+    assert_eq!(all, pairs.map(|(m, a)| (m.to_string(), a.to_string())));
+    // method | arith | rays | ns/ray | x f64 | hit/miss | cell/tri | t err > 1e-9 | ...
+    for row in table(&text, "valley513: camera rays") {
+        assert_eq!(row[2], "144", "12x12 rays: {row:?}");
+        assert_eq!(row[5], "0", "f64 hits what exact hits there: {row:?}");
+    }
+    // Rays to the sun start on the surface, so their t is tiny and f64's relative error large:
+    // the comparison with exact finds those.
+    for row in table(&text, "valley513: rays to the sun") {
+        let t_errors: u64 = row[7].parse().expect("a count");
+        assert_eq!(t_errors > 0, row[1] == "f64", "{row:?}");
+    }
+    for row in table(&text, "valley513: pixels that differ from the exact render") {
+        assert_eq!(row[2], "0 of 144", "{row:?}");
+    }
+    let svg = std::fs::read_to_string(&plot).expect("the plot is written");
+    assert!(svg.starts_with("<svg") && svg.contains("exact"), "{svg}");
 }
