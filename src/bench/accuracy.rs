@@ -1,12 +1,13 @@
 //! What accuracy costs in time: per method and arithmetic, time per ray, queries per ray, and
 //! how far the answers are from exact arithmetic on the same rays.
 
+use super::fastest::{fastest, fastest_cancellable, timed};
 use super::ray_sets::RaySet;
 use crate::render::{Camera, Culling, Frame, Lighting, Renderer, Scene, Shader};
 use crate::traverse::{covered_cells, trace, Arith, Counters, Hit, Method, TraceOptions};
 use crate::Terrain;
 use std::collections::HashSet;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// One method and arithmetic measured on every pixel of a view.
 #[derive(Clone, Debug)]
@@ -80,21 +81,6 @@ impl AccuracyRow {
 /// one run and 2.3 µs in the next (eleventh session).
 const PASS_BUDGET: Duration = Duration::from_millis(100);
 
-/// The first pass's output and the fastest pass's time (see [`PASS_BUDGET`]); `None` as soon
-/// as a pass gives none (a render cancelled).
-fn fastest_pass<T>(mut pass: impl FnMut() -> Option<T>) -> Option<(T, Duration)> {
-    let begun = Instant::now();
-    let out = pass()?;
-    let mut fastest = begun.elapsed();
-    while begun.elapsed() < PASS_BUDGET {
-        let start = Instant::now();
-        // (The answers are the same every pass.)
-        pass()?;
-        fastest = fastest.min(start.elapsed());
-    }
-    Some((out, fastest))
-}
-
 /// Traces every ray of `set` with each method and arithmetic, one thread, and compares each
 /// with exact arithmetic (if among `ariths`): answers, and cells of the exact walk skipped.
 pub fn accuracy(
@@ -113,11 +99,10 @@ pub fn accuracy(
                     .rays
                     .iter()
                     .map(|ray| trace(&set.terrain, ray, &options));
-                Some(traces.collect::<Vec<_>>())
+                traces.collect::<Vec<_>>()
             };
-            let Some((traces, time)) = fastest_pass(trace_all) else {
-                unreachable!("tracing is never cancelled")
-            };
+            let measured = fastest(PASS_BUDGET, || timed(trace_all));
+            let (traces, time) = (measured.out, measured.fastest);
             let mut counters = Counters::default();
             for t in &traces {
                 counters += t.counters;
@@ -230,15 +215,19 @@ pub fn view_pixel_differences(
             arith,
         };
         let (w, h) = view.camera.size();
-        fastest_pass(|| {
+        let measured = fastest_cancellable(PASS_BUDGET, || {
             let mut frame = Frame::new(w, h);
-            while !frame.complete() {
-                if !renderer.render_pass(&mut frame, cancelled) {
-                    return None;
+            let (complete, time) = timed(|| {
+                while !frame.complete() {
+                    if !renderer.render_pass(&mut frame, cancelled) {
+                        return false;
+                    }
                 }
-            }
-            Some(frame.pixels)
-        })
+                true
+            });
+            complete.then_some((frame.pixels, time))
+        })?;
+        Some((measured.out, measured.fastest))
     };
     let row = |arith, pixels: &[u32], exact: &[u32], time| PixelRow {
         method: view.method,
@@ -274,41 +263,4 @@ pub fn differing_pixels<'a>(
         .enumerate()
         .filter(|(_, (a, b))| a != b)
         .map(|(k, _)| k)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The first pass's output comes back with the fastest pass's time: here a first pass
-    /// that sleeps 30 ms and passes after it that do nothing.
-    #[test]
-    fn the_fastest_pass_is_timed_and_the_first_answer_kept() {
-        let mut passes = 0;
-        let measured = fastest_pass(|| {
-            passes += 1;
-            if passes == 1 {
-                std::thread::sleep(Duration::from_millis(30));
-            }
-            Some(passes)
-        });
-        let Some((first, time)) = measured else {
-            panic!("no pass was cancelled")
-        };
-        assert_eq!(first, 1);
-        assert!(passes > 1, "{passes} passes");
-        assert!(time < Duration::from_millis(30), "{time:?}");
-    }
-
-    /// A pass that gives nothing (a render cancelled) ends the measurement with nothing.
-    #[test]
-    fn a_cancelled_pass_gives_no_measurement() {
-        let mut passes = 0;
-        let measured = fastest_pass(|| {
-            passes += 1;
-            (passes < 3).then_some(passes)
-        });
-        assert_eq!(measured, None);
-        assert_eq!(passes, 3);
-    }
 }

@@ -2,6 +2,7 @@
 //! ratios.
 
 mod accuracy;
+mod fastest;
 pub mod plot;
 mod ray_sets;
 mod sizes;

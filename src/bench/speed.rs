@@ -1,10 +1,11 @@
 //! Rays per second of whole frames: primary and shadow rays, per scene, method, arithmetic
 //! and thread count, measured in one run so the rows compare as ratios.
 
+use super::fastest::{fastest, timed};
 use crate::render::{Culling, Frame, FrameStats, Renderer, Scene, Shader};
 use crate::traverse::{Arith, Counters, Method};
 use crate::Terrain;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// One configuration measured.
 #[derive(Clone, Debug)]
@@ -130,16 +131,13 @@ impl Timing {
             return;
         }
         let (w, h) = renderer.camera.size();
-        let mut spent = Duration::ZERO;
-        while spent < ROUND_TIME {
+        let round = fastest(ROUND_TIME, || {
             let mut frame = Frame::new(w, h);
-            let start = Instant::now();
-            pool.install(|| renderer.render(&mut frame));
-            let elapsed = start.elapsed();
-            (self.best, spent, self.totals) =
-                (self.best.min(elapsed), spent + elapsed, frame.totals);
-        }
-        self.spent += spent;
+            let ((), time) = timed(|| pool.install(|| renderer.render(&mut frame)));
+            (frame.totals, time)
+        });
+        (self.best, self.totals) = (self.best.min(round.fastest), round.out);
+        self.spent += round.spent;
     }
 }
 

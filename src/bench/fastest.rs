@@ -1,0 +1,90 @@
+//! The fastest of repeated runs within a time budget: the machine is shared, and one
+//! interruption can double a run of a few milliseconds, so each figure is the quietest run.
+
+use std::time::{Duration, Instant};
+
+/// `f`'s output and the time it took.
+pub fn timed<T>(f: impl FnOnce() -> T) -> (T, Duration) {
+    let start = Instant::now();
+    let out = f();
+    (out, start.elapsed())
+}
+
+/// The first run's output, the fastest run's time, and the time of all runs together: runs
+/// made until their times add up to `budget` (at least one). Each run gives its output and
+/// the time of the part to be timed (see [`timed`]; setting up, such as allocating a frame,
+/// is left out). `None` as soon as a run gives none (cancelled).
+pub fn fastest_cancellable<T>(
+    budget: Duration,
+    mut run: impl FnMut() -> Option<(T, Duration)>,
+) -> Option<Fastest<T>> {
+    let (out, mut fastest) = run()?;
+    let mut spent = fastest;
+    while spent < budget {
+        // (The output is the same every run.)
+        let (_, time) = run()?;
+        (fastest, spent) = (fastest.min(time), spent + time);
+    }
+    Some(Fastest {
+        out,
+        fastest,
+        spent,
+    })
+}
+
+/// [`fastest_cancellable`] for runs that cannot be cancelled.
+pub fn fastest<T>(budget: Duration, mut run: impl FnMut() -> (T, Duration)) -> Fastest<T> {
+    match fastest_cancellable(budget, || Some(run())) {
+        Some(fastest) => fastest,
+        None => unreachable!("every run gives an output"),
+    }
+}
+
+/// What [`fastest_cancellable`] measured.
+#[derive(Debug, PartialEq)]
+pub struct Fastest<T> {
+    /// The first run's output.
+    pub out: T,
+    pub fastest: Duration,
+    /// All runs together.
+    pub spent: Duration,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const BUDGET: Duration = Duration::from_millis(100);
+
+    /// The first run's output comes back with the fastest run's time: here a first run that
+    /// sleeps 30 ms and runs after it that do nothing.
+    #[test]
+    fn the_fastest_run_is_timed_and_the_first_output_kept() {
+        let mut runs = 0;
+        let measured = fastest(BUDGET, || {
+            runs += 1;
+            timed(|| {
+                if runs == 1 {
+                    std::thread::sleep(Duration::from_millis(30));
+                }
+                runs
+            })
+        });
+        assert_eq!(measured.out, 1);
+        assert!(runs > 1, "{runs} runs");
+        assert!(measured.fastest < Duration::from_millis(30), "{measured:?}");
+        assert!(measured.spent >= BUDGET, "{measured:?}");
+    }
+
+    /// A run that gives nothing (a render cancelled) ends the measurement with nothing.
+    #[test]
+    fn a_cancelled_run_gives_no_measurement() {
+        let mut runs = 0;
+        let measured = fastest_cancellable(BUDGET, || {
+            runs += 1;
+            (runs < 3).then_some((runs, Duration::ZERO))
+        });
+        assert_eq!(measured, None);
+        assert_eq!(runs, 3);
+    }
+}
