@@ -1,7 +1,9 @@
 //! Traversals of a ray across the grid (runs, cell DDA), the arithmetics they are generic
 //! over, and their query counters.
 
+mod approximation;
 mod beam;
+mod certified;
 mod counters;
 mod dda;
 mod degenerate;
@@ -26,6 +28,7 @@ pub use scalar::Scalar;
 
 use crate::geometry::{clip_to_box, plane_crossing, CertainMiss, Ray};
 use crate::heightfield::Terrain;
+use approximation::Approximation;
 use dyadic::Dyadic;
 use frame::{Frame, Span};
 use num_rational::BigRational;
@@ -488,9 +491,9 @@ fn new_search<'a, S: Scalar>(
     }
 }
 
-/// The mipmap in an arithmetic without rounding, answered from an `f64` walk alone (see
-/// [`mipmap::certify`]): `None` where that cannot answer (the path crosses no blocks, a walk
-/// must list its cells, or two triangles are hit at the same `t`, which the exact walk's
+/// A ray in an arithmetic without rounding, answered from an `f64` walk alone (see
+/// [`certified::certify`]): `None` where that cannot answer (the path crosses no blocks, a
+/// walk must list its cells, or two triangles are hit at the same `t`, which the exact walk's
 /// order of cells decides).
 fn trace_certified<S: Scalar>(
     terrain: &Terrain,
@@ -499,7 +502,7 @@ fn trace_certified<S: Scalar>(
     near: F64Ray,
     options: &WalkOptions,
 ) -> Option<ScalarTrace<S>> {
-    if options.method != Method::Mipmap || options.record_cells {
+    if options.record_cells {
         return None;
     }
     let (origin, radius, dir) = near;
@@ -519,7 +522,7 @@ fn trace_certified<S: Scalar>(
     let Some(frame) = after_beam(frame, start) else {
         return Some(ScalarTrace::missed(counters));
     };
-    let near_ray = mipmap::Approximation {
+    let near_ray = Approximation {
         frame,
         oz: origin[2],
         dz: dir[2],
@@ -528,7 +531,7 @@ fn trace_certified<S: Scalar>(
     };
     let mut search = new_search(terrain, o, d, dir, Some(near), options, counters);
     // Ends by itself or at the answer; both are fine here.
-    let _ = mipmap::certify(&near_ray, &mut search);
+    let _ = certified::certify(options.method, &near_ray, &mut search);
     if search.tied && options.query == Query::FirstHit {
         return None;
     }
@@ -623,12 +626,12 @@ fn approximation(
     terrain: &Terrain,
     ((origin, radius, dir), start): (F64Ray, Option<(f64, u32)>),
     dir_f64: [f64; 3],
-) -> Option<mipmap::Approximation> {
+) -> Option<Approximation> {
     // Every point of the exact segment is within `radius` of this ray at the same `t`, so
     // inside the grown box: the `f64` segment covers it.
     let frame = clip_grown(terrain, &origin, &dir, dir_f64, radius)?;
     let frame = after_beam(frame, start)?;
-    Some(mipmap::Approximation {
+    Some(Approximation {
         frame,
         oz: origin[2],
         dz: dir[2],

@@ -177,20 +177,8 @@ impl<S: Scalar> Search<'_, S> {
     /// The run test: the ray's lowest height over the run against the highest cell under it.
     fn run_may_hit(&mut self, frame: &Frame<S>, span: &Span<S>) -> bool {
         let lowest = self.lowest_z(&span.t_lo, &span.t_hi);
-        let (a, b) = (
-            frame.cell(span.cols.0, span.row),
-            frame.cell(span.cols.1, span.row + i64::from(span.rows) - 1),
-        );
-        let (lo_i, hi_i, lo_j, hi_j) = (a.0.min(b.0), a.0.max(b.0), a.1.min(b.1), a.1.max(b.1));
-        let highest = if frame.swap {
-            (lo_i..=hi_i)
-                .map(|i| self.terrain.column_max(i, lo_j, hi_j))
-                .fold(f64::NEG_INFINITY, f64::max)
-        } else {
-            (lo_j..=hi_j)
-                .map(|j| self.terrain.row_max(j, lo_i, hi_i))
-                .fold(f64::NEG_INFINITY, f64::max)
-        };
+        let rows = (span.row, span.row + i64::from(span.rows) - 1);
+        let highest = run_highest(self.terrain, frame, span.cols, rows);
         self.counters.run.record(lowest <= S::from_f64(highest))
     }
 
@@ -317,6 +305,27 @@ impl<S: Scalar> Search<'_, S> {
                 .as_ref()
                 .is_none_or(|t| !t.is_negative() && !t.is_zero()),
         }
+    }
+}
+
+/// The highest height over frame cells `cols` of frame rows `rows` (both inclusive, valid), from
+/// the terrain's row or column maxima.
+pub fn run_highest<S: Scalar>(
+    terrain: &Terrain,
+    frame: &Frame<S>,
+    cols: (i64, i64),
+    rows: (i64, i64),
+) -> f64 {
+    let (a, b) = (frame.cell(cols.0, rows.0), frame.cell(cols.1, rows.1));
+    let (lo_i, hi_i, lo_j, hi_j) = (a.0.min(b.0), a.0.max(b.0), a.1.min(b.1), a.1.max(b.1));
+    if frame.swap {
+        (lo_i..=hi_i)
+            .map(|i| terrain.column_max(i, lo_j, hi_j))
+            .fold(f64::NEG_INFINITY, f64::max)
+    } else {
+        (lo_j..=hi_j)
+            .map(|j| terrain.row_max(j, lo_i, hi_i))
+            .fold(f64::NEG_INFINITY, f64::max)
     }
 }
 

@@ -136,21 +136,22 @@ pub fn check_exact_against(terrain: &Terrain, ray: &Ray, answer: &Answer) -> Vec
                         ));
                     }
                 }
+                // Without cells to list, an f64 walk answers (or clears the way for the
+                // exact walk): the same answer.
+                let certified = TraceOptions {
+                    record_cells: false,
+                    ..options(method, Arith::Exact)
+                };
+                match try_trace(terrain, ray, &certified) {
+                    Err(e) => problem(e),
+                    Ok(fast) if fast.hit != got.hit => problem(format!(
+                        "from the f64 walk: {}, listing cells: {}",
+                        describe_hit(&fast.hit),
+                        describe_hit(&got.hit)
+                    )),
+                    Ok(_) => {}
+                }
                 if method == Method::Mipmap {
-                    // Without cells to list, an f64 walk first clears the way: same answer.
-                    let cleared = TraceOptions {
-                        record_cells: false,
-                        ..options(method, Arith::Exact)
-                    };
-                    match try_trace(terrain, ray, &cleared) {
-                        Err(e) => problem(e),
-                        Ok(fast) if fast.hit != got.hit => problem(format!(
-                            "after clearing the way: {}, without: {}",
-                            describe_hit(&fast.hit),
-                            describe_hit(&got.hit)
-                        )),
-                        Ok(_) => {}
-                    }
                     // The hierarchy skips whole blocks and may revisit the cells where two of
                     // its parts meet: the cells it reached, in order of first visit, are some
                     // of the covered cells in their order; the queries are its own.

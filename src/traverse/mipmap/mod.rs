@@ -16,17 +16,14 @@
 //!
 //! In arithmetics without rounding the walk is made in `f64`, skipping only blocks the ray
 //! clears with room for every rounding it made and for the exact ray's distance from it
-//! ([`Approximation`]). Where it cannot skip, the triangles of the cells the exact ray may be
-//! in are tested exactly ([`certify`]); where two triangles are hit at the same `t`, which the
-//! order of the cells decides, the `f64` walk only clears the way ([`clear_way`]) and an exact
-//! walk follows the stretches between the blocks it skipped.
+//! ([`Approximation`](super::approximation::Approximation)). Where it cannot skip, the
+//! triangles of the cells the exact ray may be in are tested exactly
+//! ([`certify`](super::certified::certify)); where two triangles are hit at the same `t`,
+//! which the order of the cells decides, the `f64` walk only clears the way ([`clear_way`])
+//! and an exact walk follows the stretches between the blocks it skipped.
 
-mod approximation;
-mod certified;
 mod stretches;
 
-pub use approximation::Approximation;
-pub use certified::certify;
 pub use stretches::clear_way;
 
 use super::degenerate::is_point;
@@ -42,8 +39,8 @@ use std::ops::ControlFlow;
 // (The cell is kept with the point: its two floors, worked out again at every test of a
 // descent, took 1.5% of an `f64` frame's instructions.)
 #[derive(Clone)]
-struct Point<S> {
-    t: S,
+pub(super) struct Point<S> {
+    pub t: S,
     u: S,
     v: S,
     cell: (i64, i64),
@@ -52,7 +49,7 @@ struct Point<S> {
 }
 
 /// What the block walk asks of whoever follows it.
-trait Follower<S: Scalar> {
+pub(super) trait Follower<S: Scalar> {
     /// Breaks when nothing at or after `t` can change the answer.
     fn stop_before(&mut self, t: &S) -> ControlFlow<()>;
     /// Whether block `(bi, bj)` of level `k` (a cell when `k` is 0) may be touched by the
@@ -75,11 +72,11 @@ trait Follower<S: Scalar> {
 }
 
 /// A cell's part of the path.
-struct Part<'a, S> {
-    frame: &'a Frame<S>,
+pub(super) struct Part<'a, S> {
+    pub frame: &'a Frame<S>,
     /// The cell in frame indices.
-    uv: (i64, i64),
-    at: &'a Point<S>,
+    pub uv: (i64, i64),
+    pub at: &'a Point<S>,
     exit: &'a Point<S>,
     ends_inside: bool,
     alone: bool,
@@ -103,7 +100,7 @@ pub fn walk<S: Scalar>(
 }
 
 /// The level a walk starts at: [`first_level`], or lower where the caller knows better.
-fn start_level(top: u32, level: Option<u32>) -> u32 {
+pub(super) fn start_level(top: u32, level: Option<u32>) -> u32 {
     let first = first_level(top);
     level.map_or(first, |k| k.min(first))
 }
@@ -124,7 +121,7 @@ pub fn has_blocks<S: Scalar>(f: &Frame<S>) -> bool {
 }
 
 /// The block walk from level `k`, down to cells and up again (at most to `top`).
-fn descend<S: Scalar>(
+pub(super) fn descend<S: Scalar>(
     f: &Frame<S>,
     top: u32,
     mut k: u32,
@@ -223,7 +220,7 @@ fn descend<S: Scalar>(
 
 impl<S: Scalar> Part<'_, S> {
     /// The `t` where the part ends.
-    fn end_t(&self) -> &S {
+    pub(super) fn end_t(&self) -> &S {
         if self.ends_inside {
             &self.frame.t1
         } else {

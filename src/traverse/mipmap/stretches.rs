@@ -1,9 +1,9 @@
 //! Clearing the way for an exact walk: an `f64` walk gathers the stretches of the path that
 //! may touch the surface, and the exact walk follows only those.
 
-use super::approximation::{Approximation, Bounds};
 use super::{descend, has_blocks, Follower, Part};
 use crate::heightfield::Terrain;
+use crate::traverse::approximation::{Approximation, Bounds};
 use crate::traverse::counters::Counters;
 use crate::traverse::Query;
 use std::ops::ControlFlow;

@@ -1,11 +1,11 @@
 //! The `f64` ray near an exact one, and the room an `f64` walk along it leaves: what it skips,
 //! the exact ray does not touch.
 
-use super::super::counters::Counters;
-use super::super::frame::Frame;
-use super::super::scalar::F64_TOLERANCE;
-use super::super::Query;
-use super::start_level;
+use super::counters::{Counters, HitMiss};
+use super::frame::Frame;
+use super::mipmap::start_level;
+use super::scalar::F64_TOLERANCE;
+use super::Query;
 use crate::heightfield::Terrain;
 
 /// An `f64` ray near an exact one, for an `f64` walk to clear the way for it.
@@ -39,8 +39,8 @@ impl Approximation {
 /// `f64` origin. The walk skips blocks only where the ray stays above them with room for that
 /// and for every rounding it made: the positions (within `pos` of the exact path), the `t` of
 /// block faces (within `dt`) and the heights along the ray (within `z_err`). The surface rises
-/// at most `max_slope` per unit of horizontal distance, so beyond a block by `pos` it is at
-/// most that much higher.
+/// at most `max_slope` per unit of horizontal distance, so within `pos` of a block on each
+/// axis (`pos` times the square root of two away) it is at most that much higher.
 pub(super) struct Bounds {
     oz: f64,
     dz: f64,
@@ -72,7 +72,8 @@ impl Bounds {
         let snap = F64_TOLERANCE * t_max.max(1.0) * d_xy;
         let off = radius[0].max(radius[1]);
         let pos = 2.0 * (4.0 * eps * coords + d_xy * dt) + 2.0 * d_xy * dt + 2.0 * snap + off;
-        let rise = terrain.max_slope() * (1.0 + 1e-9) * pos;
+        // (`pos` bounds each axis: the exact path is up to `pos * SQRT_2` away.)
+        let rise = terrain.max_slope() * (1.0 + 1e-9) * pos * std::f64::consts::SQRT_2;
         let z_err = 4.0 * eps * (oz.abs() + dz.abs() * t_max) + dz.abs() * dt + radius[2];
         // The block test's own operands, the ray's height and the block's, are rounded too:
         // bounded once here for the whole segment (a `t` the walk computed may lie a rounding
@@ -99,18 +100,26 @@ impl Bounds {
         terrain: &Terrain,
         k: u32,
         (bi, bj): (usize, usize),
-        (t_lo, t_hi): (f64, f64),
+        window: (f64, f64),
         counters: &mut Counters,
     ) -> bool {
         let highest = terrain.block_max_sample(k, bi, bj);
         let highest = terrain.field().height_of(highest);
-        let t = if self.dz < 0.0 { t_hi } else { t_lo };
-        let lowest = self.oz + self.dz * t;
         let counter = if k == 0 {
             &mut counters.cell
         } else {
             &mut counters.block
         };
+        self.may_reach(highest, window, counter)
+    }
+
+    /// Whether the exact ray may come down to `highest` while the walk's `t` runs over
+    /// `[t_lo, t_hi]` and its path over cells whose highest height that is; counted in
+    /// `counter`.
+    #[inline(always)]
+    pub fn may_reach(&self, highest: f64, (t_lo, t_hi): (f64, f64), counter: &mut HitMiss) -> bool {
+        let t = if self.dz < 0.0 { t_hi } else { t_lo };
+        let lowest = self.oz + self.dz * t;
         counter.record(lowest - self.room <= highest)
     }
 

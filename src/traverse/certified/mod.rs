@@ -10,23 +10,35 @@
 //! cell, and its triangles if it may be hit. A hit at `t` lies in the part whose `t` range
 //! holds `t`, so once the walk is past the first hit found, nothing earlier remains.
 //!
+//! Each method walks in `f64` as it does in any arithmetic, with one change that keeps every
+//! point within `pos`: a point is worked out from the grid line it lies on, never accumulated
+//! step by step (whose rounding grows along the path). The mipmap walks its blocks; the DDA is
+//! the same walk without a level above the cells; the run walk goes row by row ([`runs`]).
+//!
 //! Which of two triangles hit at the same `t` is the answer depends on the order the cells
 //! are visited in, which a neighbour tested out of the exact walk's order could change: such a
 //! tie is left to the caller ([`Search::tied`]).
 
+mod runs;
+
 use super::approximation::{Approximation, Bounds};
-use super::{descend, Follower, Part};
+use super::mipmap::{descend, Follower, Part};
+use super::Method;
 use crate::traverse::frame::Frame;
 use crate::traverse::scalar::Scalar;
 use crate::traverse::search::{Found, Search};
 use std::ops::ControlFlow;
 
-/// Searches the exact ray near `ray` for its answer, walking only in `f64`; breaks when the
-/// answer is known. The path must cross blocks ([`super::has_blocks`]).
-pub fn certify<S: Scalar>(ray: &Approximation, search: &mut Search<'_, S>) -> ControlFlow<()> {
+/// Searches the exact ray near `ray` for its answer, walking `method` only in `f64`; breaks
+/// when the answer is known. The path must cross blocks ([`super::mipmap::has_blocks`]: a
+/// path along a row or a point is left to the exact walk).
+pub fn certify<S: Scalar>(
+    method: Method,
+    ray: &Approximation,
+    search: &mut Search<'_, S>,
+) -> ControlFlow<()> {
     let terrain = search.terrain;
-    let top = terrain.mipmap().top();
-    let first = ray.first_level(search.query, top);
+    let query = search.query;
     let mut certifying = Certifying {
         bounds: Bounds::new(ray, terrain),
         search,
@@ -34,7 +46,16 @@ pub fn certify<S: Scalar>(ray: &Approximation, search: &mut Search<'_, S>) -> Co
         recent: [(i64::MIN, i64::MIN); RECENT],
         oldest: 0,
     };
-    descend(&ray.frame, top, first, &mut certifying)
+    let f = &ray.frame;
+    match method {
+        Method::Mipmap => {
+            let top = terrain.mipmap().top();
+            descend(f, top, ray.first_level(query, top), &mut certifying)
+        }
+        // Cell by cell: the block walk with no level above the cells.
+        Method::Dda => descend(f, 0, 0, &mut certifying),
+        Method::Runs => runs::walk(f, &mut certifying),
+    }
 }
 
 /// How many of the cells tested last are remembered, so as not to test them again (a
@@ -71,11 +92,7 @@ fn before<S: Scalar>(found: &Found<S>) -> f64 {
 
 impl<S: Scalar> Follower<f64> for Certifying<'_, '_, S> {
     fn stop_before(&mut self, t: &f64) -> ControlFlow<()> {
-        if self.found_before < *t {
-            ControlFlow::Break(())
-        } else {
-            ControlFlow::Continue(())
-        }
+        self.past_hit(*t)
     }
     // (Inlined by hand, as the search's.)
     #[inline(always)]
@@ -85,7 +102,7 @@ impl<S: Scalar> Follower<f64> for Certifying<'_, '_, S> {
             .may_hit(terrain, k, block, (*t_lo, *t_hi), counters)
     }
     fn cell(&mut self, _cell: (usize, usize), part: Part<'_, f64>) -> ControlFlow<()> {
-        self.candidates(&part)
+        self.candidates(part.frame, part.uv, (part.at.t, *part.end_t()))
     }
     fn passed(&mut self, _cell: (usize, usize)) {}
     fn climbs(&self) -> bool {
@@ -93,18 +110,30 @@ impl<S: Scalar> Follower<f64> for Certifying<'_, '_, S> {
     }
     /// The exact path may still be in the grid's last cells after the walk's path left them.
     fn left_grid(&mut self, part: Part<'_, f64>) -> ControlFlow<()> {
-        self.candidates(&part)
+        self.candidates(part.frame, part.uv, (part.at.t, *part.end_t()))
     }
 }
 
 impl<S: Scalar> Certifying<'_, '_, S> {
-    /// Tests the triangles of every cell the exact path may be in over `part` (and may touch
-    /// there): the part's own cell, which the walk found may be hit, and its neighbours the
-    /// exact path may stray into. A part outside the grid has only neighbours.
-    fn candidates(&mut self, part: &Part<'_, f64>) -> ControlFlow<()> {
-        let f = part.frame;
-        let (cu, cv) = part.uv;
-        let span = (part.at.t, *part.end_t());
+    /// Breaks when the first hit found lies before `t`: nothing from `t` on can come first.
+    fn past_hit(&self, t: f64) -> ControlFlow<()> {
+        if self.found_before < t {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    }
+
+    /// Tests the triangles of every cell the exact path may be in while the walk's path
+    /// crosses frame cell `(cu, cv)` over the `t` of `span` (and may touch there): the part's
+    /// own cell, which the walk found may be hit, and its neighbours the exact path may stray
+    /// into. A part outside the grid has only neighbours.
+    fn candidates(
+        &mut self,
+        f: &Frame<f64>,
+        (cu, cv): (i64, i64),
+        span: (f64, f64),
+    ) -> ControlFlow<()> {
         // How long after the walk's path crossed a face (or before it reaches one) the exact
         // path may still be on the face's other side: twice its distance, as a `t`, with room
         // for the rounding of the crossing's `t`.
