@@ -1303,3 +1303,19 @@ fn subnormal_slope_f64_dda_stays_in_its_row() {
         problems.join("\n")
     );
 }
+
+/// A ray along the grid's edge `y = 0` that reaches the box only at its end: it comes down
+/// onto the corner sample `(1, 0)`, the field's highest, at `t = 3` exactly, where it leaves
+/// the box too. Exact mode's `f64` walk clips the ray to the box in floats: without room for
+/// that clip's rounding, the segment came out empty and every method missed (found by random
+/// rays, twelfth session). (`f64` misses it: it touches at one point, within rounding.)
+#[test]
+fn ray_touching_the_box_only_at_its_highest_corner() {
+    let samples = [104, 816, 365, 308];
+    let field = terrain(2, 2, 1000, 1.0, |x, y| samples[y * 2 + x]);
+    let r = ray(
+        [0.25, 0.0, 3.0335707396316147],
+        [0.25, 0.0, -0.7391902465438716],
+    );
+    expect_hit(&field, &r, q(3.0), [0, 0], 0);
+}

@@ -507,9 +507,7 @@ fn trace_certified<S: Scalar>(
     }
     let (origin, radius, dir) = near;
     let mut counters = Counters::default();
-    // Every point of the exact segment is within `radius` of the `f64` ray at the same `t`,
-    // so inside the grown box: its clipped segment covers the exact one.
-    let Some(frame) = clip_grown(terrain, &origin, &dir, dir, radius) else {
+    let Some(frame) = clip_near(terrain, &near, dir) else {
         counters.bbox.record(false);
         return Some(ScalarTrace::missed(counters));
     };
@@ -620,6 +618,31 @@ fn f64_ray<S: Scalar>(o: &[S; 3], d: &[S; 3]) -> Option<F64Ray> {
     Some(([x, y, z], [rx, ry, rz], dir))
 }
 
+/// The `f64` ray near an exact one (see [`f64_ray`]) clipped to the terrain's box grown so
+/// that its segment covers the exact one's: every point of the exact segment is within
+/// `radius` of the `f64` ray at the same `t`, and the clip's face crossings `(face - o) / d`
+/// are rounded (twice, a relative `EPSILON` in all), which the growth of each face by
+/// `2 * EPSILON * (|face| + |o|)` covers. (Without that room, a ray that touches the box only
+/// at an edge, exactly, could be clipped away.)
+fn clip_near(
+    terrain: &Terrain,
+    (origin, radius, dir): &F64Ray,
+    dir_f64: [f64; 3],
+) -> Option<Frame<f64>> {
+    let field = terrain.field();
+    let (z_lo, z_hi) = terrain.z_range();
+    let faces = [
+        (field.width() - 1) as f64,
+        (field.height() - 1) as f64,
+        z_lo.abs().max(z_hi.abs()),
+    ];
+    let grow = [0, 1, 2].map(|k| {
+        let rounding = 2.0 * f64::EPSILON * (faces[k] + origin[k].abs()) + f64::MIN_POSITIVE;
+        radius[k] + rounding
+    });
+    clip_grown(terrain, origin, dir, dir_f64, grow)
+}
+
 /// The `f64` ray an `f64` walk follows to clear the way for the mipmap, from [`f64_ray`]'s,
 /// from the exact walk's beam start and level if it has them.
 fn approximation(
@@ -627,9 +650,7 @@ fn approximation(
     ((origin, radius, dir), start): (F64Ray, Option<(f64, u32)>),
     dir_f64: [f64; 3],
 ) -> Option<Approximation> {
-    // Every point of the exact segment is within `radius` of this ray at the same `t`, so
-    // inside the grown box: the `f64` segment covers it.
-    let frame = clip_grown(terrain, &origin, &dir, dir_f64, radius)?;
+    let frame = clip_near(terrain, &(origin, radius, dir), dir_f64)?;
     let frame = after_beam(frame, start)?;
     Some(Approximation {
         frame,

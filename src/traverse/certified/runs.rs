@@ -21,8 +21,8 @@ pub(super) fn walk<S: Scalar>(
     f: &Frame<f64>,
     certifying: &mut Certifying<'_, '_, S>,
 ) -> ControlFlow<()> {
-    // (The segment grown to cover the exact one may start a rounding outside the grid: that
-    // bit belongs to the first row and column.)
+    // (The segment grown to cover the exact one may start, or lie wholly, a rounding outside
+    // the grid: that bit belongs to the first row and column.)
     let mut row = (f.vs.floor() as i64).max(f.rows.0);
     let (mut t_lo, mut u_lo) = (f.t0, f.us);
     loop {
@@ -42,7 +42,7 @@ pub(super) fn walk<S: Scalar>(
         // The path leaves the grid through its side in this row if it goes past the last
         // column: the run ends there.
         let leaves = u_hi >= (f.cols.1 + 1) as f64 && !(ends && u_hi == (f.cols.1 + 1) as f64);
-        let last = (u_hi.floor() as i64).min(f.cols.1);
+        let last = (u_hi.floor() as i64).clamp(first, f.cols.1);
         let t_end = if leaves {
             f.t_at_u(f.cols.1 + 1).clamp(t_lo, t_hi)
         } else {
