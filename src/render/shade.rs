@@ -220,8 +220,9 @@ impl Shader<'_> {
         // a fifth of the work of enclosing the plane's height over the enclosures of x and y;
         // on a flat triangle the point's height is the triangle's, exactly: intervals must
         // know it then, or the run and cell tests of a ray from a terrace's top, the highest
-        // sample of the runs and cells around it, cannot be settled (each such ray was cast
-        // again in rationals, at a millisecond a ray).
+        // sample of the runs and cells around it, cannot be settled where intervals walk (a
+        // path along a grid row, which the `f64` walk leaves to them), and each such ray is
+        // cast again in rationals, at a millisecond a ray.
         let z = if S::EXACT {
             match self.flat_height(found) {
                 Some(height) => S::from_f64(height),
