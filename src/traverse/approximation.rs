@@ -5,7 +5,7 @@ use super::counters::{Counters, HitMiss};
 use super::frame::Frame;
 use super::mipmap::start_level;
 use super::scalar::F64_TOLERANCE;
-use super::Query;
+use super::{F64Ray, Query};
 use crate::heightfield::Terrain;
 
 /// An `f64` ray near an exact one, for an `f64` walk to clear the way for it.
@@ -21,6 +21,19 @@ pub struct Approximation {
 }
 
 impl Approximation {
+    /// The `f64` ray `near` over `frame` (its segment, clipped), from the beam start and
+    /// level `start` if the exact walk has them.
+    pub(super) fn along(frame: Frame<f64>, near: F64Ray, start: Option<(f64, u32)>) -> Self {
+        let (origin, radius, dir) = near;
+        Approximation {
+            frame,
+            oz: origin[2],
+            dz: dir[2],
+            radius,
+            level: start.map(|(_, level)| level),
+        }
+    }
+
     /// The level its walk starts at, for a query of the given kind: a shadow ray starts on
     /// the surface, where every block around it fails its test.
     pub(super) fn first_level(&self, query: Query, top: u32) -> u32 {

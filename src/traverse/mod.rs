@@ -505,7 +505,7 @@ fn trace_certified<S: Scalar>(
     if options.record_cells {
         return None;
     }
-    let (origin, radius, dir) = near;
+    let dir = near.2;
     let mut counters = Counters::default();
     let Some(frame) = clip_near(terrain, &near, dir) else {
         counters.bbox.record(false);
@@ -520,13 +520,7 @@ fn trace_certified<S: Scalar>(
     let Some(frame) = after_beam(frame, start) else {
         return Some(ScalarTrace::missed(counters));
     };
-    let near_ray = Approximation {
-        frame,
-        oz: origin[2],
-        dz: dir[2],
-        radius,
-        level: start.map(|(_, level)| level),
-    };
+    let near_ray = Approximation::along(frame, near, start);
     let mut search = new_search(terrain, o, d, dir, Some(near), options, counters);
     // Ends by itself or at the answer; both are fine here.
     let _ = certified::certify(options.method, &near_ray, &mut search);
@@ -647,18 +641,12 @@ fn clip_near(
 /// from the exact walk's beam start and level if it has them.
 fn approximation(
     terrain: &Terrain,
-    ((origin, radius, dir), start): (F64Ray, Option<(f64, u32)>),
+    (near, start): (F64Ray, Option<(f64, u32)>),
     dir_f64: [f64; 3],
 ) -> Option<Approximation> {
-    let frame = clip_near(terrain, &(origin, radius, dir), dir_f64)?;
+    let frame = clip_near(terrain, &near, dir_f64)?;
     let frame = after_beam(frame, start)?;
-    Some(Approximation {
-        frame,
-        oz: origin[2],
-        dz: dir[2],
-        radius,
-        level: start.map(|(_, level)| level),
-    })
+    Some(Approximation::along(frame, near, start))
 }
 
 impl fmt::Display for Method {

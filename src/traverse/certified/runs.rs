@@ -73,18 +73,17 @@ fn run<S: Scalar>(
     if !certifying.bounds.may_reach(highest, (t_lo, t_hi), counter) {
         return ControlFlow::Continue(());
     }
+    // The cell's part of the run: between the column's grid lines, the run's ends at the
+    // run's first and last cells (so the parts tile the run whatever the rounding). Each
+    // grid line's `t` is worked out once, for the cells on both sides of it.
+    let mut line = t_lo;
     for cu in first..=last {
-        // The cell's part of the run: between the column's grid lines, the run's ends at
-        // the run's first and last cells (so the parts tile the run whatever the rounding).
-        let from = if cu == first {
-            t_lo
-        } else {
-            f.t_at_u(cu).max(t_lo)
-        };
+        let from = if cu == first { t_lo } else { line.max(t_lo) };
         let to = if cu == last {
             t_hi
         } else {
-            f.t_at_u(cu + 1).min(t_hi)
+            line = f.t_at_u(cu + 1);
+            line.min(t_hi)
         };
         certifying.past_hit(from)?;
         let counters = &mut certifying.search.counters;
