@@ -360,6 +360,25 @@ fn malformed_arguments_are_errors() {
     );
 }
 
+/// A height map given to `render`, which takes a scene: the message says what a scene is and
+/// how to look at the map.
+#[test]
+fn a_height_map_given_as_a_scene_is_named_for_what_it_is() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("out.png");
+    let map = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/valley513.png");
+    let output = heightray(&["render", map, "-o", out.to_str().unwrap()]);
+    assert!(!output.status.success());
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("valley513.png is not a text file")
+            && message.contains("TOML")
+            && message.contains("heightray view"),
+        "{message}"
+    );
+    assert!(!out.exists());
+}
+
 /// A scene whose height map is missing, or too small: the message names the scene, the
 /// section and the file, and says the cause once (the error chain must not repeat it).
 #[test]

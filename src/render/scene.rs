@@ -16,6 +16,12 @@ pub enum SceneError {
         path: PathBuf,
         source: std::io::Error,
     },
+    /// Not text, as a height map given where a scene was asked for.
+    #[error(
+        "scene {path} is not a text file: a scene is written in TOML (see README, Formats); \
+         to look at a height map, open it with `heightray view {path}`"
+    )]
+    NotText { path: PathBuf },
     #[error("scene {path}: {message}")]
     Parse { path: PathBuf, message: String },
     #[error("scene {path}: {message}")]
@@ -229,9 +235,12 @@ pub struct Scene {
 impl Scene {
     /// Reads and validates a scene file, loading its height map.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
-            path: path.to_owned(),
-            source,
+        let text = std::fs::read_to_string(path).map_err(|source| {
+            let path = path.to_owned();
+            match source.kind() {
+                std::io::ErrorKind::InvalidData => SceneError::NotText { path },
+                _ => SceneError::Io { path, source },
+            }
         })?;
         let file: SceneFile = toml::from_str(&text).map_err(|e| SceneError::Parse {
             path: path.to_owned(),
