@@ -97,6 +97,11 @@ impl Renderer<'_> {
             .par_chunks_mut(rows)
             .zip(frame.stats.par_chunks_mut(rows))
             .enumerate()
+            // Every band a job of its own that an idle thread can take: rayon's adaptive
+            // split leaves runs of bands to one thread, and where the costly rays gather in
+            // a few bands (the horizon, seen with the run walk over a large map) the other
+            // thread then waits for seconds.
+            .with_max_len(1)
             .map(|(band, (pixels, stats))| {
                 let y0 = band as u32 * BAND;
                 let mut out = BandOut {
