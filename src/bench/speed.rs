@@ -42,11 +42,12 @@ impl ThroughputRow {
 
 /// Rounds over all configurations: each time is the fastest frame of any round. On a shared
 /// machine a disturbance can last seconds; spread over rounds, a configuration's frames are
-/// not all taken inside one.
+/// not all taken inside one, not even a configuration whose one frame takes seconds (the run
+/// walk and the DDA on the large maps, whose two-thread figures came out anywhere from 1.2x
+/// to 1.9x when timed from one frame).
 pub const ROUNDS: usize = 3;
 
-/// Frames per configuration and round: as many as fit in this time, at least one; a
-/// configuration whose frames have taken `ROUNDS` times this is not measured again.
+/// Frames per configuration and round: as many as fit in this time, at least one.
 const ROUND_TIME: Duration = Duration::from_millis(500);
 
 /// Renders the scene's view with and without shadows for each configuration, in
@@ -110,7 +111,6 @@ pub fn throughput(
 /// The frames of one configuration so far.
 struct Timing {
     best: Duration,
-    spent: Duration,
     /// The statistics of a frame (every frame's are the same).
     totals: FrameStats,
 }
@@ -119,17 +119,12 @@ impl Timing {
     fn new() -> Self {
         Timing {
             best: Duration::MAX,
-            spent: Duration::ZERO,
             totals: FrameStats::default(),
         }
     }
 
-    /// Renders as many frames as fit in [`ROUND_TIME`] (at least one), unless this
-    /// configuration has had its time already.
+    /// Renders as many frames as fit in [`ROUND_TIME`] (at least one).
     fn round(&mut self, renderer: &Renderer<'_>, pool: &rayon::ThreadPool) {
-        if self.spent >= ROUND_TIME * ROUNDS as u32 {
-            return;
-        }
         let (w, h) = renderer.camera.size();
         let round = fastest(ROUND_TIME, || {
             let mut frame = Frame::new(w, h);
@@ -137,7 +132,6 @@ impl Timing {
             (frame.totals, time)
         });
         (self.best, self.totals) = (self.best.min(round.fastest), round.out);
-        self.spent += round.spent;
     }
 }
 
