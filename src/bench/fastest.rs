@@ -69,6 +69,21 @@ mod tests {
         assert!(measured.fastest < Duration::from_millis(30), "{measured:?}");
     }
 
+    /// Runs are made until their reported times add up to the budget, and the fastest is the
+    /// one that reported least: here runs of 10 ms but for one of 5 ms.
+    #[test]
+    fn runs_are_made_until_their_times_fill_the_budget() {
+        let mut runs = 0u64;
+        let measured = fastest(BUDGET, || {
+            runs += 1;
+            (runs, Duration::from_millis(if runs == 4 { 5 } else { 10 }))
+        });
+        // Ten runs add up to 9 x 10 ms + 5 ms = 95 ms, so an eleventh fills the budget.
+        assert_eq!(runs, 11);
+        assert_eq!(measured.fastest, Duration::from_millis(5));
+        assert_eq!(measured.out, 1);
+    }
+
     /// A run that gives nothing (a render cancelled) ends the measurement with nothing.
     #[test]
     fn a_cancelled_run_gives_no_measurement() {
