@@ -2,11 +2,9 @@
 //! what lies beyond, in every arithmetic and method, and exact mode still equals the
 //! reference (which skips hole cells the same way).
 
-mod common;
-
-use common::files::tiff;
-use common::random::field_and_ray_up_to;
-use common::{check_exact, describe, options, METHODS};
+use crate::common::files::tiff;
+use crate::common::random::field_and_ray_up_to;
+use crate::common::{check_exact, describe, options, METHODS};
 use heightray::heightfield::{
     load_bytes, load_with, LoadOptions, NoDataMask, NoDataValue, Quantisation,
 };

@@ -4,11 +4,9 @@
 //! except where the design promises none: the triangle test is watertight, so a ray aimed
 //! exactly at a shared vertex or edge of the mesh from above must hit in f64 and f32.
 
-mod common;
-
-use common::families::{self, hash, ray, terrain};
-use common::reference::{self, Answer};
-use common::{describe, options, try_trace, METHODS};
+use crate::common::families::{self, hash, ray, terrain};
+use crate::common::reference::{self, Answer};
+use crate::common::{describe, options, try_trace, METHODS};
 use heightray::{trace, Arith, Method, Ray, Terrain, TraceOptions};
 use num_traits::ToPrimitive;
 
@@ -321,7 +319,7 @@ fn watertight_rays_at_shared_vertices_of_non_dyadic_fields() {
 /// the first ray is the one it reported.
 #[test]
 fn rounded_rays_find_flat_ground_at_the_lowest_height() {
-    let hill = include_bytes!("data/hill.pgm");
+    let hill = include_bytes!("../data/hill.pgm");
     let terrain = Terrain::new(heightray::heightfield::load_bytes(hill, 16.0, "hill.pgm").unwrap());
     let reported = (
         [-7.042785426744196, -26.43350300091015, 49.98579514089657],

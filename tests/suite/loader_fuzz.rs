@@ -3,9 +3,7 @@
 //! and loaded with every option; no input may panic, and whatever loads is a valid field.
 //! The unbounded, coverage-guided fuzz target is in tests/fuzz (see README).
 
-mod common;
-
-use common::files::tiff;
+use crate::common::files::tiff;
 use heightray::heightfield::{load_bytes_with, ColourEncoding, LoadOptions, NoDataValue};
 use image::{ImageBuffer, ImageFormat, Luma, Rgb};
 use std::io::Cursor;

@@ -1,7 +1,7 @@
 //! The renderer: determinism, golden images, a hand-computed shade, effect culling, no shadow
 //! acne, and scene-file errors.
 //!
-//! Golden images are regenerated with `HEIGHTRAY_BLESS=1 cargo test --release --test render`.
+//! Golden images are regenerated with `HEIGHTRAY_BLESS=1 cargo test --release --test suite render::`.
 
 use heightray::render::{
     Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Scene, SceneFile, Shader,

@@ -2,12 +2,12 @@
 //! methods, the hit (exact t, cell, triangle), `covered_cells`, the recorded cells and every
 //! query counter must match the contract exactly.
 
-mod common;
+use crate::common;
 
-use common::families::{self, ray, terrain};
-use common::random::{field_and_ray, field_and_ray_up_to};
-use common::reference::{self, q, Q};
-use common::{assert_family, check_exact, describe, options};
+use crate::common::families::{self, ray, terrain};
+use crate::common::random::{field_and_ray, field_and_ray_up_to};
+use crate::common::reference::{self, q, Q};
+use crate::common::{assert_family, check_exact, describe, options};
 use heightray::traverse::{
     covered_cells, settled, trace_scalar, Exact, HitMiss, Interval, Scalar, WalkOptions,
 };

@@ -19,11 +19,9 @@
 //! describe the current f64 and rational arithmetic, not a promise: a change there that moves
 //! them makes these tests fail on purpose, to be re-measured and re-explained.
 
-mod common;
-
-use common::families::{self, hash, ray, terrain, Family};
-use common::reference::{self, q, qi, Answer, Q};
-use common::{check_exact_against, describe, options, try_trace, METHODS};
+use crate::common::families::{self, hash, ray, terrain, Family};
+use crate::common::reference::{self, q, qi, Answer, Q};
+use crate::common::{check_exact_against, describe, options, try_trace, METHODS};
 use heightray::traverse::{covered_cells, with_bound, Rational, Scalar};
 use heightray::{Arith, Hit, Method, Ray, Terrain};
 use num_rational::Ratio;
@@ -316,7 +314,7 @@ fn mesa(sample: u16) -> Terrain {
 }
 
 /// 3x3 integer heights (y up): y=0: 4 2 1, y=1: 3 3 3, y=2: 4 4 0 (the smallest watertightness
-/// case of tests/float_modes.rs).
+/// case of tests/suite/float_modes.rs).
 fn three_by_three() -> Terrain {
     let samples = [4, 2, 1, 3, 3, 3, 4, 4, 0];
     terrain(3, 3, 255, 255.0, move |x, y| samples[y * 3 + x])
@@ -674,7 +672,7 @@ fn near_vertical_ray_1e_12() {
 /// Oblique rays from above exactly through shared vertices.
 ///
 /// [`three_by_three`], all inputs small integers, through vertex (1, 1, 3) at t = 3 (from
-/// tests/float_modes.rs, where they once found a hole):
+/// tests/suite/float_modes.rs, where they once found a hole):
 /// - o = (-5, -14, 90), d = (2, 5, -29): y-major; the first cell around the vertex in visiting
 ///   order is (0, 0), where the vertex is P11: t = 3, cell (0, 0), T0;
 /// - o = (7, -14, 90), d = (-2, 5, -29): first (1, 0), vertex P01: t = 3, cell (1, 0), T1.

@@ -1,9 +1,7 @@
 //! Refused input gives an error with a clear message, never a panic; good files load with
 //! the sizes and heights that were written.
 
-mod common;
-
-use common::files::{png_header, tiff, tiff_header};
+use crate::common::files::{png_header, tiff, tiff_header};
 use heightray::heightfield::{load, load_with, ColourEncoding, LoadOptions};
 use heightray::Ray;
 use image::{GrayImage, ImageBuffer, Luma, Rgb};

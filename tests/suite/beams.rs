@@ -4,10 +4,8 @@
 //! (rationals, no mipmap and no beam involved), on hard views: grazing flat ground, looking
 //! straight down, along grid lines through lattice points, and from far away.
 
-mod common;
-
-use common::families::{hash, integer_hills, terrain};
-use common::reference::{q, solve};
+use crate::common::families::{hash, integer_hills, terrain};
+use crate::common::reference::{q, solve};
 use heightray::bench::sized_scene;
 use heightray::render::Camera;
 use heightray::traverse::Clearance;

@@ -7,10 +7,8 @@
 //! "triangle", "counters": {"bbox": {"hit", "miss"}, "run", "cell", "triangle", ...},
 //! "cells" (only with --cells)}. `--rays FILE` has lines `ox oy oz dx dy dz`.
 
-mod common;
-
-use common::families::ray;
-use common::reference;
+use crate::common::families::ray;
+use crate::common::reference;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -3,9 +3,7 @@
 //! rational path is run on its own (through `trace_scalar::<Exact>`) against `trace` in exact
 //! mode, on random rays that favour degenerate cases (so both paths are taken).
 
-mod common;
-
-use common::random::field_and_ray;
+use crate::common::random::field_and_ray;
 use heightray::traverse::{settled, trace_scalar, Exact, Interval, Scalar, WalkOptions};
 use heightray::{trace, Arith, Method, Query, TraceOptions};
 use proptest::prelude::*;

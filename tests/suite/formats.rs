@@ -4,9 +4,7 @@
 //! no-data value, 32/64-bit float, GDAL_NODATA); and the colour ramp spans the heights a map
 //! uses, not its format's range.
 
-mod common;
-
-use common::files::tiff;
+use crate::common::files::tiff;
 use heightray::heightfield::{
     load, load_with, ColourEncoding, LoadOptions, NoDataValue, Quantisation,
 };
