@@ -160,10 +160,10 @@ pub struct RenderArgs {
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
-    /// Traversal, overriding the scene's.
+    /// Traversal (mipmap, runs, dda or auto), overriding the scene's.
     #[arg(long)]
     pub method: Option<Method>,
-    /// Arithmetic, overriding the scene's.
+    /// Arithmetic (f32, f64, rational, rational:BOUND or exact), overriding the scene's.
     #[arg(long)]
     pub arith: Option<Arith>,
     /// Write the frame's statistics as JSON.
@@ -202,7 +202,7 @@ pub struct TraceArgs {
     /// A file of rays, one per line: `ox oy oz dx dy dz` (`#` starts a comment).
     #[arg(long, required_unless_present = "origin")]
     pub rays: Option<PathBuf>,
-    /// Traversal: runs, dda, or auto.
+    /// Traversal: mipmap, runs, dda, or auto (the fastest: the mipmap).
     #[arg(long, default_value = "auto")]
     pub method: Method,
     /// Arithmetic: f32, f64, rational, rational:BOUND (denominator bound), or exact.
