@@ -1,7 +1,6 @@
 //! Helpers shared by the integration tests: the exact reference ([`reference`]), the
 //! deterministic ray families ([`families`]), and the comparisons of the crate against the
 //! reference.
-#![allow(dead_code)]
 
 pub mod families;
 pub mod files;

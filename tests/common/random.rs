@@ -30,11 +30,6 @@ fn samples(maxval: u32, count: usize) -> BoxedStrategy<Vec<u16>> {
         .boxed()
 }
 
-/// A field of 2..=9 samples per side.
-pub fn field() -> impl Strategy<Value = Heightfield> {
-    field_up_to(9)
-}
-
 /// A field of 2..=`n` samples per side.
 pub fn field_up_to(n: usize) -> impl Strategy<Value = Heightfield> {
     (
