@@ -7,6 +7,7 @@ pub mod plot;
 mod ray_sets;
 mod sizes;
 mod speed;
+mod textbook;
 
 pub use accuracy::{
     accuracy, differing_pixels, pixel_differences, view_pixel_differences, AccuracyRow,
@@ -15,3 +16,4 @@ pub use accuracy::{
 pub use ray_sets::{hard_cases, scene_sets, RaySet};
 pub use sizes::{sized_scene, SizedSceneError, SEED};
 pub use speed::{throughput, ThroughputRow, ROUNDS};
+pub use textbook::{hard_cases_versus_exact, versus_textbook, HardCaseRow, Textbook, TextbookRow};

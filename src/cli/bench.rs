@@ -1,8 +1,10 @@
 //! `heightray bench ...`: tables on stdout.
 
-use super::SpeedArgs;
+use super::{SpeedArgs, TextbookArgs};
 use anyhow::Context;
-use heightray::bench::{sized_scene, throughput, ThroughputRow, ROUNDS, SEED};
+use heightray::bench::{
+    hard_cases_versus_exact, sized_scene, throughput, versus_textbook, ThroughputRow, ROUNDS, SEED,
+};
 use heightray::heightfield::BUILTINS;
 use heightray::render::{Scene, SceneFile};
 use heightray::traverse::prepare;
@@ -52,6 +54,52 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
     }
     if measured.len() > 1 && !args.sizes.is_empty() {
         print_growth(&measured);
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+pub fn textbook(args: &TextbookArgs) -> anyhow::Result<ExitCode> {
+    let scenes = scenes_or_builtins(&args.scenes);
+    let bar = progress_bar(scenes.len() + 1);
+    let mut rows = Vec::new();
+    for path in &scenes {
+        bar.set_message(path.display().to_string());
+        let scene = scene_at_size(path, args.size)?;
+        let terrain = Terrain::new(scene.field.clone());
+        rows.push((
+            path.display().to_string(),
+            versus_textbook(&scene, &terrain),
+        ));
+        bar.inc(1);
+    }
+    bar.set_message("hard cases");
+    let hard = hard_cases_versus_exact(args.per_set)?;
+    bar.finish_and_clear();
+    println!("camera rays, one thread, f64; heightray's mipmap walk without the renderer's beams");
+    println!("| scene | rays | hits | queries per ray: heightray / textbook | heightray Mrays/s | textbook Mrays/s | heightray time x textbook | answers that differ |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    for (name, row) in rows {
+        let rate = |time: Duration| row.rays as f64 / time.as_secs_f64() / 1e6;
+        println!(
+            "| {name} | {} | {} | {:.2} / {:.2} | {:.3} | {:.3} | {:.2} | {} |",
+            row.rays,
+            row.hits,
+            row.heightray_queries,
+            row.textbook_queries,
+            rate(row.heightray_time),
+            rate(row.textbook_time),
+            row.heightray_time.as_secs_f64() / row.textbook_time.as_secs_f64(),
+            row.differing,
+        );
+    }
+    println!("\nthe hard-case sets of `bench accuracy`: answers in f64 that differ from heightray's exact answers (a hit against a miss, or t off by more than a relative 1e-9)");
+    println!("| set | rays | heightray mipmap f64 | textbook walk |");
+    println!("|---|---:|---:|---:|");
+    for row in hard {
+        println!(
+            "| {} | {} | {} | {} |",
+            row.set, row.rays, row.heightray_differing, row.textbook_differing
+        );
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -38,7 +38,8 @@ pub enum Command {
     Render(RenderArgs),
     /// Trace rays against a height field and print one JSON object per ray.
     Trace(TraceArgs),
-    /// Benchmarks: `speed` (rays per second of whole frames), `accuracy` (time against error).
+    /// Benchmarks: `speed` (rays per second of whole frames), `accuracy` (time against error),
+    /// `textbook` (the mipmap walk against the textbook walk without its guarantees).
     #[command(subcommand)]
     Bench(BenchCommand),
     /// Write a generated landscape (16-bit grayscale PNG) of the built-in generator.
@@ -82,6 +83,11 @@ pub enum BenchCommand {
     /// Time per primary ray, queries per ray and answers that differ from exact arithmetic,
     /// per method and arithmetic, one thread.
     Accuracy(AccuracyArgs),
+    /// Time per camera ray of the mipmap walk in f64 against the textbook max-mipmap walk,
+    /// which makes the same queries without the rounding slack, lattice points and
+    /// watertight triangle test that make heightray exact: what those cost (one thread), and
+    /// what they buy (answers on the hard-case sets that differ from exact).
+    Textbook(TextbookArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -106,6 +112,19 @@ pub struct SpeedArgs {
     /// Thread counts, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "1,2")]
     pub threads: Vec<usize>,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct TextbookArgs {
+    /// Scene files (default: the built-in scenes).
+    #[arg(long, value_delimiter = ',')]
+    pub scenes: Vec<PathBuf>,
+    /// Image width and height (overrides the scenes').
+    #[arg(long, default_value_t = 512)]
+    pub size: u32,
+    /// Rays per hard-case set (answered exactly too, for reference).
+    #[arg(long, default_value_t = 1024)]
+    pub per_set: usize,
 }
 
 #[derive(clap::Args, Debug)]
@@ -223,6 +242,7 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Generate(args) => generate::run(&args),
         Command::Bench(BenchCommand::Speed(args)) => bench::speed(&args),
         Command::Bench(BenchCommand::Accuracy(args)) => accuracy::run(&args),
+        Command::Bench(BenchCommand::Textbook(args)) => bench::textbook(&args),
     }
 }
 

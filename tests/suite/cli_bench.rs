@@ -1,6 +1,7 @@
 //! `heightray bench speed --sizes`: the same landscape at several sizes, every method, with
 //! the memory each method needs per sample (a property of the data structures, asserted here;
 //! speeds are only reported, never asserted). `heightray bench accuracy`: its report and plot.
+//! `heightray bench textbook`: its two tables.
 
 use std::process::Command;
 
@@ -114,20 +115,7 @@ fn sizes_too_large_or_too_small_are_refused_without_allocating() {
 
 /// The rows of the table under `heading` in a Markdown report, as cells.
 fn table(report: &str, heading: &str) -> Vec<Vec<String>> {
-    let (_, after) = report
-        .split_once(&format!("### {heading}\n"))
-        .unwrap_or_else(|| panic!("no table {heading}: {report}"));
-    let cells = |l: &str| {
-        l.split('|')
-            .map(|c| c.trim().to_string())
-            .collect::<Vec<_>>()
-    };
-    let lines = after
-        .trim_start()
-        .lines()
-        .take_while(|l| l.starts_with('|'));
-    // (Past the header and its rule; a row starts and ends with an empty cell.)
-    lines.skip(2).map(|l| cells(l)[1..].to_vec()).collect()
+    rows_after(report, &format!("### {heading}\n"))
 }
 
 #[test]
@@ -188,4 +176,58 @@ fn accuracy_reports_every_method_and_arithmetic_against_exact() {
     }
     let svg = std::fs::read_to_string(&plot).expect("the plot is written");
     assert!(svg.starts_with("<svg") && svg.contains("exact"), "{svg}");
+}
+
+/// The rows of the first Markdown table after `marker` in `text`, as trimmed cells.
+fn rows_after(text: &str, marker: &str) -> Vec<Vec<String>> {
+    let after = text
+        .split_once(marker)
+        .unwrap_or_else(|| panic!("no {marker:?} in {text}"))
+        .1;
+    let lines = after
+        .lines()
+        .skip_while(|l| !l.starts_with('|'))
+        .take_while(|l| l.starts_with('|'));
+    // (Past the header and its rule; a row starts and ends with an empty cell.)
+    lines
+        .skip(2)
+        .map(|l| {
+            l.split('|')
+                .map(|c| c.trim().to_string())
+                .collect::<Vec<_>>()
+        })
+        .map(|cells| cells[1..cells.len() - 1].to_vec())
+        .collect()
+}
+
+#[test]
+fn textbook_compares_the_walks_on_every_scene_and_hard_case_set() {
+    let output = Command::new(env!("CARGO_BIN_EXE_heightray"))
+        .args(["bench", "textbook", "--size", "12", "--per-set", "16"])
+        .output()
+        .expect("runs");
+    assert!(output.status.success(), "{output:?}");
+    let text = String::from_utf8_lossy(&output.stdout).to_string();
+    // scene | rays | hits | queries | heightray Mrays/s | textbook Mrays/s | ratio | differ
+    let scenes = rows_after(&text, "camera rays, one thread");
+    assert_eq!(scenes.len(), 2, "the built-in scenes: {text}");
+    for row in &scenes {
+        assert_eq!(row[1], "144", "12x12 rays: {row:?}");
+        for rate in [&row[4], &row[5]] {
+            assert!(rate.parse::<f64>().expect("a rate") > 0.0, "{row:?}");
+        }
+        // Ordinary camera rays: the textbook walk finds the same hits.
+        assert_eq!(row[7], "0", "{row:?}");
+    }
+    // set | rays | heightray differing | textbook differing
+    let sets = rows_after(&text, "the hard-case sets");
+    let names: Vec<&str> = sets.iter().map(|r| r[0].as_str()).collect();
+    assert!(
+        names.contains(&"lattice points") && names.contains(&"grazing plateaus"),
+        "{names:?}"
+    );
+    for row in &sets {
+        let count = |k: usize| row[k].parse::<u64>().expect("a count");
+        assert!(count(2) <= count(1) && count(3) <= count(1), "{row:?}");
+    }
 }
