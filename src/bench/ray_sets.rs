@@ -12,11 +12,7 @@ use crate::traverse::{trace, Arith, Method, TraceOptions};
 /// that every arithmetic answers for the same numbers.
 pub fn scene_sets(name: &str, scene: &Scene) -> anyhow::Result<[RaySet; 2]> {
     let terrain = Terrain::new(scene.field.clone());
-    let (w, h) = scene.camera.size();
-    let primary: Vec<Ray> = (0..h)
-        .flat_map(|y| (0..w).map(move |x| (x, y)))
-        .map(|(x, y)| scene.camera.ray(x, y))
-        .collect();
+    let primary: Vec<Ray> = scene.camera.rays().collect();
     let options = TraceOptions::new(Method::Runs, Arith::F64);
     let mut sun = Vec::new();
     for ray in &primary {

@@ -37,11 +37,7 @@ pub struct TextbookRow {
 /// Traces every camera ray of `scene` with both walks (heightray's without the beams the
 /// renderer adds, as the textbook walk has none).
 pub fn versus_textbook(scene: &Scene, terrain: &Terrain) -> TextbookRow {
-    let (w, h) = scene.camera.size();
-    let rays: Vec<Ray> = (0..h)
-        .flat_map(|y| (0..w).map(move |x| (x, y)))
-        .map(|(x, y)| scene.camera.ray(x, y))
-        .collect();
+    let rays: Vec<Ray> = scene.camera.rays().collect();
     let options = TraceOptions::new(Method::Mipmap, Arith::F64);
     let textbook = Textbook::new(terrain);
     let heightray_run = || {

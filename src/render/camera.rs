@@ -118,6 +118,11 @@ impl Camera {
         // and every input was checked finite.
         Ray::new_checked_by_caller(self.eye.into(), dir.into())
     }
+
+    /// Every pixel's primary ray, row by row from the top.
+    pub fn rays(&self) -> impl Iterator<Item = Ray> + '_ {
+        (0..self.height).flat_map(move |y| (0..self.width).map(move |x| self.ray(x, y)))
+    }
 }
 
 #[cfg(test)]
