@@ -1,10 +1,11 @@
 //! A yardstick: the textbook max-mipmap walk (Tevs, Ihrke & Seidel 2008) in plain `f64`, with
 //! the Möller–Trumbore triangle test, against heightray's own mipmap walk in `f64` on the same
-//! rays. It makes the same block and cell queries; what it leaves out is what makes
-//! heightray's answers exact: the slack for rounding, the lattice points (a path through a
-//! grid corner goes on diagonally, past the two cells beside it), the watertight triangle test
-//! and the octant frame. So the ratio of the two times is what those guarantees cost a ray. It
-//! is not a method: it can leave a hole where a ray passes through a lattice point.
+//! rays. It starts, descends and climbs as heightray's walk does, so it makes about the same
+//! block and cell queries; what it leaves out is what makes heightray's answers exact: the
+//! slack for rounding, the lattice points (a path through a grid corner goes on diagonally,
+//! past the two cells beside it), the watertight triangle test and the octant frame. So the
+//! ratio of the two times is what those guarantees cost a ray. It is not a method: it misses
+//! hits at lattice points and on level ground a ray grazes (see [`hard_cases_versus_exact`]).
 
 use super::fastest::{fastest, timed};
 use super::ray_sets::hard_cases;
