@@ -102,7 +102,7 @@ fn differ(a: Option<f64>, b: Option<f64>) -> bool {
 }
 
 /// One set of numerically hard rays: how many answers of each walk in `f64` differ from the
-/// exact answers (see [`differ`]).
+/// exact answers (a hit against a miss, or `t` off by more than a relative 1e-9).
 #[derive(Clone, Debug)]
 pub struct HardCaseRow {
     pub set: String,

@@ -30,7 +30,7 @@ pub struct Clearance {
 }
 
 /// Rays `origin + t * dir`, each `dir` a convex combination of the four corners (within
-/// [`DIR_ROOM`]).
+/// `DIR_ROOM`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Beam {
     pub origin: [f64; 3],

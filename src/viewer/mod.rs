@@ -1,7 +1,7 @@
 //! The interactive viewer: winit + softbuffer + egui (drawn on the CPU). The renderer fills
 //! the view progressively on worker threads; the window thread never waits for a frame.
 //!
-//! This module wires winit's events to [`app::App`]; the state and drawing live there.
+//! This module wires winit's events to `app::App`; the state and drawing live there.
 
 mod accuracy;
 mod app;
