@@ -1,7 +1,6 @@
 //! `heightray bench ...`: tables on stdout.
 
 use super::{SpeedArgs, TextbookArgs};
-use anyhow::Context;
 use heightray::bench::{
     hard_cases_versus_exact, sized_scene, throughput, versus_textbook, ThroughputRow, ROUNDS, SEED,
 };
@@ -246,15 +245,8 @@ pub(super) fn progress_bar(len: usize) -> ProgressBar {
 
 /// A scene file with its image size replaced.
 pub(super) fn scene_at_size(path: &Path, size: u32) -> anyhow::Result<Scene> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let mut file: SceneFile =
-        toml::from_str(&text).with_context(|| format!("scene {}", path.display()))?;
+    let mut file = SceneFile::read(path)?;
     file.camera.width = size;
     file.camera.height = size;
-    Ok(Scene::from_file(
-        &file,
-        path.parent().unwrap_or(Path::new(".")),
-        path,
-    )?)
+    Ok(Scene::from_file(&file, Scene::base(path), path)?)
 }

@@ -48,6 +48,23 @@ pub struct SceneFile {
     pub render: RenderSection,
 }
 
+impl SceneFile {
+    /// Reads and parses a scene file, without checking or loading what it names.
+    pub fn read(path: &Path) -> Result<SceneFile, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|source| {
+            let path = path.to_owned();
+            match source.kind() {
+                std::io::ErrorKind::InvalidData => SceneError::NotText { path },
+                _ => SceneError::Io { path, source },
+            }
+        })?;
+        toml::from_str(&text).map_err(|e| SceneError::Parse {
+            path: path.to_owned(),
+            message: e.to_string().trim_end().replace('\n', " "),
+        })
+    }
+}
+
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct HeightmapSection {
@@ -235,19 +252,12 @@ pub struct Scene {
 impl Scene {
     /// Reads and validates a scene file, loading its height map.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| {
-            let path = path.to_owned();
-            match source.kind() {
-                std::io::ErrorKind::InvalidData => SceneError::NotText { path },
-                _ => SceneError::Io { path, source },
-            }
-        })?;
-        let file: SceneFile = toml::from_str(&text).map_err(|e| SceneError::Parse {
-            path: path.to_owned(),
-            message: e.to_string().trim_end().replace('\n', " "),
-        })?;
-        let base = path.parent().unwrap_or(Path::new("."));
-        Scene::from_file(&file, base, path)
+        Scene::from_file(&SceneFile::read(path)?, Scene::base(path), path)
+    }
+
+    /// The folder a scene file's relative paths start from.
+    pub fn base(path: &Path) -> &Path {
+        path.parent().unwrap_or(Path::new("."))
     }
 
     /// Validates a parsed scene; `base` resolves relative paths, `path` names the file in errors.

@@ -72,16 +72,15 @@ struct SceneParts {
 
 /// Reads a scene file: its height field, lighting, traversal and camera section.
 fn load_scene(path: &Path) -> Result<(Heightfield, Option<SceneParts>), String> {
+    let file = SceneFile::read(path).map_err(|e| e.to_string())?;
+    // (The file is kept as written as well: the viewer takes its camera's form from it.)
     let Scene {
         field,
         lighting,
         method,
         arith,
         ..
-    } = Scene::load(path).map_err(|e| e.to_string())?;
-    // Scene::load has just read and validated this file; parse it again for the camera form.
-    let text = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
-    let file: SceneFile = toml::from_str(&text).map_err(|e| e.to_string())?;
+    } = Scene::from_file(&file, Scene::base(path), path).map_err(|e| e.to_string())?;
     let parts = SceneParts {
         file,
         lighting,

@@ -358,22 +358,29 @@ fn malformed_arguments_are_errors() {
     );
 }
 
-/// A height map given to `render`, which takes a scene: the message says what a scene is and
-/// how to look at the map.
+/// A height map given to `render` or a benchmark, which take scenes: the message says what a
+/// scene is and how to look at the map.
 #[test]
 fn a_height_map_given_as_a_scene_is_named_for_what_it_is() {
     let dir = TempDir::new().unwrap();
     let out = dir.path().join("out.png");
     let map = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/valley513.png");
-    let output = heightray(&["render", map, "-o", out.to_str().unwrap()]);
-    assert!(!output.status.success());
-    let message = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        message.contains("valley513.png is not a text file")
-            && message.contains("TOML")
-            && message.contains("heightray view"),
-        "{message}"
-    );
+    let commands: [&[&str]; 3] = [
+        &["render", map, "-o", out.to_str().unwrap()],
+        &["bench", "speed", "--scenes", map],
+        &["bench", "textbook", "--scenes", map],
+    ];
+    for args in commands {
+        let output = heightray(args);
+        assert!(!output.status.success(), "{args:?}");
+        let message = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            message.contains("valley513.png is not a text file")
+                && message.contains("TOML")
+                && message.contains("heightray view"),
+            "{args:?}: {message}"
+        );
+    }
     assert!(!out.exists());
 }
 
