@@ -16,12 +16,13 @@ pub fn run(args: &AccuracyArgs) -> anyhow::Result<ExitCode> {
     if !ariths.contains(&Arith::Exact) {
         ariths.push(Arith::Exact);
     }
-    let scenes = scenes_or_builtins(&args.scenes);
+    let scenes = scenes_or_builtins(&args.scenes)?;
     let mut sets = Vec::new();
     let mut loaded = Vec::new();
-    for path in &scenes {
-        let scene = scene_at_size(path, args.size)?;
-        let name = path
+    for source in &scenes {
+        let scene = scene_at_size(source, args.size)?;
+        let name = source
+            .path
             .file_stem()
             .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
         sets.extend(scene_sets(&name, &scene)?);

@@ -4,14 +4,13 @@ use super::{SpeedArgs, TextbookArgs};
 use heightray::bench::{
     hard_cases_versus_exact, sized_scene, throughput, versus_textbook, ThroughputRow, ROUNDS, SEED,
 };
-use heightray::heightfield::BUILTINS;
 use heightray::render::{Scene, SceneFile};
 use heightray::traverse::prepare;
 use heightray::traverse::{Arith, HitMiss};
 use heightray::Terrain;
 use indicatif::ProgressBar;
 use indicatif::ProgressStyle;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
@@ -23,15 +22,16 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
     let configs = args.methods.len() * args.ariths.len() * args.threads.len() * ROUNDS;
     let mut measured = Vec::new();
     if args.sizes.is_empty() {
-        let scenes = scenes_or_builtins(&args.scenes);
+        let scenes = scenes_or_builtins(&args.scenes)?;
         let size = args.size.unwrap_or(256);
         let bar = progress_bar(configs * scenes.len());
-        for path in &scenes {
-            bar.set_message(path.display().to_string());
-            let scene = scene_at_size(path, size)?;
+        for source in &scenes {
+            let name = source.path.display().to_string();
+            bar.set_message(name.clone());
+            let scene = scene_at_size(source, size)?;
             let terrain = Terrain::new(scene.field.clone());
             let rows = measure(args, &scene, &terrain, &bar)?;
-            measured.push((path.display().to_string(), terrain, rows));
+            measured.push((name, terrain, rows));
         }
         bar.finish_and_clear();
     } else {
@@ -58,17 +58,15 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
 }
 
 pub fn textbook(args: &TextbookArgs) -> anyhow::Result<ExitCode> {
-    let scenes = scenes_or_builtins(&args.scenes);
+    let scenes = scenes_or_builtins(&args.scenes)?;
     let bar = progress_bar(scenes.len() + 1);
     let mut rows = Vec::new();
-    for path in &scenes {
-        bar.set_message(path.display().to_string());
-        let scene = scene_at_size(path, args.size)?;
+    for source in &scenes {
+        let name = source.path.display().to_string();
+        bar.set_message(name.clone());
+        let scene = scene_at_size(source, args.size)?;
         let terrain = Terrain::new(scene.field.clone());
-        rows.push((
-            path.display().to_string(),
-            versus_textbook(&scene, &terrain),
-        ));
+        rows.push((name, versus_textbook(&scene, &terrain)));
         bar.inc(1);
     }
     bar.set_message("hard cases");
@@ -222,16 +220,30 @@ fn print_growth(measured: &[(String, Terrain, Vec<ThroughputRow>)]) {
     });
 }
 
-/// The given scene files, or the built-in scenes.
-pub(super) fn scenes_or_builtins(scenes: &[PathBuf]) -> Vec<PathBuf> {
+/// A scene to measure on, as written: `path` names it (a built-in scene by its name).
+pub(super) struct SceneSource {
+    pub path: PathBuf,
+    file: SceneFile,
+}
+
+/// The given scene files, or the built-in scenes (embedded, with their maps).
+pub(super) fn scenes_or_builtins(scenes: &[PathBuf]) -> anyhow::Result<Vec<SceneSource>> {
     if scenes.is_empty() {
-        let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets");
-        BUILTINS
-            .iter()
-            .map(|b| assets.join(format!("{}.toml", b.name)))
-            .collect()
+        let builtins = SceneFile::builtins()?.into_iter();
+        let source = |(name, file)| SceneSource {
+            path: PathBuf::from(name),
+            file,
+        };
+        Ok(builtins.map(source).collect())
     } else {
-        scenes.to_vec()
+        let read = |path: &PathBuf| -> anyhow::Result<SceneSource> {
+            let file = SceneFile::read(path)?;
+            Ok(SceneSource {
+                path: path.clone(),
+                file,
+            })
+        };
+        scenes.iter().map(read).collect()
     }
 }
 
@@ -243,10 +255,11 @@ pub(super) fn progress_bar(len: usize) -> ProgressBar {
     )
 }
 
-/// A scene file with its image size replaced.
-pub(super) fn scene_at_size(path: &Path, size: u32) -> anyhow::Result<Scene> {
-    let mut file = SceneFile::read(path)?;
+/// A scene with its image size replaced.
+pub(super) fn scene_at_size(source: &SceneSource, size: u32) -> anyhow::Result<Scene> {
+    let mut file = source.file.clone();
     file.camera.width = size;
     file.camera.height = size;
+    let path = &source.path;
     Ok(Scene::from_file(&file, Scene::base(path), path)?)
 }

@@ -48,6 +48,13 @@ pub struct SceneFile {
     pub render: RenderSection,
 }
 
+/// The scene files of the built-in terrains (`assets/NAME.toml`), embedded like their maps, so
+/// that the benchmarks' default scenes work from any directory.
+const BUILTIN_SCENES: [(&str, &str); 2] = [
+    ("valley513", include_str!("../../assets/valley513.toml")),
+    ("small49", include_str!("../../assets/small49.toml")),
+];
+
 impl SceneFile {
     /// Reads and parses a scene file, without checking or loading what it names.
     pub fn read(path: &Path) -> Result<SceneFile, SceneError> {
@@ -58,7 +65,22 @@ impl SceneFile {
                 _ => SceneError::Io { path, source },
             }
         })?;
-        toml::from_str(&text).map_err(|e| SceneError::Parse {
+        SceneFile::parse(&text, path)
+    }
+
+    /// The built-in terrains' scene files, by name, each on its embedded map.
+    pub fn builtins() -> Result<Vec<(&'static str, SceneFile)>, SceneError> {
+        let scene = |(name, text): (&'static str, &str)| {
+            let mut file = SceneFile::parse(text, Path::new(name))?;
+            file.heightmap.path = format!("builtin:{name}");
+            Ok((name, file))
+        };
+        BUILTIN_SCENES.into_iter().map(scene).collect()
+    }
+
+    /// Parses a scene file's text; `path` names it in errors.
+    fn parse(text: &str, path: &Path) -> Result<SceneFile, SceneError> {
+        toml::from_str(text).map_err(|e| SceneError::Parse {
             path: path.to_owned(),
             message: e.to_string().trim_end().replace('\n', " "),
         })
@@ -358,4 +380,33 @@ fn camera(section: &CameraSection, path: &Path) -> Result<Camera, SceneError> {
         path: path.to_owned(),
         source,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::heightfield::BUILTINS;
+
+    /// Every built-in terrain has its scene, and the embedded scene is the one in `assets/`
+    /// with the map embedded: the same samples, camera and lighting.
+    #[test]
+    fn builtin_scenes_are_the_asset_files_on_the_embedded_maps() {
+        let builtins = SceneFile::builtins().unwrap();
+        let names: Vec<&str> = builtins.iter().map(|(name, _)| *name).collect();
+        assert_eq!(names, BUILTINS.map(|b| b.name));
+        for (name, file) in builtins {
+            let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("assets/{name}.toml"));
+            let on_disk = Scene::load(&path).unwrap();
+            let embedded = Scene::from_file(&file, Path::new(""), Path::new(name)).unwrap();
+            assert_eq!(embedded.field.samples(), on_disk.field.samples(), "{name}");
+            assert_eq!(embedded.field.step(), on_disk.field.step(), "{name}");
+            assert_eq!(embedded.camera.size(), on_disk.camera.size(), "{name}");
+            assert_eq!(
+                embedded.camera.ray(7, 9),
+                on_disk.camera.ray(7, 9),
+                "{name}"
+            );
+            assert_eq!(embedded.lighting, on_disk.lighting, "{name}");
+        }
+    }
 }
