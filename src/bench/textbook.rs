@@ -41,33 +41,29 @@ pub fn versus_textbook(scene: &Scene, terrain: &Terrain) -> TextbookRow {
     let rays: Vec<Ray> = scene.camera.rays().collect();
     let options = TraceOptions::new(Method::Mipmap, Arith::F64);
     let textbook = Textbook::new(terrain);
-    let heightray_run = || {
+    // One walk over every ray: its answers and its queries, timed.
+    let run = |walk: &dyn Fn(&Ray) -> (Option<f64>, u64)| {
         timed(|| {
-            let traces = rays.iter().map(|ray| trace(terrain, ray, &options));
             let mut queries = 0;
-            let answers: Vec<Option<f64>> = traces
-                .map(|t| {
-                    queries += t.counters.block.total() + t.counters.cell.total();
-                    t.hit.map(|hit| hit.t)
-                })
-                .collect();
+            let mut answer = |ray| {
+                let (t, asked) = walk(ray);
+                queries += asked;
+                t
+            };
+            let answers: Vec<Option<f64>> = rays.iter().map(&mut answer).collect();
             (answers, queries)
         })
     };
-    let textbook_run = || {
-        timed(|| {
-            let mut steps = 0;
-            let answers: Vec<Option<f64>> = rays
-                .iter()
-                .map(|ray| {
-                    let (t, taken) = textbook.first_hit(ray);
-                    steps += u64::from(taken);
-                    t
-                })
-                .collect();
-            (answers, steps)
-        })
+    let heightray = |ray: &Ray| {
+        let t = trace(terrain, ray, &options);
+        let queries = t.counters.block.total() + t.counters.cell.total();
+        (t.hit.map(|hit| hit.t), queries)
     };
+    let textbook = |ray: &Ray| {
+        let (t, steps) = textbook.first_hit(ray);
+        (t, u64::from(steps))
+    };
+    let (heightray_run, textbook_run) = (|| run(&heightray), || run(&textbook));
     let (mut heightray_time, mut textbook_time) = (Duration::MAX, Duration::MAX);
     let (mut ours, mut theirs) = ((Vec::new(), 0), (Vec::new(), 0));
     for _ in 0..ROUNDS {
