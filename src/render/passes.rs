@@ -9,6 +9,7 @@ use super::stats::{FrameStats, PixelStats};
 use crate::traverse::{with_bound, Arith, Clearance, Method, Rational};
 use crate::Ray;
 use rayon::prelude::*;
+use std::ops::Range;
 
 /// Block size of each pass: pass `k` traces the pixels on the `PASS_BLOCKS[k]` lattice that no
 /// coarser pass traced, and paints each as a block of that size.
@@ -64,32 +65,31 @@ pub struct Renderer<'a> {
 }
 
 impl Renderer<'_> {
-    /// Renders all remaining passes (on the current rayon pool). Each pixel is painted alone:
-    /// nobody sees the frame between passes, where a coarse pass's blocks would show, and
-    /// painting them took about 3% of a frame's instructions.
+    /// Renders all remaining passes (on the current rayon pool). Nobody sees the frame between
+    /// passes, so each band runs all of them in one job: no thread waits at the end of a pass
+    /// for the other's last band. Each pixel is painted alone: a coarse pass's blocks would not
+    /// be seen, and painting them took about 3% of a frame's instructions.
     pub fn render(&self, frame: &mut Frame) {
-        while !frame.complete() {
-            self.pass(frame, &|| false, Paint::Pixels);
-        }
+        let remaining = frame.passes_done..PASS_BLOCKS.len();
+        self.passes(frame, remaining, &|| false, Paint::Pixels);
     }
 
     /// Renders the next pass, painting each traced pixel's block of the pass, so the frame can
     /// be shown as it is. Returns false when `cancelled` turned true (asked before each tile):
     /// the pass is then partly painted, and the frame is to be dropped.
     pub fn render_pass(&self, frame: &mut Frame, cancelled: &(dyn Fn() -> bool + Sync)) -> bool {
-        self.pass(frame, cancelled, Paint::Blocks)
+        let next = frame.passes_done..(frame.passes_done + 1).min(PASS_BLOCKS.len());
+        self.passes(frame, next, cancelled, Paint::Blocks)
     }
 
-    /// Renders the next pass; see [`Renderer::render_pass`].
-    fn pass(&self, frame: &mut Frame, cancelled: &(dyn Fn() -> bool + Sync), paint: Paint) -> bool {
-        let pass = frame.passes_done;
-        let Some(&block) = PASS_BLOCKS.get(pass) else {
-            return true;
-        };
-        let painted = match paint {
-            Paint::Blocks => block,
-            Paint::Pixels => 1,
-        };
+    /// Renders the passes `passes`, band by band; see [`Renderer::render_pass`].
+    fn passes(
+        &self,
+        frame: &mut Frame,
+        passes: Range<usize>,
+        cancelled: &(dyn Fn() -> bool + Sync),
+        paint: Paint,
+    ) -> bool {
         let width = frame.width as usize;
         let rows = BAND as usize * width;
         let bands: Vec<Option<FrameStats>> = frame
@@ -103,30 +103,42 @@ impl Renderer<'_> {
             // thread then waits for seconds.
             .with_max_len(1)
             .map(|(band, (pixels, stats))| {
-                let y0 = band as u32 * BAND;
                 let mut out = BandOut {
                     pixels,
                     stats,
-                    y0,
+                    y0: band as u32 * BAND,
                     width: frame.width,
                     height: frame.height,
-                    painted,
+                    painted: 1,
                 };
                 let shader = &self.shader;
                 let o = &mut out;
+                let passes = passes.clone();
                 match self.arith {
-                    Arith::F32 => {
-                        self.band(o, pass, block, |r, c| shader.sample::<f32>(r, c), cancelled)
-                    }
-                    Arith::F64 => {
-                        self.band(o, pass, block, |r, c| shader.sample::<f64>(r, c), cancelled)
-                    }
-                    Arith::Exact => {
-                        self.band(o, pass, block, |r, c| shader.sample_exact(r, c), cancelled)
-                    }
+                    Arith::F32 => self.band(
+                        o,
+                        passes,
+                        paint,
+                        |r, c| shader.sample::<f32>(r, c),
+                        cancelled,
+                    ),
+                    Arith::F64 => self.band(
+                        o,
+                        passes,
+                        paint,
+                        |r, c| shader.sample::<f64>(r, c),
+                        cancelled,
+                    ),
+                    Arith::Exact => self.band(
+                        o,
+                        passes,
+                        paint,
+                        |r, c| shader.sample_exact(r, c),
+                        cancelled,
+                    ),
                     Arith::Rational { bound } => {
                         let sample = |r: &Ray, c| shader.sample::<Rational>(r, c);
-                        with_bound(bound, || self.band(o, pass, block, sample, cancelled)).0
+                        with_bound(bound, || self.band(o, passes, paint, sample, cancelled)).0
                     }
                 }
             })
@@ -137,15 +149,41 @@ impl Renderer<'_> {
         for totals in bands.into_iter().flatten() {
             frame.totals += totals;
         }
-        frame.passes_done += 1;
+        frame.passes_done = passes.end;
         true
     }
 
-    /// Traces this pass's pixels of one band and paints their blocks; `None` if cancelled.
-    /// The band is traced tile by tile; in the finer passes the rays of a tile share a beam
+    /// Traces the pixels of the passes `passes` in one band and paints them; `None` if
+    /// cancelled.
+    fn band(
+        &self,
+        out: &mut BandOut<'_>,
+        passes: Range<usize>,
+        paint: Paint,
+        sample: impl Fn(&Ray, Option<Clearance>) -> Sample,
+        cancelled: &(dyn Fn() -> bool + Sync),
+    ) -> Option<FrameStats> {
+        let mut totals = FrameStats::default();
+        for (pass, &block) in PASS_BLOCKS
+            .iter()
+            .enumerate()
+            .take(passes.end)
+            .skip(passes.start)
+        {
+            out.painted = match paint {
+                Paint::Blocks => block,
+                Paint::Pixels => 1,
+            };
+            totals += self.band_pass(out, pass, block, &sample, cancelled)?;
+        }
+        Some(totals)
+    }
+
+    /// Traces one pass's pixels of one band and paints them; `None` if cancelled. The band is
+    /// traced tile by tile; in the finer passes the rays of a tile share a beam
     /// ([`Camera::beam`]) that clears the way to where any of them may first touch the
     /// surface.
-    fn band(
+    fn band_pass(
         &self,
         out: &mut BandOut<'_>,
         pass: usize,

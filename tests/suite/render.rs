@@ -106,6 +106,38 @@ fn same_image_and_statistics_on_one_and_two_threads() {
     }
 }
 
+/// `render` runs all passes band by band; the viewer runs them one at a time, painting each
+/// pixel's block. Both end in the same frame.
+#[test]
+fn a_frame_rendered_pass_by_pass_is_the_whole_frame() {
+    let scene = builtin_scene("valley513", 80);
+    let whole = render_scene(&scene, 2);
+    let terrain = Terrain::new(scene.field.clone());
+    let renderer = Renderer {
+        shader: Shader {
+            terrain: &terrain,
+            lighting: scene.lighting,
+            method: scene.method,
+            culling: Culling::default(),
+        },
+        camera: scene.camera,
+        arith: scene.arith,
+    };
+    let mut frame = Frame::new(80, 80);
+    let mut passes = 0;
+    while !frame.complete() {
+        assert!(renderer.render_pass(&mut frame, &|| false));
+        passes += 1;
+    }
+    assert_eq!(passes, 4);
+    assert_eq!(frame.pixels, whole.pixels);
+    assert_eq!(frame.stats, whole.stats);
+    assert_eq!(frame.totals, whole.totals);
+    // A pass after the last changes nothing.
+    assert!(renderer.render_pass(&mut frame, &|| false));
+    assert_eq!(frame.totals, whole.totals);
+}
+
 #[test]
 fn built_in_scenes_match_their_golden_images() {
     for (name, method) in ["small49", "valley513"]
