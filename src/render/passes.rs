@@ -154,7 +154,10 @@ impl Renderer<'_> {
     }
 
     /// Traces the pixels of the passes `passes` in one band and paints them; `None` if
-    /// cancelled.
+    /// cancelled. The band is traced tile by tile, each tile's passes one after another: the
+    /// terrain its rays cross is still in the caches for the next pass. In the finer passes
+    /// the rays of a tile share a beam ([`Camera::beam`]) that clears the way to where any of
+    /// them may first touch the surface.
     fn band(
         &self,
         out: &mut BandOut<'_>,
@@ -163,66 +166,47 @@ impl Renderer<'_> {
         sample: impl Fn(&Ray, Option<Clearance>) -> Sample,
         cancelled: &(dyn Fn() -> bool + Sync),
     ) -> Option<FrameStats> {
-        let mut totals = FrameStats::default();
-        for (pass, &block) in PASS_BLOCKS
-            .iter()
-            .enumerate()
-            .take(passes.end)
-            .skip(passes.start)
-        {
-            out.painted = match paint {
-                Paint::Blocks => block,
-                Paint::Pixels => 1,
-            };
-            totals += self.band_pass(out, pass, block, &sample, cancelled)?;
-        }
-        Some(totals)
-    }
-
-    /// Traces one pass's pixels of one band and paints them; `None` if cancelled. The band is
-    /// traced tile by tile; in the finer passes the rays of a tile share a beam
-    /// ([`Camera::beam`]) that clears the way to where any of them may first touch the
-    /// surface.
-    fn band_pass(
-        &self,
-        out: &mut BandOut<'_>,
-        pass: usize,
-        block: u32,
-        sample: impl Fn(&Ray, Option<Clearance>) -> Sample,
-        cancelled: &(dyn Fn() -> bool + Sync),
-    ) -> Option<FrameStats> {
-        let y_end = (out.y0 + BAND).min(out.height);
-        let rows: Vec<u32> = (out.y0..y_end).filter(|y| y % block == 0).collect();
-        let beams = block <= BEAM_BLOCK && self.shader.method == Method::Mipmap;
+        let (y0, y_end) = (out.y0, (out.y0 + BAND).min(out.height));
+        let hierarchical = self.shader.method == Method::Mipmap;
         let mut tiles = Tiles {
             renderer: self,
             out,
-            pass,
-            block,
             sample,
             totals: FrameStats::default(),
         };
         for x0 in (0..tiles.out.width).step_by(TILE as usize) {
-            // Asked tile by tile: a tile of slow rays (small rational bounds) takes long enough.
-            if cancelled() {
-                return None;
+            let x_end = (x0 + TILE).min(tiles.out.width);
+            for (pass, &block) in PASS_BLOCKS
+                .iter()
+                .enumerate()
+                .take(passes.end)
+                .skip(passes.start)
+            {
+                // Asked for every tile: a tile of slow rays (small rational bounds) takes long
+                // enough.
+                if cancelled() {
+                    return None;
+                }
+                tiles.out.painted = match paint {
+                    Paint::Blocks => block,
+                    Paint::Pixels => 1,
+                };
+                let rows: Vec<u32> = (y0..y_end).filter(|y| y % block == 0).collect();
+                let columns: Vec<u32> = (x0..x_end).step_by(block as usize).collect();
+                let beam = (block <= BEAM_BLOCK && hierarchical)
+                    .then(|| tiles.beam(&columns, &rows))
+                    .flatten();
+                tiles.trace(pass, block, &columns, &rows, beam);
             }
-            let columns: Vec<u32> = (x0..(x0 + TILE).min(tiles.out.width))
-                .step_by(block as usize)
-                .collect();
-            let beam = beams.then(|| tiles.beam(&columns, &rows)).flatten();
-            tiles.trace(&columns, &rows, beam);
         }
         Some(tiles.totals)
     }
 }
 
-/// Traces the pixels of a pass tile by tile.
+/// Traces the pixels of a band tile by tile.
 struct Tiles<'r, 'o, 'b, F> {
     renderer: &'r Renderer<'r>,
     out: &'o mut BandOut<'b>,
-    pass: usize,
-    block: u32,
     sample: F,
     totals: FrameStats,
 }
@@ -240,9 +224,16 @@ impl<F: Fn(&Ray, Option<Clearance>) -> Sample> Tiles<'_, '_, '_, F> {
         Some(cleared)
     }
 
-    /// Traces the pixels `columns x rows` this pass has not traced before and paints them.
-    fn trace(&mut self, columns: &[u32], rows: &[u32], beam: Option<Clearance>) {
-        let (pass, block) = (self.pass, self.block);
+    /// Traces the pixels `columns x rows` that pass `pass` (of blocks `block`) traces and no
+    /// earlier pass did, and paints them.
+    fn trace(
+        &mut self,
+        pass: usize,
+        block: u32,
+        columns: &[u32],
+        rows: &[u32],
+        beam: Option<Clearance>,
+    ) {
         for &y in rows {
             for &x in columns {
                 let traced_before = pass > 0 && x % (2 * block) == 0 && y % (2 * block) == 0;
