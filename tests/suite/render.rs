@@ -106,8 +106,8 @@ fn same_image_and_statistics_on_one_and_two_threads() {
     }
 }
 
-/// `render` runs all passes band by band; the viewer runs them one at a time, painting each
-/// pixel's block. Both end in the same frame.
+/// `render` runs each tile's passes one after another; the viewer runs one pass at a time over
+/// the whole frame, painting each pixel's block. Both end in the same frame.
 #[test]
 fn a_frame_rendered_pass_by_pass_is_the_whole_frame() {
     let scene = builtin_scene("valley513", 80);
