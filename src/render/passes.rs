@@ -109,36 +109,23 @@ impl Renderer<'_> {
                     y0: band as u32 * BAND,
                     width: frame.width,
                     height: frame.height,
-                    painted: 1,
+                    paint,
                 };
                 let shader = &self.shader;
-                let o = &mut out;
-                let passes = passes.clone();
+                let (o, passes) = (&mut out, passes.clone());
                 match self.arith {
-                    Arith::F32 => self.band(
-                        o,
-                        passes,
-                        paint,
-                        |r, c| shader.sample::<f32>(r, c),
-                        cancelled,
-                    ),
-                    Arith::F64 => self.band(
-                        o,
-                        passes,
-                        paint,
-                        |r, c| shader.sample::<f64>(r, c),
-                        cancelled,
-                    ),
-                    Arith::Exact => self.band(
-                        o,
-                        passes,
-                        paint,
-                        |r, c| shader.sample_exact(r, c),
-                        cancelled,
-                    ),
+                    Arith::F32 => {
+                        self.band(o, passes, |r, c| shader.sample::<f32>(r, c), cancelled)
+                    }
+                    Arith::F64 => {
+                        self.band(o, passes, |r, c| shader.sample::<f64>(r, c), cancelled)
+                    }
+                    Arith::Exact => {
+                        self.band(o, passes, |r, c| shader.sample_exact(r, c), cancelled)
+                    }
                     Arith::Rational { bound } => {
                         let sample = |r: &Ray, c| shader.sample::<Rational>(r, c);
-                        with_bound(bound, || self.band(o, passes, paint, sample, cancelled)).0
+                        with_bound(bound, || self.band(o, passes, sample, cancelled)).0
                     }
                 }
             })
@@ -162,11 +149,21 @@ impl Renderer<'_> {
         &self,
         out: &mut BandOut<'_>,
         passes: Range<usize>,
-        paint: Paint,
         sample: impl Fn(&Ray, Option<Clearance>) -> Sample,
         cancelled: &(dyn Fn() -> bool + Sync),
     ) -> Option<FrameStats> {
-        let (y0, y_end) = (out.y0, (out.y0 + BAND).min(out.height));
+        let y_end = (out.y0 + BAND).min(out.height);
+        // Each pass with its block size and the band's rows it traces.
+        let passes: Vec<(usize, u32, Vec<u32>)> = PASS_BLOCKS
+            .iter()
+            .enumerate()
+            .take(passes.end)
+            .skip(passes.start)
+            .map(|(pass, &block)| {
+                let rows = (out.y0..y_end).filter(|y| y % block == 0).collect();
+                (pass, block, rows)
+            })
+            .collect();
         let hierarchical = self.shader.method == Method::Mipmap;
         let mut tiles = Tiles {
             renderer: self,
@@ -176,27 +173,17 @@ impl Renderer<'_> {
         };
         for x0 in (0..tiles.out.width).step_by(TILE as usize) {
             let x_end = (x0 + TILE).min(tiles.out.width);
-            for (pass, &block) in PASS_BLOCKS
-                .iter()
-                .enumerate()
-                .take(passes.end)
-                .skip(passes.start)
-            {
+            for (pass, block, rows) in &passes {
                 // Asked for every tile: a tile of slow rays (small rational bounds) takes long
                 // enough.
                 if cancelled() {
                     return None;
                 }
-                tiles.out.painted = match paint {
-                    Paint::Blocks => block,
-                    Paint::Pixels => 1,
-                };
-                let rows: Vec<u32> = (y0..y_end).filter(|y| y % block == 0).collect();
-                let columns: Vec<u32> = (x0..x_end).step_by(block as usize).collect();
-                let beam = (block <= BEAM_BLOCK && hierarchical)
-                    .then(|| tiles.beam(&columns, &rows))
+                let columns: Vec<u32> = (x0..x_end).step_by(*block as usize).collect();
+                let beam = (*block <= BEAM_BLOCK && hierarchical)
+                    .then(|| tiles.beam(&columns, rows))
                     .flatten();
-                tiles.trace(pass, block, &columns, &rows, beam);
+                tiles.trace(*pass, *block, &columns, rows, beam);
             }
         }
         Some(tiles.totals)
@@ -242,7 +229,8 @@ impl<F: Fn(&Ray, Option<Clearance>) -> Sample> Tiles<'_, '_, '_, F> {
                 }
                 let sample = (self.sample)(&self.renderer.camera.ray(x, y), beam);
                 self.totals.add(&sample);
-                self.out.paint(x, y, sample.rgb, PixelStats::of(&sample));
+                self.out
+                    .paint(x, y, block, sample.rgb, PixelStats::of(&sample));
             }
         }
     }
@@ -264,14 +252,18 @@ struct BandOut<'a> {
     y0: u32,
     width: u32,
     height: u32,
-    /// Size of the block a traced pixel fills.
-    painted: u32,
+    paint: Paint,
 }
 
 impl BandOut<'_> {
-    /// Fills the block whose top-left pixel is `(x, y)`, clipped to the band.
-    fn paint(&mut self, x: u32, y: u32, rgb: u32, stats: PixelStats) {
-        let (block, row) = (self.painted, y - self.y0);
+    /// Paints the pixel `(x, y)` traced by a pass of blocks `block`: with [`Paint::Blocks`]
+    /// its whole block, clipped to the band.
+    fn paint(&mut self, x: u32, y: u32, block: u32, rgb: u32, stats: PixelStats) {
+        let row = y - self.y0;
+        let block = match self.paint {
+            Paint::Blocks => block,
+            Paint::Pixels => 1,
+        };
         // (One pixel, as most are painted, written directly: the loop's bounds took about 80
         // instructions a pixel, measured.)
         if block == 1 {
