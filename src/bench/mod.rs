@@ -2,6 +2,8 @@
 //! ratios.
 
 mod accuracy;
+#[cfg(feature = "embree")]
+pub mod embree;
 mod fastest;
 pub mod plot;
 mod ray_sets;
@@ -15,5 +17,5 @@ pub use accuracy::{
 };
 pub use ray_sets::{hard_cases, scene_sets, RaySet};
 pub use sizes::{sized_scene, SizedSceneError, SEED};
-pub use speed::{throughput, ThroughputRow, ROUNDS};
+pub use speed::{render_as, throughput, view, Reference, ThroughputRow, Tracer, ROUNDS};
 pub use textbook::{hard_cases_versus_exact, versus_textbook, HardCaseRow, Textbook, TextbookRow};

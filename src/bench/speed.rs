@@ -7,11 +7,26 @@ use crate::traverse::{Arith, Counters, Method};
 use crate::Terrain;
 use std::time::Duration;
 
+/// What traces a configuration's frames.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tracer {
+    /// One of heightray's methods in one arithmetic.
+    Heightray(Method, Arith),
+    /// The [`Reference`] tracer (Embree's triangles, in the comparison).
+    Reference,
+}
+
+/// A tracer other than heightray's that renders the same frames: the same pixels, shading and
+/// shadow rays, traced its own way (Embree, with the `embree` feature).
+pub trait Reference: Sync {
+    /// Renders every pixel of `renderer`'s view into `frame` on the current rayon pool.
+    fn render(&self, renderer: &Renderer<'_>, frame: &mut Frame);
+}
+
 /// One configuration measured.
 #[derive(Clone, Debug)]
 pub struct ThroughputRow {
-    pub method: Method,
-    pub arith: Arith,
+    pub tracer: Tracer,
     pub threads: usize,
     pub primary_rays: u64,
     pub shadow_rays: u64,
@@ -50,62 +65,96 @@ pub const ROUNDS: usize = 3;
 /// Frames per configuration and round: as many as fit in this time, at least one.
 const ROUND_TIME: Duration = Duration::from_millis(500);
 
-/// Renders the scene's view with and without shadows for each configuration, in
-/// [`ROUNDS`] rounds; `progress` is told after each configuration's round.
+/// Renders the scene's view with and without shadows for each configuration (each method in
+/// each arithmetic, then `reference` if given, each on every thread count), in [`ROUNDS`]
+/// rounds; `progress` is told after each configuration's round.
 pub fn throughput(
     scene: &Scene,
     terrain: &Terrain,
     methods: &[Method],
     ariths: &[Arith],
     threads: &[usize],
+    reference: Option<&dyn Reference>,
     progress: &mut dyn FnMut(),
 ) -> anyhow::Result<Vec<ThroughputRow>> {
     let mut pools = Vec::new();
     for &count in threads {
         pools.push(rayon::ThreadPoolBuilder::new().num_threads(count).build()?);
     }
+    let ours = methods.iter().flat_map(|&method| {
+        ariths
+            .iter()
+            .map(move |&arith| Tracer::Heightray(method, arith))
+    });
+    let tracers = ours.chain(reference.map(|_| Tracer::Reference));
     let mut configs = Vec::new();
-    for &method in methods {
-        for &arith in ariths {
-            for (&count, pool) in threads.iter().zip(&pools) {
-                configs.push((method, arith, count, pool, [Timing::new(), Timing::new()]));
-            }
+    for tracer in tracers {
+        for (&count, pool) in threads.iter().zip(&pools) {
+            configs.push((tracer, count, pool, [Timing::new(), Timing::new()]));
         }
     }
     for _ in 0..ROUNDS {
-        for (method, arith, _, pool, timings) in &mut configs {
+        for (tracer, _, pool, timings) in &mut configs {
             for (shadows, timing) in [false, true].into_iter().zip(timings) {
-                let mut lighting = scene.lighting;
-                lighting.shadows = shadows;
-                let renderer = Renderer {
-                    shader: Shader {
-                        terrain,
-                        lighting,
-                        method: *method,
-                        culling: Culling::default(),
-                    },
-                    camera: scene.camera,
-                    arith: *arith,
-                };
-                timing.round(&renderer, pool);
+                let renderer = view(scene, terrain, *tracer, shadows);
+                let render = |frame: &mut Frame| render_as(*tracer, &renderer, reference, frame);
+                timing.round(renderer.camera.size(), render, pool);
             }
             progress();
         }
     }
-    let rows =
-        configs.into_iter().map(
-            |(method, arith, threads, _, [plain, shadowed])| ThroughputRow {
-                method,
-                arith,
-                threads,
-                primary_rays: plain.totals.primary_rays,
-                shadow_rays: shadowed.totals.shadow_rays,
-                primary_queries: plain.totals.primary,
-                primary_time: plain.best,
-                total_time: shadowed.best,
-            },
-        );
+    let rows = configs
+        .into_iter()
+        .map(|(tracer, threads, _, [plain, shadowed])| ThroughputRow {
+            tracer,
+            threads,
+            primary_rays: plain.totals.primary_rays,
+            shadow_rays: shadowed.totals.shadow_rays,
+            primary_queries: plain.totals.primary,
+            primary_time: plain.best,
+            total_time: shadowed.best,
+        });
     Ok(rows.collect())
+}
+
+/// Renders `renderer`'s view into `frame` as `tracer` traces it (heightray's renderer where
+/// no reference is given).
+pub fn render_as(
+    tracer: Tracer,
+    renderer: &Renderer<'_>,
+    reference: Option<&dyn Reference>,
+    frame: &mut Frame,
+) {
+    match (tracer, reference) {
+        (Tracer::Reference, Some(reference)) => reference.render(renderer, frame),
+        _ => renderer.render(frame),
+    }
+}
+
+/// The scene's view as `tracer` renders it, with or without shadows (a reference tracer
+/// takes only the camera and shading from it).
+pub fn view<'a>(
+    scene: &Scene,
+    terrain: &'a Terrain,
+    tracer: Tracer,
+    shadows: bool,
+) -> Renderer<'a> {
+    let (method, arith) = match tracer {
+        Tracer::Heightray(method, arith) => (method, arith),
+        Tracer::Reference => (Method::Mipmap, Arith::F64),
+    };
+    let mut lighting = scene.lighting;
+    lighting.shadows = shadows;
+    Renderer {
+        shader: Shader {
+            terrain,
+            lighting,
+            method,
+            culling: Culling::default(),
+        },
+        camera: scene.camera,
+        arith,
+    }
 }
 
 /// The frames of one configuration so far.
@@ -123,12 +172,16 @@ impl Timing {
         }
     }
 
-    /// Renders as many frames as fit in [`ROUND_TIME`] (at least one).
-    fn round(&mut self, renderer: &Renderer<'_>, pool: &rayon::ThreadPool) {
-        let (w, h) = renderer.camera.size();
+    /// Renders as many frames of `(w, h)` pixels as fit in [`ROUND_TIME`] (at least one).
+    fn round(
+        &mut self,
+        (w, h): (u32, u32),
+        render: impl Fn(&mut Frame) + Sync,
+        pool: &rayon::ThreadPool,
+    ) {
         let round = fastest(ROUND_TIME, || {
             let mut frame = Frame::new(w, h);
-            let ((), time) = timed(|| pool.install(|| renderer.render(&mut frame)));
+            let ((), time) = timed(|| pool.install(|| render(&mut frame)));
             (frame.totals, time)
         });
         (self.best, self.totals) = (self.best.min(round.fastest), round.out);
@@ -141,8 +194,7 @@ mod tests {
 
     fn row(shadow_rays: u64, primary_ms: u64, total_ms: u64) -> ThroughputRow {
         ThroughputRow {
-            method: Method::Mipmap,
-            arith: Arith::F64,
+            tracer: Tracer::Heightray(Method::Mipmap, Arith::F64),
             threads: 1,
             primary_rays: 1000,
             shadow_rays,

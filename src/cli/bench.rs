@@ -2,11 +2,13 @@
 
 use super::{SpeedArgs, TextbookArgs};
 use heightray::bench::{
-    hard_cases_versus_exact, sized_scene, throughput, versus_textbook, ThroughputRow, ROUNDS, SEED,
+    hard_cases_versus_exact, render_as, sized_scene, throughput, versus_textbook, view, Reference,
+    ThroughputRow, Tracer, ROUNDS, SEED,
 };
+use heightray::render::Frame;
 use heightray::render::{Scene, SceneFile};
 use heightray::traverse::prepare;
-use heightray::traverse::{Arith, HitMiss};
+use heightray::traverse::{Arith, HitMiss, Method};
 use heightray::Terrain;
 use indicatif::ProgressBar;
 use indicatif::ProgressStyle;
@@ -19,7 +21,8 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
         args.threads.iter().all(|&t| t > 0),
         "--threads counts must be at least 1"
     );
-    let configs = args.methods.len() * args.ariths.len() * args.threads.len() * ROUNDS;
+    let tracers = args.methods.len() * args.ariths.len() + usize::from(args.embree);
+    let configs = tracers * args.threads.len() * ROUNDS;
     let mut measured = Vec::new();
     if args.sizes.is_empty() {
         let scenes = scenes_or_builtins(&args.scenes)?;
@@ -30,8 +33,8 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
             bar.set_message(name.clone());
             let scene = scene_at_size(source, size)?;
             let terrain = Terrain::new(scene.field.clone());
-            let rows = measure(args, &scene, &terrain, &bar)?;
-            measured.push((name, terrain, rows));
+            let (rows, reference) = measure(args, &scene, &terrain, &bar)?;
+            measured.push((name, terrain, rows, reference));
         }
         bar.finish_and_clear();
     } else {
@@ -42,14 +45,14 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
             let scene = sized_scene(samples, size)?;
             let terrain = fastest_build(&scene);
             bar.set_message(format!("{samples}x{samples}"));
-            let rows = measure(args, &scene, &terrain, &bar)?;
+            let (rows, reference) = measure(args, &scene, &terrain, &bar)?;
             let label = format!("valley landscape (seed {SEED}) at {samples}x{samples}");
-            measured.push((label, terrain, rows));
+            measured.push((label, terrain, rows, reference));
         }
         bar.finish_and_clear();
     }
-    for (label, terrain, rows) in &measured {
-        print_table(label, terrain, rows);
+    for (label, terrain, rows, reference) in &measured {
+        print_table(label, terrain, rows, reference.as_ref());
     }
     if measured.len() > 1 && !args.sizes.is_empty() {
         print_growth(&measured);
@@ -119,43 +122,136 @@ fn fastest_build(scene: &Scene) -> Terrain {
     fastest
 }
 
+/// One scene measured: its label, terrain, rows and the reference tracer's figures.
+type Measured = (
+    String,
+    Terrain,
+    Vec<ThroughputRow>,
+    Option<ReferenceFigures>,
+);
+
+/// A reference tracer built for one terrain, with what its build took and holds.
+struct Built {
+    tracer: Box<dyn Reference>,
+    build: Duration,
+    bytes: usize,
+}
+
+/// What was measured of the reference tracer besides its frames.
+struct ReferenceFigures {
+    build: Duration,
+    bytes: usize,
+    /// Pixels of the frame with shadows whose colour differs from heightray's (mipmap, `f64`)
+    /// by more than [`LEVELS_APART`] in a channel.
+    differing: usize,
+    /// Primary hits: heightray's, the reference's.
+    hits: (u64, u64),
+}
+
+/// Colours this many levels apart or fewer count as the same pixel: a hit point in `f32`
+/// shades a level or two off the one in `f64`.
+const LEVELS_APART: u32 = 2;
+
+/// Embree's scene of the terrain, when asked for.
+#[cfg(feature = "embree")]
+fn reference(args: &SpeedArgs, terrain: &Terrain) -> anyhow::Result<Option<Built>> {
+    use heightray::bench::embree::EmbreeScene;
+    if !args.embree {
+        return Ok(None);
+    }
+    let scene = EmbreeScene::build(terrain)?;
+    Ok(Some(Built {
+        build: scene.build_time(),
+        bytes: scene.bytes(),
+        tracer: Box::new(scene),
+    }))
+}
+
+#[cfg(not(feature = "embree"))]
+fn reference(args: &SpeedArgs, _terrain: &Terrain) -> anyhow::Result<Option<Built>> {
+    anyhow::ensure!(
+        !args.embree,
+        "this heightray was built without Embree: install libembree-dev (Debian, Ubuntu) and run \
+         `cargo run --release --features embree -- bench speed --embree ...`"
+    );
+    Ok(None)
+}
+
+/// The configurations' rows, and the reference tracer's figures if it was asked for (its
+/// scene is dropped here: at 8193² Embree's takes gigabytes).
 fn measure(
     args: &SpeedArgs,
     scene: &Scene,
     terrain: &Terrain,
     bar: &ProgressBar,
-) -> anyhow::Result<Vec<ThroughputRow>> {
-    throughput(
+) -> anyhow::Result<(Vec<ThroughputRow>, Option<ReferenceFigures>)> {
+    let reference = reference(args, terrain)?;
+    let rows = throughput(
         scene,
         terrain,
         &args.methods,
         &args.ariths,
         &args.threads,
+        reference.as_ref().map(|built| &*built.tracer),
         &mut || bar.inc(1),
-    )
+    )?;
+    let figures = reference.map(|built| {
+        let render = |tracer| {
+            let renderer = view(scene, terrain, tracer, true);
+            let (w, h) = renderer.camera.size();
+            let mut frame = Frame::new(w, h);
+            render_as(tracer, &renderer, Some(&*built.tracer), &mut frame);
+            frame
+        };
+        let ours = render(Tracer::Heightray(Method::Mipmap, Arith::F64));
+        let theirs = render(Tracer::Reference);
+        let apart = |a: u32, b: u32| {
+            (0..3).any(|k| ((a >> (8 * k)) & 255).abs_diff((b >> (8 * k)) & 255) > LEVELS_APART)
+        };
+        let pairs = ours.pixels.iter().zip(&theirs.pixels);
+        ReferenceFigures {
+            build: built.build,
+            bytes: built.bytes,
+            differing: pairs.filter(|(&a, &b)| apart(a, b)).count(),
+            hits: (ours.totals.primary_hits, theirs.totals.primary_hits),
+        }
+    });
+    Ok((rows, figures))
 }
 
-fn print_table(label: &str, terrain: &Terrain, rows: &[ThroughputRow]) {
+fn print_table(
+    label: &str,
+    terrain: &Terrain,
+    rows: &[ThroughputRow],
+    reference: Option<&ReferenceFigures>,
+) {
     let field = terrain.field();
     let samples = (field.width() * field.height()) as f64;
     println!("\n{label}: {}x{} samples", field.width(), field.height());
     println!("| method | arith | threads | build ms | bytes/sample | primary Mrays/s | shadow Mrays/s | frame with shadows ms | time x f64 | 2 threads x 1 |");
     println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for row in rows {
-        let same = |arith, threads| {
+        let same = |tracer, threads| {
             rows.iter()
-                .find(|r| r.method == row.method && r.arith == arith && r.threads == threads)
+                .find(|r| r.tracer == tracer && r.threads == threads)
         };
-        let versus_f64 = same(Arith::F64, row.threads)
-            .map(|r| r.primary_per_second() / row.primary_per_second());
-        let versus_one = same(row.arith, 1)
+        let versus_f64 = match row.tracer {
+            Tracer::Heightray(method, _) => {
+                same(Tracer::Heightray(method, Arith::F64), row.threads)
+                    .map(|r| r.primary_per_second() / row.primary_per_second())
+            }
+            Tracer::Reference => None,
+        };
+        let versus_one = same(row.tracer, 1)
             .filter(|_| row.threads > 1)
             .map(|r| row.primary_per_second() / r.primary_per_second());
-        let (build, bytes) = prepare(terrain, row.method);
+        let (method, arith) = names(row.tracer);
+        let (build, bytes) = match row.tracer {
+            Tracer::Heightray(method, _) => prepare(terrain, method),
+            Tracer::Reference => reference.map_or((Duration::ZERO, 0), |r| (r.build, r.bytes)),
+        };
         println!(
-            "| {} | {} | {} | {:.1} | {:.2} | {:.3} | {} | {:.1} | {} | {} |",
-            row.method,
-            row.arith,
+            "| {method} | {arith} | {} | {:.1} | {:.2} | {:.3} | {} | {:.1} | {} | {} |",
             row.threads,
             build.as_secs_f64() * 1e3,
             bytes as f64 / samples,
@@ -170,26 +266,41 @@ fn print_table(label: &str, terrain: &Terrain, rows: &[ThroughputRow]) {
     if rows.iter().any(|r| r.shadow_per_second().is_none()) {
         println!("(shadow Mrays/s \"-\": no shadow rays, or the frame with shadows was not slower than the one without: shadows were lost in the noise of the two times)");
     }
+    if let Some(figures) = reference {
+        let pixels = rows.first().map_or(0, |r| r.primary_rays);
+        println!("(embree triangles: Embree 3 on the terrain's triangles in f32, built on one thread; its bytes/sample are all it holds, vertices and indices included, where heightray's are what it holds beyond the 2-byte samples. Its frame with shadows differs from the mipmap's in f64 in {} of {pixels} pixels by more than {LEVELS_APART} levels in a channel; primary hits: mipmap {}, Embree {})",
+            figures.differing, figures.hits.0, figures.hits.1);
+    }
+}
+
+/// A tracer's method and arithmetic columns.
+fn names(tracer: Tracer) -> (String, String) {
+    match tracer {
+        Tracer::Heightray(method, arith) => (method.to_string(), arith.to_string()),
+        Tracer::Reference => ("embree triangles".into(), "f32".into()),
+    }
 }
 
 /// How each method's time per primary ray grows with the terrain size (first arithmetic, one
 /// thread) beside the growth of log N, and the queries per primary ray it grows with.
-fn print_growth(measured: &[(String, Terrain, Vec<ThroughputRow>)]) {
+fn print_growth(measured: &[Measured]) {
     let first = &measured[0];
     let side = |t: &Terrain| t.field().width() as f64;
     let mut header = "| method | arith |".to_string();
-    for (_, terrain, _) in measured {
+    for (_, terrain, _, _) in measured {
         header += &format!(" {0}x{0} |", side(terrain));
     }
     header += &format!("\n|---|---|{}", "---:|".repeat(measured.len()));
     // One line per method: `cell` of its row at each size.
-    let lines = |cell: &dyn Fn(&ThroughputRow, &ThroughputRow) -> String| {
-        for base in first.2.iter().filter(|r| r.threads == 1) {
-            let mut line = format!("| {} | {} |", base.method, base.arith);
-            for (_, _, rows) in measured {
-                let row = rows.iter().find(|r| {
-                    r.method == base.method && r.arith == base.arith && r.threads == base.threads
-                });
+    let lines = |cell: &dyn Fn(&ThroughputRow, &ThroughputRow) -> String, ours_only: bool| {
+        let ours = |r: &&ThroughputRow| !ours_only || r.tracer != Tracer::Reference;
+        for base in first.2.iter().filter(|r| r.threads == 1).filter(ours) {
+            let (method, arith) = names(base.tracer);
+            let mut line = format!("| {method} | {arith} |");
+            for (_, _, rows, _) in measured {
+                let row = rows
+                    .iter()
+                    .find(|r| r.tracer == base.tracer && r.threads == base.threads);
                 line += &row.map_or(" - |".into(), |r| format!(" {} |", cell(base, r)));
             }
             println!("{line}");
@@ -197,16 +308,19 @@ fn print_growth(measured: &[(String, Terrain, Vec<ThroughputRow>)]) {
     };
 
     println!("\ngrowth of time per primary ray with the terrain size (x the smallest)\n{header}");
-    lines(&|base, r| format!("{:.2}", base.primary_per_second() / r.primary_per_second()));
+    let growth = |base: &ThroughputRow, r: &ThroughputRow| {
+        format!("{:.2}", base.primary_per_second() / r.primary_per_second())
+    };
+    lines(&growth, false);
     let mut line = "| log2 N | - |".to_string();
-    for (_, terrain, _) in measured {
+    for (_, terrain, _, _) in measured {
         line += &format!(" {:.2} |", side(terrain).log2() / side(&first.1).log2());
     }
     println!("{line}");
 
     // What the time grows with: the finer terrain has more near misses per ray.
     println!("\nqueries per primary ray: block / run / cell / triangle / beam (once per tile of rays)\n{header}");
-    lines(&|_, r| {
+    let queries = |_: &ThroughputRow, r: &ThroughputRow| {
         let per_ray = |queries: HitMiss| queries.total() as f64 / r.primary_rays as f64;
         let q = &r.primary_queries;
         format!(
@@ -217,7 +331,8 @@ fn print_growth(measured: &[(String, Terrain, Vec<ThroughputRow>)]) {
             per_ray(q.triangle),
             per_ray(q.beam)
         )
-    });
+    };
+    lines(&queries, true);
 }
 
 /// A scene to measure on, as written: `path` names it (a built-in scene by its name).

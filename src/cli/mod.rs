@@ -112,6 +112,10 @@ pub struct SpeedArgs {
     /// Thread counts, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "1,2")]
     pub threads: Vec<usize>,
+    /// Also measure Embree 3 on the terrain's triangles, same view, same run (needs a build
+    /// with `--features embree`, which links libembree3).
+    #[arg(long)]
+    pub embree: bool,
 }
 
 #[derive(clap::Args, Debug)]

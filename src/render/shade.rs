@@ -149,7 +149,7 @@ impl Shader<'_> {
         let primary = trace_scalar(self.terrain, &o, &d, ray.dir(), walk);
         let Some(found) = primary.hit else {
             return Ok(Sample {
-                rgb: pack(self.sky(ray.dir())),
+                rgb: self.sky_rgb(ray),
                 hit: false,
                 shadow: Shadow::NotAsked,
                 primary: primary.counters,
@@ -166,14 +166,32 @@ impl Shader<'_> {
         } else {
             DVec3::from(found.point(&o, &d).map(|c| c.to_f64()))
         };
-        let normal = self.normal(&found, p);
-        let sun = DVec3::from(self.lighting.sun);
-        let facing = normal.dot(sun);
+        let facing = self.facing(found.cell, found.triangle, p);
         let (shadow, secondary, redone) = cast(&found, facing)?;
         let lit = match shadow {
             Shadow::Cast { shadowed: true } => 0.0,
             _ => facing.max(0.0),
         };
+        Ok(Sample {
+            rgb: self.surface_rgb(ray, p, t, lit),
+            hit: true,
+            shadow,
+            primary: primary.counters,
+            secondary,
+            redone,
+        })
+    }
+
+    /// How the surface at `p` on triangle `triangle` of `cell` faces the sun: the cosine of
+    /// the angle between the shading normal and the sun (not positive where it faces away).
+    pub fn facing(&self, cell: (usize, usize), triangle: u8, p: DVec3) -> f64 {
+        self.normal(cell, triangle, p)
+            .dot(DVec3::from(self.lighting.sun))
+    }
+
+    /// The colour of the surface at `p`, `t` along `ray`, lit by the sun at the cosine `lit`
+    /// (zero in shadow).
+    pub fn surface_rgb(&self, ray: &Ray, p: DVec3, t: f64, lit: f64) -> u32 {
         let light = self.lighting.ambient + self.lighting.intensity * lit;
         let mut colour = self.ramp(p.z) * light;
         if self.lighting.fog > 0.0 {
@@ -181,14 +199,12 @@ impl Shader<'_> {
             let clear = (-self.lighting.fog * distance).exp();
             colour = colour * clear + horizon() * (1.0 - clear);
         }
-        Ok(Sample {
-            rgb: pack(colour),
-            hit: true,
-            shadow,
-            primary: primary.counters,
-            secondary,
-            redone,
-        })
+        pack(colour)
+    }
+
+    /// The colour of a ray that misses the terrain.
+    pub fn sky_rgb(&self, ray: &Ray) -> u32 {
+        pack(self.sky(ray.dir()))
     }
 
     /// Decides whether a shadow ray can change the pixel, and casts it if so.
@@ -263,7 +279,7 @@ impl Shader<'_> {
     /// touches the triangle it starts on only at its start (in floats decided with room to
     /// spare for rounding: when in doubt the triangle is tested like any other).
     fn leaves_at_once<S: Scalar>(&self, found: &Found<S>) -> bool {
-        let n = self.geometric_normal(found);
+        let n = self.geometric_normal(found.cell, found.triangle);
         let s = DVec3::from(self.lighting.sun);
         let terms = [n.x * s.x, n.y * s.y, n.z * s.z];
         let sum: f64 = terms.iter().sum();
@@ -283,21 +299,20 @@ impl Shader<'_> {
     }
 
     /// The (unnormalised) normal of the hit triangle's plane: `(-gx, -gy, 1)`.
-    fn geometric_normal<S: Scalar>(&self, found: &Found<S>) -> DVec3 {
-        let heights = self.terrain.corner_heights(found.cell.0, found.cell.1);
-        let (gx, gy) = gradient(found.triangle, heights);
+    fn geometric_normal(&self, (i, j): (usize, usize), triangle: u8) -> DVec3 {
+        let heights = self.terrain.corner_heights(i, j);
+        let (gx, gy) = gradient(triangle, heights);
         DVec3::new(-gx, -gy, 1.0)
     }
 
-    /// The shading normal at `p` on the hit triangle.
-    fn normal<S: Scalar>(&self, found: &Found<S>, p: DVec3) -> DVec3 {
-        let (i, j) = found.cell;
+    /// The shading normal at `p` on triangle `triangle` of cell `(i, j)`.
+    fn normal(&self, (i, j): (usize, usize), triangle: u8, p: DVec3) -> DVec3 {
         let (u, w) = (
             (p.x - i as f64).clamp(0.0, 1.0),
             (p.y - j as f64).clamp(0.0, 1.0),
         );
-        let n = match (self.lighting.normals, found.triangle) {
-            (Normals::Flat, _) => self.geometric_normal(found),
+        let n = match (self.lighting.normals, triangle) {
+            (Normals::Flat, _) => self.geometric_normal((i, j), triangle),
             // Interpolate vertex normals with the triangle's barycentric weights.
             (Normals::Smooth, 0) => {
                 self.vertex_normal(i, j) * (1.0 - u)
