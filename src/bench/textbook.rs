@@ -89,10 +89,17 @@ pub fn versus_textbook(scene: &Scene, terrain: &Terrain) -> TextbookRow {
     }
 }
 
-/// Whether two answers differ: a hit against a miss, or `t` off by more than a relative 1e-9.
+/// Whether two answers in `f64` differ: a hit against a miss, or `t` off by more than a
+/// relative 1e-9.
 fn differ(a: Option<f64>, b: Option<f64>) -> bool {
+    differ_by(a, b, 1e-9)
+}
+
+/// Whether two answers differ: a hit against a miss, or `t` off by more than a relative
+/// `tolerance`.
+pub(super) fn differ_by(a: Option<f64>, b: Option<f64>, tolerance: f64) -> bool {
     match (a, b) {
-        (Some(a), Some(b)) => (a - b).abs() > 1e-9 * a.abs().max(1.0),
+        (Some(a), Some(b)) => (a - b).abs() > tolerance * a.abs().max(1.0),
         (a, b) => a.is_some() != b.is_some(),
     }
 }

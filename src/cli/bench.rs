@@ -61,6 +61,7 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
 }
 
 pub fn textbook(args: &TextbookArgs) -> anyhow::Result<ExitCode> {
+    anyhow::ensure!(!args.embree || cfg!(feature = "embree"), WITHOUT_EMBREE);
     let scenes = scenes_or_builtins(&args.scenes)?;
     let bar = progress_bar(scenes.len() + 1);
     let mut rows = Vec::new();
@@ -101,7 +102,35 @@ pub fn textbook(args: &TextbookArgs) -> anyhow::Result<ExitCode> {
             row.set, row.rays, row.heightray_differing, row.textbook_differing
         );
     }
+    if args.embree {
+        print_embree_hard_cases(args.per_set)?;
+    }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Why `--embree` cannot be measured by this build.
+const WITHOUT_EMBREE: &str = "this heightray was built without Embree: install libembree-dev \
+     (Debian, Ubuntu) and run it with `cargo run --release --features embree -- ...`";
+
+/// The hard cases in `f32`: heightray's mipmap walk and Embree against exact.
+#[cfg(feature = "embree")]
+fn print_embree_hard_cases(per_set: usize) -> anyhow::Result<()> {
+    use heightray::bench::embree::{hard_cases_in_f32, F32_TOLERANCE};
+    println!("\nthe same sets in f32: answers that differ from heightray's exact answers (a hit against a miss, or t off by more than a relative {F32_TOLERANCE:e})");
+    println!("| set | rays | heightray mipmap f32 | Embree 3 |");
+    println!("|---|---:|---:|---:|");
+    for row in hard_cases_in_f32(per_set)? {
+        println!(
+            "| {} | {} | {} | {} |",
+            row.set, row.rays, row.heightray, row.embree
+        );
+    }
+    Ok(())
+}
+
+#[cfg(not(feature = "embree"))]
+fn print_embree_hard_cases(_per_set: usize) -> anyhow::Result<()> {
+    anyhow::bail!(WITHOUT_EMBREE)
 }
 
 /// The scene's terrain, built as many times as fit in a second (at least three): the one
@@ -169,11 +198,7 @@ fn reference(args: &SpeedArgs, terrain: &Terrain) -> anyhow::Result<Option<Built
 
 #[cfg(not(feature = "embree"))]
 fn reference(args: &SpeedArgs, _terrain: &Terrain) -> anyhow::Result<Option<Built>> {
-    anyhow::ensure!(
-        !args.embree,
-        "this heightray was built without Embree: install libembree-dev (Debian, Ubuntu) and run \
-         `cargo run --release --features embree -- bench speed --embree ...`"
-    );
+    anyhow::ensure!(!args.embree, WITHOUT_EMBREE);
     Ok(None)
 }
 

@@ -129,6 +129,10 @@ pub struct TextbookArgs {
     /// Rays per hard-case set (answered exactly too, for reference).
     #[arg(long, default_value_t = 1024)]
     pub per_set: usize,
+    /// Also answer the hard cases with Embree 3 and with heightray in `f32` (needs a build
+    /// with `--features embree`).
+    #[arg(long)]
+    pub embree: bool,
 }
 
 #[derive(clap::Args, Debug)]

@@ -1,7 +1,7 @@
 //! `heightray bench speed --sizes`: the same landscape at several sizes, every method, with
 //! the memory each method needs per sample (a property of the data structures, asserted here;
 //! speeds are only reported, never asserted). `heightray bench accuracy`: its report and plot.
-//! `heightray bench textbook`: its two tables.
+//! `heightray bench textbook`: its two tables. `--embree` in a build without Embree.
 
 use std::process::Command;
 
@@ -229,5 +229,28 @@ fn textbook_compares_the_walks_on_every_scene_and_hard_case_set() {
     for row in &sets {
         let count = |k: usize| row[k].parse::<u64>().expect("a count");
         assert!(count(2) <= count(1) && count(3) <= count(1), "{row:?}");
+    }
+}
+
+/// A build without the `embree` feature says how to get one when asked for Embree, and
+/// measures nothing.
+#[cfg(not(feature = "embree"))]
+#[test]
+fn asking_for_embree_without_it_says_how_to_build_it() {
+    for args in [
+        ["bench", "speed", "--sizes", "33", "--embree"].as_slice(),
+        ["bench", "textbook", "--size", "4", "--embree"].as_slice(),
+    ] {
+        let output = Command::new(env!("CARGO_BIN_EXE_heightray"))
+            .args(args)
+            .output()
+            .expect("runs");
+        assert!(!output.status.success(), "{args:?}: {output:?}");
+        let message = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            message.contains("built without Embree") && message.contains("--features embree"),
+            "{args:?}: {message}"
+        );
+        assert!(output.stdout.is_empty(), "{args:?}: {output:?}");
     }
 }

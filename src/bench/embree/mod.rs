@@ -10,6 +10,9 @@
 //! images can be compared pixel by pixel, and the time differs only in the tracing.
 
 mod ffi;
+mod hard_cases;
+
+pub use hard_cases::{hard_cases_in_f32, F32Row, F32_TOLERANCE};
 
 use crate::render::{Frame, FrameStats, PixelStats, Renderer, Sample, Shadow, ShadowSkip};
 use crate::traverse::Counters;
