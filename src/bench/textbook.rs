@@ -8,7 +8,7 @@
 //! hits at lattice points and on level ground a ray grazes (see [`hard_cases_versus_exact`]).
 
 use super::fastest::{fastest, timed};
-use super::ray_sets::hard_cases;
+use super::ray_sets::{hard_cases, RaySet};
 use crate::render::Scene;
 use crate::traverse::{trace, Arith, Method, TraceOptions};
 use crate::{Ray, Terrain};
@@ -104,41 +104,63 @@ pub(super) fn differ_by(a: Option<f64>, b: Option<f64>, tolerance: f64) -> bool 
     }
 }
 
-/// One set of numerically hard rays: how many answers of each walk in `f64` differ from the
-/// exact answers (a hit against a miss, or `t` off by more than a relative 1e-9).
+/// One set of numerically hard rays: how many answers of each of two tracers differ from
+/// heightray's exact answers.
 #[derive(Clone, Debug)]
 pub struct HardCaseRow {
     pub set: String,
     pub rays: u64,
-    pub heightray_differing: u64,
-    pub textbook_differing: u64,
+    pub differing: [u64; 2],
 }
 
-/// The hard-case sets of the accuracy benchmark ([`hard_cases`], `per_set` rays each) with
-/// both walks, against heightray's mipmap walk in exact arithmetic.
-pub fn hard_cases_versus_exact(per_set: usize) -> anyhow::Result<Vec<HardCaseRow>> {
-    let (f64_options, exact) = (
-        TraceOptions::new(Method::Mipmap, Arith::F64),
-        TraceOptions::new(Method::Mipmap, Arith::Exact),
-    );
+/// A tracer's answer for a ray: the `t` of its first hit, if any.
+pub type Answer<'a> = Box<dyn Fn(&Ray) -> Option<f64> + 'a>;
+
+/// The hard-case sets of the accuracy benchmark ([`hard_cases`], `per_set` rays each), every
+/// ray answered by the two tracers `tracers` makes for its set and by heightray's mipmap walk
+/// in exact arithmetic: how many answers of each differ from exact (a hit against a miss, or
+/// `t` off by more than a relative `tolerance`).
+pub fn hard_cases_against_exact(
+    per_set: usize,
+    tolerance: f64,
+    tracers: impl for<'a> Fn(&'a RaySet) -> anyhow::Result<[Answer<'a>; 2]>,
+) -> anyhow::Result<Vec<HardCaseRow>> {
+    let exact = TraceOptions::new(Method::Mipmap, Arith::Exact);
     let mut rows = Vec::new();
     for set in hard_cases(per_set)? {
-        let textbook = Textbook::new(&set.terrain);
-        let t = |ray, options| trace(&set.terrain, ray, options).hit.map(|hit| hit.t);
-        let (mut heightray_differing, mut textbook_differing) = (0, 0);
+        let answers = tracers(&set)?;
+        let mut differing = [0, 0];
         for ray in &set.rays {
-            let reference = t(ray, &exact);
-            heightray_differing += u64::from(differ(t(ray, &f64_options), reference));
-            textbook_differing += u64::from(differ(textbook.first_hit(ray).0, reference));
+            let reference = trace(&set.terrain, ray, &exact).hit.map(|hit| hit.t);
+            for (count, answer) in differing.iter_mut().zip(&answers) {
+                *count += u64::from(differ_by(answer(ray), reference, tolerance));
+            }
         }
         rows.push(HardCaseRow {
-            set: set.name,
+            set: set.name.clone(),
             rays: set.rays.len() as u64,
-            heightray_differing,
-            textbook_differing,
+            differing,
         });
     }
     Ok(rows)
+}
+
+/// The hard-case sets answered by heightray's mipmap walk and by the textbook walk, both in
+/// `f64`, against exact (answers differ by more than a relative 1e-9 in `t`).
+pub fn hard_cases_versus_exact(per_set: usize) -> anyhow::Result<Vec<HardCaseRow>> {
+    hard_cases_against_exact(per_set, 1e-9, |set| {
+        let textbook = Textbook::new(&set.terrain);
+        Ok([
+            mipmap_in(set, Arith::F64),
+            Box::new(move |ray| textbook.first_hit(ray).0),
+        ])
+    })
+}
+
+/// heightray's mipmap walk in `arith`, answering a set's rays.
+pub(super) fn mipmap_in(set: &RaySet, arith: Arith) -> Answer<'_> {
+    let options = TraceOptions::new(Method::Mipmap, arith);
+    Box::new(move |ray| trace(&set.terrain, ray, &options).hit.map(|hit| hit.t))
 }
 
 /// The textbook walk over one terrain.

@@ -2,8 +2,8 @@
 
 use super::{SpeedArgs, TextbookArgs};
 use heightray::bench::{
-    hard_cases_versus_exact, render_as, sized_scene, throughput, versus_textbook, view, Reference,
-    ThroughputRow, Tracer, ROUNDS, SEED,
+    hard_cases_versus_exact, render_as, sized_scene, throughput, versus_textbook, view,
+    HardCaseRow, Reference, ThroughputRow, Tracer, ROUNDS, SEED,
 };
 use heightray::render::Frame;
 use heightray::render::{Scene, SceneFile};
@@ -93,15 +93,11 @@ pub fn textbook(args: &TextbookArgs) -> anyhow::Result<ExitCode> {
             row.differing,
         );
     }
-    println!("\nthe hard-case sets of `bench accuracy`: answers in f64 that differ from heightray's exact answers (a hit against a miss, or t off by more than a relative 1e-9)");
-    println!("| set | rays | heightray mipmap f64 | textbook walk |");
-    println!("|---|---:|---:|---:|");
-    for row in hard {
-        println!(
-            "| {} | {} | {} | {} |",
-            row.set, row.rays, row.heightray_differing, row.textbook_differing
-        );
-    }
+    print_hard_cases(
+        "the hard-case sets of `bench accuracy`: answers in f64 that differ from heightray's exact answers (a hit against a miss, or t off by more than a relative 1e-9)",
+        ["heightray mipmap f64", "textbook walk"],
+        &hard,
+    );
     if args.embree {
         print_embree_hard_cases(args.per_set)?;
     }
@@ -116,21 +112,28 @@ const WITHOUT_EMBREE: &str = "this heightray was built without Embree: install l
 #[cfg(feature = "embree")]
 fn print_embree_hard_cases(per_set: usize) -> anyhow::Result<()> {
     use heightray::bench::embree::{hard_cases_in_f32, F32_TOLERANCE};
-    println!("\nthe same sets in f32: answers that differ from heightray's exact answers (a hit against a miss, or t off by more than a relative {F32_TOLERANCE:e})");
-    println!("| set | rays | heightray mipmap f32 | Embree 3 |");
-    println!("|---|---:|---:|---:|");
-    for row in hard_cases_in_f32(per_set)? {
-        println!(
-            "| {} | {} | {} | {} |",
-            row.set, row.rays, row.heightray, row.embree
-        );
-    }
+    print_hard_cases(
+        &format!("the same sets in f32: answers that differ from heightray's exact answers (a hit against a miss, or t off by more than a relative {F32_TOLERANCE:e})"),
+        ["heightray mipmap f32", "Embree 3"],
+        &hard_cases_in_f32(per_set)?,
+    );
     Ok(())
 }
 
 #[cfg(not(feature = "embree"))]
 fn print_embree_hard_cases(_per_set: usize) -> anyhow::Result<()> {
     anyhow::bail!(WITHOUT_EMBREE)
+}
+
+/// A table of the hard-case sets: how many answers of each of two tracers differ from exact.
+fn print_hard_cases(heading: &str, [first, second]: [&str; 2], rows: &[HardCaseRow]) {
+    println!("\n{heading}");
+    println!("| set | rays | {first} | {second} |");
+    println!("|---|---:|---:|---:|");
+    for row in rows {
+        let [a, b] = row.differing;
+        println!("| {} | {} | {a} | {b} |", row.set, row.rays);
+    }
 }
 
 /// The scene's terrain, built as many times as fit in a second (at least three): the one

@@ -12,7 +12,7 @@
 mod ffi;
 mod hard_cases;
 
-pub use hard_cases::{hard_cases_in_f32, F32Row, F32_TOLERANCE};
+pub use hard_cases::{hard_cases_in_f32, F32_TOLERANCE};
 
 use crate::render::{Frame, FrameStats, PixelStats, Renderer, Sample, Shadow, ShadowSkip};
 use crate::traverse::Counters;
