@@ -70,8 +70,8 @@ extern "C" fn monitor(user: *mut c_void, bytes: isize, _post: bool) -> bool {
 }
 
 impl EmbreeScene {
-    /// Builds the scene on one thread (Embree's own thread pool limited to one, as the
-    /// reference figures were measured), at the default build quality.
+    /// Builds the scene on one thread (Embree's own thread pool limited to one, as heightray
+    /// builds), at the default build quality.
     pub fn build(terrain: &Terrain) -> Result<EmbreeScene, EmbreeError> {
         let field = terrain.field();
         let (w, h) = (field.width(), field.height());
