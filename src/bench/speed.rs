@@ -12,13 +12,16 @@ use std::time::Duration;
 pub enum Tracer {
     /// One of heightray's methods in one arithmetic.
     Heightray(Method, Arith),
-    /// The [`Reference`] tracer (Embree's triangles, in the comparison).
-    Reference,
+    /// One of the [`Reference`] tracers, by its index among them (Embree's, in the
+    /// comparison).
+    Reference(usize),
 }
 
 /// A tracer other than heightray's that renders the same frames: the same pixels, shading and
 /// shadow rays, traced its own way (Embree, with the `embree` feature).
 pub trait Reference: Sync {
+    /// Its name in the tables.
+    fn name(&self) -> String;
     /// Renders every pixel of `renderer`'s view into `frame` on the current rayon pool.
     fn render(&self, renderer: &Renderer<'_>, frame: &mut Frame);
 }
@@ -66,7 +69,7 @@ pub const ROUNDS: usize = 3;
 const ROUND_TIME: Duration = Duration::from_millis(500);
 
 /// Renders the scene's view with and without shadows for each configuration (each method in
-/// each arithmetic, then `reference` if given, each on every thread count), in [`ROUNDS`]
+/// each arithmetic, then each of `references`, each on every thread count), in [`ROUNDS`]
 /// rounds; `progress` is told after each configuration's round.
 pub fn throughput(
     scene: &Scene,
@@ -74,7 +77,7 @@ pub fn throughput(
     methods: &[Method],
     ariths: &[Arith],
     threads: &[usize],
-    reference: Option<&dyn Reference>,
+    references: &[&dyn Reference],
     progress: &mut dyn FnMut(),
 ) -> anyhow::Result<Vec<ThroughputRow>> {
     let mut pools = Vec::new();
@@ -86,7 +89,7 @@ pub fn throughput(
             .iter()
             .map(move |&arith| Tracer::Heightray(method, arith))
     });
-    let tracers = ours.chain(reference.map(|_| Tracer::Reference));
+    let tracers = ours.chain((0..references.len()).map(Tracer::Reference));
     let mut configs = Vec::new();
     for tracer in tracers {
         for (&count, pool) in threads.iter().zip(&pools) {
@@ -97,7 +100,7 @@ pub fn throughput(
         for (tracer, _, pool, timings) in &mut configs {
             for (shadows, timing) in [false, true].into_iter().zip(timings) {
                 let renderer = view(scene, terrain, *tracer, shadows);
-                let render = |frame: &mut Frame| render_as(*tracer, &renderer, reference, frame);
+                let render = |frame: &mut Frame| render_as(*tracer, &renderer, references, frame);
                 timing.round(renderer.camera.size(), render, pool);
             }
             progress();
@@ -117,17 +120,17 @@ pub fn throughput(
     Ok(rows.collect())
 }
 
-/// Renders `renderer`'s view into `frame` as `tracer` traces it (heightray's renderer where
-/// no reference is given).
+/// Renders `renderer`'s view into `frame` as `tracer` traces it (a reference tracer being
+/// one of `references`).
 pub fn render_as(
     tracer: Tracer,
     renderer: &Renderer<'_>,
-    reference: Option<&dyn Reference>,
+    references: &[&dyn Reference],
     frame: &mut Frame,
 ) {
-    match (tracer, reference) {
-        (Tracer::Reference, Some(reference)) => reference.render(renderer, frame),
-        _ => renderer.render(frame),
+    match tracer {
+        Tracer::Heightray(..) => renderer.render(frame),
+        Tracer::Reference(k) => references[k].render(renderer, frame),
     }
 }
 
@@ -141,7 +144,7 @@ pub fn view<'a>(
 ) -> Renderer<'a> {
     let (method, arith) = match tracer {
         Tracer::Heightray(method, arith) => (method, arith),
-        Tracer::Reference => (Method::Mipmap, Arith::F64),
+        Tracer::Reference(_) => (Method::Mipmap, Arith::F64),
     };
     let mut lighting = scene.lighting;
     lighting.shadows = shadows;

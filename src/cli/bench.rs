@@ -33,8 +33,8 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
             bar.set_message(name.clone());
             let scene = scene_at_size(source, size)?;
             let terrain = Terrain::new(scene.field.clone());
-            let (rows, reference) = measure(args, &scene, &terrain, &bar)?;
-            measured.push((name, terrain, rows, reference));
+            let (rows, references) = measure(args, &scene, &terrain, &bar)?;
+            measured.push((name, terrain, rows, references));
         }
         bar.finish_and_clear();
     } else {
@@ -45,14 +45,14 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
             let scene = sized_scene(samples, size)?;
             let terrain = fastest_build(&scene);
             bar.set_message(format!("{samples}x{samples}"));
-            let (rows, reference) = measure(args, &scene, &terrain, &bar)?;
+            let (rows, references) = measure(args, &scene, &terrain, &bar)?;
             let label = format!("valley landscape (seed {SEED}) at {samples}x{samples}");
-            measured.push((label, terrain, rows, reference));
+            measured.push((label, terrain, rows, references));
         }
         bar.finish_and_clear();
     }
-    for (label, terrain, rows, reference) in &measured {
-        print_table(label, terrain, rows, reference.as_ref());
+    for (label, terrain, rows, references) in &measured {
+        print_table(label, terrain, rows, references);
     }
     if measured.len() > 1 && !args.sizes.is_empty() {
         print_growth(&measured);
@@ -154,13 +154,8 @@ fn fastest_build(scene: &Scene) -> Terrain {
     fastest
 }
 
-/// One scene measured: its label, terrain, rows and the reference tracer's figures.
-type Measured = (
-    String,
-    Terrain,
-    Vec<ThroughputRow>,
-    Option<ReferenceFigures>,
-);
+/// One scene measured: its label, terrain, rows and the reference tracers' figures.
+type Measured = (String, Terrain, Vec<ThroughputRow>, Vec<ReferenceFigures>);
 
 /// A reference tracer built for one terrain, with what its build took and holds.
 struct Built {
@@ -169,8 +164,9 @@ struct Built {
     bytes: usize,
 }
 
-/// What was measured of the reference tracer besides its frames.
+/// What was measured of a reference tracer besides its frames.
 struct ReferenceFigures {
+    name: String,
     build: Duration,
     bytes: usize,
     /// Pixels of the frame with shadows whose colour differs from heightray's (mipmap, `f64`)
@@ -184,74 +180,85 @@ struct ReferenceFigures {
 /// shades a level or two off the one in `f64`.
 const LEVELS_APART: u32 = 2;
 
-/// Embree's scene of the terrain, when asked for.
+/// Embree's scenes of the terrain, its triangles and its grid, when asked for.
 #[cfg(feature = "embree")]
-fn reference(args: &SpeedArgs, terrain: &Terrain) -> anyhow::Result<Option<Built>> {
-    use heightray::bench::embree::EmbreeScene;
-    if !args.embree {
-        return Ok(None);
-    }
-    let scene = EmbreeScene::build(terrain)?;
-    Ok(Some(Built {
-        build: scene.build_time(),
-        bytes: scene.bytes(),
-        tracer: Box::new(scene),
-    }))
+fn references(args: &SpeedArgs, terrain: &Terrain) -> anyhow::Result<Vec<Built>> {
+    use heightray::bench::embree::{EmbreeScene, Geometry};
+    let geometries = if args.embree {
+        [Geometry::Triangles, Geometry::Grid].as_slice()
+    } else {
+        &[]
+    };
+    let build = |&geometry| -> anyhow::Result<Built> {
+        let scene = EmbreeScene::build(terrain, geometry)?;
+        Ok(Built {
+            build: scene.build_time(),
+            bytes: scene.bytes(),
+            tracer: Box::new(scene),
+        })
+    };
+    geometries.iter().map(build).collect()
 }
 
 #[cfg(not(feature = "embree"))]
-fn reference(args: &SpeedArgs, _terrain: &Terrain) -> anyhow::Result<Option<Built>> {
+fn references(args: &SpeedArgs, _terrain: &Terrain) -> anyhow::Result<Vec<Built>> {
     anyhow::ensure!(!args.embree, WITHOUT_EMBREE);
-    Ok(None)
+    Ok(Vec::new())
 }
 
-/// The configurations' rows, and the reference tracer's figures if it was asked for (its
-/// scene is dropped here: at 8193² Embree's takes gigabytes).
+/// The configurations' rows, and the reference tracers' figures if they were asked for
+/// (their scenes are dropped here: at 8193² Embree's take gigabytes).
 fn measure(
     args: &SpeedArgs,
     scene: &Scene,
     terrain: &Terrain,
     bar: &ProgressBar,
-) -> anyhow::Result<(Vec<ThroughputRow>, Option<ReferenceFigures>)> {
-    let reference = reference(args, terrain)?;
+) -> anyhow::Result<(Vec<ThroughputRow>, Vec<ReferenceFigures>)> {
+    let built = references(args, terrain)?;
+    let tracers: Vec<&dyn Reference> = built.iter().map(|b| &*b.tracer).collect();
     let rows = throughput(
         scene,
         terrain,
         &args.methods,
         &args.ariths,
         &args.threads,
-        reference.as_ref().map(|built| &*built.tracer),
+        &tracers,
         &mut || bar.inc(1),
     )?;
-    let figures = reference.map(|built| {
-        let render = |tracer| {
-            let renderer = view(scene, terrain, tracer, true);
-            let (w, h) = renderer.camera.size();
-            let mut frame = Frame::new(w, h);
-            render_as(tracer, &renderer, Some(&*built.tracer), &mut frame);
-            frame
-        };
-        let ours = render(Tracer::Heightray(Method::Mipmap, Arith::F64));
-        let theirs = render(Tracer::Reference);
-        let apart = |a: u32, b: u32| {
-            (0..3).any(|k| ((a >> (8 * k)) & 255).abs_diff((b >> (8 * k)) & 255) > LEVELS_APART)
-        };
-        let pairs = ours.pixels.iter().zip(&theirs.pixels);
-        ReferenceFigures {
-            build: built.build,
-            bytes: built.bytes,
-            differing: pairs.filter(|(&a, &b)| apart(a, b)).count(),
-            hits: (ours.totals.primary_hits, theirs.totals.primary_hits),
-        }
-    });
-    Ok((rows, figures))
+    let render = |tracer| {
+        let renderer = view(scene, terrain, tracer, true);
+        let (w, h) = renderer.camera.size();
+        let mut frame = Frame::new(w, h);
+        render_as(tracer, &renderer, &tracers, &mut frame);
+        frame
+    };
+    let ours = (!built.is_empty()).then(|| render(Tracer::Heightray(Method::Mipmap, Arith::F64)));
+    let apart = |a: u32, b: u32| {
+        (0..3).any(|k| ((a >> (8 * k)) & 255).abs_diff((b >> (8 * k)) & 255) > LEVELS_APART)
+    };
+    let figures = built
+        .iter()
+        .enumerate()
+        .zip(&ours)
+        .map(|((k, built), ours)| {
+            let theirs = render(Tracer::Reference(k));
+            let pairs = ours.pixels.iter().zip(&theirs.pixels);
+            ReferenceFigures {
+                name: built.tracer.name(),
+                build: built.build,
+                bytes: built.bytes,
+                differing: pairs.filter(|(&a, &b)| apart(a, b)).count(),
+                hits: (ours.totals.primary_hits, theirs.totals.primary_hits),
+            }
+        });
+    Ok((rows, figures.collect()))
 }
 
 fn print_table(
     label: &str,
     terrain: &Terrain,
     rows: &[ThroughputRow],
-    reference: Option<&ReferenceFigures>,
+    references: &[ReferenceFigures],
 ) {
     let field = terrain.field();
     let samples = (field.width() * field.height()) as f64;
@@ -268,15 +275,15 @@ fn print_table(
                 same(Tracer::Heightray(method, Arith::F64), row.threads)
                     .map(|r| r.primary_per_second() / row.primary_per_second())
             }
-            Tracer::Reference => None,
+            Tracer::Reference(_) => None,
         };
         let versus_one = same(row.tracer, 1)
             .filter(|_| row.threads > 1)
             .map(|r| row.primary_per_second() / r.primary_per_second());
-        let (method, arith) = names(row.tracer);
+        let (method, arith) = names(row.tracer, references);
         let (build, bytes) = match row.tracer {
             Tracer::Heightray(method, _) => prepare(terrain, method),
-            Tracer::Reference => reference.map_or((Duration::ZERO, 0), |r| (r.build, r.bytes)),
+            Tracer::Reference(k) => (references[k].build, references[k].bytes),
         };
         println!(
             "| {method} | {arith} | {} | {:.1} | {:.2} | {:.3} | {} | {:.1} | {} | {} |",
@@ -294,18 +301,21 @@ fn print_table(
     if rows.iter().any(|r| r.shadow_per_second().is_none()) {
         println!("(shadow Mrays/s \"-\": no shadow rays, or the frame with shadows was not slower than the one without: shadows were lost in the noise of the two times)");
     }
-    if let Some(figures) = reference {
-        let pixels = rows.first().map_or(0, |r| r.primary_rays);
-        println!("(embree triangles: Embree 3 on the terrain's triangles in f32, built on one thread; its bytes/sample are all it holds, vertices and indices included, where heightray's are what it holds beyond the 2-byte samples. Its frame with shadows differs from the mipmap's in f64 in {} of {pixels} pixels by more than {LEVELS_APART} levels in a channel; primary hits: mipmap {}, Embree {})",
-            figures.differing, figures.hits.0, figures.hits.1);
+    if !references.is_empty() {
+        println!("(embree: Embree 3 on the terrain's triangles, or on its grid, in f32, built on one thread; its bytes/sample are all it holds, vertices included, where heightray's are what it holds beyond the 2-byte samples)");
+    }
+    let pixels = rows.first().map_or(0, |r| r.primary_rays);
+    for figures in references {
+        println!("({}: its frame with shadows differs from the mipmap's in f64 in {} of {pixels} pixels by more than {LEVELS_APART} levels in a channel; primary hits: mipmap {}, {} {})",
+            figures.name, figures.differing, figures.hits.0, figures.name, figures.hits.1);
     }
 }
 
 /// A tracer's method and arithmetic columns.
-fn names(tracer: Tracer) -> (String, String) {
+fn names(tracer: Tracer, references: &[ReferenceFigures]) -> (String, String) {
     match tracer {
         Tracer::Heightray(method, arith) => (method.to_string(), arith.to_string()),
-        Tracer::Reference => ("embree triangles".into(), "f32".into()),
+        Tracer::Reference(k) => (references[k].name.clone(), "f32".into()),
     }
 }
 
@@ -321,9 +331,9 @@ fn print_growth(measured: &[Measured]) {
     header += &format!("\n|---|---|{}", "---:|".repeat(measured.len()));
     // One line per method: `cell` of its row at each size.
     let lines = |cell: &dyn Fn(&ThroughputRow, &ThroughputRow) -> String, ours_only: bool| {
-        let ours = |r: &&ThroughputRow| !ours_only || r.tracer != Tracer::Reference;
+        let ours = |r: &&ThroughputRow| !ours_only || matches!(r.tracer, Tracer::Heightray(..));
         for base in first.2.iter().filter(|r| r.threads == 1).filter(ours) {
-            let (method, arith) = names(base.tracer);
+            let (method, arith) = names(base.tracer, &first.3);
             let mut line = format!("| {method} | {arith} |");
             for (_, _, rows, _) in measured {
                 let row = rows

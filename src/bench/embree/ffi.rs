@@ -9,12 +9,26 @@ pub type Scene = *mut c_void;
 pub type Geometry = *mut c_void;
 
 pub const GEOMETRY_TYPE_TRIANGLE: u32 = 0;
+pub const GEOMETRY_TYPE_GRID: u32 = 2;
 pub const BUFFER_TYPE_INDEX: u32 = 0;
 pub const BUFFER_TYPE_VERTEX: u32 = 1;
+pub const BUFFER_TYPE_GRID: u32 = 8;
 pub const FORMAT_UINT3: u32 = 0x5003;
 pub const FORMAT_FLOAT3: u32 = 0x9003;
+pub const FORMAT_GRID: u32 = 0xA001;
+/// The most vertices a side of a grid primitive may have.
+pub const GRID_MAX_SIDE: usize = 32767;
 pub const ERROR_NONE: u32 = 0;
 pub const INVALID_GEOMETRY_ID: u32 = u32::MAX;
+
+/// `RTCGrid`: a `width` x `height` block of the vertex buffer, rows `stride` vertices apart.
+#[repr(C)]
+pub struct Grid {
+    pub start_vertex_id: u32,
+    pub stride: u32,
+    pub width: u16,
+    pub height: u16,
+}
 
 /// `RTCIntersectContext`, as `rtcInitIntersectContext` sets it (incoherent rays, no filter).
 #[repr(C)]
@@ -111,6 +125,7 @@ mod tests {
         assert_eq!(offset_of!(Ray, tfar), 32);
         assert_eq!(offset_of!(Hit, prim_id), 20);
         assert_eq!(size_of::<IntersectContext>(), 24);
+        assert_eq!(size_of::<Grid>(), 12);
         assert_eq!(offset_of!(IntersectContext, inst_id), 16);
     }
 }

@@ -2,7 +2,7 @@
 //! arithmetic: both take the ray in `f32`, and both are held to heightray's exact answers for
 //! the ray as given.
 
-use super::EmbreeScene;
+use super::{EmbreeScene, Geometry};
 use crate::bench::textbook::{hard_cases_against_exact, mipmap_in, HardCaseRow};
 use crate::Arith;
 
@@ -15,7 +15,7 @@ pub const F32_TOLERANCE: f64 = 1e-4;
 /// exact (answers differ by more than [`F32_TOLERANCE`] in `t`).
 pub fn hard_cases_in_f32(per_set: usize) -> anyhow::Result<Vec<HardCaseRow>> {
     hard_cases_against_exact(per_set, F32_TOLERANCE, |set| {
-        let embree = EmbreeScene::build(&set.terrain)?;
+        let embree = EmbreeScene::build(&set.terrain, Geometry::Triangles)?;
         Ok([
             mipmap_in(set, Arith::F32),
             Box::new(move |ray| embree.intersect(ray).map(|hit| hit.t)),

@@ -16,7 +16,7 @@ pub use hard_cases::{hard_cases_in_f32, F32_TOLERANCE};
 
 use crate::render::{Frame, FrameStats, PixelStats, Renderer, Sample, Shadow, ShadowSkip};
 use crate::traverse::Counters;
-use crate::{Ray, Terrain};
+use crate::{Heightfield, Ray, Terrain};
 use glam::DVec3;
 use rayon::prelude::*;
 use std::ffi::c_void;
@@ -29,8 +29,29 @@ use thiserror::Error;
 pub enum EmbreeError {
     #[error("Embree failed to {what} (RTCError {code})")]
     Call { what: &'static str, code: u32 },
-    #[error("a {0}x{1} terrain has too many triangles for Embree's 32-bit primitive ids")]
-    TooLarge(usize, usize),
+    #[error("a {0}x{1} terrain is too large for Embree's {2}")]
+    TooLarge(usize, usize, Geometry),
+    #[error("Embree's grid covers every cell; this terrain has cells over no data")]
+    Holes,
+}
+
+/// How the terrain goes to Embree.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Geometry {
+    /// Two triangles per cell, as heightray defines them (DESIGN 2), each with a primitive id.
+    Triangles,
+    /// Embree's grid primitive over the samples: vertices only, cells split into triangles as
+    /// Embree splits them.
+    Grid,
+}
+
+impl std::fmt::Display for Geometry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Geometry::Triangles => "triangles",
+            Geometry::Grid => "grid",
+        })
+    }
 }
 
 /// Where a ray first hits the terrain, as Embree found it.
@@ -48,8 +69,10 @@ pub struct EmbreeHit {
 pub struct EmbreeScene {
     device: ffi::Device,
     scene: ffi::Scene,
-    /// Cells per grid row (the primitive ids run row by row, two triangles a cell).
-    columns: usize,
+    geometry: Geometry,
+    /// Cells per row and column (with triangles, the primitive ids run row by row, two
+    /// triangles a cell).
+    cells: (usize, usize),
     build_time: Duration,
     /// What Embree holds allocated, kept up to date by its memory monitor (boxed: Embree
     /// holds its address).
@@ -72,12 +95,18 @@ extern "C" fn monitor(user: *mut c_void, bytes: isize, _post: bool) -> bool {
 impl EmbreeScene {
     /// Builds the scene on one thread (Embree's own thread pool limited to one, as heightray
     /// builds), at the default build quality.
-    pub fn build(terrain: &Terrain) -> Result<EmbreeScene, EmbreeError> {
+    pub fn build(terrain: &Terrain, geometry: Geometry) -> Result<EmbreeScene, EmbreeError> {
         let field = terrain.field();
         let (w, h) = (field.width(), field.height());
-        let cells = (w - 1) * (h - 1);
-        if w * h > u32::MAX as usize || 2 * cells > u32::MAX as usize {
-            return Err(EmbreeError::TooLarge(w, h));
+        let too_large = match geometry {
+            Geometry::Triangles => 2 * (w - 1) * (h - 1) > u32::MAX as usize,
+            Geometry::Grid => w.max(h) > ffi::GRID_MAX_SIDE,
+        };
+        if too_large {
+            return Err(EmbreeError::TooLarge(w, h, geometry));
+        }
+        if geometry == Geometry::Grid && field.nodata_count() > 0 {
+            return Err(EmbreeError::Holes);
         }
         // SAFETY: the calls follow the API's order (device, geometry with its buffers filled
         // within their sizes, scene committed before use), and every handle is released on
@@ -94,64 +123,36 @@ impl EmbreeScene {
             let user = &*allocated as *const AtomicIsize as *mut c_void;
             ffi::rtcSetDeviceMemoryMonitorFunction(device, monitor, user);
             let start = Instant::now();
-            let geometry = ffi::rtcNewGeometry(device, ffi::GEOMETRY_TYPE_TRIANGLE);
-            let vertices = ffi::rtcSetNewGeometryBuffer(
-                geometry,
-                ffi::BUFFER_TYPE_VERTEX,
-                0,
-                ffi::FORMAT_FLOAT3,
-                12,
-                w * h,
-            ) as *mut [f32; 3];
-            let indices = ffi::rtcSetNewGeometryBuffer(
-                geometry,
-                ffi::BUFFER_TYPE_INDEX,
-                0,
-                ffi::FORMAT_UINT3,
-                12,
-                2 * cells,
-            ) as *mut [u32; 3];
-            if vertices.is_null() || indices.is_null() {
+            let kind = match geometry {
+                Geometry::Triangles => ffi::GEOMETRY_TYPE_TRIANGLE,
+                Geometry::Grid => ffi::GEOMETRY_TYPE_GRID,
+            };
+            let handle = ffi::rtcNewGeometry(device, kind);
+            let filled = fill_vertices(handle, field).and_then(|()| match geometry {
+                Geometry::Triangles => fill_triangles(handle, field),
+                Geometry::Grid => fill_grid(handle, field),
+            });
+            if filled.is_none() {
                 let code = ffi::rtcGetDeviceError(device);
-                ffi::rtcReleaseGeometry(geometry);
+                ffi::rtcReleaseGeometry(handle);
                 ffi::rtcReleaseDevice(device);
                 return Err(EmbreeError::Call {
-                    what: "allocate the triangle buffers",
+                    what: "allocate the geometry's buffers",
                     code,
                 });
             }
-            let vertices = std::slice::from_raw_parts_mut(vertices, w * h);
-            for j in 0..h {
-                for i in 0..w {
-                    vertices[j * w + i] = [i as f32, j as f32, field.z(i, j) as f32];
-                }
-            }
-            let indices = std::slice::from_raw_parts_mut(indices, 2 * cells);
-            for j in 0..h - 1 {
-                for i in 0..w - 1 {
-                    let corner = |di: usize, dj: usize| ((j + dj) * w + i + di) as u32;
-                    let (p00, p10, p01, p11) =
-                        (corner(0, 0), corner(1, 0), corner(0, 1), corner(1, 1));
-                    let cell = 2 * (j * (w - 1) + i);
-                    // A cell over no data has no surface: degenerate triangles, never hit.
-                    (indices[cell], indices[cell + 1]) = if field.is_hole_cell(i, j) {
-                        ([p00; 3], [p00; 3])
-                    } else {
-                        ([p00, p10, p11], [p00, p11, p01])
-                    };
-                }
-            }
-            ffi::rtcCommitGeometry(geometry);
+            ffi::rtcCommitGeometry(handle);
             let scene = ffi::rtcNewScene(device);
-            ffi::rtcAttachGeometry(scene, geometry);
-            ffi::rtcReleaseGeometry(geometry);
+            ffi::rtcAttachGeometry(scene, handle);
+            ffi::rtcReleaseGeometry(handle);
             ffi::rtcCommitScene(scene);
             let build_time = start.elapsed();
             let code = ffi::rtcGetDeviceError(device);
             let built = EmbreeScene {
                 device,
                 scene,
-                columns: w - 1,
+                geometry,
+                cells: (w - 1, h - 1),
                 build_time,
                 allocated,
             };
@@ -191,13 +192,29 @@ impl EmbreeScene {
         if query.hit.geom_id == ffi::INVALID_GEOMETRY_ID {
             return None;
         }
-        let prim = query.hit.prim_id as usize;
-        // The triangles face up (counter-clockwise seen from +z); Embree's normal may not.
+        let t = f64::from(query.ray.tfar);
+        let (cell, triangle) = match self.geometry {
+            Geometry::Triangles => {
+                let prim = query.hit.prim_id as usize;
+                let columns = self.cells.0;
+                ((prim / 2 % columns, prim / 2 / columns), (prim % 2) as u8)
+            }
+            // A grid's hit names only the grid: the cell is the one under the hit point, and
+            // the triangle heightray's on that side of its diagonal.
+            Geometry::Grid => {
+                let p = DVec3::from(ray.origin()) + DVec3::from(ray.dir()) * t;
+                let floor = |c: f64, cells: usize| (c.floor().max(0.0) as usize).min(cells - 1);
+                let (i, j) = (floor(p.x, self.cells.0), floor(p.y, self.cells.1));
+                let below_diagonal = p.x - i as f64 >= p.y - j as f64;
+                ((i, j), u8::from(!below_diagonal))
+            }
+        };
+        // The surface faces up; Embree's normal may not.
         let normal = DVec3::from(query.hit.ng.map(f64::from)).normalize_or(DVec3::Z);
         Some(EmbreeHit {
-            cell: (prim / 2 % self.columns, prim / 2 / self.columns),
-            triangle: (prim % 2) as u8,
-            t: f64::from(query.ray.tfar),
+            cell,
+            triangle,
+            t,
             up: normal * normal.z.signum(),
         })
     }
@@ -281,6 +298,81 @@ impl EmbreeScene {
     }
 }
 
+/// Fills the geometry's vertex buffer with the samples (`None` if Embree could not allocate
+/// it).
+///
+/// # Safety
+/// `geometry` is a live geometry handle.
+unsafe fn fill_vertices(geometry: ffi::Geometry, field: &Heightfield) -> Option<()> {
+    let (w, h) = (field.width(), field.height());
+    let vertices =
+        new_buffer::<[f32; 3]>(geometry, ffi::BUFFER_TYPE_VERTEX, ffi::FORMAT_FLOAT3, w * h)?;
+    for j in 0..h {
+        for i in 0..w {
+            vertices[j * w + i] = [i as f32, j as f32, field.z(i, j) as f32];
+        }
+    }
+    Some(())
+}
+
+/// Fills a triangle geometry's index buffer: two triangles per cell, row by row.
+///
+/// # Safety
+/// `geometry` is a live triangle geometry handle.
+unsafe fn fill_triangles(geometry: ffi::Geometry, field: &Heightfield) -> Option<()> {
+    let (w, h) = (field.width(), field.height());
+    let indices = new_buffer::<[u32; 3]>(
+        geometry,
+        ffi::BUFFER_TYPE_INDEX,
+        ffi::FORMAT_UINT3,
+        2 * (w - 1) * (h - 1),
+    )?;
+    for j in 0..h - 1 {
+        for i in 0..w - 1 {
+            let corner = |di: usize, dj: usize| ((j + dj) * w + i + di) as u32;
+            let (p00, p10, p01, p11) = (corner(0, 0), corner(1, 0), corner(0, 1), corner(1, 1));
+            let cell = 2 * (j * (w - 1) + i);
+            // A cell over no data has no surface: degenerate triangles, never hit.
+            (indices[cell], indices[cell + 1]) = if field.is_hole_cell(i, j) {
+                ([p00; 3], [p00; 3])
+            } else {
+                ([p00, p10, p11], [p00, p11, p01])
+            };
+        }
+    }
+    Some(())
+}
+
+/// Sets a grid geometry's one grid: all the samples.
+///
+/// # Safety
+/// `geometry` is a live grid geometry handle, and the field's sides fit a grid.
+unsafe fn fill_grid(geometry: ffi::Geometry, field: &Heightfield) -> Option<()> {
+    let grid = new_buffer::<ffi::Grid>(geometry, ffi::BUFFER_TYPE_GRID, ffi::FORMAT_GRID, 1)?;
+    grid[0] = ffi::Grid {
+        start_vertex_id: 0,
+        stride: field.width() as u32,
+        width: field.width() as u16,
+        height: field.height() as u16,
+    };
+    Some(())
+}
+
+/// A new buffer of `count` items of `T` in the geometry, as a slice (`None` if Embree could
+/// not allocate it).
+///
+/// # Safety
+/// `geometry` is a live geometry handle, and `T` is laid out as `format` says.
+unsafe fn new_buffer<'a, T>(
+    geometry: ffi::Geometry,
+    kind: u32,
+    format: u32,
+    count: usize,
+) -> Option<&'a mut [T]> {
+    let buffer = ffi::rtcSetNewGeometryBuffer(geometry, kind, 0, format, size_of::<T>(), count);
+    (!buffer.is_null()).then(|| std::slice::from_raw_parts_mut(buffer as *mut T, count))
+}
+
 impl Drop for EmbreeScene {
     fn drop(&mut self) {
         // SAFETY: handles made in `build`, released once; the monitor's box outlives them.
@@ -303,6 +395,9 @@ fn segment(origin: [f64; 3], dir: [f64; 3]) -> ffi::Ray {
 }
 
 impl super::Reference for EmbreeScene {
+    fn name(&self) -> String {
+        format!("embree {}", self.geometry)
+    }
     fn render(&self, renderer: &Renderer<'_>, frame: &mut Frame) {
         EmbreeScene::render(self, renderer, frame);
     }
@@ -312,7 +407,7 @@ impl super::Reference for EmbreeScene {
 mod tests {
     use super::*;
     use crate::render::{Scene, SceneFile};
-    use crate::{trace, Arith, Method, Query, TraceOptions};
+    use crate::{trace, Arith, Method, TraceOptions};
     use std::path::Path;
 
     /// Embree's scene is heightray's surface: the camera rays of every built-in scene hit the
@@ -320,17 +415,12 @@ mod tests {
     /// each), but for rays within `f32` rounding of an edge, where either neighbour may win.
     #[test]
     fn embree_hits_what_the_exact_trace_hits() {
-        let exact = TraceOptions {
-            method: Method::Mipmap,
-            arith: Arith::Exact,
-            query: Query::FirstHit,
-            record_cells: false,
-        };
+        let exact = TraceOptions::new(Method::Mipmap, Arith::Exact);
         for (name, mut file) in SceneFile::builtins().unwrap() {
             (file.camera.width, file.camera.height) = (64, 64);
             let scene = Scene::from_file(&file, Path::new(""), Path::new(name)).unwrap();
             let terrain = Terrain::new(scene.field.clone());
-            let embree = EmbreeScene::build(&terrain).unwrap();
+            let embree = EmbreeScene::build(&terrain, Geometry::Triangles).unwrap();
             let (mut rays, mut hits, mut near_edges) = (0, 0, 0);
             for ray in scene.camera.rays() {
                 rays += 1;
@@ -368,6 +458,55 @@ mod tests {
         }
     }
 
+    /// Embree's grid splits cells its own way, so on a tilted plane, where either diagonal
+    /// gives the same surface, its hits are heightray's exact ones: every ray from above
+    /// aimed at a point of the plane hits it there, at the cell and triangle under the point
+    /// (away from edges, where either neighbour may answer).
+    #[test]
+    fn grid_hits_a_plane_where_the_exact_trace_does() {
+        // z = (3i + 2j) * 100 / 1000: a plane through every sample.
+        let sample = |i: usize, j: usize| (3 * i + 2 * j) as u16;
+        let field = Heightfield::from_fn(40, 30, 1000, 100.0, sample).unwrap();
+        let terrain = Terrain::new(field);
+        let grid = EmbreeScene::build(&terrain, Geometry::Grid).unwrap();
+        let exact = TraceOptions::new(Method::Mipmap, Arith::Exact);
+        for k in 0..200 {
+            // Points inside cells, clear of their edges and diagonals.
+            let (i, j) = (1 + k % 37, 1 + (k * 7) % 27);
+            let (u, v) = if k % 2 == 0 { (0.7, 0.2) } else { (0.2, 0.7) };
+            let (x, y) = (i as f64 + u, j as f64 + v);
+            let target = [x, y, (3.0 * x + 2.0 * y) * 0.1];
+            let dir = [0.3 - 0.01 * (k % 5) as f64, -0.2, -1.0];
+            let origin = [0, 1, 2].map(|a| target[a] - 20.0 * dir[a]);
+            let ray = Ray::new(origin, dir).unwrap();
+            let ours = trace(&terrain, &ray, &exact).hit.unwrap();
+            let theirs = grid.intersect(&ray).unwrap();
+            assert_eq!(ours.cell, [i, j], "{ray:?}");
+            assert_eq!([theirs.cell.0, theirs.cell.1], ours.cell, "{ray:?}");
+            assert_eq!(theirs.triangle, ours.triangle, "{ray:?}");
+            assert!(
+                (theirs.t - 20.0).abs() < 1e-4 && (ours.t - 20.0).abs() < 1e-9,
+                "{ray:?}"
+            );
+        }
+        assert!(
+            matches!(
+                EmbreeScene::build(&terrain_with_hole(), Geometry::Grid),
+                Err(EmbreeError::Holes)
+            ),
+            "a grid over no data is refused"
+        );
+    }
+
+    /// A small terrain with one no-data sample.
+    fn terrain_with_hole() -> Terrain {
+        let mut hole = crate::heightfield::NoDataMask::new(16);
+        hole.insert(5);
+        let maxval = crate::heightfield::Quantisation::Maxval(255);
+        let field = Heightfield::new(4, 4, vec![5u16; 16], maxval, 1.0, Some(hole));
+        Terrain::new(field.unwrap())
+    }
+
     /// A shadow ray is blocked by the terrain exactly where heightray's exact trace says:
     /// rays from above the highest sample down onto the terrain are occluded, rays rising
     /// from above it are not.
@@ -375,7 +514,7 @@ mod tests {
     fn occlusion_follows_the_surface() {
         let field = crate::heightfield::landscape(33, 1, 8.0).unwrap();
         let terrain = Terrain::new(field);
-        let embree = EmbreeScene::build(&terrain).unwrap();
+        let embree = EmbreeScene::build(&terrain, Geometry::Triangles).unwrap();
         let (_, top) = terrain.z_range();
         for k in 0..64 {
             // Inside the grid, and still inside where the downward rays reach the ground.
