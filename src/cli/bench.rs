@@ -232,25 +232,24 @@ fn measure(
         render_as(tracer, &renderer, &tracers, &mut frame);
         frame
     };
-    let ours = (!built.is_empty()).then(|| render(Tracer::Heightray(Method::Mipmap, Arith::F64)));
+    if built.is_empty() {
+        return Ok((rows, Vec::new()));
+    }
+    let ours = render(Tracer::Heightray(Method::Mipmap, Arith::F64));
     let apart = |a: u32, b: u32| {
         (0..3).any(|k| ((a >> (8 * k)) & 255).abs_diff((b >> (8 * k)) & 255) > LEVELS_APART)
     };
-    let figures = built
-        .iter()
-        .enumerate()
-        .zip(&ours)
-        .map(|((k, built), ours)| {
-            let theirs = render(Tracer::Reference(k));
-            let pairs = ours.pixels.iter().zip(&theirs.pixels);
-            ReferenceFigures {
-                name: built.tracer.name(),
-                build: built.build,
-                bytes: built.bytes,
-                differing: pairs.filter(|(&a, &b)| apart(a, b)).count(),
-                hits: (ours.totals.primary_hits, theirs.totals.primary_hits),
-            }
-        });
+    let figures = built.iter().enumerate().map(|(k, built)| {
+        let theirs = render(Tracer::Reference(k));
+        let pairs = ours.pixels.iter().zip(&theirs.pixels);
+        ReferenceFigures {
+            name: built.tracer.name(),
+            build: built.build,
+            bytes: built.bytes,
+            differing: pairs.filter(|(&a, &b)| apart(a, b)).count(),
+            hits: (ours.totals.primary_hits, theirs.totals.primary_hits),
+        }
+    });
     Ok((rows, figures.collect()))
 }
 
