@@ -180,8 +180,15 @@ fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJo
             pass_times: pass_times.clone(),
         });
         *shared.latest.lock().unwrap_or_else(PoisonError::into_inner) = Some(Arc::clone(&rendered));
+        let complete = rendered.frame.complete();
+        if complete {
+            // Done before the window hears of it: the window reports whether the worker is
+            // busy when it shows the frame, and may draw nothing more after it (a report that
+            // said busy then stayed so, and a viewer test waited in vain on a loaded machine).
+            shared.rendering.store(false, Ordering::SeqCst);
+        }
         notify();
-        if rendered.frame.complete() {
+        if complete {
             return;
         }
         if pass_times.len() == 1 {
@@ -193,5 +200,60 @@ fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJo
             return;
         }
         frame = rendered.frame.clone();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::heightfield::landscape;
+    use crate::render::{EffectsSection, ShadingSection, SunSection};
+    use std::sync::mpsc;
+
+    /// When the window hears of the complete frame, the worker already says it is idle: the
+    /// window reports `busy` as it shows that frame and may draw nothing after it. Here the
+    /// worker is held inside `notify` until the test has asked.
+    #[test]
+    fn a_complete_frame_is_published_with_the_worker_idle() {
+        let (published, heard) = mpsc::channel();
+        let (checked, go_on) = mpsc::channel::<()>();
+        let go_on = Mutex::new(go_on);
+        let worker = RenderWorker::start(move || {
+            let _ = published.send(());
+            // (Not for ever: a failed assertion drops the worker, which waits for this.)
+            let _ = go_on
+                .lock()
+                .map(|go_on| go_on.recv_timeout(Duration::from_secs(10)));
+        })
+        .unwrap();
+        let terrain = Arc::new(Terrain::new(landscape(33, 1, 8.0).unwrap()));
+        let orbit = Orbit::framing(&terrain);
+        let lighting = Lighting::from_sections(
+            &SunSection::default(),
+            &EffectsSection::default(),
+            &ShadingSection::default(),
+        );
+        worker.submit(RenderJob {
+            terrain,
+            orbit,
+            camera: orbit.camera((16, 16)).unwrap(),
+            lighting,
+            method: Method::Mipmap,
+            arith: Arith::F64,
+            view_id: 0,
+        });
+        let mut passes = 0;
+        loop {
+            heard.recv().unwrap();
+            passes += 1;
+            let complete = worker.latest().unwrap().frame.complete();
+            // Asked while the worker waits inside `notify`.
+            assert_eq!(worker.busy(), !complete, "after pass {passes}");
+            checked.send(()).unwrap();
+            if complete {
+                break;
+            }
+        }
+        assert_eq!(passes, crate::render::PASS_BLOCKS.len());
     }
 }
