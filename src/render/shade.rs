@@ -168,12 +168,8 @@ impl Shader<'_> {
         };
         let facing = self.facing(found.cell, found.triangle, p);
         let (shadow, secondary, redone) = cast(&found, facing)?;
-        let lit = match shadow {
-            Shadow::Cast { shadowed: true } => 0.0,
-            _ => facing.max(0.0),
-        };
         Ok(Sample {
-            rgb: self.surface_rgb(ray, p, t, lit),
+            rgb: self.surface_rgb(ray, p, t, facing, shadow),
             hit: true,
             shadow,
             primary: primary.counters,
@@ -192,10 +188,14 @@ impl Shader<'_> {
             .dot(DVec3::from(self.lighting.sun))
     }
 
-    /// The colour of the surface at `p`, `t` along `ray`, lit by the sun at the cosine `lit`
-    /// (zero in shadow).
+    /// The colour of the surface at `p`, `t` along `ray`, facing the sun as [`Shader::facing`]
+    /// says, in shadow or not as `shadow` says.
     #[inline(always)]
-    pub fn surface_rgb(&self, ray: &Ray, p: DVec3, t: f64, lit: f64) -> u32 {
+    pub fn surface_rgb(&self, ray: &Ray, p: DVec3, t: f64, facing: f64, shadow: Shadow) -> u32 {
+        let lit = match shadow {
+            Shadow::Cast { shadowed: true } => 0.0,
+            _ => facing.max(0.0),
+        };
         let light = self.lighting.ambient + self.lighting.intensity * lit;
         let mut colour = self.ramp(p.z) * light;
         if self.lighting.fog > 0.0 {

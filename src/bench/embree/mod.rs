@@ -285,12 +285,8 @@ impl EmbreeScene {
                 shadowed: self.occluded(start.into(), shader.lighting.sun),
             }
         };
-        let lit = match shadow {
-            Shadow::Cast { shadowed: true } => 0.0,
-            _ => facing.max(0.0),
-        };
         Sample {
-            rgb: shader.surface_rgb(&ray, p, t, lit),
+            rgb: shader.surface_rgb(&ray, p, t, facing, shadow),
             hit: true,
             shadow,
             ..missed
