@@ -185,9 +185,12 @@ pub(super) fn descend<S: Scalar>(
         }
         if k == 0 && may_hit {
             // Cells touched where this part begins were covered by the part before, or lie
-            // in a skipped block; others are touched at the ray's start (no part before it),
-            // at a lattice point it leaves through, or at the segment's end.
-            let alone = !(first_part || (exit.on_u && exit.on_v) || ends_inside);
+            // in a skipped block; others are touched at the ray's start (no part before it,
+            // and the start on a grid line as the run walk tells it: a shadow ray's start
+            // mostly lies off them, and is tested alone), at a lattice point it leaves
+            // through, or at the segment's end.
+            let touched_at_start = first_part && on_a_grid_line(&at.u, &at.v);
+            let alone = !(touched_at_start || (exit.on_u && exit.on_v) || ends_inside);
             let part = Part {
                 frame: f,
                 uv: (cu, cv),
@@ -216,6 +219,11 @@ pub(super) fn descend<S: Scalar>(
         at = exit;
         first_part = false;
     }
+}
+
+/// Whether a point lies on a grid line: else it touches one cell only.
+fn on_a_grid_line<S: Scalar>(u: &S, v: &S) -> bool {
+    u.is_integer() || v.is_integer()
 }
 
 impl<S: Scalar> Part<'_, S> {
