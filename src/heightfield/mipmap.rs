@@ -2,6 +2,7 @@
 //! of `2^k x 2^k` cells, for every level `k >= 1`. Level 0 (one cell) is not stored: the four
 //! corner samples give it, which keeps the structure at about 2/3 of a byte per sample.
 
+use super::fetch::prefetch;
 use super::Heightfield;
 
 /// Highest samples over aligned blocks of cells; level `k` block `(bi, bj)` covers cells
@@ -52,6 +53,24 @@ impl MaxMipmap {
     pub fn get(&self, k: u32, bi: usize, bj: usize) -> u16 {
         let (start, nx) = self.levels[k as usize - 1];
         self.max[start + bj * nx + bi]
+    }
+
+    /// Asks the processor to fetch the `n x n` blocks of level `k` from `(bi, bj)` on (the
+    /// part inside the level) into its caches.
+    #[inline]
+    pub fn prefetch(&self, k: u32, bi: usize, bj: usize, n: usize) {
+        let (start, nx) = self.levels[k as usize - 1];
+        let end = self
+            .levels
+            .get(k as usize)
+            .map_or(self.max.len(), |next| next.0);
+        let rows = (end - start) / nx;
+        let len = n.min(nx - bi);
+        for bj in bj..(bj + n).min(rows) {
+            let first = start + bj * nx + bi;
+            prefetch(&self.max[first]);
+            prefetch(&self.max[first + len - 1]);
+        }
     }
 
     /// Bytes held.

@@ -2,6 +2,7 @@
 //! and range-maximum structures the traversals skip empty space with.
 
 mod builtin;
+mod fetch;
 mod generate;
 mod limits;
 mod load;
@@ -23,6 +24,7 @@ pub use mipmap::MaxMipmap;
 pub use nodata::NoDataMask;
 pub use terrain::{Lines, Terrain};
 
+use fetch::prefetch;
 use thiserror::Error;
 
 /// Why a height field could not be built.
@@ -237,6 +239,18 @@ impl Heightfield {
     /// The height at sample `(i, j)`.
     pub fn z(&self, i: usize, j: usize) -> f64 {
         self.height_of(self.sample(i, j))
+    }
+    /// Asks the processor to fetch the samples of the `n x n` cells from cell `(i, j)` on (the
+    /// part inside the grid) into its caches, without waiting for them.
+    #[inline]
+    pub fn prefetch_cells(&self, i: usize, j: usize, n: usize) {
+        let last_row = (j + n).min(self.height - 1);
+        let len = (n + 1).min(self.width - i);
+        for row in j..=last_row {
+            let start = row * self.width + i;
+            prefetch(&self.samples[start]);
+            prefetch(&self.samples[start + len - 1]);
+        }
     }
     /// All samples, by `j * width + i`.
     pub fn samples(&self) -> &[u16] {

@@ -1,5 +1,6 @@
 //! A height field with the acceleration data the traversals use.
 
+use super::fetch::FETCH_AHEAD_BYTES;
 use super::{CellMaxima, Heightfield, LineMaxima, MaxMipmap};
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
@@ -14,6 +15,8 @@ pub struct Terrain {
     min_sample: u16,
     max_sample: u16,
     max_slope: f64,
+    /// Whether walks fetch ahead (the map is larger than the caches).
+    fetch_ahead: bool,
     build_time: Duration,
 }
 
@@ -28,6 +31,7 @@ impl Terrain {
         let max_slope = max_slope(&field);
         Terrain {
             max_slope,
+            fetch_ahead: field.samples().len() * 2 >= FETCH_AHEAD_BYTES,
             field,
             mipmap,
             lines: OnceLock::new(),
@@ -39,6 +43,25 @@ impl Terrain {
 
     pub fn field(&self) -> &Heightfield {
         &self.field
+    }
+    /// A walk goes down into block `(bi, bj)` of level `k`: on a map larger than the caches,
+    /// asks the processor to fetch what it will read two levels below.
+    #[inline(always)]
+    pub fn fetch_below(&self, k: u32, bi: usize, bj: usize) {
+        if self.fetch_ahead {
+            self.fetch_two_levels_below(k, bi, bj);
+        }
+    }
+    /// Fetches the samples of a block of 4x4 cells, and the 4x4 blocks two levels below a
+    /// block of level 3 or 4. (Measured at 8193²: samples fetched for blocks of 8x8 cells
+    /// gained no more than for blocks of 4x4.)
+    #[inline(always)]
+    fn fetch_two_levels_below(&self, k: u32, bi: usize, bj: usize) {
+        match k {
+            2 => self.field.prefetch_cells(bi << 2, bj << 2, 4),
+            3 | 4 => self.mipmap.prefetch(k - 2, bi << 2, bj << 2, 4),
+            _ => {}
+        }
     }
     /// Heights `[z00, z10, z01, z11]` of the corners of cell `(i, j)`.
     pub fn corner_heights(&self, i: usize, j: usize) -> [f64; 4] {
@@ -150,4 +173,26 @@ fn max_slope(field: &Heightfield) -> f64 {
         .max()
         .unwrap_or(0);
     field.step() * (steepest as f64).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fetching_ahead_stays_inside_the_grid_and_levels() {
+        for (w, h) in [(2, 2), (3, 2), (13, 6), (17, 33), (34, 9), (70, 37)] {
+            let field =
+                Heightfield::from_fn(w, h, 1000, 1.0, |x, y| ((x * 31 + y) % 1000) as u16).unwrap();
+            let terrain = Terrain::new(field);
+            for k in 1..=terrain.mipmap().top() {
+                let size = 1usize << k;
+                for bj in 0..(h - 1).div_ceil(size) {
+                    for bi in 0..(w - 1).div_ceil(size) {
+                        terrain.fetch_two_levels_below(k, bi, bj);
+                    }
+                }
+            }
+        }
+    }
 }

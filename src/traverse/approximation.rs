@@ -123,7 +123,11 @@ impl Bounds {
         } else {
             &mut counters.block
         };
-        self.may_reach(highest, window, counter)
+        let may_hit = self.may_reach(highest, window, counter);
+        if may_hit {
+            terrain.fetch_below(k, bi, bj);
+        }
+        may_hit
     }
 
     /// Whether the exact ray may come down to `highest` while the walk's `t` runs over

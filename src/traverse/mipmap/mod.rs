@@ -249,7 +249,11 @@ impl<S: Scalar> Follower<S> for Search<'_, S> {
             self.cell_may_hit(bi, bj, t_lo, t_hi)
         } else {
             let highest = self.terrain.mipmap().get(k, bi, bj);
-            self.block_may_hit(t_lo, t_hi, highest)
+            let may_hit = self.block_may_hit(t_lo, t_hi, highest);
+            if may_hit {
+                self.terrain.fetch_below(k, bi, bj);
+            }
+            may_hit
         }
     }
     fn cell(&mut self, (i, j): (usize, usize), part: Part<'_, S>) -> ControlFlow<()> {
