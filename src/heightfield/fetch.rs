@@ -7,9 +7,46 @@
 /// 2049², 2% faster at 4097² and 7% faster at 8193².
 pub const FETCH_AHEAD_BYTES: usize = 16 << 20;
 
+/// Part of a row-major array: `rows` rows of `len` values each, the first from index `first`
+/// on, each row `stride` values after the one before.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Window {
+    pub first: usize,
+    pub len: usize,
+    pub rows: usize,
+    pub stride: usize,
+}
+
+impl Window {
+    /// Whether index `at` lies in the window.
+    #[cfg(test)]
+    pub fn contains(&self, at: usize) -> bool {
+        (0..self.rows).any(|row| {
+            let start = self.first + row * self.stride;
+            (start..start + self.len).contains(&at)
+        })
+    }
+    /// One past the window's last index.
+    #[cfg(test)]
+    pub fn end(&self) -> usize {
+        self.first + (self.rows - 1) * self.stride + self.len
+    }
+    /// Asks the processor to fetch the window's values of `values` into its caches, without
+    /// waiting for them: the lines holding each row's first and last value (a row is shorter
+    /// than a cache line).
+    #[inline(always)]
+    pub fn prefetch<T>(self, values: &[T]) {
+        for row in 0..self.rows {
+            let start = self.first + row * self.stride;
+            prefetch(&values[start]);
+            prefetch(&values[start + self.len - 1]);
+        }
+    }
+}
+
 /// A hint to fetch the cache line holding `value`; nothing on other processors.
 #[inline(always)]
-pub fn prefetch<T>(value: &T) {
+fn prefetch<T>(value: &T) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};

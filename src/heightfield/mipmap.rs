@@ -2,7 +2,7 @@
 //! of `2^k x 2^k` cells, for every level `k >= 1`. Level 0 (one cell) is not stored: the four
 //! corner samples give it, which keeps the structure at about 2/3 of a byte per sample.
 
-use super::fetch::prefetch;
+use super::fetch::Window;
 use super::Heightfield;
 
 /// Highest samples over aligned blocks of cells; level `k` block `(bi, bj)` covers cells
@@ -55,22 +55,27 @@ impl MaxMipmap {
         self.max[start + bj * nx + bi]
     }
 
-    /// Asks the processor to fetch the `n x n` blocks of level `k` from `(bi, bj)` on (the
-    /// part inside the level) into its caches.
+    /// The `n x n` blocks of level `k` from `(bi, bj)` on (those inside the level), in
+    /// [`MaxMipmap::values`].
     #[inline]
-    pub fn prefetch(&self, k: u32, bi: usize, bj: usize, n: usize) {
+    pub fn blocks_window(&self, k: u32, bi: usize, bj: usize, n: usize) -> Window {
         let (start, nx) = self.levels[k as usize - 1];
         let end = self
             .levels
             .get(k as usize)
             .map_or(self.max.len(), |next| next.0);
         let rows = (end - start) / nx;
-        let len = n.min(nx - bi);
-        for bj in bj..(bj + n).min(rows) {
-            let first = start + bj * nx + bi;
-            prefetch(&self.max[first]);
-            prefetch(&self.max[first + len - 1]);
+        Window {
+            first: start + bj * nx + bi,
+            len: n.min(nx - bi),
+            rows: (bj + n).min(rows) - bj,
+            stride: nx,
         }
+    }
+
+    /// Every level's blocks, level 1 first, each level by `bj * nx + bi`.
+    pub fn values(&self) -> &[u16] {
+        &self.max
     }
 
     /// Bytes held.
@@ -125,6 +130,40 @@ fn halve(below: &Level) -> Level {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_blocks_window_is_every_block_under_it_inside_its_level() {
+        for (w, h) in [(2, 2), (13, 6), (17, 33), (70, 37)] {
+            let field = Heightfield::from_fn(w, h, 255, 1.0, |_, _| 0).unwrap();
+            let mipmap = MaxMipmap::build(&field);
+            for k in 1..=mipmap.top() {
+                let (start, nx) = mipmap.levels[k as usize - 1];
+                let ny = (h - 1).div_ceil(1 << k);
+                for (bj, bi) in (0..ny)
+                    .step_by(4)
+                    .flat_map(|bj| (0..nx).step_by(4).map(move |bi| (bj, bi)))
+                {
+                    let window = mipmap.blocks_window(k, bi, bj, 4);
+                    assert!(
+                        window.end() <= start + nx * ny,
+                        "{w}x{h} level {k}: {window:?}"
+                    );
+                    let under = (bj..(bj + 4).min(ny))
+                        .flat_map(|y| (bi..(bi + 4).min(nx)).map(move |x| start + y * nx + x));
+                    let mut count = 0;
+                    for at in under {
+                        assert!(window.contains(at), "{w}x{h} level {k}: {at} in {window:?}");
+                        count += 1;
+                    }
+                    assert_eq!(
+                        window.len * window.rows,
+                        count,
+                        "{w}x{h} level {k}: nothing more"
+                    );
+                }
+            }
+        }
+    }
 
     #[test]
     fn blocks_hold_the_highest_sample_of_their_cells() {

@@ -13,6 +13,7 @@ mod summary;
 mod terrain;
 
 pub use builtin::{Builtin, BUILTINS};
+pub use fetch::Window;
 pub use generate::landscape;
 pub use limits::{MAX_DECODED_BYTES, MAX_SAMPLES};
 pub use load::{
@@ -24,7 +25,6 @@ pub use mipmap::MaxMipmap;
 pub use nodata::NoDataMask;
 pub use terrain::{Lines, Terrain};
 
-use fetch::prefetch;
 use thiserror::Error;
 
 /// Why a height field could not be built.
@@ -240,16 +240,14 @@ impl Heightfield {
     pub fn z(&self, i: usize, j: usize) -> f64 {
         self.height_of(self.sample(i, j))
     }
-    /// Asks the processor to fetch the samples of the `n x n` cells from cell `(i, j)` on (the
-    /// part inside the grid) into its caches, without waiting for them.
+    /// The samples of the `n x n` cells from cell `(i, j)` on (those inside the grid).
     #[inline]
-    pub fn prefetch_cells(&self, i: usize, j: usize, n: usize) {
-        let last_row = (j + n).min(self.height - 1);
-        let len = (n + 1).min(self.width - i);
-        for row in j..=last_row {
-            let start = row * self.width + i;
-            prefetch(&self.samples[start]);
-            prefetch(&self.samples[start + len - 1]);
+    pub fn cells_window(&self, i: usize, j: usize, n: usize) -> Window {
+        Window {
+            first: j * self.width + i,
+            len: (n + 1).min(self.width - i),
+            rows: (j + n).min(self.height - 1) + 1 - j,
+            stride: self.width,
         }
     }
     /// All samples, by `j * width + i`.
@@ -314,6 +312,32 @@ fn check_size(width: usize, height: usize) -> Result<(), HeightfieldError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_cells_window_is_every_corner_sample_of_its_cells_inside_the_grid() {
+        for (w, h) in [(2, 2), (3, 2), (13, 6), (17, 33), (70, 37)] {
+            let field = Heightfield::from_fn(w, h, 255, 1.0, |_, _| 0).unwrap();
+            for (j, i) in (0..h - 1)
+                .step_by(4)
+                .flat_map(|j| (0..w - 1).step_by(4).map(move |i| (j, i)))
+            {
+                let window = field.cells_window(i, j, 4);
+                assert!(window.end() <= w * h, "{w}x{h} ({i},{j}): {window:?}");
+                let corners = (j..=(j + 4).min(h - 1))
+                    .flat_map(|y| (i..=(i + 4).min(w - 1)).map(move |x| y * w + x));
+                let mut count = 0;
+                for at in corners {
+                    assert!(window.contains(at), "{w}x{h} ({i},{j}): {at} in {window:?}");
+                    count += 1;
+                }
+                assert_eq!(
+                    window.len * window.rows,
+                    count,
+                    "{w}x{h} ({i},{j}): nothing more"
+                );
+            }
+        }
+    }
 
     #[test]
     fn image_rows_map_to_y_up() {
