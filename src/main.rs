@@ -11,11 +11,23 @@ fn main() -> ExitCode {
     let command = args.command.unwrap_or(cli::Command::View(args.view));
     match cli::run(command) {
         Ok(code) => code,
+        // The reader of the output stopped reading (`heightray trace ... | head`): what it
+        // read is all it wanted, as with any tool whose output is cut short by a pipe.
+        Err(error) if stopped_reading(&error) => ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("heightray: {}", message(&error));
             ExitCode::FAILURE
         }
     }
+}
+
+/// Whether the error is a write to a pipe whose reader has gone.
+fn stopped_reading(error: &anyhow::Error) -> bool {
+    error.chain().any(|cause| {
+        cause
+            .downcast_ref::<std::io::Error>()
+            .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
+    })
 }
 
 /// The error and the causes it does not already tell: most of the library's errors name their

@@ -9,6 +9,7 @@ use heightray::bench::{
 use heightray::traverse::{Arith, Method};
 use heightray::Terrain;
 use std::fmt::Write as _;
+use std::io::{self, Write as _};
 use std::process::ExitCode;
 
 pub fn run(args: &AccuracyArgs) -> anyhow::Result<ExitCode> {
@@ -50,7 +51,6 @@ pub fn run(args: &AccuracyArgs) -> anyhow::Result<ExitCode> {
     bar.finish_and_clear();
 
     let report = report(args, &rows, &pixels);
-    print!("{report}");
     if let Some(path) = &args.out {
         std::fs::write(path, &report)
             .with_context(|| format!("cannot write {}", path.display()))?;
@@ -58,6 +58,8 @@ pub fn run(args: &AccuracyArgs) -> anyhow::Result<ExitCode> {
     if let Some(path) = &args.plot {
         plot::time_against_error(&summary(&rows, &args.methods, &ariths), path)?;
     }
+    // (Last: a reader of the report that stops early loses none of the files.)
+    io::stdout().lock().write_all(report.as_bytes())?;
     Ok(ExitCode::SUCCESS)
 }
 

@@ -12,6 +12,7 @@ use heightray::traverse::{Arith, HitMiss, Method};
 use heightray::Terrain;
 use indicatif::ProgressBar;
 use indicatif::ProgressStyle;
+use std::io::{self, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
@@ -51,11 +52,12 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
         }
         bar.finish_and_clear();
     }
+    let out = &mut std::io::stdout().lock();
     for (label, terrain, rows, references) in &measured {
-        print_table(label, terrain, rows, references);
+        print_table(out, label, terrain, rows, references)?;
     }
     if measured.len() > 1 && !args.sizes.is_empty() {
-        print_growth(&measured);
+        print_growth(out, &measured)?;
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -76,12 +78,17 @@ pub fn textbook(args: &TextbookArgs) -> anyhow::Result<ExitCode> {
     bar.set_message("hard cases");
     let hard = hard_cases_versus_exact(args.per_set)?;
     bar.finish_and_clear();
-    println!("camera rays, one thread, f64; heightray's mipmap walk without the renderer's beams");
-    println!("| scene | rays | hits | queries per ray: heightray / textbook | heightray Mrays/s | textbook Mrays/s | heightray time x textbook | answers that differ |");
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    let out = &mut std::io::stdout().lock();
+    writeln!(
+        out,
+        "camera rays, one thread, f64; heightray's mipmap walk without the renderer's beams"
+    )?;
+    writeln!(out, "| scene | rays | hits | queries per ray: heightray / textbook | heightray Mrays/s | textbook Mrays/s | heightray time x textbook | answers that differ |")?;
+    writeln!(out, "|---|---:|---:|---:|---:|---:|---:|---:|")?;
     for (name, row) in rows {
         let rate = |time: Duration| row.rays as f64 / time.as_secs_f64() / 1e6;
-        println!(
+        writeln!(
+            out,
             "| {name} | {} | {} | {:.2} / {:.2} | {:.3} | {:.3} | {:.2} | {} |",
             row.rays,
             row.hits,
@@ -91,17 +98,18 @@ pub fn textbook(args: &TextbookArgs) -> anyhow::Result<ExitCode> {
             rate(row.textbook_time),
             row.heightray_time.as_secs_f64() / row.textbook_time.as_secs_f64(),
             row.differing,
-        );
+        )?;
     }
     print_hard_cases(
+        out,
         "the hard-case sets of `bench accuracy`: answers in f64 that differ from heightray's exact answers (a hit against a miss, or t off by more than a relative 1e-9)",
         ["heightray mipmap f64", "textbook walk"],
         &hard,
-    );
+    )?;
     // (A build without Embree refused `--embree` above.)
     #[cfg(feature = "embree")]
     if args.embree {
-        print_embree_hard_cases(args.per_set)?;
+        print_embree_hard_cases(out, args.per_set)?;
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -112,25 +120,32 @@ const WITHOUT_EMBREE: &str = "this heightray was built without Embree: install l
 
 /// The hard cases in `f32`: heightray's mipmap walk and Embree against exact.
 #[cfg(feature = "embree")]
-fn print_embree_hard_cases(per_set: usize) -> anyhow::Result<()> {
+fn print_embree_hard_cases(out: &mut impl Write, per_set: usize) -> anyhow::Result<()> {
     use heightray::bench::embree::{hard_cases_in_f32, F32_TOLERANCE};
     print_hard_cases(
+        out,
         &format!("the same sets in f32: answers that differ from heightray's exact answers (a hit against a miss, or t off by more than a relative {F32_TOLERANCE:e})"),
         ["heightray mipmap f32", "Embree 3"],
         &hard_cases_in_f32(per_set)?,
-    );
+    )?;
     Ok(())
 }
 
 /// A table of the hard-case sets: how many answers of each of two tracers differ from exact.
-fn print_hard_cases(heading: &str, [first, second]: [&str; 2], rows: &[HardCaseRow]) {
-    println!("\n{heading}");
-    println!("| set | rays | {first} | {second} |");
-    println!("|---|---:|---:|---:|");
+fn print_hard_cases(
+    out: &mut impl Write,
+    heading: &str,
+    [first, second]: [&str; 2],
+    rows: &[HardCaseRow],
+) -> io::Result<()> {
+    writeln!(out, "\n{heading}")?;
+    writeln!(out, "| set | rays | {first} | {second} |")?;
+    writeln!(out, "|---|---:|---:|---:|")?;
     for row in rows {
         let [a, b] = row.differing;
-        println!("| {} | {} | {a} | {b} |", row.set, row.rays);
+        writeln!(out, "| {} | {} | {a} | {b} |", row.set, row.rays)?;
     }
+    Ok(())
 }
 
 /// The scene's terrain, built as many times as fit in a second (at least three): the one
@@ -251,16 +266,22 @@ fn measure(
 }
 
 fn print_table(
+    out: &mut impl Write,
     label: &str,
     terrain: &Terrain,
     rows: &[ThroughputRow],
     references: &[ReferenceFigures],
-) {
+) -> io::Result<()> {
     let field = terrain.field();
     let samples = (field.width() * field.height()) as f64;
-    println!("\n{label}: {}x{} samples", field.width(), field.height());
-    println!("| method | arith | threads | build ms | bytes/sample | primary Mrays/s | shadow Mrays/s | frame with shadows ms | time x f64 | 2 threads x 1 |");
-    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    writeln!(
+        out,
+        "\n{label}: {}x{} samples",
+        field.width(),
+        field.height()
+    )?;
+    writeln!(out, "| method | arith | threads | build ms | bytes/sample | primary Mrays/s | shadow Mrays/s | frame with shadows ms | time x f64 | 2 threads x 1 |")?;
+    writeln!(out, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")?;
     for row in rows {
         let same = |tracer, threads| {
             rows.iter()
@@ -281,7 +302,8 @@ fn print_table(
             Tracer::Heightray(method, _) => prepare(terrain, method),
             Tracer::Reference(k) => (references[k].build, references[k].bytes),
         };
-        println!(
+        writeln!(
+            out,
             "| {method} | {arith} | {} | {:.1} | {:.2} | {:.3} | {} | {:.1} | {} | {} |",
             row.threads,
             build.as_secs_f64() * 1e3,
@@ -292,19 +314,20 @@ fn print_table(
             row.total_time.as_secs_f64() * 1e3,
             versus_f64.map_or("-".into(), |r| format!("{r:.2}")),
             versus_one.map_or("-".into(), |r| format!("{r:.2}")),
-        );
+        )?;
     }
     if rows.iter().any(|r| r.shadow_per_second().is_none()) {
-        println!("(shadow Mrays/s \"-\": no shadow rays, or the frame with shadows was not slower than the one without: shadows were lost in the noise of the two times)");
+        writeln!(out, "(shadow Mrays/s \"-\": no shadow rays, or the frame with shadows was not slower than the one without: shadows were lost in the noise of the two times)")?;
     }
     if !references.is_empty() {
-        println!("(embree: Embree 3 on the terrain's triangles, or on its grid, in f32, built on one thread; its bytes/sample are all it holds, vertices included, where heightray's are what it holds beyond the 2-byte samples)");
+        writeln!(out, "(embree: Embree 3 on the terrain's triangles, or on its grid, in f32, built on one thread; its bytes/sample are all it holds, vertices included, where heightray's are what it holds beyond the 2-byte samples)")?;
     }
     let pixels = rows.first().map_or(0, |r| r.primary_rays);
     for figures in references {
-        println!("({}: its frame with shadows differs from the mipmap's in f64 in {} of {pixels} pixels by more than {LEVELS_APART} levels in a channel; primary hits: mipmap {}, {} {})",
-            figures.name, figures.differing, figures.hits.0, figures.name, figures.hits.1);
+        writeln!(out, "({}: its frame with shadows differs from the mipmap's in f64 in {} of {pixels} pixels by more than {LEVELS_APART} levels in a channel; primary hits: mipmap {}, {} {})",
+            figures.name, figures.differing, figures.hits.0, figures.name, figures.hits.1)?;
     }
+    Ok(())
 }
 
 /// A tracer's method and arithmetic columns.
@@ -317,7 +340,7 @@ fn names(tracer: Tracer, references: &[ReferenceFigures]) -> (String, String) {
 
 /// How each method's time per primary ray grows with the terrain size (first arithmetic, one
 /// thread) beside the growth of log N, and the queries per primary ray it grows with.
-fn print_growth(measured: &[Measured]) {
+fn print_growth<W: Write>(out: &mut W, measured: &[Measured]) -> io::Result<()> {
     let first = &measured[0];
     let side = |t: &Terrain| t.field().width() as f64;
     let mut header = "| method | arith |".to_string();
@@ -326,34 +349,39 @@ fn print_growth(measured: &[Measured]) {
     }
     header += &format!("\n|---|---|{}", "---:|".repeat(measured.len()));
     // One line per method: `cell` of its row at each size.
-    let lines = |cell: &dyn Fn(&ThroughputRow, &ThroughputRow) -> String, ours_only: bool| {
-        let ours = |r: &&ThroughputRow| !ours_only || matches!(r.tracer, Tracer::Heightray(..));
-        for base in first.2.iter().filter(|r| r.threads == 1).filter(ours) {
-            let (method, arith) = names(base.tracer, &first.3);
-            let mut line = format!("| {method} | {arith} |");
-            for (_, _, rows, _) in measured {
-                let row = rows
-                    .iter()
-                    .find(|r| r.tracer == base.tracer && r.threads == base.threads);
-                line += &row.map_or(" - |".into(), |r| format!(" {} |", cell(base, r)));
+    let lines =
+        |out: &mut W, cell: &dyn Fn(&ThroughputRow, &ThroughputRow) -> String, ours_only: bool| {
+            let ours = |r: &&ThroughputRow| !ours_only || matches!(r.tracer, Tracer::Heightray(..));
+            for base in first.2.iter().filter(|r| r.threads == 1).filter(ours) {
+                let (method, arith) = names(base.tracer, &first.3);
+                let mut line = format!("| {method} | {arith} |");
+                for (_, _, rows, _) in measured {
+                    let row = rows
+                        .iter()
+                        .find(|r| r.tracer == base.tracer && r.threads == base.threads);
+                    line += &row.map_or(" - |".into(), |r| format!(" {} |", cell(base, r)));
+                }
+                writeln!(out, "{line}")?;
             }
-            println!("{line}");
-        }
-    };
+            Ok(())
+        };
 
-    println!("\ngrowth of time per primary ray with the terrain size (x the smallest)\n{header}");
+    writeln!(
+        out,
+        "\ngrowth of time per primary ray with the terrain size (x the smallest)\n{header}"
+    )?;
     let growth = |base: &ThroughputRow, r: &ThroughputRow| {
         format!("{:.2}", base.primary_per_second() / r.primary_per_second())
     };
-    lines(&growth, false);
+    lines(out, &growth, false)?;
     let mut line = "| log2 N | - |".to_string();
     for (_, terrain, _, _) in measured {
         line += &format!(" {:.2} |", side(terrain).log2() / side(&first.1).log2());
     }
-    println!("{line}");
+    writeln!(out, "{line}")?;
 
     // What the time grows with: the finer terrain has more near misses per ray.
-    println!("\nqueries per primary ray: block / run / cell / triangle / beam (once per tile of rays)\n{header}");
+    writeln!(out, "\nqueries per primary ray: block / run / cell / triangle / beam (once per tile of rays)\n{header}")?;
     let queries = |_: &ThroughputRow, r: &ThroughputRow| {
         let per_ray = |queries: HitMiss| queries.total() as f64 / r.primary_rays as f64;
         let q = &r.primary_queries;
@@ -366,7 +394,7 @@ fn print_growth(measured: &[Measured]) {
             per_ray(q.beam)
         )
     };
-    lines(&queries, true);
+    lines(out, &queries, true)
 }
 
 /// A scene to measure on, as written: `path` names it (a built-in scene by its name).

@@ -7,6 +7,7 @@ use heightray::traverse::prepare;
 use heightray::Terrain;
 use image::{ImageBuffer, Rgb};
 use serde_json::json;
+use std::io::Write;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -46,14 +47,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let render_ms = start.elapsed().as_secs_f64() * 1e3;
 
     save_png(&frame, &args.output)?;
-    let label = args.scene.display().to_string();
-    print!("{}", frame.totals.table(&label, build_ms, render_ms));
     let rays = frame.totals.primary_rays + frame.totals.shadow_rays;
-    println!(
-        "{:.3} Mrays/s ({} threads, {method}, {arith})",
-        rays as f64 / render_ms / 1e3,
-        pool.current_num_threads()
-    );
+    // (Before the table: a reader of the table that stops early loses none of the files.)
     if let Some(path) = &args.stats {
         let mut stats = json!({
             "width": width, "height": height, "threads": pool.current_num_threads(),
@@ -69,6 +64,15 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         std::fs::write(path, serde_json::to_string_pretty(&stats)? + "\n")
             .with_context(|| format!("cannot write {}", path.display()))?;
     }
+    let label = args.scene.display().to_string();
+    let out = &mut std::io::stdout().lock();
+    write!(out, "{}", frame.totals.table(&label, build_ms, render_ms))?;
+    writeln!(
+        out,
+        "{:.3} Mrays/s ({} threads, {method}, {arith})",
+        rays as f64 / render_ms / 1e3,
+        pool.current_num_threads()
+    )?;
     Ok(ExitCode::SUCCESS)
 }
 

@@ -416,3 +416,80 @@ fn scene_errors_say_their_cause_once() {
         assert_eq!(message.matches(cause).count(), 1, "{message}");
     }
 }
+
+/// Runs `heightray args` with stdout a pipe whose reader takes `lines` lines and hangs up
+/// (with 0, before the program starts).
+fn stop_reading_after(args: &[&str], lines: usize) -> Output {
+    use std::io::{BufRead, BufReader};
+    use std::process::Stdio;
+    let (reader, writer) = std::io::pipe().expect("a pipe");
+    let reader = (lines > 0).then_some(reader);
+    let child = Command::new(env!("CARGO_BIN_EXE_heightray"))
+        .args(args)
+        .stdout(writer)
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run the heightray binary");
+    if let Some(reader) = reader {
+        let read = BufReader::new(reader).lines().take(lines).count();
+        assert_eq!(read, lines, "lines before hanging up");
+    }
+    child.wait_with_output().expect("wait for heightray")
+}
+
+#[test]
+fn a_reader_that_stops_early_ends_the_trace_quietly() {
+    let dir = TempDir::new().unwrap();
+    let map = write_map(&dir);
+    // Far more output than a pipe holds, so the trace is still writing when the reader goes.
+    let rays = dir.path().join("rays.txt");
+    std::fs::write(&rays, "0 0.25 3 2 1 -2\n".repeat(20_000)).unwrap();
+    let output = stop_reading_after(&trace_args(&map, &["--rays", rays.to_str().unwrap()]), 1);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        output.status.success(),
+        "exit {:?}: {stderr}",
+        output.status
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(
+        !stderr.contains("heightray:"),
+        "an error for a reader that left: {stderr}"
+    );
+}
+
+#[test]
+fn a_render_whose_reader_has_gone_still_writes_its_files() {
+    let dir = TempDir::new().unwrap();
+    let map = write_map(&dir);
+    let scene = dir.path().join("scene.toml");
+    let (png, stats) = (dir.path().join("out.png"), dir.path().join("stats.json"));
+    std::fs::write(
+        &scene,
+        format!(
+            "[heightmap]\npath = {:?}\nz_scale = 255.0\n\n[camera]\neye = [-3.0, -3.0, 8.0]\n\
+             target = [1.5, 1.0, 1.0]\nwidth = 16\nheight = 16\n",
+            map.to_str().unwrap()
+        ),
+    )
+    .unwrap();
+    let args = [
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--stats",
+        stats.to_str().unwrap(),
+    ];
+    let output = stop_reading_after(&args, 0);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        output.status.success(),
+        "exit {:?}: {stderr}",
+        output.status
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    let stats: Value = serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
+    assert_eq!(stats["primary_rays"], Value::from(256));
+    assert_eq!(image::open(&png).unwrap().width(), 16);
+}
