@@ -418,8 +418,9 @@ fn scene_errors_say_their_cause_once() {
 }
 
 /// Runs `heightray args` with stdout a pipe whose reader takes `lines` lines and hangs up
-/// (with 0, before the program starts).
-fn stop_reading_after(args: &[&str], lines: usize) -> Output {
+/// (with 0, before the program starts), checks that it ended with success, not a panic, and
+/// returns what it wrote to stderr.
+fn stop_reading_after(args: &[&str], lines: usize) -> String {
     use std::io::{BufRead, BufReader};
     use std::process::Stdio;
     let (reader, writer) = std::io::pipe().expect("a pipe");
@@ -434,7 +435,15 @@ fn stop_reading_after(args: &[&str], lines: usize) -> Output {
         let read = BufReader::new(reader).lines().take(lines).count();
         assert_eq!(read, lines, "lines before hanging up");
     }
-    child.wait_with_output().expect("wait for heightray")
+    let output = child.wait_with_output().expect("wait for heightray");
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert!(
+        output.status.success(),
+        "exit {:?}: {stderr}",
+        output.status
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    stderr
 }
 
 #[test]
@@ -444,14 +453,7 @@ fn a_reader_that_stops_early_ends_the_trace_quietly() {
     // Far more output than a pipe holds, so the trace is still writing when the reader goes.
     let rays = dir.path().join("rays.txt");
     std::fs::write(&rays, "0 0.25 3 2 1 -2\n".repeat(20_000)).unwrap();
-    let output = stop_reading_after(&trace_args(&map, &["--rays", rays.to_str().unwrap()]), 1);
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        output.status.success(),
-        "exit {:?}: {stderr}",
-        output.status
-    );
-    assert!(!stderr.contains("panicked"), "{stderr}");
+    let stderr = stop_reading_after(&trace_args(&map, &["--rays", rays.to_str().unwrap()]), 1);
     assert!(
         !stderr.contains("heightray:"),
         "an error for a reader that left: {stderr}"
@@ -481,14 +483,7 @@ fn a_render_whose_reader_has_gone_still_writes_its_files() {
         "--stats",
         stats.to_str().unwrap(),
     ];
-    let output = stop_reading_after(&args, 0);
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        output.status.success(),
-        "exit {:?}: {stderr}",
-        output.status
-    );
-    assert!(!stderr.contains("panicked"), "{stderr}");
+    stop_reading_after(&args, 0);
     let stats: Value = serde_json::from_str(&std::fs::read_to_string(&stats).unwrap()).unwrap();
     assert_eq!(stats["primary_rays"], Value::from(256));
     assert_eq!(image::open(&png).unwrap().width(), 16);
