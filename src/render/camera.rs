@@ -21,7 +21,13 @@ pub enum CameraError {
     BadFov(f64),
     #[error("image size must be at least 1x1, got {0}x{1}")]
     EmptyImage(u32, u32),
+    #[error("image size {0}x{1} is more than the limit of {MAX_PIXELS} pixels (16384x16384)")]
+    HugeImage(u32, u32),
 }
+
+/// The most pixels an image may have: a frame holds several bytes a pixel, and a size typed
+/// with a digit too many must be refused, not abort on an allocation of tens of gigabytes.
+pub const MAX_PIXELS: u64 = 1 << 28;
 
 /// A validated pinhole camera.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -54,6 +60,9 @@ impl Camera {
         }
         if width == 0 || height == 0 {
             return Err(CameraError::EmptyImage(width, height));
+        }
+        if u64::from(width) * u64::from(height) > MAX_PIXELS {
+            return Err(CameraError::HugeImage(width, height));
         }
         let forward = (target - eye)
             .try_normalize()
@@ -147,6 +156,24 @@ mod tests {
         assert_eq!(
             Camera::look_at([1.0; 3], [1.0; 3], [0.0, 0.0, 1.0], 45.0, (1, 1)),
             Err(CameraError::EyeIsTarget)
+        );
+    }
+
+    #[test]
+    fn images_too_large_for_memory_are_refused() {
+        let look = |size| Camera::look_at([0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], 45.0, size);
+        assert!(look((16384, 16384)).is_ok());
+        assert_eq!(
+            look((16384, 16385)),
+            Err(CameraError::HugeImage(16384, 16385))
+        );
+        assert_eq!(
+            look((100_000, 100_000)),
+            Err(CameraError::HugeImage(100_000, 100_000))
+        );
+        assert_eq!(
+            look((u32::MAX, 1)),
+            Err(CameraError::HugeImage(u32::MAX, 1))
         );
     }
 }
