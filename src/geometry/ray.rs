@@ -48,6 +48,44 @@ impl Ray {
     pub fn dir(&self) -> [f64; 3] {
         self.dir
     }
+
+    /// The same line with its direction scaled by `2^-k` so that its largest component lies in
+    /// `[1, 2)`, and `k`: `t` along it is `2^-k` times `t` along this ray. A power of two
+    /// scales without rounding, so the line is exactly the same; only a direction far from
+    /// unit length is rescaled (`k` is 0 otherwise), one whose hit parameter or products
+    /// would leave an arithmetic's range (a direction of 1e-310 puts the terrain at `t` near
+    /// 1e312, past `f64`'s largest; one of 1e100 is infinite in `f32`).
+    pub fn at_unit_scale(&self) -> (Ray, i32) {
+        let largest = self.dir.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+        let k = exponent(largest);
+        if k.abs() <= UNSCALED_EXPONENT {
+            return (*self, 0);
+        }
+        let dir = self.dir.map(|c| times_power_of_two(c, -k));
+        (Ray::new_checked_by_caller(self.origin, dir), k)
+    }
+}
+
+/// Directions whose largest component lies within `2^±32` are traced as given.
+const UNSCALED_EXPONENT: i32 = 32;
+
+/// `floor(log2 |x|)` for a finite nonzero `x`, from its bits (once per ray: `log2` is a
+/// library call).
+fn exponent(x: f64) -> i32 {
+    let biased = ((x.to_bits() >> 52) & 0x7ff) as i32;
+    if biased == 0 {
+        // Subnormal: scaled into the normal range, exactly.
+        exponent(x * 2f64.powi(64)) - 64
+    } else {
+        biased - 1023
+    }
+}
+
+/// `x * 2^k`, in two steps so that neither factor overflows (`k` may reach about ±1100 for a
+/// subnormal direction); exact unless the result leaves the `f64` range.
+pub fn times_power_of_two(x: f64, k: i32) -> f64 {
+    let half = k / 2;
+    x * 2f64.powi(half) * 2f64.powi(k - half)
 }
 
 #[cfg(test)]
@@ -68,5 +106,37 @@ mod tests {
             Ray::new([0.0; 3], [0.0, -0.0, 0.0]),
             Err(RayError::ZeroDirection)
         );
+    }
+
+    #[test]
+    fn directions_far_from_unit_length_are_rescaled_exactly() {
+        let scaled = |dir| Ray::new([1.0; 3], dir).unwrap().at_unit_scale();
+        let (ray, k) = scaled([3.0, -1.0, 0.5]);
+        assert_eq!((ray.dir(), k), ([3.0, -1.0, 0.5], 0));
+        for (x, k) in [
+            (1.0, 0),
+            (1.5, 0),
+            (0.75, -1),
+            (5e-324, -1074),
+            (3e-320, -1062),
+        ] {
+            assert_eq!(exponent(x), k, "{x:e}");
+            assert_eq!(exponent(-x), k, "{x:e}");
+        }
+        assert_eq!(exponent(f64::MAX), 1023);
+        let (ray, k) = scaled([1e-320, 0.0, -3e-320]);
+        assert!((1.0..2.0).contains(&ray.dir()[2].abs()), "{:?}", ray.dir());
+        // Back at the old scale, every component is what it was.
+        assert_eq!(
+            ray.dir().map(|c| times_power_of_two(c, k)),
+            [1e-320, 0.0, -3e-320]
+        );
+        let (ray, k) = scaled([1e300, -7e299, 1.0]);
+        assert_eq!(ray.dir()[0].abs().log2().floor(), 0.0);
+        assert_eq!(
+            ray.dir().map(|c| times_power_of_two(c, k)),
+            [1e300, -7e299, 1.0]
+        );
+        assert_eq!(ray.origin(), [1.0; 3]);
     }
 }

@@ -26,7 +26,7 @@ pub use interval::{settled, Interval};
 pub use rational::{with_bound, Rational, RationalEvents, DEFAULT_BOUND};
 pub use scalar::Scalar;
 
-use crate::geometry::{clip_to_box, plane_crossing, CertainMiss, Ray};
+use crate::geometry::{clip_to_box, plane_crossing, times_power_of_two, CertainMiss, Ray};
 use crate::heightfield::Terrain;
 use approximation::Approximation;
 use dyadic::Dyadic;
@@ -167,6 +167,23 @@ pub struct Trace {
 
 /// Traces one ray.
 pub fn trace(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
+    let (scaled, k) = ray.at_unit_scale();
+    let mut trace = trace_as_given(terrain, &scaled, options);
+    if let Some(hit) = trace.hit.as_mut().filter(|_| k != 0) {
+        // (The point is the same: only `t` depends on the direction's length.)
+        hit.t = times_power_of_two(hit.t, -k);
+        if let Some(t) = &mut hit.t_exact {
+            let scale =
+                BigRational::from_integer(num_bigint::BigInt::from(2).pow(k.unsigned_abs()));
+            *t = if k > 0 { &*t / scale } else { &*t * scale };
+            hit.t = num_traits::ToPrimitive::to_f64(t).unwrap_or(f64::INFINITY);
+        }
+    }
+    trace
+}
+
+/// Traces one ray with its direction as given.
+fn trace_as_given(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
     match options.arith {
         Arith::F32 => trace_in::<f32>(terrain, ray, options),
         Arith::F64 => trace_in::<f64>(terrain, ray, options),

@@ -1176,9 +1176,13 @@ fn ray_in_the_plane_of_a_sloped_surface() {
 /// - d = (0, 0, -1e-300): t = 1.08e301, cell (2, 1), T1;
 /// - d = (1e300, 5e299, -1e300): t = 2.67e-300, cell (4, 2), T0.
 ///
-/// f64 agrees on both. Bounded rationals cannot represent either: -1e-300 rounds to 0 (the
-/// direction becomes (0, 0, 0), which clips to nothing), and 1e300 saturates at i64::MAX
-/// (counted as saturation). Asserted: both bounds, both methods miss (`Misses`).
+/// Bounded rationals cannot represent either direction as given: -1e-300 rounds to 0 (the
+/// direction would become (0, 0, 0), which clips to nothing), and 1e300 saturates at
+/// i64::MAX. Until directions far from unit length were traced rescaled by a power of two
+/// (the same line), both bounds missed both rays with every method. Now they hit the exact
+/// answer's triangle, and every arithmetic agrees on both rays but for `rational:65536` on the
+/// first, whose `t` is off by a relative 1.4e-9 (1.0799999985e301: it rounds every result to
+/// a denominator of at most 65536). Asserted, with the rounding of the components as given.
 #[test]
 fn extreme_direction_scales() {
     let hilly = families::hilly();
@@ -1187,17 +1191,23 @@ fn extreme_direction_scales() {
         assert_eq!(rational(bound, -1e-300), Ratio::from_integer(0));
         assert_eq!(rational(bound, 1e300), Ratio::from_integer(i64::MAX));
     }
-    let cases = [
-        ([0.0, 0.0, -1e-300], [2, 1], 1, 1.08e301),
-        ([1e300, 5e299, -1e300], [4, 2], 0, 2.6733668341708542e-300),
+    let cases: [(_, _, _, _, &[_]); 2] = [
+        ([0.0, 0.0, -1e-300], [2, 1], 1, 1.08e301, &[(R16, TOff)]),
+        (
+            [1e300, 5e299, -1e300],
+            [4, 2],
+            0,
+            2.6733668341708542e-300,
+            &[],
+        ),
     ];
-    for (d, cell, triangle, t) in cases {
+    for (d, cell, triangle, t, not_agreeing) in cases {
         let r = ray([2.3, 1.6, top], d);
         let answer = exact(&hilly, &r);
         expect_hit_in(&answer, &r, cell, triangle);
         let exact_t = answer.hit.as_ref().expect("hit").t.to_f64().unwrap();
         assert_eq!(exact_t, t, "{}", describe(&r));
-        assert_rounded(&hilly, &r, &answer, &[(R16, Misses), (R24, Misses)]);
+        assert_rounded(&hilly, &r, &answer, not_agreeing);
     }
 }
 
@@ -1316,4 +1326,57 @@ fn ray_touching_the_box_only_at_its_highest_corner() {
         [0.25, 0.0, -0.7391902465438716],
     );
     expect_hit(&field, &r, q(3.0), [0, 0], 0);
+}
+
+/// Directions far from unit length: the ray of `ray_along_grid_line` o = (-1, 2, 6),
+/// d = (1, 0, -0.25), which meets the peak at (3, 2, 5) (t = 4, cell (2, 1), T0), with its
+/// direction scaled by tiny and huge factors. The line is the same, so every arithmetic and
+/// method must hit the same triangle at the same point, with `t = 4 / scale` (exactly, in
+/// exact mode) where that fits an `f64`, and `t` infinite where it does not (2^-1030: t =
+/// 2^1032). Before directions were rescaled, `f64` missed this ray for every scale below
+/// about 1e-307 (its walk's parameters overflowed), and `f32` missed it for every scale
+/// outside its range (a direction of 1e-200 or 1e100 rounds to zero or infinity in `f32`).
+#[test]
+fn directions_far_from_unit_length() {
+    let field = peak_on_grid_lines();
+    // (The subnormal scales are powers of two, so that a quarter of them is exact too.)
+    let subnormal = [2f64.powi(-1062), 2f64.powi(-1030)];
+    for scale in subnormal
+        .into_iter()
+        .chain([1e-300, 1e-200, 1e-12, 1e12, 1e200, 1e300])
+    {
+        let r = ray([-1.0, 2.0, 6.0], [scale, 0.0, -0.25 * scale]);
+        let t = qi(4) / q(scale);
+        let answer = expect_hit(&field, &r, t.clone(), [2, 1], 0);
+        let exact_t = (qi(4) / q(scale)).to_f64().filter(|t| t.is_finite());
+        for arith in [Arith::F32, F64, R16, R24, Arith::Exact] {
+            for method in METHODS {
+                let got = try_trace(&field, &r, &options(method, arith))
+                    .unwrap_or_else(|e| panic!("{}: {e}", describe(&r)));
+                let what = format!(
+                    "{method} {arith}, scale {scale:e}: {}",
+                    describe_hit(&got.hit)
+                );
+                let hit = got.hit.unwrap_or_else(|| panic!("{what}: a miss"));
+                assert_eq!((hit.cell, hit.triangle), ([2, 1], 0), "{what}");
+                let off = hit
+                    .point
+                    .iter()
+                    .zip([3.0, 2.0, 5.0])
+                    .map(|(a, b)| (a - b).abs());
+                assert!(off.fold(0.0, f64::max) < 1e-5, "{what}");
+                match exact_t {
+                    Some(e) => assert!((hit.t - e).abs() <= 1e-6 * e, "{what}: t {e}"),
+                    None => assert_eq!(hit.t, f64::INFINITY, "{what}"),
+                }
+                if arith == Arith::Exact {
+                    assert_eq!(
+                        hit.t_exact,
+                        Some(answer.hit.clone().expect("hit").t),
+                        "{what}"
+                    );
+                }
+            }
+        }
+    }
 }
