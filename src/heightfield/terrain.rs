@@ -77,6 +77,16 @@ impl Terrain {
         let (below, above) = (j * w + i, (j + 1) * w + i);
         s[below].max(s[below + 1]).max(s[above]).max(s[above + 1])
     }
+    /// Lowest and highest sample of cell `(i, j)`.
+    #[inline]
+    pub fn cell_sample_range(&self, i: usize, j: usize) -> (u16, u16) {
+        let (w, s) = (self.field.width(), self.field.samples());
+        let (below, above) = (j * w + i, (j + 1) * w + i);
+        let corners = [s[below], s[below + 1], s[above], s[above + 1]];
+        let lowest = corners[0].min(corners[1]).min(corners[2].min(corners[3]));
+        let highest = corners[0].max(corners[1]).max(corners[2].max(corners[3]));
+        (lowest, highest)
+    }
     /// Highest height of cell `(i, j)`.
     pub fn cell_max(&self, i: usize, j: usize) -> f64 {
         self.field.height_of(self.cell_max_sample(i, j))

@@ -51,7 +51,8 @@ pub struct Counters {
     pub beam: HitMiss,
     /// A run as a whole: the ray's lowest height over it against its highest sample.
     pub run: HitMiss,
-    /// A cell: the ray's lowest height over it against its highest sample.
+    /// A cell: the ray's lowest height over it against its highest sample, and its highest
+    /// height against its lowest sample.
     pub cell: HitMiss,
     /// A triangle test.
     pub triangle: HitMiss,

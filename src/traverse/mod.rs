@@ -440,7 +440,7 @@ pub fn trace_scalar<S: Scalar>(
         return ScalarTrace::missed(counters);
     };
     let mut search = new_search(terrain, o, d, dir_f64, near, &walk_options, counters);
-    search.lower_by(search::slack(&o[2], &d[2], &frame.t1));
+    search.widen_by(search::slack(&o[2], &d[2], &frame.t1));
     if walk_options.method == Method::Mipmap {
         // (A walk asked to list its cells walks them all.)
         let cleared = S::EXACT
@@ -490,6 +490,7 @@ fn new_search<'a, S: Scalar>(
         certain_miss: near
             .map(|(origin, [rx, ry, rz], dir)| CertainMiss::new(origin, rx.max(ry).max(rz), dir)),
         oz: o[2].clone(),
+        oz_raised: o[2].clone(),
         dz: d[2].clone(),
         query: options.query,
         run_test: options.method == Method::Runs,

@@ -62,8 +62,10 @@ pub struct Search<'a, S> {
     pub ray: LazyRaySpace<'a, S>,
     /// For arithmetics without rounding: settles most misses in `f64`.
     pub certain_miss: Option<CertainMiss>,
-    /// The origin's height, lowered by a rounding arithmetic's slack ([`Search::lower_by`]).
+    /// The origin's height, lowered by a rounding arithmetic's slack ([`Search::widen_by`]).
     pub oz: S,
+    /// The origin's height, raised by that slack.
+    pub oz_raised: S,
     pub dz: S,
     pub query: Query,
     /// Test each span as a whole before its cells (the run method); a cell walk has none.
@@ -129,11 +131,16 @@ impl<S: Scalar> Search<'_, S> {
     }
 
     /// The cell test: the ray's lowest height over `[t_lo, t_hi]` against the cell's highest
-    /// sample.
+    /// sample, and its highest height against the cell's lowest sample. Over the closed cell
+    /// the surface lies between the two, so a ray above the highest or below the lowest (one
+    /// that went under the surface at the grid's edge, where nothing closes it off) touches
+    /// neither triangle.
     #[inline(always)]
     pub fn cell_may_hit(&mut self, i: usize, j: usize, t_lo: &S, t_hi: &S) -> bool {
-        let lowest = self.lowest_z(t_lo, t_hi);
-        let may_hit = lowest <= S::from_f64(self.terrain.cell_max(i, j));
+        let (lowest_sample, highest_sample) = self.terrain.cell_sample_range(i, j);
+        let field = self.terrain.field();
+        let may_hit = self.lowest_z(t_lo, t_hi) <= S::from_f64(field.height_of(highest_sample))
+            && self.highest_z(t_lo, t_hi) >= S::from_f64(field.height_of(lowest_sample));
         self.counters.cell.record(may_hit)
     }
 
@@ -147,22 +154,31 @@ impl<S: Scalar> Search<'_, S> {
         }
     }
 
-    /// Lowers every height the search computes along the ray by `slack`: what rounding may
-    /// have added to it (zero in exact arithmetic), see [`slack`]. A rounding arithmetic then
-    /// never culls a run or cell the ray really touches (as a ray ending on flat ground at
-    /// the lowest height does). (The origin's height is lowered once: the slack of eight
-    /// roundings covers the rounding of that subtraction as well.)
-    pub fn lower_by(&mut self, slack: f64) {
+    /// Moves every height the search computes along the ray by `slack`, what rounding may
+    /// have moved it by (zero in exact arithmetic, see [`slack`]): down where it is compared
+    /// with a highest sample, up where with a lowest. A rounding arithmetic then never culls a
+    /// run or cell the ray really touches (as a ray ending on flat ground at the lowest height
+    /// does). (The origin's height is moved once: the slack of eight roundings covers the
+    /// rounding of that sum as well.)
+    pub fn widen_by(&mut self, slack: f64) {
         if slack > 0.0 {
+            self.oz_raised = self.oz.clone() + S::from_f64(slack);
             self.oz = self.oz.clone() - S::from_f64(slack);
         }
     }
 
-    /// The ray's lowest height over `[t_lo, t_hi]` (lowered, see [`Search::lower_by`]).
+    /// The ray's lowest height over `[t_lo, t_hi]` (lowered, see [`Search::widen_by`]).
     #[inline(always)]
     fn lowest_z(&self, t_lo: &S, t_hi: &S) -> S {
         let t = if self.dz.is_negative() { t_hi } else { t_lo };
         self.oz.clone() + self.dz.clone() * t.clone()
+    }
+
+    /// The ray's highest height over `[t_lo, t_hi]` (raised by the slack).
+    #[inline(always)]
+    fn highest_z(&self, t_lo: &S, t_hi: &S) -> S {
+        let t = if self.dz.is_negative() { t_lo } else { t_hi };
+        self.oz_raised.clone() + self.dz.clone() * t.clone()
     }
 
     /// The block test of the hierarchical walk: the ray's lowest height over `[t_lo, t_hi]`

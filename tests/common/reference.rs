@@ -176,7 +176,16 @@ impl ExactField {
     }
 
     /// Highest of the cell's four corner heights.
-    pub fn cell_max(&self, [i, j]: [usize; 2]) -> &Q {
+    pub fn cell_max(&self, cell: [usize; 2]) -> &Q {
+        self.corners(cell).max().expect("four corners")
+    }
+
+    /// Lowest of the cell's four corner heights.
+    pub fn cell_min(&self, cell: [usize; 2]) -> &Q {
+        self.corners(cell).min().expect("four corners")
+    }
+
+    fn corners(&self, [i, j]: [usize; 2]) -> impl Iterator<Item = &Q> {
         [
             self.z(i, j),
             self.z(i + 1, j),
@@ -184,8 +193,6 @@ impl ExactField {
             self.z(i + 1, j + 1),
         ]
         .into_iter()
-        .max()
-        .expect("four corners")
     }
 
     fn cell_count(&self) -> usize {
@@ -417,6 +424,7 @@ pub fn counters(answer: &Answer, runs: bool) -> Counters {
     }
     let ray = &answer.ray;
     let lowest = |lo: &Q, hi: &Q| ray.at(2, lo).min(ray.at(2, hi));
+    let highest = |lo: &Q, hi: &Q| ray.at(2, lo).max(ray.at(2, hi));
     let spans = spans(answer);
     let mut best: Option<Q> = None;
     let done = |best: &Option<Q>, t: &Q| best.as_ref().is_some_and(|b| b <= t);
@@ -448,8 +456,10 @@ pub fn counters(answer: &Answer, runs: bool) -> Counters {
             if done(&best, &contact.t_enter) {
                 break 'spans;
             }
-            let may_hit =
-                lowest(&contact.t_enter, &contact.t_exit) <= *answer.field.cell_max(contact.cell);
+            // (A ray above the cell's highest corner or below its lowest misses it.)
+            let (t_enter, t_exit) = (&contact.t_enter, &contact.t_exit);
+            let may_hit = lowest(t_enter, t_exit) <= *answer.field.cell_max(contact.cell)
+                && highest(t_enter, t_exit) >= *answer.field.cell_min(contact.cell);
             if !counters.cell.record(may_hit) || answer.field.is_hole(contact.cell) {
                 continue;
             }

@@ -1380,3 +1380,37 @@ fn directions_far_from_unit_length() {
         }
     }
 }
+
+/// A ray under the surface: the grid's edge does not close the terrain off, so a ray can pass
+/// into it from the side, under the surface, and touch it only where it comes up through it
+/// from below. On the 12x3 field of samples 200 at x <= 4, 0 at 5..=8 and 200 again from 9
+/// (heights = samples), o = (-1, 1.5, 50), d = (1, 0, 0) runs level under the plateau over
+/// cells (0..=3, 1) and meets the ramp of cell (4, 1) from below where 200 - 200 (x - 4) = 50:
+/// x = 4.75, t = 5.75, T0 (fx = 0.75 >= fy = 0.5).
+///
+/// Every arithmetic and method agrees. The cells the ray passes under are not tested in the
+/// float arithmetics: it runs below their lowest sample (until the cell test also asked that,
+/// each cost two triangle tests), so the only triangles tested are the hit cell's.
+#[test]
+fn ray_under_the_surface_from_the_grids_edge() {
+    let field = terrain(12, 3, 255, 255.0, |x, _| match x {
+        0..=4 => 200,
+        5..=8 => 0,
+        _ => 200,
+    });
+    let r = ray([-1.0, 1.5, 50.0], [1.0, 0.0, 0.0]);
+    let answer = expect_hit(&field, &r, qi(23) / qi(4), [4, 1], 0);
+    assert_rounded_agree(&field, &r, &answer);
+    for arith in [Arith::F32, F64] {
+        for method in METHODS {
+            let got = try_trace(&field, &r, &options(method, arith))
+                .unwrap_or_else(|e| panic!("{}: {e}", describe(&r)));
+            assert_eq!(
+                got.counters.triangle.total(),
+                2,
+                "{method} {arith}: {:?}",
+                got.counters
+            );
+        }
+    }
+}
