@@ -73,9 +73,7 @@ impl Terrain {
     /// Highest sample of cell `(i, j)`.
     #[inline]
     pub fn cell_max_sample(&self, i: usize, j: usize) -> u16 {
-        let (w, s) = (self.field.width(), self.field.samples());
-        let (below, above) = (j * w + i, (j + 1) * w + i);
-        s[below].max(s[below + 1]).max(s[above]).max(s[above + 1])
+        self.cell_sample_range(i, j).1
     }
     /// Lowest and highest sample of cell `(i, j)`.
     #[inline]
@@ -86,10 +84,6 @@ impl Terrain {
         let lowest = corners[0].min(corners[1]).min(corners[2].min(corners[3]));
         let highest = corners[0].max(corners[1]).max(corners[2].max(corners[3]));
         (lowest, highest)
-    }
-    /// Highest height of cell `(i, j)`.
-    pub fn cell_max(&self, i: usize, j: usize) -> f64 {
-        self.field.height_of(self.cell_max_sample(i, j))
     }
     /// Highest sample over the cells of block `(bi, bj)` of mipmap level `k` (level 0: a cell).
     #[inline]
