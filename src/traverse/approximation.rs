@@ -116,14 +116,19 @@ impl Bounds {
         window: (f64, f64),
         counters: &mut Counters,
     ) -> bool {
-        let highest = terrain.block_max_sample(k, bi, bj);
-        let highest = terrain.field().height_of(highest);
-        let counter = if k == 0 {
-            &mut counters.cell
-        } else {
-            &mut counters.block
-        };
-        let may_hit = self.may_reach(highest, window, counter);
+        let field = terrain.field();
+        if k == 0 {
+            // A cell also by its lowest sample, as the search's cell test: the surface within
+            // `pos` of it is nowhere lower than that by more than the room's `rise`.
+            let (lowest, highest) = terrain.cell_sample_range(bi, bj);
+            let t = if self.dz < 0.0 { window.0 } else { window.1 };
+            let ray_highest = self.oz + self.dz * t;
+            let above_lowest = ray_highest + self.room >= field.height_of(lowest);
+            let may_hit = above_lowest && self.comes_down_to(field.height_of(highest), window);
+            return counters.cell.record(may_hit);
+        }
+        let highest = field.height_of(terrain.block_max_sample(k, bi, bj));
+        let may_hit = counters.block.record(self.comes_down_to(highest, window));
         if may_hit {
             terrain.fetch_below(k, bi, bj);
         }
@@ -134,10 +139,17 @@ impl Bounds {
     /// `[t_lo, t_hi]` and its path over cells whose highest height that is; counted in
     /// `counter`.
     #[inline(always)]
-    pub fn may_reach(&self, highest: f64, (t_lo, t_hi): (f64, f64), counter: &mut HitMiss) -> bool {
+    pub fn may_reach(&self, highest: f64, window: (f64, f64), counter: &mut HitMiss) -> bool {
+        counter.record(self.comes_down_to(highest, window))
+    }
+
+    /// Whether the exact ray may come down to `highest` while the walk's `t` runs over
+    /// `[t_lo, t_hi]`.
+    #[inline(always)]
+    fn comes_down_to(&self, highest: f64, (t_lo, t_hi): (f64, f64)) -> bool {
         let t = if self.dz < 0.0 { t_hi } else { t_lo };
         let lowest = self.oz + self.dz * t;
-        counter.record(lowest - self.room <= highest)
+        lowest - self.room <= highest
     }
 
     /// Whether the ray climbs (or is level).
