@@ -121,10 +121,8 @@ impl Bounds {
             // A cell also by its lowest sample, as the search's cell test: the surface within
             // `pos` of it is nowhere lower than that by more than the room's `rise`.
             let (lowest, highest) = terrain.cell_sample_range(bi, bj);
-            let t = if self.dz < 0.0 { window.0 } else { window.1 };
-            let ray_highest = self.oz + self.dz * t;
-            let above_lowest = ray_highest + self.room >= field.height_of(lowest);
-            let may_hit = above_lowest && self.comes_down_to(field.height_of(highest), window);
+            let may_hit = self.goes_up_to(field.height_of(lowest), window)
+                && self.comes_down_to(field.height_of(highest), window);
             return counters.cell.record(may_hit);
         }
         let highest = field.height_of(terrain.block_max_sample(k, bi, bj));
@@ -150,6 +148,15 @@ impl Bounds {
         let t = if self.dz < 0.0 { t_hi } else { t_lo };
         let lowest = self.oz + self.dz * t;
         lowest - self.room <= highest
+    }
+
+    /// Whether the exact ray may go up to `lowest` while the walk's `t` runs over
+    /// `[t_lo, t_hi]`.
+    #[inline(always)]
+    fn goes_up_to(&self, lowest: f64, (t_lo, t_hi): (f64, f64)) -> bool {
+        let t = if self.dz < 0.0 { t_lo } else { t_hi };
+        let highest = self.oz + self.dz * t;
+        highest + self.room >= lowest
     }
 
     /// Whether the ray climbs (or is level).
