@@ -1,21 +1,38 @@
-//! The max-mipmap (Tevs, Ihrke & Seidel 2008): the highest sample over aligned square blocks
-//! of `2^k x 2^k` cells, for every level `k >= 1`. Level 0 (one cell) is not stored: the four
-//! corner samples give it, which keeps the structure at about 2/3 of a byte per sample.
+//! The min-max mipmap (Tevs, Ihrke & Seidel 2008, with the lowest samples too): the highest
+//! sample over aligned square blocks of `2^k x 2^k` cells, for every level `k >= 1`, and the
+//! lowest for every level `k >= 2`. Level 0 (one cell) is not stored: the four corner samples
+//! give it. The lowest samples of level 1 are not stored either (a level-1 block's lowest
+//! sample is bounded by its level-2 parent's): together that keeps the structure at about
+//! 5/6 of a byte per sample.
 
 use super::fetch::Window;
 use super::Heightfield;
 
-/// Highest samples over aligned blocks of cells; level `k` block `(bi, bj)` covers cells
-/// `[bi * 2^k, (bi+1) * 2^k) x [bj * 2^k, (bj+1) * 2^k)`, clipped to the grid.
+/// The first level whose lowest samples are stored.
+const LOWEST_FROM: u32 = 2;
+
+/// Highest and lowest samples over aligned blocks of cells; level `k` block `(bi, bj)` covers
+/// cells `[bi * 2^k, (bi+1) * 2^k) x [bj * 2^k, (bj+1) * 2^k)`, clipped to the grid.
 #[derive(Clone, Debug)]
-pub struct MaxMipmap {
-    /// Every level's blocks, level 1 first, each by `bj * nx + bi`: one allocation, so that
-    /// a lookup is one index computation and one bounds check.
-    max: Vec<u16>,
-    /// Per level `k` (index `k - 1`): where its blocks start in `max`, and blocks along x.
-    levels: Vec<(usize, usize)>,
+pub struct Mipmap {
+    /// Highest samples, levels 1 to the top.
+    max: Levels<1>,
+    /// Lowest samples, levels [`LOWEST_FROM`] to the top.
+    min: Levels<LOWEST_FROM>,
 }
 
+/// One value per block of each level from `FIRST` up, in one allocation, so that a lookup is
+/// one index computation and one bounds check.
+#[derive(Clone, Debug, Default)]
+struct Levels<const FIRST: u32> {
+    /// Every level's blocks, the finest first, each by `bj * nx + bi`.
+    values: Vec<u16>,
+    /// Per level `k` (index `k - FIRST`): where its blocks start in `values`, and blocks
+    /// along x.
+    starts: Vec<(usize, usize)>,
+}
+
+/// One level while it is built.
 #[derive(Clone, Debug)]
 struct Level {
     /// Blocks along x and y.
@@ -23,47 +40,88 @@ struct Level {
     ny: usize,
     /// By `bj * nx + bi`.
     max: Vec<u16>,
+    min: Vec<u16>,
 }
 
-impl MaxMipmap {
+impl Mipmap {
     /// Builds every level up to the one whose single block covers the grid.
     pub fn build(field: &Heightfield) -> Self {
         let (cells_x, cells_y) = (field.width() - 1, field.height() - 1);
         let mut built = vec![first_level(field)];
-        while cells_x.max(cells_y) > 1 << built.len() {
+        // (Up to level 2 at least, for the lowest samples: a grid of one or two cells has its
+        // top level's one block twice.)
+        while cells_x.max(cells_y) > 1 << built.len() || built.len() < LOWEST_FROM as usize {
             let below = &built[built.len() - 1];
             built.push(halve(below));
         }
-        let mut levels = Vec::with_capacity(built.len());
-        let mut max = Vec::with_capacity(built.iter().map(|l| l.max.len()).sum());
-        for level in built {
-            levels.push((max.len(), level.nx));
-            max.extend_from_slice(&level.max);
+        let (mut max, mut min) = (Levels::default(), Levels::default());
+        for (k, level) in (1..).zip(built) {
+            max.push(level.nx, &level.max);
+            if k >= LOWEST_FROM {
+                min.push(level.nx, &level.min);
+            }
         }
-        MaxMipmap { max, levels }
+        Mipmap { max, min }
     }
 
     /// The coarsest level (its one block covers the grid).
     pub fn top(&self) -> u32 {
-        self.levels.len() as u32
+        self.max.starts.len() as u32
     }
 
     /// Highest sample of block `(bi, bj)` at level `k` (`1 <= k <= top`).
     #[inline]
-    pub fn get(&self, k: u32, bi: usize, bj: usize) -> u16 {
-        let (start, nx) = self.levels[k as usize - 1];
-        self.max[start + bj * nx + bi]
+    pub fn highest(&self, k: u32, bi: usize, bj: usize) -> u16 {
+        self.max.get(k, bi, bj)
+    }
+
+    /// A lower bound of the samples of block `(bi, bj)` at level `k` (`1 <= k <= top`): the
+    /// lowest sample, or on a level whose lowest samples are not stored, that of the block
+    /// around it on the first level that has them (no higher than the block's own).
+    #[inline]
+    pub fn lowest(&self, k: u32, bi: usize, bj: usize) -> u16 {
+        let up = LOWEST_FROM.saturating_sub(k);
+        self.min.get(k + up, bi >> up, bj >> up)
     }
 
     /// The `n x n` blocks of level `k` from `(bi, bj)` on (those inside the level), in
-    /// [`MaxMipmap::values`].
+    /// [`Mipmap::highest_values`].
     #[inline]
     pub fn blocks_window(&self, k: u32, bi: usize, bj: usize, n: usize) -> Window {
-        let (start, nx) = self.levels[k as usize - 1];
+        self.max.window(k, bi, bj, n)
+    }
+
+    /// Every level's highest samples, level 1 first, each level by `bj * nx + bi`.
+    pub fn highest_values(&self) -> &[u16] {
+        &self.max.values
+    }
+
+    /// Bytes held.
+    pub fn bytes(&self) -> usize {
+        self.max.bytes() + self.min.bytes()
+    }
+}
+
+impl<const FIRST: u32> Levels<FIRST> {
+    /// Adds the next level: `nx` blocks along x, by `bj * nx + bi`.
+    fn push(&mut self, nx: usize, values: &[u16]) {
+        self.starts.push((self.values.len(), nx));
+        self.values.extend_from_slice(values);
+    }
+
+    #[inline]
+    fn get(&self, k: u32, bi: usize, bj: usize) -> u16 {
+        let (start, nx) = self.starts[(k - FIRST) as usize];
+        self.values[start + bj * nx + bi]
+    }
+
+    fn window(&self, k: u32, bi: usize, bj: usize, n: usize) -> Window {
+        let index = (k - FIRST) as usize;
+        let (start, nx) = self.starts[index];
         let end = self
-            .levels
-            .get(k as usize)
-            .map_or(self.max.len(), |next| next.0);
+            .starts
+            .get(index + 1)
+            .map_or(self.values.len(), |next| next.0);
         let rows = (end - start) / nx;
         Window {
             first: start + bj * nx + bi,
@@ -73,14 +131,8 @@ impl MaxMipmap {
         }
     }
 
-    /// Every level's blocks, level 1 first, each level by `bj * nx + bi`.
-    pub fn values(&self) -> &[u16] {
-        &self.max
-    }
-
-    /// Bytes held.
-    pub fn bytes(&self) -> usize {
-        self.max.len() * 2 + self.levels.len() * 16
+    fn bytes(&self) -> usize {
+        self.values.len() * 2 + self.starts.len() * 16
     }
 }
 
@@ -90,41 +142,46 @@ fn first_level(field: &Heightfield) -> Level {
     let (w, h) = (field.width(), field.height());
     let (nx, ny) = ((w - 1).div_ceil(2), (h - 1).div_ceil(2));
     let samples = field.samples();
-    // Per sample row: the maximum over each block's sample columns 2bi..=2bi+2.
-    let row_blocks = |row: &[u16]| -> Vec<u16> {
+    // Per sample row: the extremes over each block's sample columns 2bi..=2bi+2.
+    let row_blocks = |row: &[u16]| -> (Vec<u16>, Vec<u16>) {
         (0..nx)
             .map(|bi| {
-                let hi = (2 * bi + 2).min(w - 1);
-                row[2 * bi..=hi].iter().copied().max().unwrap_or(0)
+                let columns = &row[2 * bi..=(2 * bi + 2).min(w - 1)];
+                let max = columns.iter().copied().max().unwrap_or(0);
+                let min = columns.iter().copied().min().unwrap_or(0);
+                (max, min)
             })
-            .collect()
+            .unzip()
     };
-    let rows: Vec<Vec<u16>> = samples.chunks_exact(w).map(row_blocks).collect();
-    let mut max = Vec::with_capacity(nx * ny);
+    let rows: Vec<(Vec<u16>, Vec<u16>)> = samples.chunks_exact(w).map(row_blocks).collect();
+    let (mut max, mut min) = (Vec::with_capacity(nx * ny), Vec::with_capacity(nx * ny));
     for bj in 0..ny {
-        let hi = (2 * bj + 2).min(h - 1);
+        let block_rows = &rows[2 * bj..=(2 * bj + 2).min(h - 1)];
         for bi in 0..nx {
-            max.push(rows[2 * bj..=hi].iter().map(|r| r[bi]).max().unwrap_or(0));
+            max.push(block_rows.iter().map(|r| r.0[bi]).max().unwrap_or(0));
+            min.push(block_rows.iter().map(|r| r.1[bi]).min().unwrap_or(0));
         }
     }
-    Level { nx, ny, max }
+    Level { nx, ny, max, min }
 }
 
-/// The next level: each block the maximum of its (up to) four children.
+/// The next level: each block's extremes over its (up to) four children.
 fn halve(below: &Level) -> Level {
     let (nx, ny) = (below.nx.div_ceil(2), below.ny.div_ceil(2));
-    let mut max = Vec::with_capacity(nx * ny);
+    let (mut max, mut min) = (Vec::with_capacity(nx * ny), Vec::with_capacity(nx * ny));
     for bj in 0..ny {
         let rows = 2 * bj..(2 * bj + 2).min(below.ny);
         for bi in 0..nx {
             let cols = 2 * bi..(2 * bi + 2).min(below.nx);
-            let children = rows
-                .clone()
-                .flat_map(|cj| cols.clone().map(move |ci| below.max[cj * below.nx + ci]));
-            max.push(children.max().unwrap_or(0));
+            let children = || {
+                rows.clone()
+                    .flat_map(|cj| cols.clone().map(move |ci| cj * below.nx + ci))
+            };
+            max.push(children().map(|c| below.max[c]).max().unwrap_or(0));
+            min.push(children().map(|c| below.min[c]).min().unwrap_or(0));
         }
     }
-    Level { nx, ny, max }
+    Level { nx, ny, max, min }
 }
 
 #[cfg(test)]
@@ -135,9 +192,9 @@ mod tests {
     fn a_blocks_window_is_every_block_under_it_inside_its_level() {
         for (w, h) in [(2, 2), (13, 6), (17, 33), (70, 37)] {
             let field = Heightfield::from_fn(w, h, 255, 1.0, |_, _| 0).unwrap();
-            let mipmap = MaxMipmap::build(&field);
+            let mipmap = Mipmap::build(&field);
             for k in 1..=mipmap.top() {
-                let (start, nx) = mipmap.levels[k as usize - 1];
+                let (start, nx) = mipmap.max.starts[k as usize - 1];
                 let ny = (h - 1).div_ceil(1 << k);
                 for (bj, bi) in (0..ny)
                     .step_by(4)
@@ -166,30 +223,53 @@ mod tests {
     }
 
     #[test]
-    fn blocks_hold_the_highest_sample_of_their_cells() {
-        for (w, h) in [(2, 2), (3, 2), (13, 6), (17, 33)] {
+    fn blocks_hold_the_extremes_of_their_cells() {
+        for (w, h) in [(2, 2), (3, 2), (5, 3), (13, 6), (17, 33)] {
             let field = Heightfield::from_fn(w, h, 1000, 1.0, |x, y| {
                 ((x * 7919 + y * 104729) % 997) as u16
             })
             .unwrap();
-            let mipmap = MaxMipmap::build(&field);
+            let mipmap = Mipmap::build(&field);
             let cells = (w - 1).max(h - 1);
             assert!(1 << mipmap.top() >= cells, "{w}x{h}: top covers the grid");
             for k in 1..=mipmap.top() {
                 let size = 1usize << k;
                 for bj in 0..(h - 1).div_ceil(size) {
                     for bi in 0..(w - 1).div_ceil(size) {
-                        let xs = bi * size..=((bi + 1) * size).min(w - 1);
-                        let ys = bj * size..=((bj + 1) * size).min(h - 1);
-                        let want = ys
-                            .flat_map(|y| xs.clone().map(move |x| (x, y)))
-                            .map(|(x, y)| field.sample(x, y))
-                            .max()
-                            .unwrap();
-                        assert_eq!(mipmap.get(k, bi, bj), want, "{w}x{h} level {k} ({bi},{bj})");
+                        let samples = |size: usize, bi: usize, bj: usize| {
+                            let xs = bi * size..=((bi + 1) * size).min(w - 1);
+                            let ys = bj * size..=((bj + 1) * size).min(h - 1);
+                            ys.flat_map(move |y| xs.clone().map(move |x| (x, y)))
+                                .map(|(x, y)| field.sample(x, y))
+                        };
+                        let want = samples(size, bi, bj).max().unwrap();
+                        assert_eq!(
+                            mipmap.highest(k, bi, bj),
+                            want,
+                            "{w}x{h} level {k} ({bi},{bj})"
+                        );
+                        // The lowest sample where it is stored, else the parent's on the
+                        // first level that stores it.
+                        let up = LOWEST_FROM.saturating_sub(k);
+                        let lowest = samples(size << up, bi >> up, bj >> up).min().unwrap();
+                        assert_eq!(
+                            mipmap.lowest(k, bi, bj),
+                            lowest,
+                            "{w}x{h} level {k} ({bi},{bj})"
+                        );
+                        assert!(lowest <= samples(size, bi, bj).min().unwrap());
                     }
                 }
             }
         }
+    }
+
+    #[test]
+    fn it_holds_five_sixths_of_a_byte_per_sample() {
+        let field = Heightfield::from_fn(1025, 1025, 255, 1.0, |_, _| 0).unwrap();
+        let per_sample = Mipmap::build(&field).bytes() as f64 / (1025.0 * 1025.0);
+        // Highest samples: 2 bytes for a quarter of the samples, a sixteenth, ...: 2/3; lowest
+        // from level 2 on: 1/6.
+        assert!((per_sample - 5.0 / 6.0).abs() < 0.01, "{per_sample}");
     }
 }

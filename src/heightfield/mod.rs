@@ -21,7 +21,7 @@ pub use load::{
     NoDataValue, Progress,
 };
 pub use maxima::{CellMaxima, LineMaxima};
-pub use mipmap::MaxMipmap;
+pub use mipmap::Mipmap;
 pub use nodata::NoDataMask;
 pub use terrain::{Lines, Terrain};
 

@@ -1,16 +1,16 @@
 //! A height field with the acceleration data the traversals use.
 
 use super::fetch::FETCH_AHEAD_BYTES;
-use super::{CellMaxima, Heightfield, LineMaxima, MaxMipmap};
+use super::{CellMaxima, Heightfield, LineMaxima, Mipmap};
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
-/// A height field ready to be ray traced: the max-mipmap, the height range, and (built on
+/// A height field ready to be ray traced: the min-max mipmap, the height range, and (built on
 /// first use, for the run method) row and column range maxima.
 #[derive(Clone, Debug)]
 pub struct Terrain {
     field: Heightfield,
-    mipmap: MaxMipmap,
+    mipmap: Mipmap,
     lines: OnceLock<Lines>,
     min_sample: u16,
     max_sample: u16,
@@ -24,7 +24,7 @@ impl Terrain {
     /// Builds the acceleration data every method uses (timed).
     pub fn new(field: Heightfield) -> Self {
         let start = Instant::now();
-        let mipmap = MaxMipmap::build(&field);
+        let mipmap = Mipmap::build(&field);
         // No-data samples hold the lowest valid sample: they change neither extreme.
         let min_sample = field.samples().iter().copied().min().unwrap_or(0);
         let max_sample = field.samples().iter().copied().max().unwrap_or(0);
@@ -60,7 +60,7 @@ impl Terrain {
             }
             3 | 4 => {
                 let blocks = self.mipmap.blocks_window(k - 2, bi << 2, bj << 2, 4);
-                blocks.prefetch(self.mipmap.values());
+                blocks.prefetch(self.mipmap.highest_values());
             }
             _ => {}
         }
@@ -69,11 +69,6 @@ impl Terrain {
     pub fn corner_heights(&self, i: usize, j: usize) -> [f64; 4] {
         let f = &self.field;
         [f.z(i, j), f.z(i + 1, j), f.z(i, j + 1), f.z(i + 1, j + 1)]
-    }
-    /// Highest sample of cell `(i, j)`.
-    #[inline]
-    pub fn cell_max_sample(&self, i: usize, j: usize) -> u16 {
-        self.cell_sample_range(i, j).1
     }
     /// Lowest and highest sample of cell `(i, j)`.
     #[inline]
@@ -89,13 +84,13 @@ impl Terrain {
     #[inline]
     pub fn block_max_sample(&self, k: u32, bi: usize, bj: usize) -> u16 {
         if k == 0 {
-            self.cell_max_sample(bi, bj)
+            self.cell_sample_range(bi, bj).1
         } else {
-            self.mipmap.get(k, bi, bj)
+            self.mipmap.highest(k, bi, bj)
         }
     }
-    /// The max-mipmap.
-    pub fn mipmap(&self) -> &MaxMipmap {
+    /// The min-max mipmap.
+    pub fn mipmap(&self) -> &Mipmap {
         &self.mipmap
     }
     /// Highest height over cells `lo..=hi` of row `j`.

@@ -159,7 +159,8 @@ impl Bounds {
         highest + self.room >= lowest
     }
 
-    /// Whether the ray climbs (or is level).
+    /// Whether the ray climbs (or is level): it moves away from the highest samples its
+    /// block test compares it with (see [`Follower::moves_away`](super::mipmap)).
     pub fn climbs(&self) -> bool {
         self.dz >= 0.0
     }

@@ -492,6 +492,8 @@ fn new_search<'a, S: Scalar>(
         oz: o[2].clone(),
         oz_raised: o[2].clone(),
         dz: d[2].clone(),
+        under: false,
+        moves_away: !d[2].is_negative(),
         query: options.query,
         run_test: options.method == Method::Runs,
         counters,

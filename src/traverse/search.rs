@@ -67,6 +67,11 @@ pub struct Search<'a, S> {
     /// The origin's height, raised by that slack.
     pub oz_raised: S,
     pub dz: S,
+    /// The ray was found under the surface ([`Search::cell_may_hit`]).
+    pub under: bool,
+    /// The ray moves away from the samples the block test compares it with (see
+    /// [`Search::cell_may_hit`]; kept, as the walk asks at every step).
+    pub moves_away: bool,
     pub query: Query,
     /// Test each span as a whole before its cells (the run method); a cell walk has none.
     pub run_test: bool,
@@ -135,12 +140,21 @@ impl<S: Scalar> Search<'_, S> {
     /// the surface lies between the two, so a ray above the highest or below the lowest (one
     /// that went under the surface at the grid's edge, where nothing closes it off) touches
     /// neither triangle.
+    ///
+    /// A ray below a cell it crosses is under the surface, and stays there until it meets it,
+    /// which ends the search: no block lies wholly below it from then on, so the block tests
+    /// ask for the blocks' lowest samples instead ([`Search::block_may_hit`]).
     #[inline(always)]
     pub fn cell_may_hit(&mut self, i: usize, j: usize, t_lo: &S, t_hi: &S) -> bool {
         let (lowest_sample, highest_sample) = self.terrain.cell_sample_range(i, j);
         let field = self.terrain.field();
-        let may_hit = self.lowest_z(t_lo, t_hi) <= S::from_f64(field.height_of(highest_sample))
-            && self.highest_z(t_lo, t_hi) >= S::from_f64(field.height_of(lowest_sample));
+        let below = self.highest_z(t_lo, t_hi) < S::from_f64(field.height_of(lowest_sample));
+        if below && !self.under {
+            self.under = true;
+            self.moves_away = self.dz.is_negative() || self.dz.is_zero();
+        }
+        let may_hit =
+            !below && self.lowest_z(t_lo, t_hi) <= S::from_f64(field.height_of(highest_sample));
         self.counters.cell.record(may_hit)
     }
 
@@ -181,13 +195,22 @@ impl<S: Scalar> Search<'_, S> {
         self.oz_raised.clone() + self.dz.clone() * t.clone()
     }
 
-    /// The block test of the hierarchical walk: the ray's lowest height over `[t_lo, t_hi]`
-    /// against the block's highest sample.
+    /// The block test of the hierarchical walk, for block `(bi, bj)` of level `k >= 1`: the
+    /// ray's lowest height over `[t_lo, t_hi]` against the block's highest sample, or, for a
+    /// ray found under the surface, its highest height against the block's lowest sample.
+    /// (Either is exact for any ray; [`Search::cell_may_hit`] picks the one that can skip
+    /// blocks.)
     #[inline(always)]
-    pub fn block_may_hit(&mut self, t_lo: &S, t_hi: &S, highest: u16) -> bool {
-        let lowest = self.lowest_z(t_lo, t_hi);
-        let highest = self.terrain.field().height_of(highest);
-        self.counters.block.record(lowest <= S::from_f64(highest))
+    pub fn block_may_hit(&mut self, k: u32, (bi, bj): (usize, usize), t_lo: &S, t_hi: &S) -> bool {
+        let (mipmap, field) = (self.terrain.mipmap(), self.terrain.field());
+        let may_hit = if self.under {
+            let lowest = field.height_of(mipmap.lowest(k, bi, bj));
+            self.highest_z(t_lo, t_hi) >= S::from_f64(lowest)
+        } else {
+            let highest = field.height_of(mipmap.highest(k, bi, bj));
+            self.lowest_z(t_lo, t_hi) <= S::from_f64(highest)
+        };
+        self.counters.block.record(may_hit)
     }
 
     /// The run test: the ray's lowest height over the run against the highest cell under it.

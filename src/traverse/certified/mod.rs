@@ -105,7 +105,7 @@ impl<S: Scalar> Follower<f64> for Certifying<'_, '_, S> {
         self.candidates(part.frame, part.uv, (part.at.t, *part.end_t()))
     }
     fn passed(&mut self, _cell: (usize, usize)) {}
-    fn climbs(&self) -> bool {
+    fn moves_away(&self) -> bool {
         self.bounds.climbs()
     }
     /// The exact path may still be in the grid's last cells after the walk's path left them.

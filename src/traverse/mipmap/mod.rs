@@ -61,9 +61,11 @@ pub(super) trait Follower<S: Scalar> {
     fn cell(&mut self, cell: (usize, usize), part: Part<'_, S>) -> ControlFlow<()>;
     /// A cell the walk passed by at level 0 without testing its triangles.
     fn passed(&mut self, cell: (usize, usize));
-    /// Whether the ray climbs (or is level): then its lowest point in a block changes as the
-    /// walk moves through the block.
-    fn climbs(&self) -> bool;
+    /// Whether the ray moves away from the samples its block test compares it with (or keeps
+    /// level): the highest samples when it climbs above the surface, the lowest when it
+    /// descends under it. Then its nearest point to them in a block is where the walk is, and
+    /// moves as the walk moves through the block.
+    fn moves_away(&self) -> bool;
     /// The path left the grid before its end, at the start of `part` (a path lengthened by
     /// rounding, or grown to cover an exact ray near it); by default nothing is left to do.
     fn left_grid(&mut self, _part: Part<'_, S>) -> ControlFlow<()> {
@@ -136,7 +138,7 @@ pub(super) fn descend<S: Scalar>(
         on_v: false,
     };
     let mut first_part = true;
-    // A climbing ray moved on to a new block: whether it may move up a level there.
+    // A ray moving away moved on to a new block: whether it may move up a level there.
     let mut try_climb = false;
     loop {
         follower.stop_before(&at.t)?;
@@ -156,9 +158,10 @@ pub(super) fn descend<S: Scalar>(
         // Frame blocks are aligned like the grid's: mirroring maps multiples of 2^k to
         // multiples of 2^k.
         let (i, j) = f.cell(cu, cv);
-        // A climbing ray is lowest where it is now, so the parent block's test is the one it
-        // would fail or pass after moving up, asked before the exit from the parent is worked
-        // out: a ray that grazes the surface does not move up only to come down again.
+        // A ray moving away is nearest the samples its test compares where it is now, so the
+        // parent block's test is the one it would fail or pass after moving up, asked before
+        // the exit from the parent is worked out: a ray that grazes the surface does not move
+        // up only to come down again.
         let mut known_clear = false;
         if std::mem::take(&mut try_climb) && k < top {
             let parent = (i >> (k + 1), j >> (k + 1));
@@ -206,12 +209,12 @@ pub(super) fn descend<S: Scalar>(
         if ends_inside {
             return ControlFlow::Continue(());
         }
-        // Up a level only into a new parent block, or where the ray climbs: a descending
-        // ray's lowest point in the parent it is still in has not changed since the parent
+        // Up a level only into a new parent block, or where the ray moves away: otherwise
+        // its nearest point in the parent it is still in has not moved since the parent
         // failed its test.
         let parent = (1i64 << (k + 1)) - 1;
         let new_parent = (exit.on_u && eu & parent == 0) || (exit.on_v && ev & parent == 0);
-        if follower.climbs() {
+        if follower.moves_away() {
             try_climb = true;
         } else if k < top && new_parent {
             k += 1;
@@ -248,8 +251,7 @@ impl<S: Scalar> Follower<S> for Search<'_, S> {
         if k == 0 {
             self.cell_may_hit(bi, bj, t_lo, t_hi)
         } else {
-            let highest = self.terrain.mipmap().get(k, bi, bj);
-            let may_hit = self.block_may_hit(t_lo, t_hi, highest);
+            let may_hit = self.block_may_hit(k, (bi, bj), t_lo, t_hi);
             if may_hit {
                 self.terrain.fetch_below(k, bi, bj);
             }
@@ -272,8 +274,8 @@ impl<S: Scalar> Follower<S> for Search<'_, S> {
     fn passed(&mut self, (i, j): (usize, usize)) {
         self.reached(i, j);
     }
-    fn climbs(&self) -> bool {
-        !self.dz.is_negative()
+    fn moves_away(&self) -> bool {
+        self.moves_away
     }
 }
 

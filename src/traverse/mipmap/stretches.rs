@@ -127,7 +127,7 @@ impl<F: FnMut(Stretch) -> ControlFlow<()>> Follower<f64> for Clearing<'_, F> {
         ControlFlow::Continue(())
     }
     fn passed(&mut self, _cell: (usize, usize)) {}
-    fn climbs(&self) -> bool {
+    fn moves_away(&self) -> bool {
         self.bounds.climbs()
     }
 }
