@@ -23,7 +23,7 @@ pub struct Mipmap {
 
 /// One value per block of each level from `FIRST` up, in one allocation, so that a lookup is
 /// one index computation and one bounds check.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 struct Levels<const FIRST: u32> {
     /// Every level's blocks, the finest first, each by `bj * nx + bi`.
     values: Vec<u16>,
@@ -32,36 +32,28 @@ struct Levels<const FIRST: u32> {
     starts: Vec<(usize, usize)>,
 }
 
-/// One level while it is built.
+/// One level while it is built: `nx` blocks along x, by `bj * nx + bi`.
 #[derive(Clone, Debug)]
 struct Level {
-    /// Blocks along x and y.
     nx: usize,
-    ny: usize,
-    /// By `bj * nx + bi`.
-    max: Vec<u16>,
-    min: Vec<u16>,
+    values: Vec<u16>,
 }
 
 impl Mipmap {
-    /// Builds every level up to the one whose single block covers the grid.
+    /// Builds every level up to the one whose single block covers the grid (level 2 at
+    /// least, for the lowest samples: a grid of one or two cells has its one block twice).
     pub fn build(field: &Heightfield) -> Self {
-        let (cells_x, cells_y) = (field.width() - 1, field.height() - 1);
-        let mut built = vec![first_level(field)];
-        // (Up to level 2 at least, for the lowest samples: a grid of one or two cells has its
-        // top level's one block twice.)
-        while cells_x.max(cells_y) > 1 << built.len() || built.len() < LOWEST_FROM as usize {
-            let below = &built[built.len() - 1];
-            built.push(halve(below));
+        let cells = (field.width() - 1).max(field.height() - 1);
+        let top = (1..)
+            .find(|&k| cells <= 1 << k)
+            .unwrap_or(1)
+            .max(LOWEST_FROM);
+        let (highest, lowest) = first_level(field);
+        let lowest = halve(&lowest.values, lowest.nx, u16::min);
+        Mipmap {
+            max: Levels::stacked(highest, top, u16::max),
+            min: Levels::stacked(lowest, top, u16::min),
         }
-        let (mut max, mut min) = (Levels::default(), Levels::default());
-        for (k, level) in (1..).zip(built) {
-            max.push(level.nx, &level.max);
-            if k >= LOWEST_FROM {
-                min.push(level.nx, &level.min);
-            }
-        }
-        Mipmap { max, min }
     }
 
     /// The coarsest level (its one block covers the grid).
@@ -103,10 +95,22 @@ impl Mipmap {
 }
 
 impl<const FIRST: u32> Levels<FIRST> {
-    /// Adds the next level: `nx` blocks along x, by `bj * nx + bi`.
-    fn push(&mut self, nx: usize, values: &[u16]) {
-        self.starts.push((self.values.len(), nx));
-        self.values.extend_from_slice(values);
+    /// Level `FIRST`, and above it the levels up to `top` that `pick` (the highest or lowest
+    /// of two samples) makes of it.
+    fn stacked(first: Level, top: u32, pick: fn(u16, u16) -> u16) -> Self {
+        let mut values = first.values;
+        values.reserve(values.len() / 3 + top as usize);
+        let mut levels = Levels {
+            values,
+            starts: vec![(0, first.nx)],
+        };
+        for _ in FIRST..top {
+            let (start, nx) = levels.starts[levels.starts.len() - 1];
+            let next = halve(&levels.values[start..], nx, pick);
+            levels.starts.push((levels.values.len(), next.nx));
+            levels.values.extend_from_slice(&next.values);
+        }
+        levels
     }
 
     #[inline]
@@ -136,52 +140,57 @@ impl<const FIRST: u32> Levels<FIRST> {
     }
 }
 
-/// Level 1: each block's 3x3 corner samples (fewer at the grid's far edges). Rows of samples
-/// are first reduced in pairs of columns, so every sample is read about twice.
-fn first_level(field: &Heightfield) -> Level {
+/// Level 1, highest and lowest samples: each block's 3x3 corner samples (fewer at the grid's
+/// far edges). Each block row's three sample rows are first reduced column by column, which
+/// the compiler vectorises, and those columns then in threes.
+fn first_level(field: &Heightfield) -> (Level, Level) {
     let (w, h) = (field.width(), field.height());
     let (nx, ny) = ((w - 1).div_ceil(2), (h - 1).div_ceil(2));
-    let samples = field.samples();
-    // Per sample row: the extremes over each block's sample columns 2bi..=2bi+2.
-    let row_blocks = |row: &[u16]| -> (Vec<u16>, Vec<u16>) {
-        (0..nx)
-            .map(|bi| {
-                let columns = &row[2 * bi..=(2 * bi + 2).min(w - 1)];
-                let max = columns.iter().copied().max().unwrap_or(0);
-                let min = columns.iter().copied().min().unwrap_or(0);
-                (max, min)
-            })
-            .unzip()
-    };
-    let rows: Vec<(Vec<u16>, Vec<u16>)> = samples.chunks_exact(w).map(row_blocks).collect();
+    let rows: Vec<&[u16]> = field.samples().chunks_exact(w).collect();
     let (mut max, mut min) = (Vec::with_capacity(nx * ny), Vec::with_capacity(nx * ny));
+    let (mut column_max, mut column_min) = (vec![0; w], vec![0; w]);
     for bj in 0..ny {
-        let block_rows = &rows[2 * bj..=(2 * bj + 2).min(h - 1)];
+        // (An edge block's last row or column repeated changes neither extreme.)
+        let block_rows = [
+            rows[2 * bj],
+            rows[2 * bj + 1],
+            rows[(2 * bj + 2).min(h - 1)],
+        ];
+        let [r0, r1, r2] = block_rows;
+        let columns = column_max.iter_mut().zip(&mut column_min);
+        for (((hi, lo), &a), (&b, &c)) in columns.zip(r0).zip(r1.iter().zip(r2)) {
+            *hi = a.max(b).max(c);
+            *lo = a.min(b).min(c);
+        }
         for bi in 0..nx {
-            max.push(block_rows.iter().map(|r| r.0[bi]).max().unwrap_or(0));
-            min.push(block_rows.iter().map(|r| r.1[bi]).min().unwrap_or(0));
+            let columns = [2 * bi, 2 * bi + 1, (2 * bi + 2).min(w - 1)];
+            let [a, b, c] = columns.map(|x| column_max[x]);
+            max.push(a.max(b).max(c));
+            let [a, b, c] = columns.map(|x| column_min[x]);
+            min.push(a.min(b).min(c));
         }
     }
-    Level { nx, ny, max, min }
+    (Level { nx, values: max }, Level { nx, values: min })
 }
 
-/// The next level: each block's extremes over its (up to) four children.
-fn halve(below: &Level) -> Level {
-    let (nx, ny) = (below.nx.div_ceil(2), below.ny.div_ceil(2));
-    let (mut max, mut min) = (Vec::with_capacity(nx * ny), Vec::with_capacity(nx * ny));
-    for bj in 0..ny {
-        let rows = 2 * bj..(2 * bj + 2).min(below.ny);
-        for bi in 0..nx {
-            let cols = 2 * bi..(2 * bi + 2).min(below.nx);
-            let children = || {
-                rows.clone()
-                    .flat_map(|cj| cols.clone().map(move |ci| cj * below.nx + ci))
-            };
-            max.push(children().map(|c| below.max[c]).max().unwrap_or(0));
-            min.push(children().map(|c| below.min[c]).min().unwrap_or(0));
+/// The level above the `nx`-wide `below`: each block what `pick` makes of its (up to) four
+/// children.
+fn halve(below: &[u16], nx: usize, pick: fn(u16, u16) -> u16) -> Level {
+    let ny = below.len() / nx;
+    let (up_x, up_y) = (nx.div_ceil(2), ny.div_ceil(2));
+    let mut values = Vec::with_capacity(up_x * up_y);
+    for bj in 0..up_y {
+        // (An edge block's one child repeated changes neither extreme.)
+        let rows = [2 * bj, (2 * bj + 1).min(ny - 1)].map(|y| &below[y * nx..(y + 1) * nx]);
+        for bi in 0..up_x {
+            let (x0, x1) = (2 * bi, (2 * bi + 1).min(nx - 1));
+            values.push(pick(
+                pick(rows[0][x0], rows[0][x1]),
+                pick(rows[1][x0], rows[1][x1]),
+            ));
         }
     }
-    Level { nx, ny, max, min }
+    Level { nx: up_x, values }
 }
 
 #[cfg(test)]
