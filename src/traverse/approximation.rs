@@ -125,7 +125,7 @@ impl Bounds {
                 && self.comes_down_to(field.height_of(highest), window);
             return counters.cell.record(may_hit);
         }
-        let highest = field.height_of(terrain.block_max_sample(k, bi, bj));
+        let highest = field.height_of(terrain.mipmap().highest(k, bi, bj));
         let may_hit = counters.block.record(self.comes_down_to(highest, window));
         if may_hit {
             terrain.fetch_below(k, bi, bj);

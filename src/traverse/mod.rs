@@ -493,7 +493,7 @@ fn new_search<'a, S: Scalar>(
         oz_raised: o[2].clone(),
         dz: d[2].clone(),
         under: false,
-        moves_away: !d[2].is_negative(),
+        moves_away: search::moves_away(&d[2], false),
         query: options.query,
         run_test: options.method == Method::Runs,
         counters,

@@ -90,6 +90,13 @@ pub struct Search<'a, S> {
     pub decided_exactly: bool,
 }
 
+/// Whether a ray of height slope `dz` moves away from the samples the block test compares it
+/// with (or keeps level): from the highest above the surface when it climbs, from the lowest
+/// `under` it when it descends (see [`Follower::moves_away`](super::mipmap)).
+pub fn moves_away<S: Scalar>(dz: &S, under: bool) -> bool {
+    dz.is_zero() || dz.is_negative() == under
+}
+
 /// The rounding a height `oz + dz*t` computed in `S` may carry, for `t` up to `t_max`: eight
 /// roundings of the largest magnitude involved (zero when exact).
 pub fn slack<S: Scalar>(oz: &S, dz: &S, t_max: &S) -> f64 {
@@ -148,13 +155,12 @@ impl<S: Scalar> Search<'_, S> {
     pub fn cell_may_hit(&mut self, i: usize, j: usize, t_lo: &S, t_hi: &S) -> bool {
         let (lowest_sample, highest_sample) = self.terrain.cell_sample_range(i, j);
         let field = self.terrain.field();
-        let below = self.highest_z(t_lo, t_hi) < S::from_f64(field.height_of(lowest_sample));
+        let below = !self.goes_up_to(field.height_of(lowest_sample), t_lo, t_hi);
         if below && !self.under {
             self.under = true;
-            self.moves_away = self.dz.is_negative() || self.dz.is_zero();
+            self.moves_away = moves_away(&self.dz, true);
         }
-        let may_hit =
-            !below && self.lowest_z(t_lo, t_hi) <= S::from_f64(field.height_of(highest_sample));
+        let may_hit = !below && self.comes_down_to(field.height_of(highest_sample), t_lo, t_hi);
         self.counters.cell.record(may_hit)
     }
 
@@ -181,18 +187,20 @@ impl<S: Scalar> Search<'_, S> {
         }
     }
 
-    /// The ray's lowest height over `[t_lo, t_hi]` (lowered, see [`Search::widen_by`]).
+    /// Whether the ray's lowest height over `[t_lo, t_hi]` (lowered, see
+    /// [`Search::widen_by`]) comes down to `highest`.
     #[inline(always)]
-    fn lowest_z(&self, t_lo: &S, t_hi: &S) -> S {
+    fn comes_down_to(&self, highest: f64, t_lo: &S, t_hi: &S) -> bool {
         let t = if self.dz.is_negative() { t_hi } else { t_lo };
-        self.oz.clone() + self.dz.clone() * t.clone()
+        self.oz.clone() + self.dz.clone() * t.clone() <= S::from_f64(highest)
     }
 
-    /// The ray's highest height over `[t_lo, t_hi]` (raised by the slack).
+    /// Whether the ray's highest height over `[t_lo, t_hi]` (raised by the slack) goes up to
+    /// `lowest`.
     #[inline(always)]
-    fn highest_z(&self, t_lo: &S, t_hi: &S) -> S {
+    fn goes_up_to(&self, lowest: f64, t_lo: &S, t_hi: &S) -> bool {
         let t = if self.dz.is_negative() { t_lo } else { t_hi };
-        self.oz_raised.clone() + self.dz.clone() * t.clone()
+        self.oz_raised.clone() + self.dz.clone() * t.clone() >= S::from_f64(lowest)
     }
 
     /// The block test of the hierarchical walk, for block `(bi, bj)` of level `k >= 1`: the
@@ -204,21 +212,19 @@ impl<S: Scalar> Search<'_, S> {
     pub fn block_may_hit(&mut self, k: u32, (bi, bj): (usize, usize), t_lo: &S, t_hi: &S) -> bool {
         let (mipmap, field) = (self.terrain.mipmap(), self.terrain.field());
         let may_hit = if self.under {
-            let lowest = field.height_of(mipmap.lowest(k, bi, bj));
-            self.highest_z(t_lo, t_hi) >= S::from_f64(lowest)
+            self.goes_up_to(field.height_of(mipmap.lowest(k, bi, bj)), t_lo, t_hi)
         } else {
-            let highest = field.height_of(mipmap.highest(k, bi, bj));
-            self.lowest_z(t_lo, t_hi) <= S::from_f64(highest)
+            self.comes_down_to(field.height_of(mipmap.highest(k, bi, bj)), t_lo, t_hi)
         };
         self.counters.block.record(may_hit)
     }
 
     /// The run test: the ray's lowest height over the run against the highest cell under it.
     fn run_may_hit(&mut self, frame: &Frame<S>, span: &Span<S>) -> bool {
-        let lowest = self.lowest_z(&span.t_lo, &span.t_hi);
         let rows = (span.row, span.row + i64::from(span.rows) - 1);
         let highest = run_highest(self.terrain, frame, span.cols, rows);
-        self.counters.run.record(lowest <= S::from_f64(highest))
+        let may_hit = self.comes_down_to(highest, &span.t_lo, &span.t_hi);
+        self.counters.run.record(may_hit)
     }
 
     /// Tests both triangles of cell `(i, j)`.
