@@ -173,16 +173,20 @@ impl Renderer<'_> {
         };
         for x0 in (0..tiles.out.width).step_by(TILE as usize) {
             let x_end = (x0 + TILE).min(tiles.out.width);
+            // One beam around the whole tile for its fine passes, marched at the first: its
+            // rays lie between the tile's corner pixels whichever pass traces them, and a beam
+            // a pixel narrower (a pass's own corners) clears the way no further.
+            let mut tile_beam = None;
             for (pass, block, rows) in &passes {
                 // Asked for every tile: a tile of slow rays (small rational bounds) takes long
                 // enough.
                 if cancelled() {
                     return None;
                 }
+                let corners = ((x0, tiles.out.y0), (x_end - 1, y_end - 1));
+                let beam = (hierarchical && *block <= BEAM_BLOCK)
+                    .then(|| *tile_beam.get_or_insert_with(|| tiles.beam(corners)));
                 let columns: Vec<u32> = (x0..x_end).step_by(*block as usize).collect();
-                let beam = (*block <= BEAM_BLOCK && hierarchical)
-                    .then(|| tiles.beam(&columns, rows))
-                    .flatten();
                 tiles.trace(*pass, *block, &columns, rows, beam);
             }
         }
@@ -199,16 +203,12 @@ struct Tiles<'r, 'o, 'b, F> {
 }
 
 impl<F: Fn(&Ray, Option<Clearance>) -> Sample> Tiles<'_, '_, '_, F> {
-    /// Clears the beam of the pixels `columns x rows` (`None` if there are none).
-    fn beam(&mut self, columns: &[u32], rows: &[u32]) -> Option<Clearance> {
-        let (first, last) = (
-            (*columns.first()?, *rows.first()?),
-            (*columns.last()?, *rows.last()?),
-        );
+    /// Clears the beam of the pixels from `first` to `last` (corners of a rectangle).
+    fn beam(&mut self, (first, last): ((u32, u32), (u32, u32))) -> Clearance {
         let beam = self.renderer.camera.beam(first, last);
         let (cleared, tests) = beam.clear_until(self.renderer.shader.terrain);
         self.totals.primary.beam += tests;
-        Some(cleared)
+        cleared
     }
 
     /// Traces the pixels `columns x rows` that pass `pass` (of blocks `block`) traces and no

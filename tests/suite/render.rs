@@ -1,7 +1,7 @@
 //! The renderer: determinism, golden images, a hand-computed shade, effect culling, no shadow
 //! acne, and scene-file errors.
 //!
-//! Golden images are regenerated with `HEIGHTRAY_BLESS=1 cargo test --release --test suite render::`.
+//! Golden images are regenerated with `HEIGHTRAY_BLESS=1 cargo test --profile release-tests --test suite render::`.
 
 use heightray::render::{
     Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Scene, SceneFile, Shader,
@@ -107,7 +107,9 @@ fn same_image_and_statistics_on_one_and_two_threads() {
 }
 
 /// `render` runs each tile's passes one after another; the viewer runs one pass at a time over
-/// the whole frame, painting each pixel's block. Both end in the same frame.
+/// the whole frame, painting each pixel's block. Both end in the same frame; only the viewer
+/// marches each tile's beam twice, once for each fine pass, where `render` marches it once for
+/// both.
 #[test]
 fn a_frame_rendered_pass_by_pass_is_the_whole_frame() {
     let scene = builtin_scene("valley513", 80);
@@ -132,10 +134,20 @@ fn a_frame_rendered_pass_by_pass_is_the_whole_frame() {
     assert_eq!(passes, 4);
     assert_eq!(frame.pixels, whole.pixels);
     assert_eq!(frame.stats, whole.stats);
-    assert_eq!(frame.totals, whole.totals);
+    let once = whole.totals.primary.beam;
+    assert!(
+        once.hit + once.miss > 0,
+        "the tiles' rays traced behind beams"
+    );
+    let mut marched_once = frame.totals;
+    let twice = &mut marched_once.primary.beam;
+    assert_eq!((twice.hit, twice.miss), (2 * once.hit, 2 * once.miss));
+    *twice = once;
+    assert_eq!(marched_once, whole.totals);
     // A pass after the last changes nothing.
+    let done = frame.totals;
     assert!(renderer.render_pass(&mut frame, &|| false));
-    assert_eq!(frame.totals, whole.totals);
+    assert_eq!(frame.totals, done);
 }
 
 #[test]
