@@ -5,6 +5,7 @@ use super::counters::{Counters, HitMiss};
 use super::frame::Frame;
 use super::mipmap::start_level;
 use super::scalar::F64_TOLERANCE;
+use super::search::moves_away;
 use super::{F64Ray, Query};
 use crate::heightfield::Terrain;
 
@@ -66,6 +67,8 @@ pub(super) struct Bounds {
     pub dt: f64,
     /// The `t` that moves the exact path off a face it may lie on as far as intervals tell.
     pub off_faces: f64,
+    /// The exact ray was found under the surface (see [`Bounds::may_hit`]).
+    under: bool,
 }
 
 impl Bounds {
@@ -102,35 +105,76 @@ impl Bounds {
             pos,
             dt,
             off_faces: 4.0 * (off + 4.0 * eps * coords) / f.du.abs().min(f.dv.abs()),
+            under: false,
         }
     }
 
-    /// Whether the exact ray may touch block `(bi, bj)` of level `k` (a cell at level 0) while
-    /// the walk's `t` runs over `[t_lo, t_hi]`; counted as a cell or block query.
+    /// Whether the exact ray may touch block `(bi, bj)` of level `k` (a cell at level 0) on
+    /// the walk's path while the walk's `t` runs over `[t_lo, t_hi]`; counted as a cell or
+    /// block query.
+    ///
+    /// As in the search's walk, an exact ray below a cell on the path is under the surface
+    /// (the exact path is within `pos` of the cell, and the surface there no lower than its
+    /// lowest sample by more than the room's `rise`), and from then on the block tests ask
+    /// for the blocks' lowest samples. Either test is exact for any ray.
     #[inline(always)]
     pub fn may_hit(
-        &self,
+        &mut self,
         terrain: &Terrain,
         k: u32,
         (bi, bj): (usize, usize),
         window: (f64, f64),
         counters: &mut Counters,
     ) -> bool {
-        let field = terrain.field();
         if k == 0 {
-            // A cell also by its lowest sample, as the search's cell test: the surface within
-            // `pos` of it is nowhere lower than that by more than the room's `rise`.
-            let (lowest, highest) = terrain.cell_sample_range(bi, bj);
-            let may_hit = self.goes_up_to(field.height_of(lowest), window)
-                && self.comes_down_to(field.height_of(highest), window);
+            let (below, may_hit) = self.cell_test(terrain, (bi, bj), window);
+            self.under |= below;
             return counters.cell.record(may_hit);
         }
-        let highest = field.height_of(terrain.mipmap().highest(k, bi, bj));
-        let may_hit = counters.block.record(self.comes_down_to(highest, window));
-        if may_hit {
+        let (field, mipmap) = (terrain.field(), terrain.mipmap());
+        let may_hit = if self.under {
+            self.goes_up_to(field.height_of(mipmap.lowest(k, bi, bj)), window)
+        } else {
+            self.comes_down_to(field.height_of(mipmap.highest(k, bi, bj)), window)
+        };
+        if counters.block.record(may_hit) {
             terrain.fetch_below(k, bi, bj);
         }
         may_hit
+    }
+
+    /// Whether the exact ray may touch cell `(i, j)`, off the walk's path but within reach of
+    /// it, over the walk's `t` in `window`; counted as a cell query. (Off the path, a ray
+    /// below the cell's samples need not be under the surface where it is.)
+    pub fn cell_may_hit(
+        &self,
+        terrain: &Terrain,
+        cell: (usize, usize),
+        window: (f64, f64),
+        counters: &mut Counters,
+    ) -> bool {
+        counters
+            .cell
+            .record(self.cell_test(terrain, cell, window).1)
+    }
+
+    /// A cell's test by both its samples: whether the exact ray stays below its lowest, and
+    /// whether it may touch it (the surface within `pos` of the cell is nowhere lower than
+    /// the lowest by more than the room's `rise`, nor higher than the highest).
+    #[inline(always)]
+    fn cell_test(
+        &self,
+        terrain: &Terrain,
+        (i, j): (usize, usize),
+        window: (f64, f64),
+    ) -> (bool, bool) {
+        let field = terrain.field();
+        let (lowest, highest) = terrain.cell_sample_range(i, j);
+        let below = !self.goes_up_to(field.height_of(lowest), window);
+        (
+            below,
+            !below && self.comes_down_to(field.height_of(highest), window),
+        )
     }
 
     /// Whether the exact ray may come down to `highest` while the walk's `t` runs over
@@ -159,9 +203,9 @@ impl Bounds {
         highest + self.room >= lowest
     }
 
-    /// Whether the ray climbs (or is level): it moves away from the highest samples its
-    /// block test compares it with (see [`Follower::moves_away`](super::mipmap)).
-    pub fn climbs(&self) -> bool {
-        self.dz >= 0.0
+    /// Whether the ray moves away from the samples its block test compares it with (see
+    /// [`Follower::moves_away`](super::mipmap)).
+    pub fn moves_away(&self) -> bool {
+        moves_away(&self.dz, self.under)
     }
 }

@@ -1422,17 +1422,17 @@ fn ray_under_the_surface_from_the_grids_edge() {
 /// cell (39, 10), T0 (fx = 0.75 >= fy = 0.69).
 ///
 /// Every arithmetic and method agrees. The mipmap walk skips every block of 4x4 cells the
-/// ray passes under whole, as it skips those it passes over: in the float arithmetics it
-/// queries only cells of the last block column, 36 to 39, whose blocks hold the pit's first
-/// samples (5 cell queries in `f64`; 40 while the block test asked for the highest samples
-/// only).
+/// ray passes under whole, as it skips those it passes over: in the float arithmetics and in
+/// exact mode's certified walk it queries only cells of the last block column, 36 to 39,
+/// whose blocks hold the pit's first samples (5 cell queries in `f64`, 6 in exact mode; 40
+/// and 41 while the block tests asked for the highest samples only).
 #[test]
 fn ray_under_the_surface_skips_blocks() {
     let field = terrain(48, 16, 255, 255.0, |x, _| if x <= 39 { 200 } else { 0 });
     let r = ray([-1.0, 0.5, 50.0], [1.0, 0.25, -1.0 / 1024.0]);
     let answer = expect_hit(&field, &r, qi(8345600) / qi(204799), [39, 10], 0);
     assert_rounded_agree(&field, &r, &answer);
-    for arith in [Arith::F32, F64] {
+    for arith in [Arith::F32, F64, Arith::Exact] {
         let got = try_trace(&field, &r, &options(Method::Mipmap, arith))
             .unwrap_or_else(|e| panic!("{}: {e}", describe(&r)));
         let cells = got.counters.cell.total();

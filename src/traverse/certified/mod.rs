@@ -106,7 +106,7 @@ impl<S: Scalar> Follower<f64> for Certifying<'_, '_, S> {
     }
     fn passed(&mut self, _cell: (usize, usize)) {}
     fn moves_away(&self) -> bool {
-        self.bounds.climbs()
+        self.bounds.moves_away()
     }
     /// The exact path may still be in the grid's last cells after the walk's path left them.
     fn left_grid(&mut self, part: Part<'_, f64>) -> ControlFlow<()> {
@@ -190,7 +190,7 @@ impl<S: Scalar> Certifying<'_, '_, S> {
         }
         let cell = f.cell(uv.0, uv.1);
         let (terrain, counters) = (self.search.terrain, &mut self.search.counters);
-        if own || self.bounds.may_hit(terrain, 0, cell, window, counters) {
+        if own || self.bounds.cell_may_hit(terrain, cell, window, counters) {
             self.test(cell, uv)?;
         }
         ControlFlow::Continue(())

@@ -128,6 +128,6 @@ impl<F: FnMut(Stretch) -> ControlFlow<()>> Follower<f64> for Clearing<'_, F> {
     }
     fn passed(&mut self, _cell: (usize, usize)) {}
     fn moves_away(&self) -> bool {
-        self.bounds.climbs()
+        self.bounds.moves_away()
     }
 }
