@@ -176,6 +176,7 @@ impl Renderer<'_> {
             // One beam around the whole tile for its fine passes, marched at the first: its
             // rays lie between the tile's corner pixels whichever pass traces them, and a beam
             // a pixel narrower (a pass's own corners) clears the way no further.
+            let corners = ((x0, tiles.out.y0), (x_end - 1, y_end - 1));
             let mut tile_beam = None;
             for (pass, block, rows) in &passes {
                 // Asked for every tile: a tile of slow rays (small rational bounds) takes long
@@ -183,7 +184,6 @@ impl Renderer<'_> {
                 if cancelled() {
                     return None;
                 }
-                let corners = ((x0, tiles.out.y0), (x_end - 1, y_end - 1));
                 let beam = (hierarchical && *block <= BEAM_BLOCK)
                     .then(|| *tile_beam.get_or_insert_with(|| tiles.beam(corners)));
                 let columns: Vec<u32> = (x0..x_end).step_by(*block as usize).collect();
