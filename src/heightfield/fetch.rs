@@ -7,8 +7,11 @@
 /// 2049², 2% faster at 4097² and 7% faster at 8193².
 pub const FETCH_AHEAD_BYTES: usize = 16 << 20;
 
-/// Part of a row-major array: `rows` rows of `len` values each, the first from index `first`
-/// on, each row `stride` values after the one before.
+/// Part of a row-major array: `rows` rows of `len` values each, the first from index `first` on,
+/// each row `stride` values after the one before. A window at the far edge of a grid reaches
+/// past it (into the next rows, or past the array's end): it is only ever fetched, and a
+/// prefetch cannot fault, so the few wasted hints cost less than clipping every window (which
+/// took 1.5% of the 8193² view's instructions, a division among them).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Window {
     pub first: usize,
@@ -26,34 +29,30 @@ impl Window {
             (start..start + self.len).contains(&at)
         })
     }
-    /// One past the window's last index.
-    #[cfg(test)]
-    pub fn end(&self) -> usize {
-        self.first + (self.rows - 1) * self.stride + self.len
-    }
     /// Asks the processor to fetch the window's values of `values` into its caches, without
     /// waiting for them: the lines holding each row's first and last value (a row is shorter
-    /// than a cache line).
+    /// than a cache line). (Addresses, not indices: nothing is read, so nothing is checked.)
     #[inline(always)]
     pub fn prefetch<T>(self, values: &[T]) {
+        let at = |index: usize| values.as_ptr().wrapping_add(index);
         for row in 0..self.rows {
             let start = self.first + row * self.stride;
-            prefetch(&values[start]);
-            prefetch(&values[start + self.len - 1]);
+            prefetch(at(start));
+            prefetch(at(start + self.len - 1));
         }
     }
 }
 
-/// A hint to fetch the cache line holding `value`; nothing on other processors.
+/// A hint to fetch the cache line holding the address `at`; nothing on other processors.
 #[inline(always)]
-fn prefetch<T>(value: &T) {
+fn prefetch<T>(at: *const T) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
         // SAFETY: SSE is part of every x86-64 processor, and a prefetch reads nothing: it
         // cannot fault, whatever the address.
-        unsafe { _mm_prefetch::<_MM_HINT_T0>((value as *const T).cast()) };
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(at.cast()) };
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = value;
+    let _ = at;
 }

@@ -240,13 +240,14 @@ impl Heightfield {
     pub fn z(&self, i: usize, j: usize) -> f64 {
         self.height_of(self.sample(i, j))
     }
-    /// The samples of the `n x n` cells from cell `(i, j)` on (those inside the grid).
+    /// The samples of the `n x n` cells from cell `(i, j)` on (reaching past the grid's far
+    /// edges where the cells do, see [`Window`]).
     #[inline]
     pub fn cells_window(&self, i: usize, j: usize, n: usize) -> Window {
         Window {
             first: j * self.width + i,
-            len: (n + 1).min(self.width - i),
-            rows: (j + n).min(self.height - 1) + 1 - j,
+            len: n + 1,
+            rows: n + 1,
             stride: self.width,
         }
     }
@@ -314,7 +315,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_cells_window_is_every_corner_sample_of_its_cells_inside_the_grid() {
+    fn a_cells_window_holds_every_corner_sample_of_its_cells() {
         for (w, h) in [(2, 2), (3, 2), (13, 6), (17, 33), (70, 37)] {
             let field = Heightfield::from_fn(w, h, 255, 1.0, |_, _| 0).unwrap();
             for (j, i) in (0..h - 1)
@@ -322,17 +323,14 @@ mod tests {
                 .flat_map(|j| (0..w - 1).step_by(4).map(move |i| (j, i)))
             {
                 let window = field.cells_window(i, j, 4);
-                assert!(window.end() <= w * h, "{w}x{h} ({i},{j}): {window:?}");
                 let corners = (j..=(j + 4).min(h - 1))
                     .flat_map(|y| (i..=(i + 4).min(w - 1)).map(move |x| y * w + x));
-                let mut count = 0;
                 for at in corners {
                     assert!(window.contains(at), "{w}x{h} ({i},{j}): {at} in {window:?}");
-                    count += 1;
                 }
                 assert_eq!(
                     window.len * window.rows,
-                    count,
+                    25,
                     "{w}x{h} ({i},{j}): nothing more"
                 );
             }
