@@ -104,7 +104,7 @@ pub struct SpeedArgs {
     #[arg(long)]
     pub size: Option<u32>,
     /// Methods, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "mipmap,runs,dda")]
+    #[arg(long, value_delimiter = ',', default_value = "mipmap,hruns,runs,dda")]
     pub methods: Vec<Method>,
     /// Arithmetics, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "f32,f64,rational:65536")]
@@ -147,7 +147,7 @@ pub struct AccuracyArgs {
     #[arg(long, default_value_t = 64)]
     pub per_set: usize,
     /// Methods, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "mipmap,runs,dda")]
+    #[arg(long, value_delimiter = ',', default_value = "mipmap,hruns,runs,dda")]
     pub methods: Vec<Method>,
     /// Arithmetics, comma-separated (exact is always measured: it is the reference).
     #[arg(
@@ -187,7 +187,7 @@ pub struct RenderArgs {
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
-    /// Traversal (mipmap, runs, dda or auto), overriding the scene's.
+    /// Traversal (mipmap, hruns, runs, dda or auto), overriding the scene's.
     #[arg(long)]
     pub method: Option<Method>,
     /// Arithmetic (f32, f64, rational, rational:BOUND or exact), overriding the scene's.
@@ -229,7 +229,8 @@ pub struct TraceArgs {
     /// A file of rays, one per line: `ox oy oz dx dy dz` (`#` starts a comment).
     #[arg(long, required_unless_present = "origin")]
     pub rays: Option<PathBuf>,
-    /// Traversal: mipmap, runs, dda, or auto (the fastest: the mipmap).
+    /// Traversal: mipmap, hruns (hierarchical runs), runs, dda, or auto (the fastest: the
+    /// mipmap).
     #[arg(long, default_value = "auto")]
     pub method: Method,
     /// Arithmetic: f32, f64, rational, rational:BOUND (denominator bound), or exact.

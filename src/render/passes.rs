@@ -6,7 +6,7 @@ use super::camera::Camera;
 use super::shade::Sample;
 use super::shade::Shader;
 use super::stats::{FrameStats, PixelStats};
-use crate::traverse::{with_bound, Arith, Clearance, Method, Rational};
+use crate::traverse::{with_bound, Arith, Clearance, Rational};
 use crate::Ray;
 use rayon::prelude::*;
 use std::ops::Range;
@@ -164,7 +164,7 @@ impl Renderer<'_> {
                 (pass, block, rows)
             })
             .collect();
-        let hierarchical = self.shader.method == Method::Mipmap;
+        let hierarchical = self.shader.method.is_hierarchical();
         let mut tiles = Tiles {
             renderer: self,
             out,

@@ -48,11 +48,25 @@ pub enum Method {
     Dda,
     /// Block by block down a max-mipmap (Tevs et al.), runs at the bottom.
     Mipmap,
+    /// Run by run at every level of the mipmap: a run of coarse blocks is a run of runs,
+    /// skipped whole or walked again a level down.
+    HierarchicalRuns,
 }
 
 impl Method {
     /// Every method, the default (fastest) first.
-    pub const ALL: [Method; 3] = [Method::Mipmap, Method::Runs, Method::Dda];
+    pub const ALL: [Method; 4] = [
+        Method::Mipmap,
+        Method::HierarchicalRuns,
+        Method::Runs,
+        Method::Dda,
+    ];
+
+    /// Whether the method walks the mipmap's levels (and so starts behind a beam, see
+    /// [`WalkOptions::beam`]).
+    pub fn is_hierarchical(self) -> bool {
+        matches!(self, Method::Mipmap | Method::HierarchicalRuns)
+    }
 }
 
 /// The arithmetic a traversal computes in.
@@ -236,7 +250,7 @@ pub fn covered_cells(
 /// the terrain's shared part included, and its bytes beyond the samples.
 pub fn prepare(terrain: &Terrain, method: Method) -> (Duration, usize) {
     match method {
-        Method::Mipmap => (terrain.build_time(), terrain.accel_bytes()),
+        Method::Mipmap | Method::HierarchicalRuns => (terrain.build_time(), terrain.accel_bytes()),
         Method::Runs => {
             let lines = terrain.lines();
             (terrain.build_time() + lines.build_time(), lines.bytes())
@@ -286,8 +300,8 @@ fn walk<S: Scalar>(
 ) {
     // Either walk ends by itself or because `visit` broke; both are fine here.
     let _ = match method {
-        // Without culling the hierarchy has nothing to skip: its cells are the run walk's.
-        Method::Runs | Method::Mipmap => runs::walk(frame, visit),
+        // Without culling the hierarchies have nothing to skip: their cells are the run walk's.
+        Method::Runs | Method::Mipmap | Method::HierarchicalRuns => runs::walk(frame, visit),
         Method::Dda => dda::walk(frame, visit),
     };
 }
@@ -441,6 +455,12 @@ pub fn trace_scalar<S: Scalar>(
     };
     let mut search = new_search(terrain, o, d, dir_f64, near, &walk_options, counters);
     search.widen_by(search::slack(&o[2], &d[2], &frame.t1));
+    // A shadow ray starts on the surface, where every block around it fails its test.
+    let level = match start {
+        _ if walk_options.query == Query::Shadow => Some(0),
+        Some((_, level)) => Some(level),
+        None => None,
+    };
     if walk_options.method == Method::Mipmap {
         // (A walk asked to list its cells walks them all.)
         let cleared = S::EXACT
@@ -449,15 +469,12 @@ pub fn trace_scalar<S: Scalar>(
                 walk_cleared(terrain, (near, start), dir_f64, &frame, &mut search)
             });
         if !cleared {
-            // A shadow ray starts on the surface, where every block around it fails its test.
-            let level = match start {
-                _ if walk_options.query == Query::Shadow => Some(0),
-                Some((_, level)) => Some(level),
-                None => None,
-            };
             // Ends by itself or at the answer; both are fine here.
             let _ = mipmap::walk(&frame, &mut search, level);
         }
+    } else if walk_options.method == Method::HierarchicalRuns {
+        // Ends by itself or at the answer; both are fine here.
+        let _ = mipmap::walk_runs(&frame, &mut search, level);
     } else {
         walk(&frame, walk_options.method, &mut |span| {
             search.span(&frame, span)
@@ -561,7 +578,7 @@ fn trace_certified<S: Scalar>(
 /// are what the hierarchy is measured against.
 fn beam_start<S: Scalar>(options: &WalkOptions) -> Option<(f64, u32)> {
     let Clearance { t, level } = options.beam.filter(|b| b.t > 0.0)?;
-    (options.method == Method::Mipmap).then(|| (t - 4.0 * S::rounding_error(t), level))
+    (options.method.is_hierarchical()).then(|| (t - 4.0 * S::rounding_error(t), level))
 }
 
 /// The part of the segment from [`beam_start`]'s `t` on (all of it without a beam); `None` if
@@ -675,6 +692,7 @@ impl fmt::Display for Method {
             Method::Runs => "runs",
             Method::Dda => "dda",
             Method::Mipmap => "mipmap",
+            Method::HierarchicalRuns => "hruns",
         })
     }
 }
@@ -686,8 +704,9 @@ impl FromStr for Method {
             "runs" => Ok(Method::Runs),
             "dda" => Ok(Method::Dda),
             "mipmap" | "auto" => Ok(Method::Mipmap),
+            "hruns" => Ok(Method::HierarchicalRuns),
             _ => Err(format!(
-                "unknown method '{s}': use mipmap, runs, dda or auto"
+                "unknown method '{s}': use mipmap, hruns, runs, dda or auto"
             )),
         }
     }

@@ -221,6 +221,7 @@ fn traversal_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     ui.horizontal(|ui| {
         ui.label("method");
         ui.radio_value(&mut s.method, Method::Mipmap, "mipmap");
+        ui.radio_value(&mut s.method, Method::HierarchicalRuns, "hierarchical runs");
         ui.radio_value(&mut s.method, Method::Runs, "runs");
         ui.radio_value(&mut s.method, Method::Dda, "cell DDA");
     });

@@ -13,7 +13,7 @@ use num_traits::ToPrimitive;
 use reference::{Answer, ExactHit};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-pub const METHODS: [Method; 3] = Method::ALL;
+pub const METHODS: [Method; 4] = Method::ALL;
 
 pub fn options(method: Method, arith: Arith) -> TraceOptions {
     TraceOptions {
@@ -92,7 +92,7 @@ fn try_covered(
     })
 }
 
-/// Checks one ray in exact mode, for both methods, against the reference: the hit (exact t,
+/// Checks one ray in exact mode, for every method, against the reference: the hit (exact t,
 /// cell, triangle), `covered_cells`, the recorded cells (a prefix of the covered list) and
 /// every query counter. Returns one line per disagreement.
 pub fn check_exact(terrain: &Terrain, ray: &Ray) -> Vec<String> {
@@ -150,10 +150,11 @@ pub fn check_exact_against(terrain: &Terrain, ray: &Ray, answer: &Answer) -> Vec
                     )),
                     Ok(_) => {}
                 }
-                if method == Method::Mipmap {
-                    // The hierarchy skips whole blocks and may revisit the cells where two of
-                    // its parts meet: the cells it reached, in order of first visit, are some
-                    // of the covered cells in their order; the queries are its own.
+                if method.is_hierarchical() {
+                    // A hierarchy skips whole blocks (or runs of them) and may revisit the
+                    // cells where two of its parts meet: the cells it reached, in order of
+                    // first visit, are some of the covered cells in their order; the queries
+                    // are its own.
                     if !is_ordered_subset(&got.cells, &expected_cells) {
                         problem(format!(
                             "recorded cells {:?} are not covered cells {:?} in order",

@@ -33,7 +33,7 @@ fn speed_at_sizes_reports_every_method_with_its_memory_and_growth() {
             "--size",
             "16",
             "--methods",
-            "mipmap,runs,dda",
+            "mipmap,hruns,runs,dda",
             "--ariths",
             "f64",
             "--threads",
@@ -52,10 +52,12 @@ fn speed_at_sizes_reports_every_method_with_its_memory_and_growth() {
             mipmap > 0.4 && mipmap <= 1.0,
             "{size}: mipmap {mipmap} bytes per sample"
         );
+        // The hierarchical run walk tests its runs against the same mipmap.
+        assert_eq!(bytes("hruns"), mipmap, "{size}");
         // Row and column range maxima: about 8 bytes per sample; the DDA reads the samples.
         assert!(bytes("runs") > 6.0, "{size}");
         assert_eq!(bytes("dda"), 0.0, "{size}");
-        for method in ["mipmap", "runs", "dda"] {
+        for method in ["mipmap", "hruns", "runs", "dda"] {
             let primary: f64 = row(&text, size, method)[5].parse().expect("a number");
             assert!(primary > 0.0, "{size} {method}: {primary}");
         }
@@ -64,7 +66,7 @@ fn speed_at_sizes_reports_every_method_with_its_memory_and_growth() {
         .split_once("growth of time per primary ray")
         .expect("a growth table")
         .1;
-    for method in ["mipmap", "runs", "dda", "log2 N"] {
+    for method in ["mipmap", "hruns", "runs", "dda", "log2 N"] {
         assert!(
             growth
                 .lines()
@@ -73,15 +75,16 @@ fn speed_at_sizes_reports_every_method_with_its_memory_and_growth() {
         );
     }
     // Queries per primary ray at each size: each method asks its own kind of span query,
-    // and the hierarchy's camera rays share beams.
+    // and the hierarchies' camera rays share beams.
     let queries = growth
         .split_once("queries per primary ray: block / run / cell / triangle / beam")
         .expect("a table of queries")
         .1;
-    for (method, block, run) in [
-        ("mipmap", true, false),
-        ("runs", false, true),
-        ("dda", false, false),
+    for (method, block, run, beam) in [
+        ("mipmap", true, false, true),
+        ("hruns", false, true, true),
+        ("runs", false, true, false),
+        ("dda", false, false, false),
     ] {
         let line = queries
             .lines()
@@ -94,7 +97,7 @@ fn speed_at_sizes_reports_every_method_with_its_memory_and_growth() {
                 .collect();
             assert_eq!(per_ray.len(), 5, "{line}");
             let asked = (per_ray[0] > 0.0, per_ray[1] > 0.0, per_ray[4] > 0.0);
-            assert_eq!(asked, (block, run, block), "{line}");
+            assert_eq!(asked, (block, run, beam), "{line}");
             assert!(per_ray[2] > 0.0 && per_ray[3] > 0.0, "{line}");
         }
     }

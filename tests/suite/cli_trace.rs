@@ -2,7 +2,7 @@
 //! with a non-zero exit.
 //!
 //! Contract: `heightray trace MAP --z-scale Z (--origin X,Y,Z --dir DX,DY,DZ | --rays FILE)
-//! [--method runs|dda|auto] [--arith f32|f64|rational|rational:BOUND|exact] [--cells]`; each
+//! [--method mipmap|hruns|runs|dda|auto] [--arith f32|f64|rational|rational:BOUND|exact] [--cells]`; each
 //! line is {"hit", "t", "t_exact" ("p/q" in exact mode, else absent or null), "point", "cell",
 //! "triangle", "counters": {"bbox": {"hit", "miss"}, "run", "cell", "triangle", ...},
 //! "cells" (only with --cells)}. `--rays FILE` has lines `ox oy oz dx dy dz`.
@@ -104,6 +104,10 @@ fn assert_hand_worked(line: &Value, method: &str, arith: &str) {
     // order of the cells, so the exact walk decides. An f64 walk first clears the way for it,
     // with room for its rounding: it passes (0,0) and (1,0) and stops at (1,1); the exact
     // walk then starts just before (1,1), inside (1,0), which it tests again.
+    // The hierarchical run walk starts at level 0 too (its top is level 2): row 0's run of
+    // cells (0,0) and (1,0) is cleared as a whole (the ray is at 1.5 where it leaves the row,
+    // above their highest sample, 1), row 1's run may be hit (z(2,2) = 4), and its first
+    // cell (1,1) holds the hit: no cell is tested before it.
     let (block, run, cell) = match method {
         "dda" => ((0, 0), (0, 0), (1, 2)),
         "mipmap" | "auto" if arith == "exact" => ((0, 0), (0, 0), (2, 3)),
@@ -129,7 +133,7 @@ fn assert_hand_worked(line: &Value, method: &str, arith: &str) {
 fn hand_worked_ray_in_every_arithmetic_and_method() {
     let dir = TempDir::new().unwrap();
     let map = write_map(&dir);
-    for method in ["runs", "dda", "mipmap", "auto"] {
+    for method in ["runs", "dda", "mipmap", "hruns", "auto"] {
         for arith in ARITHS {
             let args = trace_args(
                 &map,
@@ -154,7 +158,7 @@ fn cells_flag_lists_walked_cells_in_order() {
     let dir = TempDir::new().unwrap();
     let map = write_map(&dir);
     let covered = [[0, 0], [1, 0], [1, 1], [2, 1]];
-    for method in ["runs", "dda", "mipmap"] {
+    for method in ["runs", "dda", "mipmap", "hruns"] {
         let args = trace_args(
             &map,
             &[

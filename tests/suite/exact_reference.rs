@@ -277,6 +277,9 @@ fn hit_miss(hit: u64, miss: u64) -> HitMiss {
 /// DDA: cell (0,0): lowest z over [0, .5] = 2 > 1: miss. Cell (1,0): lowest over [.5, .75] =
 /// 1.5 > 0: miss. Cell (1,1): hit, T0 hit, T1 miss. Cell (2,1): stop.
 ///   bbox 1/0, run 0/0, cell 1/2, triangle 1/1.
+/// Hierarchical runs: the mipmap's top is level 2 (the 3x2 cells fit one 4x4 block), so the
+/// walk starts three levels below it, at the cells, and its runs are the run walk's: the same
+/// counts, without the run walk's recurrence.
 #[test]
 fn hand_worked_counters_on_4x3_field() {
     let terrain = hand_worked_terrain();
@@ -304,7 +307,11 @@ fn hand_worked_counters_on_4x3_field() {
     assert_eq!(reference::counters(&answer, true), runs);
     assert_eq!(reference::counters(&answer, false), dda);
 
-    for (method, counters) in [(Method::Runs, runs), (Method::Dda, dda)] {
+    for (method, counters) in [
+        (Method::Runs, runs),
+        (Method::HierarchicalRuns, runs),
+        (Method::Dda, dda),
+    ] {
         let got = trace(&terrain, &ray, &options(method, Arith::Exact));
         let hit = got.hit.unwrap_or_else(|| panic!("{method}: no hit"));
         assert_eq!(hit.t_exact, Some(q(1.0)), "{method}");
@@ -377,8 +384,9 @@ proptest! {
 }
 
 /// A field large enough for a deep hierarchy (9 levels, odd sizes, blocks cut by the far
-/// edges), where the brute-force reference would be slow: the mipmap must give exactly the
-/// run walk's answer, which the tests above hold to the reference.
+/// edges), where the brute-force reference would be slow: the mipmap and the hierarchical
+/// run walk must give exactly the run walk's answer, which the tests above hold to the
+/// reference.
 fn large_field() -> Heightfield {
     let t = terrain(301, 221, 4095, 97.0, |x, y| {
         let hills = ((x as f64 / 23.0).sin() * (y as f64 / 17.0).cos() + 1.0) * 1500.0;
@@ -396,16 +404,18 @@ proptest! {
     #![proptest_config(config(2_000, 0x4d49_504d))]
 
     #[test]
-    fn mipmap_equals_runs_on_a_large_field(ray in common::random::ray_on(&large_field())) {
+    fn hierarchies_equal_runs_on_a_large_field(ray in common::random::ray_on(&large_field())) {
         let terrain = Terrain::new(large_field());
         let answer = |method, record_cells| {
             let options = TraceOptions { record_cells, ..options(method, Arith::Exact) };
             trace(&terrain, &ray, &options).hit
         };
         let runs = answer(Method::Runs, true);
-        // Listing its cells, and without (an f64 walk clears the way first).
-        prop_assert_eq!(&answer(Method::Mipmap, true), &runs, "{}", describe(&ray));
-        prop_assert_eq!(&answer(Method::Mipmap, false), &runs, "{}", describe(&ray));
+        // Listing their cells, and without (an f64 walk answers, or clears the way first).
+        for method in [Method::Mipmap, Method::HierarchicalRuns] {
+            prop_assert_eq!(&answer(method, true), &runs, "{} {}", method, describe(&ray));
+            prop_assert_eq!(&answer(method, false), &runs, "{} {}", method, describe(&ray));
+        }
     }
 }
 

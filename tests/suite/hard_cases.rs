@@ -353,11 +353,11 @@ fn strip() -> Terrain {
 /// Expected: exact mode (every method) equals the reference on all 360 rays. f64 and
 /// rational:2^24 find the same first hit on all of them.
 ///
-/// rational:2^16 cannot on 6 rays (18 answers, every method alike): right cell and triangle,
-/// but t off by more than 1e-9 relative (measured: up to 1.2e-8). All 6 climb or descend
-/// (dz != 0): the triangle test shears by dy/dx = 17/41 and dz/dx = 1/5248 (or -1/2624), and
-/// its edge functions multiply sheared coordinates with denominators 41 and 5248, whose product
-/// is beyond 2^16 and gets rounded. Level rays have no such products: their 2^16 traces round
+/// rational:2^16 cannot on 6 rays (one answer per method, every method alike): right cell and
+/// triangle, but t off by more than 1e-9 relative (measured: up to 1.2e-8). All 6 climb or
+/// descend (dz != 0): the triangle test shears by dy/dx = 17/41 and dz/dx = 1/5248 (or
+/// -1/2624), and its edge functions multiply sheared coordinates with denominators 41 and
+/// 5248, whose product is beyond 2^16 and gets rounded. Level rays have no such products: their 2^16 traces round
 /// nothing at all (asserted: zero rounding events on all 120). Asserted: exactly 6 rays,
 /// rational:2^16 only, verdict `TOff`, dz != 0, error below 2e-8.
 #[test]
@@ -367,7 +367,7 @@ fn lattice_point_slope_17_41() {
     let results = run_family(&family);
     let d = family_disagreements(&results);
     let text = list(&family, &d);
-    assert_eq!(d.len(), 18, "disagreements:\n  {text}");
+    assert_eq!(d.len(), 6 * METHODS.len(), "disagreements:\n  {text}");
     let mut rays: Vec<usize> = d.iter().map(|(n, _)| *n).collect();
     rays.dedup();
     assert_eq!(rays.len(), 6, "disagreements:\n  {text}");
@@ -600,7 +600,7 @@ fn ray_along_cell_diagonal() {
 /// The 72 rays of `families::near_vertical` (six tiny directions in every octant, down and
 /// up, from points inside a triangle, on a diagonal, on a vertex, on the grid's corner and
 /// boundary, on an edge): exact matches the reference and f64 agrees on all 72. Rationals
-/// disagree on 38 rays (both bounds, all three methods: 228 answers), exactly those whose
+/// disagree on 38 rays (both bounds, every method: 76 answers per method), exactly those whose
 /// start point is on a vertex or an edge of the mesh (or on the grid's boundary, where the
 /// exact ray may leave the box and miss), never for the point inside a triangle. Asserted for
 /// every rational answer: it hits or misses like the vertical ray through the same start point,
@@ -633,7 +633,11 @@ fn near_vertical_ray_1e_12() {
     assert!(d.iter().all(|(_, r)| r.arith != F64), "f64:\n  {text}");
     let mut rays: Vec<usize> = d.iter().map(|(n, _)| *n).collect();
     rays.dedup();
-    assert_eq!((d.len(), rays.len()), (228, 38), "disagreements:\n  {text}");
+    assert_eq!(
+        (d.len(), rays.len()),
+        (76 * METHODS.len(), 38),
+        "disagreements:\n  {text}"
+    );
     for (n, (_, got)) in results.iter().enumerate() {
         let r = &family.rays[n];
         let [x, y, _] = r.origin();
@@ -964,8 +968,8 @@ fn shallow_ray_16384_cells_lands_on_exact_cells() {
             let got = covered_cells(&strip, &r, method, arith);
             let what = format!("{arith} {method}: {}", describe(&r));
             match (arith, method) {
-                // The hierarchy covers a path with the run walk.
-                (R16, Method::Runs | Method::Mipmap) => {
+                // The hierarchies cover a path with the run walk.
+                (R16, Method::Runs | Method::Mipmap | Method::HierarchicalRuns) => {
                     assert_eq!(got.len(), expected.len() + 1, "{what}");
                     assert_eq!(got[..16301], expected[..16301], "{what}");
                     assert_eq!(got[16301], [16299, 1], "{what}");
@@ -1446,6 +1450,42 @@ fn ray_under_the_surface_skips_blocks() {
             2,
             "{arith}: {:?}",
             got.counters
+        );
+    }
+}
+
+/// A run of coarse blocks is a run of runs: on the 257x97 field of samples 0 at x < 250 and
+/// 200 from 250 on, o = (-1, 0.5, 50), d = (1, 1/4, -1/1024) passes about 50 above the flat
+/// ground and meets the wall's ramp in column 249 where 200 (x - 249) = 50 - (x + 1) / 1024:
+/// 204801 x = 51046399, t = x + 1 = 51251200 / 204801 (x = 249.25, y = 0.5 + t/4 = 63.06),
+/// in cell (249, 63), T0 (fx = 0.25 >= fy = 0.06).
+///
+/// The path crosses 64 rows of cells, and the run walk tests each row's run. The hierarchical
+/// run walk starts at level 5 (blocks of 32x32 cells, three below the top): row of blocks 0
+/// is cleared whole; row 1 holds the wall, so its two rows of level-4 blocks are walked, the
+/// first cleared, the second split again; and so on down to the cells: a cleared run and a
+/// split one at each of the levels 5 to 1 and the two runs of cells of the last split one,
+/// 12 run tests in all. Every arithmetic and method agrees.
+#[test]
+fn runs_of_coarse_blocks_are_skipped_whole() {
+    let field = terrain(257, 97, 255, 255.0, |x, _| if x >= 250 { 200 } else { 0 });
+    let r = ray([-1.0, 0.5, 50.0], [1.0, 0.25, -1.0 / 1024.0]);
+    let answer = expect_hit(&field, &r, qi(51251200) / qi(204801), [249, 63], 0);
+    assert_rounded_agree(&field, &r, &answer);
+    for arith in [Arith::F32, F64, Arith::Exact] {
+        let runs = |method| {
+            let got = try_trace(&field, &r, &options(method, arith))
+                .unwrap_or_else(|e| panic!("{}: {e}", describe(&r)));
+            let hit = got.hit.expect("a hit");
+            assert_eq!((hit.cell, hit.triangle), ([249, 63], 0), "{method} {arith}");
+            got.counters.run
+        };
+        let (flat, hierarchical) = (runs(Method::Runs), runs(Method::HierarchicalRuns));
+        assert_eq!(flat.total(), 64, "{arith}: {flat:?}");
+        assert_eq!(
+            (hierarchical.hit, hierarchical.miss),
+            (7, 5),
+            "{arith}: {hierarchical:?}"
         );
     }
 }

@@ -547,7 +547,7 @@ fn exact_frames_are_the_same_with_every_method() {
         let mipmap = render(Method::Mipmap);
         assert!(mipmap.totals.shadow_rays > 1000, "{name}: shadow rays cast");
         assert!(mipmap.totals.shadowed > 0, "{name}: some pixels in shadow");
-        for method in [Method::Runs, Method::Dda] {
+        for method in [Method::HierarchicalRuns, Method::Runs, Method::Dda] {
             let other = render(method);
             assert_eq!(
                 (other.totals.primary_hits, other.totals.shadowed),

@@ -22,7 +22,7 @@
 mod runs;
 
 use super::approximation::{Approximation, Bounds};
-use super::mipmap::{descend, Follower, Part};
+use super::mipmap::{descend, descend_runs, run_sample, Follower, Part};
 use super::Method;
 use crate::traverse::frame::Frame;
 use crate::traverse::scalar::Scalar;
@@ -51,6 +51,10 @@ pub fn certify<S: Scalar>(
         Method::Mipmap => {
             let top = terrain.mipmap().top();
             descend(f, top, ray.first_level(query, top), &mut certifying)
+        }
+        Method::HierarchicalRuns => {
+            let top = terrain.mipmap().top();
+            descend_runs(f, top, ray.first_level(query, top), &mut certifying)
         }
         // Cell by cell: the block walk with no level above the cells.
         Method::Dda => descend(f, 0, 0, &mut certifying),
@@ -100,6 +104,22 @@ impl<S: Scalar> Follower<f64> for Certifying<'_, '_, S> {
         let (terrain, counters) = (self.search.terrain, &mut self.search.counters);
         self.bounds
             .may_hit(terrain, k, block, (*t_lo, *t_hi), counters)
+    }
+    fn run_may_hit(
+        &mut self,
+        f: &Frame<f64>,
+        k: u32,
+        row: i64,
+        blocks: (i64, i64),
+        t_lo: &f64,
+        t_hi: &f64,
+    ) -> bool {
+        let terrain = self.search.terrain;
+        let highest = terrain
+            .field()
+            .height_of(run_sample(terrain, f, k, row, blocks, false));
+        let counter = &mut self.search.counters.run;
+        self.bounds.may_reach(highest, (*t_lo, *t_hi), counter)
     }
     fn cell(&mut self, _cell: (usize, usize), part: Part<'_, f64>) -> ControlFlow<()> {
         self.candidates(part.frame, part.uv, (part.at.t, *part.end_t()))

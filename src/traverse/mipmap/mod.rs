@@ -22,8 +22,10 @@
 //! which the order of the cells decides, the `f64` walk only clears the way ([`clear_way`])
 //! and an exact walk follows the stretches between the blocks it skipped.
 
+mod run_levels;
 mod stretches;
 
+pub(super) use run_levels::{descend_runs, run_sample};
 pub use stretches::clear_way;
 
 use super::degenerate::is_point;
@@ -55,6 +57,21 @@ pub(super) trait Follower<S: Scalar> {
     /// Whether block `(bi, bj)` of level `k` (a cell when `k` is 0) may be touched by the
     /// path over `[t_lo, t_hi]`.
     fn may_hit(&mut self, k: u32, block: (usize, usize), t_lo: &S, t_hi: &S) -> bool;
+    /// Whether the run of level-`k` blocks (cells when `k` is 0) in frame row of blocks
+    /// `row`, frame columns of blocks `blocks` (inclusive), may be touched by the path over
+    /// `[t_lo, t_hi]` (the hierarchical run walk, [`descend_runs`]). By default every run
+    /// may be (a follower of the block walk only, which never asks).
+    fn run_may_hit(
+        &mut self,
+        _f: &Frame<S>,
+        _k: u32,
+        _row: i64,
+        _blocks: (i64, i64),
+        _t_lo: &S,
+        _t_hi: &S,
+    ) -> bool {
+        true
+    }
     /// A cell that may be hit, crossed from `at` to `exit` (to the path's end if
     /// `ends_inside`); `alone`: no other cell touches that part where no other part covers
     /// it, so the cell's own triangles are all there is to test.
@@ -101,6 +118,19 @@ pub fn walk<S: Scalar>(
     descend(f, top, start_level(top, level), search)
 }
 
+/// The hierarchical run walk ([`descend_runs`]), as [`walk`] starts the block walk.
+pub fn walk_runs<S: Scalar>(
+    f: &Frame<S>,
+    search: &mut Search<'_, S>,
+    level: Option<u32>,
+) -> ControlFlow<()> {
+    if !has_blocks(f) {
+        return runs::walk(f, &mut |span| search.span(f, span));
+    }
+    let top = search.terrain.mipmap().top();
+    descend_runs(f, top, start_level(top, level), search)
+}
+
 /// The level a walk starts at: [`first_level`], or lower where the caller knows better.
 pub(super) fn start_level(top: u32, level: Option<u32>) -> u32 {
     let first = first_level(top);
@@ -129,14 +159,7 @@ pub(super) fn descend<S: Scalar>(
     mut k: u32,
     follower: &mut impl Follower<S>,
 ) -> ControlFlow<()> {
-    let mut at = Point {
-        t: f.t0.clone(),
-        u: f.us.clone(),
-        v: f.vs.clone(),
-        cell: (f.us.floor_i64(), f.vs.floor_i64()),
-        on_u: false,
-        on_v: false,
-    };
+    let mut at = Point::start(f);
     let mut first_part = true;
     // A ray moving away moved on to a new block: whether it may move up a level there.
     let mut try_climb = false;
@@ -171,15 +194,7 @@ pub(super) fn descend<S: Scalar>(
         }
         let (eu, ev) = (((cu >> k) + 1) << k, ((cv >> k) + 1) << k);
         let exit = exit_point(f, &at, eu, ev);
-        // The path is monotone in u and v: it ends in this block if its end lies before the
-        // face it leaves through. (Compared on that face's coordinate, exact on both sides
-        // when the path ends on the same face of the grid, where comparing `t` could not
-        // tell the two apart in intervals.)
-        let ends_inside = if exit.on_u {
-            f.ue <= exit.u
-        } else {
-            f.ve <= exit.v
-        };
+        let ends_inside = ends_inside(f, &exit);
         let t_hi = if ends_inside { &f.t1 } else { &exit.t };
         let may_hit = !known_clear && follower.may_hit(k, (i >> k, j >> k), &at.t, t_hi);
         if k > 0 && may_hit {
@@ -224,6 +239,32 @@ pub(super) fn descend<S: Scalar>(
     }
 }
 
+impl<S: Scalar> Point<S> {
+    /// The start of the path, on no face.
+    fn start(f: &Frame<S>) -> Self {
+        Point {
+            t: f.t0.clone(),
+            u: f.us.clone(),
+            v: f.vs.clone(),
+            cell: (f.us.floor_i64(), f.vs.floor_i64()),
+            on_u: false,
+            on_v: false,
+        }
+    }
+}
+
+/// Whether the path ends before `exit`, the point where it leaves a block. The path is
+/// monotone in u and v: it ends in the block if its end lies before the face it leaves
+/// through. (Compared on that face's coordinate, exact on both sides when the path ends on the
+/// same face of the grid, where comparing `t` could not tell the two apart in intervals.)
+fn ends_inside<S: Scalar>(f: &Frame<S>, exit: &Point<S>) -> bool {
+    if exit.on_u {
+        f.ue <= exit.u
+    } else {
+        f.ve <= exit.v
+    }
+}
+
 /// Whether a point lies on a grid line: else it touches one cell only.
 fn on_a_grid_line<S: Scalar>(u: &S, v: &S) -> bool {
     u.is_integer() || v.is_integer()
@@ -257,6 +298,17 @@ impl<S: Scalar> Follower<S> for Search<'_, S> {
             }
             may_hit
         }
+    }
+    fn run_may_hit(
+        &mut self,
+        f: &Frame<S>,
+        k: u32,
+        row: i64,
+        blocks: (i64, i64),
+        t_lo: &S,
+        t_hi: &S,
+    ) -> bool {
+        self.blocks_run_may_hit(f, k, row, blocks, t_lo, t_hi)
     }
     fn cell(&mut self, (i, j): (usize, usize), part: Part<'_, S>) -> ControlFlow<()> {
         if part.alone {
