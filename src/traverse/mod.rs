@@ -455,12 +455,6 @@ pub fn trace_scalar<S: Scalar>(
     };
     let mut search = new_search(terrain, o, d, dir_f64, near, &walk_options, counters);
     search.widen_by(search::slack(&o[2], &d[2], &frame.t1));
-    // A shadow ray starts on the surface, where every block around it fails its test.
-    let level = match start {
-        _ if walk_options.query == Query::Shadow => Some(0),
-        Some((_, level)) => Some(level),
-        None => None,
-    };
     if walk_options.method == Method::Mipmap {
         // (A walk asked to list its cells walks them all.)
         let cleared = S::EXACT
@@ -469,10 +463,12 @@ pub fn trace_scalar<S: Scalar>(
                 walk_cleared(terrain, (near, start), dir_f64, &frame, &mut search)
             });
         if !cleared {
+            let level = first_level(&walk_options, start);
             // Ends by itself or at the answer; both are fine here.
             let _ = mipmap::walk(&frame, &mut search, level);
         }
     } else if walk_options.method == Method::HierarchicalRuns {
+        let level = first_level(&walk_options, start);
         // Ends by itself or at the answer; both are fine here.
         let _ = mipmap::walk_runs(&frame, &mut search, level);
     } else {
@@ -579,6 +575,17 @@ fn trace_certified<S: Scalar>(
 fn beam_start<S: Scalar>(options: &WalkOptions) -> Option<(f64, u32)> {
     let Clearance { t, level } = options.beam.filter(|b| b.t > 0.0)?;
     (options.method.is_hierarchical()).then(|| (t - 4.0 * S::rounding_error(t), level))
+}
+
+/// The level a hierarchical walk starts at where it knows better than the default: a shadow
+/// ray starts on the surface, where every block around it fails its test; a camera ray at
+/// the level its beam stopped at.
+fn first_level(options: &WalkOptions, start: Option<(f64, u32)>) -> Option<u32> {
+    match start {
+        _ if options.query == Query::Shadow => Some(0),
+        Some((_, level)) => Some(level),
+        None => None,
+    }
 }
 
 /// The part of the segment from [`beam_start`]'s `t` on (all of it without a beam); `None` if
