@@ -37,8 +37,8 @@ pub fn probe_ui(ui: &mut Ui, probe: &Probe, rendered: Option<&PixelStats>) {
         ));
     }
     ui.weak(format!(
-        // (Hence fewer block queries in the frame than in the table above.)
-        "traced again alone in {:.3} ms; with the mipmap, the frame's rays start behind their tile's beam",
+        // (Hence fewer block or run queries in the frame than in the table above.)
+        "traced again alone in {:.3} ms; with the mipmap or hierarchical runs, the frame's rays start behind their tile's beam",
         probe.elapsed.as_secs_f64() * 1e3
     ));
 }
