@@ -5,7 +5,7 @@ use super::counters::Counters;
 use super::exact_start::PlanePoint;
 use super::frame::{Frame, Span};
 use super::interval::settled;
-use super::mipmap::run_sample;
+use super::mipmap::{run_sample, BlockRun};
 use super::scalar::{max, min, Scalar};
 use super::Query;
 use crate::geometry::{CellTriangles, Certain, CertainMiss, RaySpace, TriangleHit};
@@ -220,19 +220,10 @@ impl<S: Scalar> Search<'_, S> {
         self.counters.block.record(may_hit)
     }
 
-    /// The run test of the hierarchical run walk, for the run of level-`k` blocks in frame
-    /// row of blocks `row` over frame columns of blocks `blocks`: as the block test, against
-    /// the highest sample of all its blocks (or the lowest, under the surface).
-    pub fn blocks_run_may_hit(
-        &mut self,
-        frame: &Frame<S>,
-        k: u32,
-        row: i64,
-        blocks: (i64, i64),
-        t_lo: &S,
-        t_hi: &S,
-    ) -> bool {
-        let sample = run_sample(self.terrain, frame, k, row, blocks, self.under);
+    /// The run test of the hierarchical run walk: as the block test, against the highest
+    /// sample of all the run's blocks (or the lowest, under the surface).
+    pub fn blocks_run_may_hit(&mut self, f: &Frame<S>, run: &BlockRun, t_lo: &S, t_hi: &S) -> bool {
+        let sample = run_sample(self.terrain, f, run, self.under);
         let height = self.terrain.field().height_of(sample);
         let may_hit = if self.under {
             self.goes_up_to(height, t_lo, t_hi)

@@ -22,7 +22,7 @@
 mod runs;
 
 use super::approximation::{Approximation, Bounds};
-use super::mipmap::{descend, descend_runs, run_sample, Follower, Part};
+use super::mipmap::{descend, descend_runs, run_sample, BlockRun, Follower, Part};
 use super::Method;
 use crate::traverse::frame::Frame;
 use crate::traverse::scalar::Scalar;
@@ -105,19 +105,11 @@ impl<S: Scalar> Follower<f64> for Certifying<'_, '_, S> {
         self.bounds
             .may_hit(terrain, k, block, (*t_lo, *t_hi), counters)
     }
-    fn run_may_hit(
-        &mut self,
-        f: &Frame<f64>,
-        k: u32,
-        row: i64,
-        blocks: (i64, i64),
-        t_lo: &f64,
-        t_hi: &f64,
-    ) -> bool {
+    fn run_may_hit(&mut self, f: &Frame<f64>, run: &BlockRun, t_lo: &f64, t_hi: &f64) -> bool {
         let terrain = self.search.terrain;
         let highest = terrain
             .field()
-            .height_of(run_sample(terrain, f, k, row, blocks, false));
+            .height_of(run_sample(terrain, f, run, false));
         let counter = &mut self.search.counters.run;
         self.bounds.may_reach(highest, (*t_lo, *t_hi), counter)
     }

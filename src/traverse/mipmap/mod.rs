@@ -25,7 +25,7 @@
 mod run_levels;
 mod stretches;
 
-pub(super) use run_levels::{descend_runs, run_sample};
+pub(super) use run_levels::{descend_runs, run_sample, BlockRun};
 pub use stretches::clear_way;
 
 use super::degenerate::is_point;
@@ -57,19 +57,10 @@ pub(super) trait Follower<S: Scalar> {
     /// Whether block `(bi, bj)` of level `k` (a cell when `k` is 0) may be touched by the
     /// path over `[t_lo, t_hi]`.
     fn may_hit(&mut self, k: u32, block: (usize, usize), t_lo: &S, t_hi: &S) -> bool;
-    /// Whether the run of level-`k` blocks (cells when `k` is 0) in frame row of blocks
-    /// `row`, frame columns of blocks `blocks` (inclusive), may be touched by the path over
-    /// `[t_lo, t_hi]` (the hierarchical run walk, [`descend_runs`]). By default every run
-    /// may be (a follower of the block walk only, which never asks).
-    fn run_may_hit(
-        &mut self,
-        _f: &Frame<S>,
-        _k: u32,
-        _row: i64,
-        _blocks: (i64, i64),
-        _t_lo: &S,
-        _t_hi: &S,
-    ) -> bool {
+    /// Whether a run of blocks of frame `f` may be touched by the path over `[t_lo, t_hi]`
+    /// (the hierarchical run walk, [`descend_runs`]). By default every run may be (a
+    /// follower of the block walk only, which never asks).
+    fn run_may_hit(&mut self, _f: &Frame<S>, _run: &BlockRun, _t_lo: &S, _t_hi: &S) -> bool {
         true
     }
     /// A cell that may be hit, crossed from `at` to `exit` (to the path's end if
@@ -111,14 +102,12 @@ pub fn walk<S: Scalar>(
     search: &mut Search<'_, S>,
     level: Option<u32>,
 ) -> ControlFlow<()> {
-    if !has_blocks(f) {
-        return runs::walk(f, &mut |span| search.span(f, span));
-    }
-    let top = search.terrain.mipmap().top();
-    descend(f, top, start_level(top, level), search)
+    walk_with(f, search, level, |f, top, k, search| {
+        descend(f, top, k, search)
+    })
 }
 
-/// The hierarchical run walk ([`descend_runs`]), as [`walk`] starts the block walk.
+/// The hierarchical run walk ([`descend_runs`]), started as [`walk`] starts the block walk.
 // (Out of line: inlined beside the block walk into the trace, it cost the block walk's
 // camera rays 3% more instructions, measured.)
 #[inline(never)]
@@ -127,11 +116,25 @@ pub fn walk_runs<S: Scalar>(
     search: &mut Search<'_, S>,
     level: Option<u32>,
 ) -> ControlFlow<()> {
+    walk_with(f, search, level, |f, top, k, search| {
+        descend_runs(f, top, k, search)
+    })
+}
+
+/// Starts a hierarchical walk (`descend` from its start level), or the run walk where the
+/// path crosses no blocks.
+#[inline(always)]
+fn walk_with<'a, S: Scalar>(
+    f: &Frame<S>,
+    search: &mut Search<'a, S>,
+    level: Option<u32>,
+    descend: impl FnOnce(&Frame<S>, u32, u32, &mut Search<'a, S>) -> ControlFlow<()>,
+) -> ControlFlow<()> {
     if !has_blocks(f) {
         return runs::walk(f, &mut |span| search.span(f, span));
     }
     let top = search.terrain.mipmap().top();
-    descend_runs(f, top, start_level(top, level), search)
+    descend(f, top, start_level(top, level), search)
 }
 
 /// The level a walk starts at: [`first_level`], or lower where the caller knows better.
@@ -168,19 +171,10 @@ pub(super) fn descend<S: Scalar>(
     let mut try_climb = false;
     loop {
         follower.stop_before(&at.t)?;
-        // (Rounding, or an interval that cannot tell, may put a point on the grid's near
-        // edge just outside it.)
-        let (cu, cv) = (at.cell.0.max(f.cols.0), at.cell.1.max(f.rows.0));
-        if cu > f.cols.1 || cv > f.rows.1 {
-            return follower.left_grid(Part {
-                frame: f,
-                uv: (cu, cv),
-                at: &at,
-                exit: &at,
-                ends_inside: true,
-                alone: false,
-            });
-        }
+        let (cu, cv) = match cell_in_grid(f, &at, follower) {
+            Ok(cell) => cell,
+            Err(left) => return left,
+        };
         // Frame blocks are aligned like the grid's: mirroring maps multiples of 2^k to
         // multiples of 2^k.
         let (i, j) = f.cell(cu, cv);
@@ -269,6 +263,29 @@ fn ends_inside<S: Scalar>(f: &Frame<S>, exit: &Point<S>) -> bool {
     }
 }
 
+/// The frame cell of `at`, or, where the path has left the grid there, what the follower
+/// makes of that. (Rounding, or an interval that cannot tell, may put a point on the grid's
+/// near edge just outside it: it is in the first row or column.)
+#[inline(always)]
+fn cell_in_grid<S: Scalar>(
+    f: &Frame<S>,
+    at: &Point<S>,
+    follower: &mut impl Follower<S>,
+) -> Result<(i64, i64), ControlFlow<()>> {
+    let (cu, cv) = (at.cell.0.max(f.cols.0), at.cell.1.max(f.rows.0));
+    if cu > f.cols.1 || cv > f.rows.1 {
+        return Err(follower.left_grid(Part {
+            frame: f,
+            uv: (cu, cv),
+            at,
+            exit: at,
+            ends_inside: true,
+            alone: false,
+        }));
+    }
+    Ok((cu, cv))
+}
+
 /// Whether a point lies on a grid line: else it touches one cell only.
 fn on_a_grid_line<S: Scalar>(u: &S, v: &S) -> bool {
     u.is_integer() || v.is_integer()
@@ -303,16 +320,8 @@ impl<S: Scalar> Follower<S> for Search<'_, S> {
             may_hit
         }
     }
-    fn run_may_hit(
-        &mut self,
-        f: &Frame<S>,
-        k: u32,
-        row: i64,
-        blocks: (i64, i64),
-        t_lo: &S,
-        t_hi: &S,
-    ) -> bool {
-        self.blocks_run_may_hit(f, k, row, blocks, t_lo, t_hi)
+    fn run_may_hit(&mut self, f: &Frame<S>, run: &BlockRun, t_lo: &S, t_hi: &S) -> bool {
+        self.blocks_run_may_hit(f, run, t_lo, t_hi)
     }
     // (Inlined by hand too: out of line once the run walk called it as well, it cost the
     // block walk's camera rays 2% more instructions, measured.)

@@ -19,7 +19,7 @@
 //! the run). Points where the path leaves a row are snapped onto the row's face, as the
 //! mipmap walk snaps its exit points, so rounding never steps back into a row it passed.
 
-use super::{ends_inside, exit_point, on_a_grid_line, Follower, Part, Point};
+use super::{cell_in_grid, ends_inside, exit_point, on_a_grid_line, Follower, Part, Point};
 use crate::heightfield::Terrain;
 use crate::traverse::frame::Frame;
 use crate::traverse::scalar::Scalar;
@@ -38,17 +38,10 @@ pub(in crate::traverse) fn descend_runs<S: Scalar>(
     let mut in_cells = false;
     loop {
         follower.stop_before(&at.t)?;
-        let (cu, cv) = (at.cell.0.max(f.cols.0), at.cell.1.max(f.rows.0));
-        if cu > f.cols.1 || cv > f.rows.1 {
-            return follower.left_grid(Part {
-                frame: f,
-                uv: (cu, cv),
-                at: &at,
-                exit: &at,
-                ends_inside: true,
-                alone: false,
-            });
-        }
+        let (cu, cv) = match cell_in_grid(f, &at, follower) {
+            Ok(cell) => cell,
+            Err(left) => return left,
+        };
         if in_cells {
             let exit = exit_point(f, &at, cu + 1, cv + 1);
             let ends_inside = ends_inside(f, &exit);
@@ -115,8 +108,12 @@ pub(in crate::traverse) fn descend_runs<S: Scalar>(
                 last
             },
         );
-        let blocks = (tested.0 >> k, tested.1 >> k);
-        if follower.run_may_hit(f, k, cv >> k, blocks, &at.t, t_hi) {
+        let run = BlockRun {
+            k,
+            row: cv >> k,
+            blocks: (tested.0 >> k, tested.1 >> k),
+        };
+        if follower.run_may_hit(f, &run, &at.t, t_hi) {
             if k > 0 {
                 k -= 1;
             } else {
@@ -140,9 +137,16 @@ pub(in crate::traverse) fn descend_runs<S: Scalar>(
     }
 }
 
-/// The highest sample of the level-`k` blocks (cells at level 0) in frame row of blocks `row`
-/// over frame columns of blocks `first..=last`, or with `lowest` a lower bound of their
-/// samples ([`crate::heightfield::Mipmap::lowest`]).
+/// A run of the hierarchical run walk: the level-`k` blocks (cells at level 0) in frame row
+/// of blocks `row` over frame columns of blocks `blocks` (inclusive).
+pub(in crate::traverse) struct BlockRun {
+    pub k: u32,
+    pub row: i64,
+    pub blocks: (i64, i64),
+}
+
+/// The highest sample of a run's blocks, or with `lowest` a lower bound of their samples
+/// ([`crate::heightfield::Mipmap::lowest`]).
 // (Inlined by hand, and a plain loop: it is most of a run test, and LLVM left an iterator's
 // fold out of line. Block by block: most runs hold one or two blocks, and a reduction over
 // slices of them took 5% more instructions, measured.)
@@ -150,22 +154,17 @@ pub(in crate::traverse) fn descend_runs<S: Scalar>(
 pub(in crate::traverse) fn run_sample<S: Scalar>(
     terrain: &Terrain,
     f: &Frame<S>,
-    k: u32,
-    row: i64,
-    (first, last): (i64, i64),
+    &BlockRun { k, row, blocks }: &BlockRun,
     lowest: bool,
 ) -> u16 {
-    // Any frame cell of a frame block names the block: mirroring maps multiples of 2^k to
-    // multiples of 2^k (a block's first frame cell may lie past a mirrored grid's edge, in
-    // the block all the same).
-    let block = |col: i64| {
-        let (i, j) = f.cell(col << k, row << k);
-        (i >> k, j >> k)
-    };
     let mipmap = terrain.mipmap();
     let mut extreme = if lowest { u16::MAX } else { 0 };
-    for col in first..last + 1 {
-        let (bi, bj) = block(col);
+    for col in blocks.0..blocks.1 + 1 {
+        // Any frame cell of a frame block names the block: mirroring maps multiples of 2^k
+        // to multiples of 2^k (a block's first frame cell may lie past a mirrored grid's
+        // edge, in the block all the same).
+        let (i, j) = f.cell(col << k, row << k);
+        let (bi, bj) = (i >> k, j >> k);
         let sample = match (k, lowest) {
             (0, _) => {
                 let (lo, hi) = terrain.cell_sample_range(bi, bj);
