@@ -199,21 +199,7 @@ pub(super) fn descend<S: Scalar>(
             continue;
         }
         if k == 0 && may_hit {
-            // Cells touched where this part begins were covered by the part before, or lie
-            // in a skipped block; others are touched at the ray's start (no part before it,
-            // and the start on a grid line as the run walk tells it: a shadow ray's start
-            // mostly lies off them, and is tested alone), at a lattice point it leaves
-            // through, or at the segment's end.
-            let touched_at_start = first_part && on_a_grid_line(&at.u, &at.v);
-            let alone = !(touched_at_start || (exit.on_u && exit.on_v) || ends_inside);
-            let part = Part {
-                frame: f,
-                uv: (cu, cv),
-                at: &at,
-                exit: &exit,
-                ends_inside,
-                alone,
-            };
+            let part = Part::crossing(f, (cu, cv), (&at, &exit), ends_inside, first_part);
             follower.cell((i, j), part)?;
         } else if k == 0 {
             follower.passed((i, j));
@@ -291,7 +277,34 @@ fn on_a_grid_line<S: Scalar>(u: &S, v: &S) -> bool {
     u.is_integer() || v.is_integer()
 }
 
-impl<S: Scalar> Part<'_, S> {
+impl<'a, S: Scalar> Part<'a, S> {
+    /// The part of the path across frame cell `uv` from `at` to `exit` (to the path's end if
+    /// `ends_inside`); `first_part`: no part of the walk came before it.
+    #[inline(always)]
+    fn crossing(
+        frame: &'a Frame<S>,
+        uv: (i64, i64),
+        (at, exit): (&'a Point<S>, &'a Point<S>),
+        ends_inside: bool,
+        first_part: bool,
+    ) -> Self {
+        // Cells touched where this part begins were covered by the part before, or lie in a
+        // skipped block; others are touched at the ray's start (no part before it, and the
+        // start on a grid line as the run walk tells it: a shadow ray's start mostly lies off
+        // them, and is tested alone), at a lattice point it leaves through, or at the
+        // segment's end.
+        let touched_at_start = first_part && on_a_grid_line(&at.u, &at.v);
+        let alone = !(touched_at_start || (exit.on_u && exit.on_v) || ends_inside);
+        Part {
+            frame,
+            uv,
+            at,
+            exit,
+            ends_inside,
+            alone,
+        }
+    }
+
     /// The `t` where the part ends.
     pub(super) fn end_t(&self) -> &S {
         if self.ends_inside {

@@ -19,7 +19,7 @@
 //! the run). Points where the path leaves a row are snapped onto the row's face, as the
 //! mipmap walk snaps its exit points, so rounding never steps back into a row it passed.
 
-use super::{cell_in_grid, ends_inside, exit_point, on_a_grid_line, Follower, Part, Point};
+use super::{cell_in_grid, ends_inside, exit_point, Follower, Part, Point};
 use crate::heightfield::Terrain;
 use crate::traverse::frame::Frame;
 use crate::traverse::scalar::Scalar;
@@ -48,18 +48,7 @@ pub(in crate::traverse) fn descend_runs<S: Scalar>(
             let t_hi = if ends_inside { &f.t1 } else { &exit.t };
             let cell = f.cell(cu, cv);
             if follower.may_hit(0, cell, &at.t, t_hi) {
-                // As in the mipmap walk: cells touched where this part begins were covered
-                // before; others only at the start, at a lattice point or at the end.
-                let touched_at_start = first_part && on_a_grid_line(&at.u, &at.v);
-                let alone = !(touched_at_start || (exit.on_u && exit.on_v) || ends_inside);
-                let part = Part {
-                    frame: f,
-                    uv: (cu, cv),
-                    at: &at,
-                    exit: &exit,
-                    ends_inside,
-                    alone,
-                };
+                let part = Part::crossing(f, (cu, cv), (&at, &exit), ends_inside, first_part);
                 follower.cell(cell, part)?;
             } else {
                 follower.passed(cell);
