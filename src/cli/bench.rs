@@ -1,14 +1,17 @@
 //! `heightray bench ...`: tables on stdout.
 
+use super::speed_report::{
+    print_growth, print_table, Machine, ReferenceBuild, SpeedReport, TerrainReport, LEVELS_APART,
+};
 use super::{SpeedArgs, TextbookArgs};
+use anyhow::Context;
 use heightray::bench::{
     hard_cases_versus_exact, render_as, sized_scene, throughput, versus_textbook, view,
     HardCaseRow, Reference, ThroughputRow, Tracer, ROUNDS, SEED,
 };
 use heightray::render::Frame;
 use heightray::render::{Scene, SceneFile};
-use heightray::traverse::prepare;
-use heightray::traverse::{Arith, HitMiss, Method};
+use heightray::traverse::{Arith, Method};
 use heightray::Terrain;
 use indicatif::ProgressBar;
 use indicatif::ProgressStyle;
@@ -35,7 +38,7 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
             let scene = scene_at_size(source, size)?;
             let terrain = Terrain::new(scene.field.clone());
             let (rows, references) = measure(args, &scene, &terrain, &bar)?;
-            measured.push((name, terrain, rows, references));
+            measured.push(TerrainReport::new(name, &terrain, &rows, &references));
         }
         bar.finish_and_clear();
     } else {
@@ -48,16 +51,26 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
             bar.set_message(format!("{samples}x{samples}"));
             let (rows, references) = measure(args, &scene, &terrain, &bar)?;
             let label = format!("valley landscape (seed {SEED}) at {samples}x{samples}");
-            measured.push((label, terrain, rows, references));
+            measured.push(TerrainReport::new(label, &terrain, &rows, &references));
         }
         bar.finish_and_clear();
     }
+    let report = SpeedReport {
+        command: std::env::args().collect::<Vec<_>>().join(" "),
+        machine: Machine::this(),
+        terrains: measured,
+    };
     let out = &mut std::io::stdout().lock();
-    for (label, terrain, rows, references) in &measured {
-        print_table(out, label, terrain, rows, references)?;
+    for terrain in &report.terrains {
+        print_table(out, terrain)?;
     }
-    if measured.len() > 1 && !args.sizes.is_empty() {
-        print_growth(out, &measured)?;
+    if report.terrains.len() > 1 && !args.sizes.is_empty() {
+        print_growth(out, &report.terrains)?;
+    }
+    if let Some(path) = &args.out {
+        let json = serde_json::to_string_pretty(&report)?;
+        std::fs::write(path, json + "\n")
+            .with_context(|| format!("cannot write {}", path.display()))?;
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -166,31 +179,12 @@ fn fastest_build(scene: &Scene) -> Terrain {
     fastest
 }
 
-/// One scene measured: its label, terrain, rows and the reference tracers' figures.
-type Measured = (String, Terrain, Vec<ThroughputRow>, Vec<ReferenceFigures>);
-
 /// A reference tracer built for one terrain, with what its build took and holds.
 struct Built {
     tracer: Box<dyn Reference>,
     build: Duration,
     bytes: usize,
 }
-
-/// What was measured of a reference tracer besides its frames.
-struct ReferenceFigures {
-    name: String,
-    build: Duration,
-    bytes: usize,
-    /// Pixels of the frame with shadows whose colour differs from heightray's (mipmap, `f64`)
-    /// by more than [`LEVELS_APART`] in a channel.
-    differing: usize,
-    /// Primary hits: heightray's, the reference's.
-    hits: (u64, u64),
-}
-
-/// Colours this many levels apart or fewer count as the same pixel: a hit point in `f32`
-/// shades a level or two off the one in `f64`.
-const LEVELS_APART: u32 = 2;
 
 /// Embree's scenes of the terrain, its triangles and its grid, when asked for.
 #[cfg(feature = "embree")]
@@ -225,7 +219,7 @@ fn measure(
     scene: &Scene,
     terrain: &Terrain,
     bar: &ProgressBar,
-) -> anyhow::Result<(Vec<ThroughputRow>, Vec<ReferenceFigures>)> {
+) -> anyhow::Result<(Vec<ThroughputRow>, Vec<ReferenceBuild>)> {
     let built = references(args, terrain)?;
     let tracers: Vec<&dyn Reference> = built.iter().map(|b| &*b.tracer).collect();
     let rows = throughput(
@@ -254,7 +248,7 @@ fn measure(
     let figures = built.iter().enumerate().map(|(k, built)| {
         let theirs = render(Tracer::Reference(k));
         let pairs = ours.pixels.iter().zip(&theirs.pixels);
-        ReferenceFigures {
+        ReferenceBuild {
             name: built.tracer.name(),
             build: built.build,
             bytes: built.bytes,
@@ -263,138 +257,6 @@ fn measure(
         }
     });
     Ok((rows, figures.collect()))
-}
-
-fn print_table(
-    out: &mut impl Write,
-    label: &str,
-    terrain: &Terrain,
-    rows: &[ThroughputRow],
-    references: &[ReferenceFigures],
-) -> io::Result<()> {
-    let field = terrain.field();
-    let samples = (field.width() * field.height()) as f64;
-    writeln!(
-        out,
-        "\n{label}: {}x{} samples",
-        field.width(),
-        field.height()
-    )?;
-    writeln!(out, "| method | arith | threads | build ms | bytes/sample | primary Mrays/s | shadow Mrays/s | frame with shadows ms | time x f64 | 2 threads x 1 |")?;
-    writeln!(out, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")?;
-    for row in rows {
-        let same = |tracer, threads| {
-            rows.iter()
-                .find(|r| r.tracer == tracer && r.threads == threads)
-        };
-        let versus_f64 = match row.tracer {
-            Tracer::Heightray(method, _) => {
-                same(Tracer::Heightray(method, Arith::F64), row.threads)
-                    .map(|r| r.primary_per_second() / row.primary_per_second())
-            }
-            Tracer::Reference(_) => None,
-        };
-        let versus_one = same(row.tracer, 1)
-            .filter(|_| row.threads > 1)
-            .map(|r| row.primary_per_second() / r.primary_per_second());
-        let (method, arith) = names(row.tracer, references);
-        let (build, bytes) = match row.tracer {
-            Tracer::Heightray(method, _) => prepare(terrain, method),
-            Tracer::Reference(k) => (references[k].build, references[k].bytes),
-        };
-        writeln!(
-            out,
-            "| {method} | {arith} | {} | {:.1} | {:.2} | {:.3} | {} | {:.1} | {} | {} |",
-            row.threads,
-            build.as_secs_f64() * 1e3,
-            bytes as f64 / samples,
-            row.primary_per_second() / 1e6,
-            row.shadow_per_second()
-                .map_or("-".into(), |r| format!("{:.3}", r / 1e6)),
-            row.total_time.as_secs_f64() * 1e3,
-            versus_f64.map_or("-".into(), |r| format!("{r:.2}")),
-            versus_one.map_or("-".into(), |r| format!("{r:.2}")),
-        )?;
-    }
-    if rows.iter().any(|r| r.shadow_per_second().is_none()) {
-        writeln!(out, "(shadow Mrays/s \"-\": no shadow rays, or the frame with shadows was not slower than the one without: shadows were lost in the noise of the two times)")?;
-    }
-    if !references.is_empty() {
-        writeln!(out, "(embree: Embree 3 on the terrain's triangles, or on its grid, in f32, built on one thread; its bytes/sample are all it holds, vertices included, where heightray's are what it holds beyond the 2-byte samples)")?;
-    }
-    let pixels = rows.first().map_or(0, |r| r.primary_rays);
-    for figures in references {
-        writeln!(out, "({}: its frame with shadows differs from the mipmap's in f64 in {} of {pixels} pixels by more than {LEVELS_APART} levels in a channel; primary hits: mipmap {}, {} {})",
-            figures.name, figures.differing, figures.hits.0, figures.name, figures.hits.1)?;
-    }
-    Ok(())
-}
-
-/// A tracer's method and arithmetic columns.
-fn names(tracer: Tracer, references: &[ReferenceFigures]) -> (String, String) {
-    match tracer {
-        Tracer::Heightray(method, arith) => (method.to_string(), arith.to_string()),
-        Tracer::Reference(k) => (references[k].name.clone(), "f32".into()),
-    }
-}
-
-/// How each method's time per primary ray grows with the terrain size (first arithmetic, one
-/// thread) beside the growth of log N, and the queries per primary ray it grows with.
-fn print_growth<W: Write>(out: &mut W, measured: &[Measured]) -> io::Result<()> {
-    let first = &measured[0];
-    let side = |t: &Terrain| t.field().width() as f64;
-    let mut header = "| method | arith |".to_string();
-    for (_, terrain, _, _) in measured {
-        header += &format!(" {0}x{0} |", side(terrain));
-    }
-    header += &format!("\n|---|---|{}", "---:|".repeat(measured.len()));
-    // One line per method: `cell` of its row at each size.
-    let lines =
-        |out: &mut W, cell: &dyn Fn(&ThroughputRow, &ThroughputRow) -> String, ours_only: bool| {
-            let ours = |r: &&ThroughputRow| !ours_only || matches!(r.tracer, Tracer::Heightray(..));
-            for base in first.2.iter().filter(|r| r.threads == 1).filter(ours) {
-                let (method, arith) = names(base.tracer, &first.3);
-                let mut line = format!("| {method} | {arith} |");
-                for (_, _, rows, _) in measured {
-                    let row = rows
-                        .iter()
-                        .find(|r| r.tracer == base.tracer && r.threads == base.threads);
-                    line += &row.map_or(" - |".into(), |r| format!(" {} |", cell(base, r)));
-                }
-                writeln!(out, "{line}")?;
-            }
-            Ok(())
-        };
-
-    writeln!(
-        out,
-        "\ngrowth of time per primary ray with the terrain size (x the smallest)\n{header}"
-    )?;
-    let growth = |base: &ThroughputRow, r: &ThroughputRow| {
-        format!("{:.2}", base.primary_per_second() / r.primary_per_second())
-    };
-    lines(out, &growth, false)?;
-    let mut line = "| log2 N | - |".to_string();
-    for (_, terrain, _, _) in measured {
-        line += &format!(" {:.2} |", side(terrain).log2() / side(&first.1).log2());
-    }
-    writeln!(out, "{line}")?;
-
-    // What the time grows with: the finer terrain has more near misses per ray.
-    writeln!(out, "\nqueries per primary ray: block / run / cell / triangle / beam (once per tile of rays)\n{header}")?;
-    let queries = |_: &ThroughputRow, r: &ThroughputRow| {
-        let per_ray = |queries: HitMiss| queries.total() as f64 / r.primary_rays as f64;
-        let q = &r.primary_queries;
-        format!(
-            "{:.1} / {:.1} / {:.1} / {:.1} / {:.2}",
-            per_ray(q.block),
-            per_ray(q.run),
-            per_ray(q.cell),
-            per_ray(q.triangle),
-            per_ray(q.beam)
-        )
-    };
-    lines(out, &queries, true)
 }
 
 /// A scene to measure on, as written: `path` names it (a built-in scene by its name).

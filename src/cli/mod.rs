@@ -5,6 +5,7 @@ mod bench;
 mod generate;
 mod loading;
 mod render;
+mod speed_report;
 mod trace;
 
 use clap::{Parser, Subcommand};
@@ -116,6 +117,9 @@ pub struct SpeedArgs {
     /// with `--features embree`, which links libembree3).
     #[arg(long)]
     pub embree: bool,
+    /// Also write every figure as JSON here (the tables on stdout are made from the same data).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
 }
 
 #[derive(clap::Args, Debug)]

@@ -24,6 +24,8 @@ fn row(output: &str, size: usize, method: &str) -> Vec<String> {
 
 #[test]
 fn speed_at_sizes_reports_every_method_with_its_memory_and_growth() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let json = dir.path().join("speed.json");
     let output = Command::new(env!("CARGO_BIN_EXE_heightray"))
         .args([
             "bench",
@@ -38,7 +40,9 @@ fn speed_at_sizes_reports_every_method_with_its_memory_and_growth() {
             "f64",
             "--threads",
             "1",
+            "--out",
         ])
+        .arg(&json)
         .output()
         .expect("runs");
     assert!(output.status.success(), "{output:?}");
@@ -62,6 +66,7 @@ fn speed_at_sizes_reports_every_method_with_its_memory_and_growth() {
             assert!(primary > 0.0, "{size} {method}: {primary}");
         }
     }
+    same_figures_in_json_and_table(&json, &text);
     let growth = text
         .split_once("growth of time per primary ray")
         .expect("a growth table")
@@ -99,6 +104,41 @@ fn speed_at_sizes_reports_every_method_with_its_memory_and_growth() {
             let asked = (per_ray[0] > 0.0, per_ray[1] > 0.0, per_ray[4] > 0.0);
             assert_eq!(asked, (block, run, beam), "{line}");
             assert!(per_ray[2] > 0.0 && per_ray[3] > 0.0, "{line}");
+        }
+    }
+}
+
+/// `--out`'s JSON holds the figures of the tables on stdout: a row for every method at every
+/// size, each with the frame's pixels as its primary rays and the table's rounded figures.
+fn same_figures_in_json_and_table(json: &std::path::Path, text: &str) {
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(json).expect("--out wrote the file"))
+            .expect("JSON");
+    assert!(report["command"]
+        .as_str()
+        .is_some_and(|c| c.contains("--sizes")));
+    assert!(report["machine"]["threads"]
+        .as_u64()
+        .is_some_and(|t| t >= 1));
+    let terrains = report["terrains"].as_array().expect("terrains");
+    assert_eq!(terrains.len(), 2);
+    for (terrain, size) in terrains.iter().zip([33, 129]) {
+        assert_eq!(terrain["samples"], serde_json::json!([size, size]));
+        let rows = terrain["rows"].as_array().expect("rows");
+        assert_eq!(rows.len(), 4, "{terrain}");
+        for json_row in rows {
+            let method = json_row["method"].as_str().expect("method");
+            let cells = row(text, size, method);
+            assert_eq!(json_row["primary_rays"], 16 * 16, "{json_row}");
+            let number = |key: &str| json_row[key].as_f64().expect(key);
+            assert_eq!(format!("{:.2}", number("bytes_per_sample")), cells[4]);
+            assert_eq!(format!("{:.3}", number("primary_mrays_per_s")), cells[5]);
+            assert_eq!(format!("{:.1}", number("frame_with_shadows_ms")), cells[7]);
+            let queries = &json_row["queries_per_primary_ray"];
+            assert!(
+                queries["triangle"].as_f64().is_some_and(|q| q > 0.0),
+                "{json_row}"
+            );
         }
     }
 }

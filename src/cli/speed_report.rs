@@ -1,0 +1,300 @@
+//! What `bench speed` measured, as one value: printed as Markdown tables on stdout and written
+//! as JSON with `--out`, so the tables and the file always hold the same figures.
+
+use heightray::bench::{ThroughputRow, Tracer};
+use heightray::traverse::{prepare, Arith, HitMiss};
+use heightray::Terrain;
+use serde::Serialize;
+use std::io::{self, Write};
+use std::time::Duration;
+
+/// A whole run of `bench speed`.
+#[derive(Serialize)]
+pub struct SpeedReport {
+    /// The command line that made the report.
+    pub command: String,
+    pub machine: Machine,
+    pub terrains: Vec<TerrainReport>,
+}
+
+/// The machine the figures were measured on.
+#[derive(Serialize)]
+pub struct Machine {
+    /// The processor's model name (`/proc/cpuinfo`), or "unknown".
+    pub cpu: String,
+    /// Hardware threads the operating system offers.
+    pub threads: usize,
+}
+
+impl Machine {
+    pub fn this() -> Machine {
+        let cpu = std::fs::read_to_string("/proc/cpuinfo")
+            .ok()
+            .and_then(|info| {
+                info.lines()
+                    .find(|line| line.starts_with("model name"))
+                    .and_then(|line| line.split_once(':'))
+                    .map(|(_, name)| name.trim().to_string())
+            })
+            .unwrap_or_else(|| "unknown".into());
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        Machine { cpu, threads }
+    }
+}
+
+/// One terrain's configurations.
+#[derive(Serialize)]
+pub struct TerrainReport {
+    pub label: String,
+    /// Samples per side: width, height.
+    pub samples: [usize; 2],
+    pub rows: Vec<RowReport>,
+    /// Figures of the reference tracers that are not frame times.
+    pub references: Vec<ReferenceReport>,
+}
+
+/// One configuration: a tracer at a thread count.
+#[derive(Serialize)]
+pub struct RowReport {
+    pub method: String,
+    pub arith: String,
+    pub threads: usize,
+    pub build_ms: f64,
+    /// Bytes of acceleration data per sample (heightray: beyond its 2-byte samples; a
+    /// reference tracer: everything it holds).
+    pub bytes_per_sample: f64,
+    pub primary_rays: u64,
+    pub shadow_rays: u64,
+    pub primary_mrays_per_s: f64,
+    /// `None` where there were no shadow rays or their time was lost in the noise.
+    pub shadow_mrays_per_s: Option<f64>,
+    pub frame_ms: f64,
+    pub frame_with_shadows_ms: f64,
+    /// Time per primary ray against the same method in `f64` at the same thread count.
+    pub time_x_f64: Option<f64>,
+    /// Primary rays per second against the same tracer on one thread.
+    pub threads_x_one: Option<f64>,
+    /// Queries per primary ray (heightray's tracers only).
+    pub queries_per_primary_ray: Option<Queries>,
+}
+
+/// Queries per primary ray, by kind.
+#[derive(Serialize, Clone, Copy)]
+pub struct Queries {
+    pub block: f64,
+    pub run: f64,
+    pub cell: f64,
+    pub triangle: f64,
+    /// Beam queries: once per tile of camera rays, shared by its rays.
+    pub beam: f64,
+}
+
+/// What was measured of a reference tracer besides its frames.
+#[derive(Serialize)]
+pub struct ReferenceReport {
+    pub name: String,
+    pub build_ms: f64,
+    pub bytes_per_sample: f64,
+    /// Pixels of its frame with shadows whose colour differs from heightray's (mipmap, `f64`)
+    /// by more than [`LEVELS_APART`] in a channel.
+    pub differing_pixels: usize,
+    pub pixels: u64,
+    /// Primary hits: heightray's (mipmap, `f64`), the reference's.
+    pub primary_hits: [u64; 2],
+}
+
+/// Colours this many levels apart or fewer count as the same pixel: a hit point in `f32`
+/// shades a level or two off the one in `f64`.
+pub const LEVELS_APART: u32 = 2;
+
+/// A reference tracer's build and what it holds, before its rows are reported.
+pub struct ReferenceBuild {
+    pub name: String,
+    pub build: Duration,
+    pub bytes: usize,
+    pub differing: usize,
+    pub hits: (u64, u64),
+}
+
+impl TerrainReport {
+    /// The report of one terrain's rows, with each row's ratios worked out.
+    pub fn new(
+        label: String,
+        terrain: &Terrain,
+        rows: &[ThroughputRow],
+        references: &[ReferenceBuild],
+    ) -> TerrainReport {
+        let field = terrain.field();
+        let samples = (field.width() * field.height()) as f64;
+        let same = |tracer, threads| {
+            rows.iter()
+                .find(|r: &&ThroughputRow| r.tracer == tracer && r.threads == threads)
+        };
+        let row_report = |row: &ThroughputRow| {
+            let (method, arith, build, bytes) = match row.tracer {
+                Tracer::Heightray(method, arith) => {
+                    let (build, bytes) = prepare(terrain, method);
+                    (method.to_string(), arith.to_string(), build, bytes)
+                }
+                Tracer::Reference(k) => {
+                    let r = &references[k];
+                    (r.name.clone(), "f32".into(), r.build, r.bytes)
+                }
+            };
+            let time_x_f64 = match row.tracer {
+                Tracer::Heightray(method, _) => {
+                    same(Tracer::Heightray(method, Arith::F64), row.threads)
+                        .map(|r| r.primary_per_second() / row.primary_per_second())
+                }
+                Tracer::Reference(_) => None,
+            };
+            let threads_x_one = same(row.tracer, 1)
+                .filter(|_| row.threads > 1)
+                .map(|r| row.primary_per_second() / r.primary_per_second());
+            let queries = matches!(row.tracer, Tracer::Heightray(..)).then(|| {
+                let per_ray = |q: HitMiss| q.total() as f64 / row.primary_rays as f64;
+                let q = &row.primary_queries;
+                Queries {
+                    block: per_ray(q.block),
+                    run: per_ray(q.run),
+                    cell: per_ray(q.cell),
+                    triangle: per_ray(q.triangle),
+                    beam: per_ray(q.beam),
+                }
+            });
+            RowReport {
+                method,
+                arith,
+                threads: row.threads,
+                build_ms: build.as_secs_f64() * 1e3,
+                bytes_per_sample: bytes as f64 / samples,
+                primary_rays: row.primary_rays,
+                shadow_rays: row.shadow_rays,
+                primary_mrays_per_s: row.primary_per_second() / 1e6,
+                shadow_mrays_per_s: row.shadow_per_second().map(|r| r / 1e6),
+                frame_ms: row.primary_time.as_secs_f64() * 1e3,
+                frame_with_shadows_ms: row.total_time.as_secs_f64() * 1e3,
+                time_x_f64,
+                threads_x_one,
+                queries_per_primary_ray: queries,
+            }
+        };
+        let pixels = rows.first().map_or(0, |r| r.primary_rays);
+        let reference_report = |r: &ReferenceBuild| ReferenceReport {
+            name: r.name.clone(),
+            build_ms: r.build.as_secs_f64() * 1e3,
+            bytes_per_sample: r.bytes as f64 / samples,
+            differing_pixels: r.differing,
+            pixels,
+            primary_hits: [r.hits.0, r.hits.1],
+        };
+        TerrainReport {
+            label,
+            samples: [field.width(), field.height()],
+            rows: rows.iter().map(row_report).collect(),
+            references: references.iter().map(reference_report).collect(),
+        }
+    }
+}
+
+/// Ratio columns: two decimals, `-` where there is none.
+fn ratio(value: Option<f64>) -> String {
+    value.map_or("-".into(), |r| format!("{r:.2}"))
+}
+
+/// One terrain's table.
+pub fn print_table(out: &mut impl Write, terrain: &TerrainReport) -> io::Result<()> {
+    let [w, h] = terrain.samples;
+    writeln!(out, "\n{}: {w}x{h} samples", terrain.label)?;
+    writeln!(out, "| method | arith | threads | build ms | bytes/sample | primary Mrays/s | shadow Mrays/s | frame with shadows ms | time x f64 | 2 threads x 1 |")?;
+    writeln!(out, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")?;
+    for row in &terrain.rows {
+        writeln!(
+            out,
+            "| {} | {} | {} | {:.1} | {:.2} | {:.3} | {} | {:.1} | {} | {} |",
+            row.method,
+            row.arith,
+            row.threads,
+            row.build_ms,
+            row.bytes_per_sample,
+            row.primary_mrays_per_s,
+            row.shadow_mrays_per_s
+                .map_or("-".into(), |r| format!("{r:.3}")),
+            row.frame_with_shadows_ms,
+            ratio(row.time_x_f64),
+            ratio(row.threads_x_one),
+        )?;
+    }
+    if terrain.rows.iter().any(|r| r.shadow_mrays_per_s.is_none()) {
+        writeln!(out, "(shadow Mrays/s \"-\": no shadow rays, or the frame with shadows was not slower than the one without: shadows were lost in the noise of the two times)")?;
+    }
+    if !terrain.references.is_empty() {
+        writeln!(out, "(embree: Embree 3 on the terrain's triangles, or on its grid, in f32, built on one thread; its bytes/sample are all it holds, vertices included, where heightray's are what it holds beyond the 2-byte samples)")?;
+    }
+    for r in &terrain.references {
+        writeln!(out, "({}: its frame with shadows differs from the mipmap's in f64 in {} of {} pixels by more than {LEVELS_APART} levels in a channel; primary hits: mipmap {}, {} {})",
+            r.name, r.differing_pixels, r.pixels, r.primary_hits[0], r.name, r.primary_hits[1])?;
+    }
+    Ok(())
+}
+
+/// How each tracer's time per primary ray grows with the terrain size (one thread) beside
+/// the growth of log N, and the queries per primary ray it grows with.
+pub fn print_growth<W: Write>(out: &mut W, terrains: &[TerrainReport]) -> io::Result<()> {
+    let Some(first) = terrains.first() else {
+        return Ok(());
+    };
+    let mut header = "| method | arith |".to_string();
+    for terrain in terrains {
+        header += &format!(" {0}x{0} |", terrain.samples[0]);
+    }
+    header += &format!("\n|---|---|{}", "---:|".repeat(terrains.len()));
+    // One line per tracer: `cell` of its row at each size.
+    let lines = |out: &mut W, cell: &dyn Fn(&RowReport, &RowReport) -> Option<String>| {
+        for base in first.rows.iter().filter(|r| r.threads == 1) {
+            let mut line = format!("| {} | {} |", base.method, base.arith);
+            for terrain in terrains {
+                let row = terrain
+                    .rows
+                    .iter()
+                    .find(|r| r.method == base.method && r.arith == base.arith && r.threads == 1);
+                let value = row.and_then(|r| cell(base, r));
+                line += &format!(" {} |", value.as_deref().unwrap_or("-"));
+            }
+            if first.rows.iter().any(|r| cell(base, r).is_some()) {
+                writeln!(out, "{line}")?;
+            }
+        }
+        Ok(())
+    };
+
+    writeln!(
+        out,
+        "\ngrowth of time per primary ray with the terrain size (x the smallest)\n{header}"
+    )?;
+    let growth = |base: &RowReport, r: &RowReport| {
+        Some(format!(
+            "{:.2}",
+            base.primary_mrays_per_s / r.primary_mrays_per_s
+        ))
+    };
+    lines(out, &growth)?;
+    let side = |t: &TerrainReport| (t.samples[0] as f64).log2();
+    let mut line = "| log2 N | - |".to_string();
+    for terrain in terrains {
+        line += &format!(" {:.2} |", side(terrain) / side(first));
+    }
+    writeln!(out, "{line}")?;
+
+    // What the time grows with: the finer terrain has more near misses per ray.
+    writeln!(out, "\nqueries per primary ray: block / run / cell / triangle / beam (once per tile of rays)\n{header}")?;
+    let queries = |_: &RowReport, r: &RowReport| {
+        r.queries_per_primary_ray.map(|q| {
+            format!(
+                "{:.1} / {:.1} / {:.1} / {:.1} / {:.2}",
+                q.block, q.run, q.cell, q.triangle, q.beam
+            )
+        })
+    };
+    lines(out, &queries)
+}
