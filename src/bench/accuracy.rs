@@ -77,8 +77,8 @@ impl AccuracyRow {
 
 /// Each configuration's time is the fastest of the passes over its rays (or renders of its
 /// frame) that fit in this budget (at least one): a set of camera rays takes a millisecond or
-/// two in `f64`, and timed in a single pass, the same rays on the run walk took 4.2 µs each in
-/// one run and 2.3 µs in the next (eleventh session).
+/// two in `f64`, and a single pass on a shared machine can take up to twice as long as the
+/// next.
 const PASS_BUDGET: Duration = Duration::from_millis(100);
 
 /// Traces every ray of `set` with each method and arithmetic, one thread, and compares each

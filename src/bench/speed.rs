@@ -61,8 +61,7 @@ impl ThroughputRow {
 /// Rounds over all configurations: each time is the fastest frame of any round. On a shared
 /// machine a disturbance can last seconds; spread over rounds, a configuration's frames are
 /// not all taken inside one, not even a configuration whose one frame takes seconds (the run
-/// walk and the DDA on the large maps, whose two-thread figures came out anywhere from 1.2x
-/// to 1.9x when timed from one frame).
+/// walk and the DDA on the large maps).
 pub const ROUNDS: usize = 3;
 
 /// Frames per configuration and round: as many as fit in this time, at least one.

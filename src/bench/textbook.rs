@@ -286,7 +286,8 @@ impl<'a> Textbook<'a> {
         (t0 <= t1).then_some((t0, t1))
     }
 
-    /// The nearer hit on the two triangles of cell `(i, j)` (DESIGN 2), if any.
+    /// The nearer hit on the two triangles of cell `(i, j)` (the surface contract,
+    /// [`crate::geometry`]), if any.
     fn triangles(&self, o: [f64; 3], d: [f64; 3], i: usize, j: usize) -> Option<f64> {
         if self.terrain.field().is_hole_cell(i, j) {
             return None;

@@ -56,19 +56,18 @@ pub enum HeightfieldError {
 /// How a sample value becomes a height.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Quantisation {
-    /// An unsigned integer raster (PNG, PGM, unsigned TIFF): `z = sample / maxval * z_scale`
-    /// (DESIGN 2).
+    /// An unsigned integer raster (PNG, PGM, unsigned TIFF): `z = sample / maxval * z_scale`.
     Maxval(u16),
     /// A raster of heights in their own units (floats, signed integers, decoded terrain-RGB),
     /// stored as `value = lowest + sample * step`: `z = value * z_scale`.
     Offset { lowest: f64, step: f64 },
 }
 
-/// A grid of height samples (DESIGN 2).
+/// A grid of height samples, the input of the surface contract ([`crate::geometry`]).
 ///
 /// Sample `(i, j)` sits at `x = i`, `y = j` (y grows north; image row `r` is `j = H-1-r`), and
 /// its height is `base + sample * unit`, computed in `f64` (`base` is 0 for integer rasters,
-/// so their heights are `sample * (z_scale / maxval)` as before). Those `f64` heights are the
+/// so their heights are `sample * (z_scale / maxval)`). Those `f64` heights are the
 /// exact inputs of exact mode. No-data samples hold the field's lowest valid sample, so
 /// maxima over samples stay conservative without knowing about holes; cells with a no-data
 /// corner are holes (`is_hole_cell`).

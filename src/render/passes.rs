@@ -68,7 +68,7 @@ impl Renderer<'_> {
     /// Renders all remaining passes (on the current rayon pool). Nobody sees the frame between
     /// passes, so each band runs all of them in one job: no thread waits at the end of a pass
     /// for the other's last band. Each pixel is painted alone: a coarse pass's blocks would not
-    /// be seen, and painting them took about 3% of a frame's instructions.
+    /// be seen, and painting them would cost a share of every frame.
     pub fn render(&self, frame: &mut Frame) {
         let remaining = frame.passes_done..PASS_BLOCKS.len();
         self.passes(frame, remaining, &|| false, Paint::Pixels);
@@ -264,8 +264,8 @@ impl BandOut<'_> {
             Paint::Blocks => block,
             Paint::Pixels => 1,
         };
-        // (One pixel, as most are painted, written directly: the loop's bounds took about 80
-        // instructions a pixel, measured.)
+        // (One pixel, as most are painted, written directly: the loop's bounds cost more than
+        // the pixel.)
         if block == 1 {
             let at = (row * self.width + x) as usize;
             (self.pixels[at], self.stats[at]) = (rgb, stats);

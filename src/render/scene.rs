@@ -1,4 +1,5 @@
-//! Scene files (DESIGN 5): TOML, paths relative to the file, unknown keys refused by name.
+//! Scene files (README, 'Formats'): TOML, paths relative to the file, unknown keys refused by
+//! name.
 
 use super::camera::{Camera, CameraError};
 use crate::heightfield::{self, Builtin, Heightfield, LoadError, LoadOptions, NoDataValue};

@@ -180,8 +180,8 @@ impl Shader<'_> {
 
     /// How the surface at `p` on triangle `triangle` of `cell` faces the sun: the cosine of
     /// the angle between the shading normal and the sun (not positive where it faces away).
-    // (This, `normal` and `surface_rgb` inlined by hand: called from every arithmetic's
-    // `sample_with`, LLVM left them out of line, and a frame took 1% more instructions.)
+    // (This, `normal` and `surface_rgb` inlined by hand: every arithmetic's `sample_with`
+    // calls them once per pixel.)
     #[inline(always)]
     pub fn facing(&self, cell: (usize, usize), triangle: u8, p: DVec3) -> f64 {
         self.normal(cell, triangle, p)
@@ -222,8 +222,7 @@ impl Shader<'_> {
         }
         let sun = self.lighting.sun;
         // The sun climbs strictly steeper than any triangle (with room for the rounding of
-        // max_slope), compared squared: a square root per shadow ray took 1.6% of its
-        // instructions.
+        // max_slope), compared squared: no square root per shadow ray.
         let steepest = self.terrain.max_slope() * (1.0 + 1e-9);
         let climbs_steeper = sun[2] > 0.0
             && sun[2] * sun[2] > steepest * steepest * (sun[0] * sun[0] + sun[1] * sun[1]);

@@ -1,5 +1,5 @@
-//! Statistics of a frame (DESIGN 3): totals, per primary ray, hit/miss ratios, and a compact
-//! per-pixel record for heat maps.
+//! Statistics of a frame: the query counters ([`crate::traverse::Counters`]) summed, per
+//! primary ray and as hit/miss ratios, and a compact per-pixel record for heat maps.
 
 use super::shade::{Sample, Shadow, ShadowSkip};
 use crate::traverse::{Counters, HitMiss};
@@ -80,7 +80,8 @@ impl FrameStats {
         all
     }
 
-    /// The DESIGN 3 keys (the caller adds size, threads, method, arith and times).
+    /// The frame's statistics as JSON: rays, hits, shadow rays left out, and the queries in all,
+    /// of primary and of shadow rays (the caller adds size, threads, method, arith and times).
     pub fn to_json(&self) -> Value {
         let q = self.queries();
         json!({

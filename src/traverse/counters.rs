@@ -1,4 +1,4 @@
-//! Query counters (DESIGN 3): one struct, summed per frame, kept per pixel.
+//! Query counters: one struct, summed per frame, kept per pixel.
 
 use serde::Serialize;
 use std::ops::AddAssign;
@@ -12,7 +12,7 @@ pub struct HitMiss {
 
 impl HitMiss {
     /// Counts one query and passes its answer through. Building with `--features uncounted`
-    /// compiles counting out, to measure what it costs (see README).
+    /// compiles counting out, to measure what it costs (README, 'Performance').
     #[inline]
     pub fn record(&mut self, hit: bool) -> bool {
         if cfg!(feature = "uncounted") {

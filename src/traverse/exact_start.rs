@@ -1,6 +1,6 @@
 //! A shadow ray's start given exactly, so that a triangle test intervals cannot settle is
 //! decided exactly on its own: one test in integers, where casting the whole ray again in
-//! rationals cost about sixty times as much.
+//! rationals costs about sixty times as much.
 
 use super::dyadic::Dyadic;
 use super::{exact_t, point_over};

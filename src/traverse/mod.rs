@@ -78,7 +78,8 @@ pub enum Arith {
     Rational {
         bound: u32,
     },
-    /// No rounding at all: the DESIGN 2 answer for the given `f64` inputs.
+    /// No rounding at all: the surface contract's answer ([`crate::geometry`]) for the given
+    /// `f64` inputs.
     Exact,
 }
 
@@ -485,8 +486,8 @@ pub fn trace_scalar<S: Scalar>(
 }
 
 /// A search for the ray's answer, before any walk.
-// (Inlined by hand: called once per ray, LLVM left it out of line once `Search` grew, which
-// cost exact camera rays 1.5% of their instructions.)
+// (Inlined by hand: called once per ray, but `Search` is large, and out of line its
+// construction costs every ray.)
 #[inline(always)]
 fn new_search<'a, S: Scalar>(
     terrain: &'a Terrain,
@@ -514,9 +515,8 @@ fn new_search<'a, S: Scalar>(
         tied: false,
         cells: options.record_cells.then(Vec::new),
         start_triangle: options.start_triangle,
-        // (`S::EXACT` is asked again where the start is used, which compiles it out of the
-        // rounding arithmetics; left out here, LLVM inlined differently and `f64` rays ran 2%
-        // slower, measured.)
+        // (`S::EXACT` is asked here as well as where the start is used, which compiles it out
+        // of the rounding arithmetics, `f64` included.)
         exact_start: options
             .exact_start
             .filter(|_| S::EXACT && options.query == Query::Shadow),

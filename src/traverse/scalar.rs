@@ -222,7 +222,7 @@ macro_rules! float_scalar {
                 // Infinities (a parameter step overflowing for a subnormal direction) are
                 // near nothing but themselves: a finite difference means both are finite.
                 // (`greater`, not `max`: a NaN fails the last comparison anyway, and `max`'s
-                // handling of NaN cost instructions at every block step.)
+                // handling of NaN costs instructions at every block step.)
                 let difference = (self - other).abs();
                 let scale = self.abs().greater(other.abs()).greater(1.0);
                 self == other

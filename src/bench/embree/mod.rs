@@ -1,13 +1,15 @@
-//! Embree 3, the general-purpose CPU ray tracer the reference figures come from, on the
-//! same terrain and view as heightray, so `bench speed --embree` measures both in one run on
-//! one machine (built with the `embree` feature, which links Debian's `libembree3`).
+//! Embree 3, a general-purpose CPU ray tracer and the usual yardstick of CPU ray tracing
+//! speed, on the same terrain and view as heightray, so `bench speed --embree` measures both
+//! in one run on one machine (built with the `embree` feature, which links Debian's
+//! `libembree3`).
 //!
 //! The terrain goes to Embree as what it is, two triangles per cell with heightray's diagonal
-//! (DESIGN 2), its corners the samples in `f32`. A frame does what heightray's does: a ray
-//! per pixel through [`Camera::ray`], Embree's single-ray `rtcIntersect1` (the API of the
-//! reference figures), the hit shaded by heightray's [`Shader`] from the hit's cell and
-//! triangle, and a shadow ray (`rtcOccluded1`) where the surface faces the sun. So the two
-//! images can be compared pixel by pixel, and the time differs only in the tracing.
+//! (the surface contract, [`crate::geometry`]), its corners the samples in `f32`. A frame does
+//! what heightray's does: a ray per pixel through [`Camera::ray`], Embree's single-ray
+//! `rtcIntersect1` (one ray at a time, as heightray traces them), the hit shaded by
+//! heightray's [`Shader`] from the hit's cell and triangle, and a shadow ray (`rtcOccluded1`)
+//! where the surface faces the sun. So the two images can be compared pixel by pixel, and the
+//! time differs only in the tracing.
 
 mod ffi;
 mod hard_cases;
@@ -38,7 +40,8 @@ pub enum EmbreeError {
 /// How the terrain goes to Embree.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Geometry {
-    /// Two triangles per cell, as heightray defines them (DESIGN 2), each with a primitive id.
+    /// Two triangles per cell, as the surface contract ([`crate::geometry`]) defines them,
+    /// each with a primitive id.
     Triangles,
     /// Embree's grid primitive over the samples: vertices only, cells split into triangles as
     /// Embree splits them.
@@ -58,7 +61,7 @@ impl std::fmt::Display for Geometry {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EmbreeHit {
     pub cell: (usize, usize),
-    /// 0 or 1 (DESIGN 2).
+    /// `T0` or `T1` of the cell: 0 or 1 (the surface contract, [`crate::geometry`]).
     pub triangle: u8,
     pub t: f64,
     /// The triangle's unit normal, pointing up.
