@@ -29,9 +29,13 @@ pub trait Reference: Sync {
 /// One configuration measured.
 #[derive(Clone, Debug)]
 pub struct ThroughputRow {
+    /// What traced the frames.
     pub tracer: Tracer,
+    /// Threads of the rayon pool the frames were rendered on.
     pub threads: usize,
+    /// Primary rays of a frame (one per pixel).
     pub primary_rays: u64,
+    /// Shadow rays of a frame with shadows.
     pub shadow_rays: u64,
     /// The queries of the primary rays (frame without shadows).
     pub primary_queries: Counters,

@@ -1,4 +1,5 @@
-//! Rays, box clipping, and the watertight two-triangle cell test.
+// (The summary line of this module's docs is its `pub mod` line in lib.rs; the empty line
+// below starts the rest as a paragraph of its own.)
 //!
 //! # The surface contract
 //!

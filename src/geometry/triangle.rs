@@ -26,7 +26,9 @@ pub struct RaySpace<S> {
 /// only when the ray lies in the triangle's plane and runs across it (`None`: unbounded).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TriangleHit<S> {
+    /// The first touch: the hit.
     pub t_first: S,
+    /// The last touch: `t_first` but for a ray in the triangle's plane (`None`: unbounded).
     pub t_last: Option<S>,
 }
 

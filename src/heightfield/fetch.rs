@@ -14,9 +14,13 @@ pub const FETCH_AHEAD_BYTES: usize = 16 << 20;
 /// checking every index would (a division among them).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Window {
+    /// Index of the first row's first value.
     pub first: usize,
+    /// Values per row.
     pub len: usize,
+    /// Rows.
     pub rows: usize,
+    /// Values from the start of one row to the start of the next.
     pub stride: usize,
 }
 

@@ -41,6 +41,7 @@ impl Terrain {
         }
     }
 
+    /// The height field.
     pub fn field(&self) -> &Heightfield {
         &self.field
     }

@@ -28,17 +28,22 @@ const BEAM_BLOCK: u32 = 2;
 /// An image with its per-pixel statistics and running totals.
 #[derive(Clone, Debug)]
 pub struct Frame {
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
     /// 0x00RRGGBB, row-major from the top.
     pub pixels: Vec<u32>,
+    /// Each pixel's queries, in the order of `pixels`.
     pub stats: Vec<PixelStats>,
+    /// Totals over the pixels traced so far.
     pub totals: FrameStats,
     /// Passes completed.
     pub passes_done: usize,
 }
 
 impl Frame {
+    /// A black frame of `width x height` pixels with no pass rendered.
     pub fn new(width: u32, height: u32) -> Frame {
         let n = width as usize * height as usize;
         Frame {
@@ -59,8 +64,11 @@ impl Frame {
 
 /// Renders a camera's view with a shader in one arithmetic.
 pub struct Renderer<'a> {
+    /// The terrain, lighting and method a pixel is traced and shaded with.
     pub shader: Shader<'a>,
+    /// The camera whose rays the pixels are.
     pub camera: Camera,
+    /// The arithmetic the rays are traced in.
     pub arith: Arith,
 }
 

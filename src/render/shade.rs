@@ -29,8 +29,11 @@ pub enum ShadowSkip {
 pub enum Shadow {
     /// No primary hit, or the scene has no shadows: nothing to decide.
     NotAsked,
+    /// Left out where it cannot change the pixel, for this reason.
     Skipped(ShadowSkip),
+    /// Cast towards the sun.
     Cast {
+        /// The shadow ray found the surface: the pixel is in shadow.
         shadowed: bool,
     },
 }
@@ -44,9 +47,13 @@ type Cast = (Shadow, Counters, bool);
 pub struct Sample {
     /// 0x00RRGGBB.
     pub rgb: u32,
+    /// The primary ray hit the terrain.
     pub hit: bool,
+    /// What became of the shadow ray.
     pub shadow: Shadow,
+    /// The primary ray's queries.
     pub primary: Counters,
+    /// The shadow ray's queries.
     pub secondary: Counters,
     /// Intervals left a decision unsettled, and exact mode made it again exactly: it traced
     /// the pixel again in rationals, or cast only its shadow ray again, or decided one of the
@@ -58,8 +65,13 @@ pub struct Sample {
 /// switching one off must not change the image, only the work).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Culling {
+    /// Leave out shadow rays of surfaces facing away from the sun ([`ShadowSkip::FacingAway`]).
     pub facing_away: bool,
+    /// Leave out every shadow ray when the sun climbs steeper than any slope
+    /// ([`ShadowSkip::NoShadowPossible`]).
     pub no_shadow_possible: bool,
+    /// Leave out shadow rays that start above the terrain and rise
+    /// ([`ShadowSkip::AboveTerrain`]).
     pub above_terrain: bool,
 }
 
@@ -75,9 +87,13 @@ impl Default for Culling {
 
 /// Everything a pixel needs besides its ray.
 pub struct Shader<'a> {
+    /// The terrain traced.
     pub terrain: &'a Terrain,
+    /// Sun, shading and effects.
     pub lighting: Lighting,
+    /// The traversal method of primary and shadow rays.
     pub method: Method,
+    /// Which shadow rays to leave out.
     pub culling: Culling,
 }
 

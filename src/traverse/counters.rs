@@ -6,7 +6,9 @@ use std::ops::AddAssign;
 /// Queries of one kind, split into hits ("exists", E) and misses (N).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct HitMiss {
+    /// Queries answered "may be hit" (E).
     pub hit: u64,
+    /// Queries answered "certainly missed" (N).
     pub miss: u64,
 }
 
@@ -25,6 +27,7 @@ impl HitMiss {
         }
         hit
     }
+    /// Hits and misses together.
     pub fn total(&self) -> u64 {
         self.hit + self.miss
     }

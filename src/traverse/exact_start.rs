@@ -12,8 +12,11 @@ use crate::Ray;
 /// makes it exactly rather than by its coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlanePoint {
+    /// The ray that hit.
     pub ray: Ray,
+    /// The cell `(i, j)` it hit.
     pub cell: (usize, usize),
+    /// The triangle it hit, 0 or 1.
     pub triangle: u8,
 }
 

@@ -17,8 +17,11 @@ use std::ops::ControlFlow;
 /// A hit: the ray parameter, the cell `(i, j)` and its triangle (0 or 1).
 #[derive(Clone, Debug)]
 pub struct Found<S> {
+    /// The ray parameter of the hit.
     pub t: S,
+    /// The cell `(i, j)` hit.
     pub cell: (usize, usize),
+    /// The triangle hit, 0 or 1.
     pub triangle: u8,
 }
 
