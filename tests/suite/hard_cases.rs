@@ -1182,12 +1182,12 @@ fn ray_in_the_plane_of_a_sloped_surface() {
 /// - d = (1e300, 5e299, -1e300): t = 2.67e-300, cell (4, 2), T0.
 ///
 /// Bounded rationals cannot represent either direction as given: -1e-300 rounds to 0 (the
-/// direction would become (0, 0, 0), which clips to nothing), and 1e300 saturates at
-/// i64::MAX. Directions far from unit length are traced rescaled by a power of two (the same
-/// line), without which both bounds would miss both rays with every method; so they hit the
-/// exact answer's triangle, and every arithmetic agrees on both rays but for `rational:65536`
-/// on the first, whose `t` is off by a relative 1.4e-9 (1.0799999985e301: it rounds every
-/// result to a denominator of at most 65536). Asserted, with the rounding of the components as given.
+/// direction would become (0, 0, 0), which clips to nothing), and 1e300 saturates at i64::MAX.
+/// Directions far from unit length are traced rescaled by a power of two (the same line),
+/// without which both bounds would miss both rays with every method; so they hit the exact
+/// answer's triangle, and every arithmetic agrees on both rays but for `rational:65536` on the
+/// first, whose `t` is off by a relative 1.4e-9 (1.0799999985e301: it rounds every result to a
+/// denominator of at most 65536). Asserted, with the rounding of the components as given.
 #[test]
 fn extreme_direction_scales() {
     let hilly = families::hilly();

@@ -5,12 +5,11 @@
 //!
 //! The terrain goes to Embree as what it is, two triangles per cell with heightray's diagonal
 //! (the surface contract, [`crate::geometry`]), its corners the samples in `f32`. A frame does
-//! what heightray's does: a ray per pixel through
-//! [`Camera::ray`](crate::render::Camera::ray), Embree's single-ray `rtcIntersect1` (one ray
-//! at a time, as heightray traces them), the hit shaded by heightray's
-//! [`Shader`](crate::render::Shader) from the hit's cell and triangle, and a shadow ray (`rtcOccluded1`)
-//! where the surface faces the sun. So the two images can be compared pixel by pixel, and the
-//! time differs only in the tracing.
+//! what heightray's does: a ray per pixel through [`Camera::ray`](crate::render::Camera::ray),
+//! Embree's single-ray `rtcIntersect1` (one ray at a time, as heightray traces them), the hit
+//! shaded by heightray's [`Shader`](crate::render::Shader) from the hit's cell and triangle,
+//! and a shadow ray (`rtcOccluded1`) where the surface faces the sun. So the two images can be
+//! compared pixel by pixel, and the time differs only in the tracing.
 
 mod ffi;
 mod hard_cases;
