@@ -3,11 +3,19 @@
 //! Data flows one way: a file becomes a [`Heightfield`], acceleration data makes it a
 //! [`Terrain`], and [`traverse::trace`] answers rays against it.
 
+#![warn(missing_docs)]
+
+/// Benchmarks: methods, arithmetics and thread counts measured side by side in one run.
 pub mod bench;
+/// Rays, box clipping, the watertight two-triangle cell test, and the surface contract.
 pub mod geometry;
+/// Height fields: samples, loading, and the maxima the walks skip empty space with.
 pub mod heightfield;
+/// Turning rays into pixels: cameras, scene files, shading, progressive passes, statistics.
 pub mod render;
+/// Walking a ray across the grid: the methods, their arithmetics and query counters.
 pub mod traverse;
+/// The interactive viewer: winit, softbuffer and egui, drawn on the CPU.
 pub mod viewer;
 
 pub use geometry::{Ray, RayError};

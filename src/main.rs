@@ -7,7 +7,7 @@ use std::process::ExitCode;
 
 fn main() -> ExitCode {
     let args = cli::Args::parse();
-    // Without a subcommand: the viewer (DESIGN 4).
+    // Without a subcommand: the viewer.
     let command = args.command.unwrap_or(cli::Command::View(args.view));
     match cli::run(command) {
         Ok(code) => code,

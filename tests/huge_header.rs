@@ -1,7 +1,7 @@
 //! A header that promises a 100000x100000 image is refused without allocating for it: every
 //! allocation made while loading such files is recorded, and none may be large.
 
-// (It uses a few of the shared helpers; the suite uses the rest.)
+// (It uses a few of the shared functions; the suite uses the rest.)
 #[allow(dead_code)]
 mod common;
 

@@ -9,16 +9,22 @@ use crate::Terrain;
 use std::collections::HashSet;
 use std::time::Duration;
 
-/// One method and arithmetic measured on every pixel of a view.
+/// One method and arithmetic measured on every ray of a set.
 #[derive(Clone, Debug)]
 pub struct AccuracyRow {
     /// The ray set's name.
     pub set: String,
+    /// The traversal method.
     pub method: Method,
+    /// The arithmetic traced in.
     pub arith: Arith,
+    /// Rays in the set.
     pub rays: u64,
+    /// Rays that hit the terrain.
     pub hits: u64,
+    /// All the rays, traced one after the other: the fastest pass.
     pub time: Duration,
+    /// The queries of all the rays, summed.
     pub counters: Counters,
     /// How the answers differ from exact arithmetic on the same method (if measured).
     pub versus_exact: Option<Disagreement>,
@@ -77,8 +83,8 @@ impl AccuracyRow {
 
 /// Each configuration's time is the fastest of the passes over its rays (or renders of its
 /// frame) that fit in this budget (at least one): a set of camera rays takes a millisecond or
-/// two in `f64`, and timed in a single pass, the same rays on the run walk took 4.2 µs each in
-/// one run and 2.3 µs in the next (eleventh session).
+/// two in `f64`, and a single pass on a shared machine can take up to twice as long as the
+/// next.
 const PASS_BUDGET: Duration = Duration::from_millis(100);
 
 /// Traces every ray of `set` with each method and arithmetic, one thread, and compares each
@@ -151,10 +157,13 @@ pub fn accuracy(
 /// A scene rendered in one method and arithmetic, against the exact render.
 #[derive(Clone, Debug)]
 pub struct PixelRow {
+    /// The traversal method.
     pub method: Method,
+    /// The arithmetic rendered in.
     pub arith: Arith,
     /// Pixels whose colour differs from the exact render's.
     pub differing: u64,
+    /// Pixels in the frame.
     pub pixels: u64,
     /// Wall time of the frame (all threads of the pool), the fastest of its renders.
     pub time: Duration,
@@ -187,9 +196,13 @@ pub fn pixel_differences(
 /// What a view shows: the terrain through a camera, lit, walked with one method.
 #[derive(Clone, Copy)]
 pub struct View<'a> {
+    /// The terrain seen.
     pub terrain: &'a Terrain,
+    /// The camera it is seen through.
     pub camera: Camera,
+    /// The sun, shading and effects.
     pub lighting: Lighting,
+    /// The traversal method.
     pub method: Method,
 }
 

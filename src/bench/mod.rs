@@ -1,6 +1,3 @@
-//! Benchmarks: methods, arithmetics and thread counts measured side by side in one run, as
-//! ratios.
-
 mod accuracy;
 #[cfg(feature = "embree")]
 pub mod embree;

@@ -40,8 +40,11 @@ pub fn scene_sets(name: &str, scene: &Scene) -> anyhow::Result<[RaySet; 2]> {
 
 /// Rays of one kind on the terrain they are hard for.
 pub struct RaySet {
+    /// The set's name in reports.
     pub name: String,
+    /// The terrain the rays are traced against.
     pub terrain: Terrain,
+    /// The rays.
     pub rays: Vec<Ray>,
 }
 

@@ -14,8 +14,10 @@ pub const SEED: u64 = 1;
 /// Why a sized scene could not be made.
 #[derive(Debug, Error)]
 pub enum SizedSceneError {
+    /// The generated height field was refused.
     #[error(transparent)]
     Field(#[from] HeightfieldError),
+    /// The scaled view's camera was refused.
     #[error(transparent)]
     Camera(#[from] CameraError),
 }

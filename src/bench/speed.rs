@@ -29,9 +29,13 @@ pub trait Reference: Sync {
 /// One configuration measured.
 #[derive(Clone, Debug)]
 pub struct ThroughputRow {
+    /// What traced the frames.
     pub tracer: Tracer,
+    /// Threads of the rayon pool the frames were rendered on.
     pub threads: usize,
+    /// Primary rays of a frame (one per pixel).
     pub primary_rays: u64,
+    /// Shadow rays of a frame with shadows.
     pub shadow_rays: u64,
     /// The queries of the primary rays (frame without shadows).
     pub primary_queries: Counters,
@@ -61,8 +65,7 @@ impl ThroughputRow {
 /// Rounds over all configurations: each time is the fastest frame of any round. On a shared
 /// machine a disturbance can last seconds; spread over rounds, a configuration's frames are
 /// not all taken inside one, not even a configuration whose one frame takes seconds (the run
-/// walk and the DDA on the large maps, whose two-thread figures came out anywhere from 1.2x
-/// to 1.9x when timed from one frame).
+/// walk and the DDA on the large maps).
 pub const ROUNDS: usize = 3;
 
 /// Frames per configuration and round: as many as fit in this time, at least one.

@@ -22,13 +22,17 @@ const ROUND_TIME: Duration = Duration::from_millis(500);
 /// The two walks measured on a scene's camera rays, one thread.
 #[derive(Clone, Debug)]
 pub struct TextbookRow {
+    /// Camera rays traced (one per pixel).
     pub rays: u64,
+    /// Rays that hit the terrain (heightray's answers).
     pub hits: u64,
-    /// Block and cell queries per ray: heightray's, and the textbook walk's steps.
+    /// heightray's block and cell queries per ray.
     pub heightray_queries: f64,
+    /// The textbook walk's block and cell steps per ray.
     pub textbook_queries: f64,
-    /// All the rays, traced one after the other: the fastest run.
+    /// heightray's walk over all the rays, one after the other: the fastest run.
     pub heightray_time: Duration,
+    /// The textbook walk over all the rays, one after the other: the fastest run.
     pub textbook_time: Duration,
     /// Rays whose answers differ: a hit against a miss, or `t` off by more than a relative
     /// 1e-9.
@@ -108,8 +112,11 @@ pub(super) fn differ_by(a: Option<f64>, b: Option<f64>, tolerance: f64) -> bool 
 /// heightray's exact answers.
 #[derive(Clone, Debug)]
 pub struct HardCaseRow {
+    /// The set's name.
     pub set: String,
+    /// Rays in the set.
     pub rays: u64,
+    /// Answers of each of the two tracers that differ from exact, in the tracers' order.
     pub differing: [u64; 2],
 }
 
@@ -174,6 +181,7 @@ pub struct Textbook<'a> {
 }
 
 impl<'a> Textbook<'a> {
+    /// The textbook walk over `terrain`'s mipmap.
     pub fn new(terrain: &'a Terrain) -> Self {
         let field = terrain.field();
         Textbook {
@@ -286,7 +294,8 @@ impl<'a> Textbook<'a> {
         (t0 <= t1).then_some((t0, t1))
     }
 
-    /// The nearer hit on the two triangles of cell `(i, j)` (DESIGN 2), if any.
+    /// The nearer hit on the two triangles of cell `(i, j)` (the surface contract,
+    /// [`crate::geometry`]), if any.
     fn triangles(&self, o: [f64; 3], d: [f64; 3], i: usize, j: usize) -> Option<f64> {
         if self.terrain.field().is_hole_cell(i, j) {
             return None;

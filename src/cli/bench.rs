@@ -162,8 +162,8 @@ fn print_hard_cases(
 }
 
 /// The scene's terrain, built as many times as fit in a second (at least three): the one
-/// whose build was fastest, as every frame time is the fastest of many (a 2 ms build is
-/// half page faults on a fresh allocation on one run, and not on the next).
+/// whose build was fastest, as every frame time is the fastest of many (a short build may
+/// spend half its time in page faults on a fresh allocation, or none).
 fn fastest_build(scene: &Scene) -> Terrain {
     let start = Instant::now();
     let mut fastest = Terrain::new(scene.field.clone());

@@ -1,4 +1,4 @@
-//! Command-line arguments and the subcommands (DESIGN 4).
+//! Command-line arguments and the subcommands (README, 'The command line').
 
 mod accuracy;
 mod bench;

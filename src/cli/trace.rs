@@ -1,4 +1,4 @@
-//! `heightray trace`: one JSON object per ray (DESIGN 4).
+//! `heightray trace`: one JSON object per ray (README, 'The command line').
 
 use super::{loading, TraceArgs};
 use anyhow::Context;

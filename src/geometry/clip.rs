@@ -8,9 +8,13 @@ use crate::traverse::scalar::Scalar;
 /// `o + t*d` alone.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Clipped<S> {
+    /// Where the ray enters the box (0 where it starts inside).
     pub t0: S,
+    /// Where the ray leaves the box.
     pub t1: S,
+    /// The face the entry point lies on, `(axis, value)`; `None` where the ray starts inside.
     pub entry_face: Option<(usize, S)>,
+    /// The face the exit point lies on, `(axis, value)`.
     pub exit_face: Option<(usize, S)>,
 }
 

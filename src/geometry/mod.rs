@@ -1,4 +1,23 @@
-//! Rays, box clipping, and the watertight two-triangle cell test.
+// (The summary line of this module's docs is its `pub mod` line in lib.rs; the empty line
+// below starts the rest as a paragraph of its own.)
+//!
+//! # The surface contract
+//!
+//! What every method and arithmetic answers (the README's section "The surface" says it at
+//! length):
+//!
+//! - Sample `(i, j)` lies at `x = i`, `y = j` (y grows north), at the height its field maps it
+//!   to ([`crate::Heightfield`]), computed in `f64`: those heights are the exact inputs of
+//!   exact mode.
+//! - Cell `(i, j)` is the closed square `[i, i+1] x [j, j+1]`, split along the diagonal from
+//!   `P00` to `P11` into two closed triangles: `T0 = (P00, P10, P11)`, where
+//!   `0 <= y-j <= x-i <= 1`, and `T1 = (P00, P11, P01)`, where `0 <= x-i <= y-j <= 1`. A cell
+//!   with a no-data corner is a hole: it has no triangles, and rays pass through it.
+//! - The first hit is the least `t >= 0` at which the ray `o + t*d` touches a triangle; a ray
+//!   lying in a triangle's plane hits where it first touches the triangle.
+//! - Ties: a hit point shared by several triangles is reported in the first cell in visiting
+//!   order (the cells the projected path touches, in order of first contact), `T0` before
+//!   `T1`.
 
 mod certain_miss;
 mod clip;

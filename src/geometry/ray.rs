@@ -5,12 +5,17 @@ use thiserror::Error;
 /// Why a ray was refused.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum RayError {
+    /// A component is NaN or infinite.
     #[error("ray {what} component {axis} is {value}; every component must be finite")]
     NotFinite {
+        /// `origin` or `direction`.
         what: &'static str,
+        /// `x`, `y` or `z`.
         axis: char,
+        /// The component as given.
         value: f64,
     },
+    /// The direction is zero.
     #[error("ray direction is (0, 0, 0); it must have a non-zero component")]
     ZeroDirection,
 }
@@ -24,6 +29,7 @@ pub struct Ray {
 }
 
 impl Ray {
+    /// The ray from `origin` along `dir`, if every component is finite and `dir` is not zero.
     pub fn new(origin: [f64; 3], dir: [f64; 3]) -> Result<Ray, RayError> {
         for (what, v) in [("origin", origin), ("direction", dir)] {
             for (axis, value) in ['x', 'y', 'z'].into_iter().zip(v) {
@@ -42,9 +48,11 @@ impl Ray {
         debug_assert!(Ray::new(origin, dir).is_ok());
         Ray { origin, dir }
     }
+    /// The origin `o`.
     pub fn origin(&self) -> [f64; 3] {
         self.origin
     }
+    /// The direction `d`, as given.
     pub fn dir(&self) -> [f64; 3] {
         self.dir
     }

@@ -6,7 +6,8 @@
 //! vertices against the origin, and [`Scalar::det2`] gives their sign exactly. So the hit
 //! decision is an exact predicate on one consistent planar mesh: a ray through a shared edge
 //! or vertex is inside (edges count) of at least one triangle around it, never none. In exact
-//! arithmetic the test is the exact definition itself (DESIGN 2): closed triangles, and a ray
+//! arithmetic the test is the exact definition itself (the surface contract, [`super`]): closed
+//! triangles, and a ray
 //! lying in a triangle's plane hits where it first touches the triangle.
 
 use crate::traverse::scalar::{max, min, Scalar};
@@ -25,13 +26,15 @@ pub struct RaySpace<S> {
 /// only when the ray lies in the triangle's plane and runs across it (`None`: unbounded).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TriangleHit<S> {
+    /// The first touch: the hit.
     pub t_first: S,
+    /// The last touch: `t_first` but for a ray in the triangle's plane (`None`: unbounded).
     pub t_last: Option<S>,
 }
 
 /// The axes of ray space `[x, y, z]`: the direction's largest component becomes z, and the
 /// order stays cyclic, so orientations keep their sign.
-// (Inlined by hand: out of line, LLVM stopped inlining `RaySpace::new` into the walk.)
+// (`#[inline]`, so that `RaySpace::new`, which prepares every walk's ray, inlines whole.)
 #[inline]
 pub fn ray_space_axes(dir: [f64; 3]) -> [usize; 3] {
     let kz = (0..3)
@@ -41,7 +44,7 @@ pub fn ray_space_axes(dir: [f64; 3]) -> [usize; 3] {
 }
 
 /// The corners of triangle `k` (0 or 1) of a cell, counter-clockwise seen from +z, as indices
-/// into its corners `[P00, P10, P01, P11]` (DESIGN 2).
+/// into its corners `[P00, P10, P01, P11]` (the surface contract, [`crate::geometry`]).
 pub fn triangle_corners(k: u8) -> [usize; 3] {
     if k == 0 {
         [0, 1, 3]
@@ -204,7 +207,8 @@ impl<S: Scalar> CellTriangles<S> {
 
 /// The gradient `(dz/dx, dz/dy)` of triangle `k` of a cell with corner heights
 /// `[z00, z10, z01, z11]`: over `T0` the plane is `z = z00 + (z10-z00)(x-i) + (z11-z10)(y-j)`,
-/// over `T1` `z = z00 + (z11-z01)(x-i) + (z01-z00)(y-j)` (DESIGN 2).
+/// over `T1` `z = z00 + (z11-z01)(x-i) + (z01-z00)(y-j)` (the surface contract,
+/// [`crate::geometry`]).
 pub fn gradient<S: Clone + Sub<Output = S>>(k: u8, [z00, z10, z01, z11]: [S; 4]) -> (S, S) {
     if k == 0 {
         (z10.clone() - z00, z11 - z10)

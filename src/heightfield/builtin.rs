@@ -6,6 +6,7 @@ use super::{load_bytes, Heightfield, LoadError};
 /// A terrain that ships with heightray.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Builtin {
+    /// Its name, as the command line and scene files (`builtin:NAME`) give it.
     pub name: &'static str,
     /// Suggested z scale (height of the highest sample value).
     pub z_scale: f64,

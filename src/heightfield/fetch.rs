@@ -1,22 +1,26 @@
 //! Fetching ahead: on a map larger than the processor's caches, a walk waits on memory for each
 //! sample and block it reads; asked for early, the reads overlap with the walk's own work.
+//!
+//! Fetching ahead the samples of blocks larger than 4x4 cells gains nothing more.
 
-/// The samples' size from which the walks fetch ahead. Below it the map stays in the caches of
-/// the machines this is measured on (32 MB last-level cache), and the hints bought nothing:
-/// with them on at every size, frames with shadows were 3% slower at 513² and 1% slower at
-/// 2049², 2% faster at 4097² and 7% faster at 8193².
+/// The samples' size from which the walks fetch ahead. Below it the map stays in the caches
+/// (of a machine with a 32 MB last-level cache), and the hints cost more than they save.
 pub const FETCH_AHEAD_BYTES: usize = 16 << 20;
 
 /// Part of a row-major array: `rows` rows of `len` values each, the first from index `first` on,
 /// each row `stride` values after the one before. A window at the far edge of a grid reaches
 /// past it (into the next rows, or past the array's end): it is only ever fetched, and a
 /// prefetch cannot fault, so the few wasted hints cost less than clipping every window and
-/// checking every index did (2.4% of the 8193² view's instructions, a division among them).
+/// checking every index would (a division among them).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Window {
+    /// Index of the first row's first value.
     pub first: usize,
+    /// Values per row.
     pub len: usize,
+    /// Rows.
     pub rows: usize,
+    /// Values from the start of one row to the start of the next.
     pub stride: usize,
 }
 

@@ -11,6 +11,7 @@ pub struct CellMaxima {
 }
 
 impl CellMaxima {
+    /// The cell maxima of `field`.
     pub fn build(field: &Heightfield) -> Self {
         let (cells_x, cells_y) = (field.width() - 1, field.height() - 1);
         let mut max = Vec::with_capacity(cells_x * cells_y);

@@ -1,5 +1,10 @@
-//! Height fields: samples on a grid, their height mapping, loading, and the per-cell maxima
-//! and range-maximum structures the traversals skip empty space with.
+// (The summary line of this module's docs is its `pub mod` line in lib.rs; the empty line
+// below starts the rest as a paragraph of its own.)
+//!
+//! A field's samples lie on a grid with their height mapping
+//! ([`Heightfield`](crate::heightfield::Heightfield)); loading reads them from files; the
+//! per-cell maxima, range maxima and min-max mipmap are what the traversals skip empty space
+//! with ([`Terrain`](crate::heightfield::Terrain)).
 
 mod builtin;
 mod fetch;
@@ -30,25 +35,58 @@ use thiserror::Error;
 /// Why a height field could not be built.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum HeightfieldError {
+    /// Fewer than 2 samples along a side: not a single cell.
     #[error("a height field needs at least 2x2 samples, this one is {width}x{height}")]
-    TooSmall { width: usize, height: usize },
+    TooSmall {
+        /// Samples along x.
+        width: usize,
+        /// Samples along y.
+        height: usize,
+    },
+    /// More samples than [`MAX_SAMPLES`].
     #[error("{width}x{height} is {} samples, more than the limit of {MAX_SAMPLES}", *width as u64 * *height as u64)]
-    TooLarge { width: usize, height: usize },
+    TooLarge {
+        /// Samples along x.
+        width: usize,
+        /// Samples along y.
+        height: usize,
+    },
+    /// A z scale that is negative, NaN or infinite.
     #[error("z scale must be a finite number >= 0, got {0}")]
     BadZScale(f64),
+    /// A maxval of 0 or above 65535.
     #[error("maxval must be between 1 and 65535, got {0}")]
     BadMaxval(u32),
+    /// Fewer or more samples than width times height.
     #[error("expected {expected} samples for the given size, got {got}")]
-    SampleCount { expected: usize, got: usize },
+    SampleCount {
+        /// Width times height.
+        expected: usize,
+        /// Samples given.
+        got: usize,
+    },
+    /// A sample above the raster's maxval.
     #[error("sample {sample} at x={x}, y={y} exceeds maxval {maxval}")]
     SampleAboveMaxval {
+        /// The sample value.
         sample: u16,
+        /// Its column.
         x: usize,
+        /// Its row.
         y: usize,
+        /// The raster's maxval.
         maxval: u16,
     },
+    /// An offset mapping ([`Quantisation::Offset`]) whose heights are not finite (scaled or
+    /// not), or whose step is negative.
     #[error("heights must be finite with a step >= 0, got lowest {lowest} and step {step}")]
-    BadOffset { lowest: f64, step: f64 },
+    BadOffset {
+        /// The raster value of sample 0.
+        lowest: f64,
+        /// The raster value of one sample step.
+        step: f64,
+    },
+    /// Every sample holds no data.
     #[error("every sample is no-data: there is no terrain to show")]
     AllNoData,
 }
@@ -56,19 +94,23 @@ pub enum HeightfieldError {
 /// How a sample value becomes a height.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Quantisation {
-    /// An unsigned integer raster (PNG, PGM, unsigned TIFF): `z = sample / maxval * z_scale`
-    /// (DESIGN 2).
+    /// An unsigned integer raster (PNG, PGM, unsigned TIFF): `z = sample / maxval * z_scale`.
     Maxval(u16),
     /// A raster of heights in their own units (floats, signed integers, decoded terrain-RGB),
     /// stored as `value = lowest + sample * step`: `z = value * z_scale`.
-    Offset { lowest: f64, step: f64 },
+    Offset {
+        /// The raster value of sample 0.
+        lowest: f64,
+        /// The raster value of one sample step.
+        step: f64,
+    },
 }
 
-/// A grid of height samples (DESIGN 2).
+/// A grid of height samples, the input of the surface contract ([`crate::geometry`]).
 ///
 /// Sample `(i, j)` sits at `x = i`, `y = j` (y grows north; image row `r` is `j = H-1-r`), and
 /// its height is `base + sample * unit`, computed in `f64` (`base` is 0 for integer rasters,
-/// so their heights are `sample * (z_scale / maxval)` as before). Those `f64` heights are the
+/// so their heights are `sample * (z_scale / maxval)`). Those `f64` heights are the
 /// exact inputs of exact mode. No-data samples hold the field's lowest valid sample, so
 /// maxima over samples stay conservative without knowing about holes; cells with a no-data
 /// corner are holes (`is_hole_cell`).

@@ -41,13 +41,13 @@ impl Terrain {
         }
     }
 
+    /// The height field.
     pub fn field(&self) -> &Heightfield {
         &self.field
     }
     /// A walk goes down into block `(bi, bj)` of level `k`: on a map larger than the caches,
     /// asks the processor to fetch what it will read two levels below: the samples of a block
-    /// of 4x4 cells, the 4x4 blocks under a block of level 3 or 4. (Measured at 8193²: samples
-    /// fetched for blocks of 8x8 cells gained no more than for blocks of 4x4.)
+    /// of 4x4 cells, the 4x4 blocks under a block of level 3 or 4.
     #[inline(always)]
     pub fn fetch_below(&self, k: u32, bi: usize, bj: usize) {
         if !self.fetch_ahead {

@@ -11,16 +11,22 @@ use thiserror::Error;
 /// Why a camera could not be built.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum CameraError {
+    /// The eye, target or up vector (named) has a NaN or infinite component.
     #[error("camera {0} must be finite")]
     NotFinite(&'static str),
+    /// Eye and target are the same point: no viewing direction.
     #[error("camera eye and target coincide")]
     EyeIsTarget,
+    /// The up vector is parallel to the viewing direction (or zero).
     #[error("camera up vector is parallel to the viewing direction")]
     UpParallel,
+    /// A vertical field of view outside (0, 180) degrees.
     #[error("field of view must be between 0 and 180 degrees, got {0}")]
     BadFov(f64),
+    /// An image size with no pixels (width, height).
     #[error("image size must be at least 1x1, got {0}x{1}")]
     EmptyImage(u32, u32),
+    /// An image size of more than 16384 x 16384 pixels (width, height).
     #[error("image size {0}x{1} is more than the limit of {MAX_PIXELS} pixels (16384x16384)")]
     HugeImage(u32, u32),
 }

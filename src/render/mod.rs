@@ -1,6 +1,3 @@
-//! Turning rays into pixels: cameras, scene files, shading and effects, progressive passes,
-//! and the statistics of a frame.
-
 mod camera;
 mod gamma;
 mod passes;

@@ -28,17 +28,22 @@ const BEAM_BLOCK: u32 = 2;
 /// An image with its per-pixel statistics and running totals.
 #[derive(Clone, Debug)]
 pub struct Frame {
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
     /// 0x00RRGGBB, row-major from the top.
     pub pixels: Vec<u32>,
+    /// Each pixel's queries, in the order of `pixels`.
     pub stats: Vec<PixelStats>,
+    /// Totals over the pixels traced so far.
     pub totals: FrameStats,
     /// Passes completed.
     pub passes_done: usize,
 }
 
 impl Frame {
+    /// A black frame of `width x height` pixels with no pass rendered.
     pub fn new(width: u32, height: u32) -> Frame {
         let n = width as usize * height as usize;
         Frame {
@@ -59,8 +64,11 @@ impl Frame {
 
 /// Renders a camera's view with a shader in one arithmetic.
 pub struct Renderer<'a> {
+    /// The terrain, lighting and method a pixel is traced and shaded with.
     pub shader: Shader<'a>,
+    /// The camera whose rays the pixels are.
     pub camera: Camera,
+    /// The arithmetic the rays are traced in.
     pub arith: Arith,
 }
 
@@ -68,7 +76,7 @@ impl Renderer<'_> {
     /// Renders all remaining passes (on the current rayon pool). Nobody sees the frame between
     /// passes, so each band runs all of them in one job: no thread waits at the end of a pass
     /// for the other's last band. Each pixel is painted alone: a coarse pass's blocks would not
-    /// be seen, and painting them took about 3% of a frame's instructions.
+    /// be seen, and painting them would cost a share of every frame.
     pub fn render(&self, frame: &mut Frame) {
         let remaining = frame.passes_done..PASS_BLOCKS.len();
         self.passes(frame, remaining, &|| false, Paint::Pixels);
@@ -264,8 +272,8 @@ impl BandOut<'_> {
             Paint::Blocks => block,
             Paint::Pixels => 1,
         };
-        // (One pixel, as most are painted, written directly: the loop's bounds took about 80
-        // instructions a pixel, measured.)
+        // (One pixel, as most are painted, written directly: the loop's bounds cost more than
+        // the pixel.)
         if block == 1 {
             let at = (row * self.width + x) as usize;
             (self.pixels[at], self.stats[at]) = (rgb, stats);

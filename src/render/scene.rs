@@ -1,4 +1,5 @@
-//! Scene files (DESIGN 5): TOML, paths relative to the file, unknown keys refused by name.
+//! Scene files (README, 'Formats'): TOML, paths relative to the file, unknown keys refused by
+//! name.
 
 use super::camera::{Camera, CameraError};
 use crate::heightfield::{self, Builtin, Heightfield, LoadError, LoadOptions, NoDataValue};
@@ -11,9 +12,12 @@ use thiserror::Error;
 /// Why a scene could not be used.
 #[derive(Debug, Error)]
 pub enum SceneError {
+    /// The file could not be read.
     #[error("cannot read scene {path}: {source}")]
     Io {
+        /// The scene file.
         path: PathBuf,
+        /// Why it could not be read.
         source: std::io::Error,
     },
     /// Not text, as a height map given where a scene was asked for.
@@ -21,29 +25,62 @@ pub enum SceneError {
         "scene {path} is not a text file: a scene is written in TOML (see README, Formats); \
          to look at a height map, open it with `heightray view {path}`"
     )]
-    NotText { path: PathBuf },
+    NotText {
+        /// The file given as a scene.
+        path: PathBuf,
+    },
+    /// Not valid TOML, or keys and values the scene format does not have.
     #[error("scene {path}: {message}")]
-    Parse { path: PathBuf, message: String },
+    Parse {
+        /// The scene file.
+        path: PathBuf,
+        /// The parser's message.
+        message: String,
+    },
+    /// Well-formed, but a value is out of range or names nothing known.
     #[error("scene {path}: {message}")]
-    Invalid { path: PathBuf, message: String },
+    Invalid {
+        /// The scene file.
+        path: PathBuf,
+        /// Which key, and what is wrong with it.
+        message: String,
+    },
+    /// The `[camera]` section describes no valid camera.
     #[error("scene {path}: [camera] {source}")]
-    Camera { path: PathBuf, source: CameraError },
+    Camera {
+        /// The scene file.
+        path: PathBuf,
+        /// Why the camera was refused.
+        source: CameraError,
+    },
+    /// The `[heightmap]` section's map could not be loaded.
     #[error("scene {path}: [heightmap] {source}")]
-    Heightmap { path: PathBuf, source: LoadError },
+    Heightmap {
+        /// The scene file.
+        path: PathBuf,
+        /// Why the map could not be loaded.
+        source: LoadError,
+    },
 }
 
 /// A scene as written in its file.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
+    /// `[heightmap]`: the map and how to read it.
     pub heightmap: HeightmapSection,
+    /// `[camera]`: where the view is from and its image size.
     pub camera: CameraSection,
+    /// `[sun]`: the light.
     #[serde(default)]
     pub sun: SunSection,
+    /// `[effects]`: shadows and fog.
     #[serde(default)]
     pub effects: EffectsSection,
+    /// `[shading]`: normals and the colour ramp.
     #[serde(default)]
     pub shading: ShadingSection,
+    /// `[render]`: traversal method and arithmetic.
     #[serde(default)]
     pub render: RenderSection,
 }
@@ -87,11 +124,14 @@ impl SceneFile {
     }
 }
 
+/// A scene file's `[heightmap]` section.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct HeightmapSection {
     /// A file, relative to the scene file; or `builtin:NAME` for a built-in terrain.
     pub path: String,
+    /// Height of the largest sample value (maxval); for float and signed rasters, the factor
+    /// applied to their values.
     pub z_scale: f64,
     /// How RGB images become heights: `luminance` (the default), `mapbox` or `terrarium`.
     #[serde(default)]
@@ -105,47 +145,67 @@ pub struct HeightmapSection {
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(untagged)]
 pub enum NoDataKey {
+    /// This raster value means no data.
     Value(f64),
+    /// `auto` or `none`.
     Word(String),
 }
 
+/// A scene file's `[camera]` section: `eye` and `target`, or `orbit`.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct CameraSection {
+    /// Where the camera is (with `target`).
     pub eye: Option<[f64; 3]>,
+    /// What it looks at (with `eye`).
     pub target: Option<[f64; 3]>,
+    /// An orbit around a target instead of `eye` and `target`.
     pub orbit: Option<Orbit>,
+    /// The direction that is up in the image (default +z).
     #[serde(default = "default_up")]
     pub up: [f64; 3],
+    /// Vertical field of view in degrees (default 45).
     #[serde(default = "default_fov")]
     pub fov_y_deg: f64,
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
 }
 
+/// A camera given as an orbit around a target (see [`Camera::orbit`]).
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Orbit {
+    /// The point looked at.
     pub target: [f64; 3],
+    /// Degrees from +x towards +y.
     pub yaw_deg: f64,
+    /// Degrees above the horizon.
     pub pitch_deg: f64,
+    /// From the target to the eye.
     pub distance: f64,
 }
 
+/// A scene file's `[sun]` section.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct SunSection {
     /// Towards the sun; normalised on load.
     pub direction: [f64; 3],
+    /// Direct light at full facing (default 1).
     #[serde(default = "one")]
     pub intensity: f64,
+    /// Light everywhere, facing the sun or not (default 0.25).
     #[serde(default = "default_ambient")]
     pub ambient: f64,
 }
 
+/// A scene file's `[effects]` section.
 #[derive(Clone, Debug, Default, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct EffectsSection {
+    /// Cast shadow rays towards the sun (default off).
     #[serde(default)]
     pub shadows: bool,
     /// Fog density per unit of distance; 0 is off.
@@ -153,11 +213,14 @@ pub struct EffectsSection {
     pub fog: f64,
 }
 
+/// A scene file's `[shading]` section.
 #[derive(Clone, Debug, Default, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct ShadingSection {
+    /// Flat or smooth normals (default flat).
     #[serde(default)]
     pub normals: Normals,
+    /// The colour ramp by elevation (default terrain colours).
     #[serde(default)]
     pub ramp: Ramp,
 }
@@ -166,8 +229,10 @@ pub struct ShadingSection {
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum Normals {
+    /// Each triangle's own normal.
     #[default]
     Flat,
+    /// Vertex normals (central differences) interpolated across the triangle.
     Smooth,
 }
 
@@ -175,16 +240,21 @@ pub enum Normals {
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum Ramp {
+    /// Greens, browns and grey rock up to snow, over the map's height range.
     #[default]
     Terrain,
+    /// From dark to light gray over the map's height range.
     Gray,
 }
 
+/// A scene file's `[render]` section, as written (parsed when the scene is validated).
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct RenderSection {
+    /// Traversal method, as `--method` takes it (default `auto`).
     #[serde(default = "default_method")]
     pub method: String,
+    /// Arithmetic, as `--arith` takes it (default `f64`).
     #[serde(default = "default_arith")]
     pub arith: String,
 }
@@ -232,11 +302,17 @@ fn default_arith() -> String {
 pub struct Lighting {
     /// Unit vector towards the sun.
     pub sun: [f64; 3],
+    /// Direct light at full facing: light is `ambient + intensity * cos(angle to the sun)`.
     pub intensity: f64,
+    /// Light everywhere, facing the sun or not.
     pub ambient: f64,
+    /// Whether shadow rays are cast.
     pub shadows: bool,
+    /// Fog density per unit of distance; 0 is off.
     pub fog: f64,
+    /// Flat or smooth normals.
     pub normals: Normals,
+    /// The colour ramp by elevation.
     pub ramp: Ramp,
 }
 
@@ -264,10 +340,15 @@ impl Lighting {
 /// A scene ready to render.
 #[derive(Clone, Debug)]
 pub struct Scene {
+    /// The loaded height map.
     pub field: Heightfield,
+    /// The validated camera.
     pub camera: Camera,
+    /// Sun, shading and effects.
     pub lighting: Lighting,
+    /// The traversal method.
     pub method: Method,
+    /// The arithmetic.
     pub arith: Arith,
 }
 

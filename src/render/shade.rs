@@ -29,8 +29,11 @@ pub enum ShadowSkip {
 pub enum Shadow {
     /// No primary hit, or the scene has no shadows: nothing to decide.
     NotAsked,
+    /// Left out where it cannot change the pixel, for this reason.
     Skipped(ShadowSkip),
+    /// Cast towards the sun.
     Cast {
+        /// The shadow ray found the surface: the pixel is in shadow.
         shadowed: bool,
     },
 }
@@ -44,9 +47,13 @@ type Cast = (Shadow, Counters, bool);
 pub struct Sample {
     /// 0x00RRGGBB.
     pub rgb: u32,
+    /// The primary ray hit the terrain.
     pub hit: bool,
+    /// What became of the shadow ray.
     pub shadow: Shadow,
+    /// The primary ray's queries.
     pub primary: Counters,
+    /// The shadow ray's queries.
     pub secondary: Counters,
     /// Intervals left a decision unsettled, and exact mode made it again exactly: it traced
     /// the pixel again in rationals, or cast only its shadow ray again, or decided one of the
@@ -58,8 +65,13 @@ pub struct Sample {
 /// switching one off must not change the image, only the work).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Culling {
+    /// Leave out shadow rays of surfaces facing away from the sun ([`ShadowSkip::FacingAway`]).
     pub facing_away: bool,
+    /// Leave out every shadow ray when the sun climbs steeper than any slope
+    /// ([`ShadowSkip::NoShadowPossible`]).
     pub no_shadow_possible: bool,
+    /// Leave out shadow rays that start above the terrain and rise
+    /// ([`ShadowSkip::AboveTerrain`]).
     pub above_terrain: bool,
 }
 
@@ -75,9 +87,13 @@ impl Default for Culling {
 
 /// Everything a pixel needs besides its ray.
 pub struct Shader<'a> {
+    /// The terrain traced.
     pub terrain: &'a Terrain,
+    /// Sun, shading and effects.
     pub lighting: Lighting,
+    /// The traversal method of primary and shadow rays.
     pub method: Method,
+    /// Which shadow rays to leave out.
     pub culling: Culling,
 }
 
@@ -180,8 +196,8 @@ impl Shader<'_> {
 
     /// How the surface at `p` on triangle `triangle` of `cell` faces the sun: the cosine of
     /// the angle between the shading normal and the sun (not positive where it faces away).
-    // (This, `normal` and `surface_rgb` inlined by hand: called from every arithmetic's
-    // `sample_with`, LLVM left them out of line, and a frame took 1% more instructions.)
+    // (This, `normal` and `surface_rgb` inlined by hand: every arithmetic's `sample_with`
+    // calls them once per pixel.)
     #[inline(always)]
     pub fn facing(&self, cell: (usize, usize), triangle: u8, p: DVec3) -> f64 {
         self.normal(cell, triangle, p)
@@ -222,8 +238,7 @@ impl Shader<'_> {
         }
         let sun = self.lighting.sun;
         // The sun climbs strictly steeper than any triangle (with room for the rounding of
-        // max_slope), compared squared: a square root per shadow ray took 1.6% of its
-        // instructions.
+        // max_slope), compared squared: no square root per shadow ray.
         let steepest = self.terrain.max_slope() * (1.0 + 1e-9);
         let climbs_steeper = sun[2] > 0.0
             && sun[2] * sun[2] > steepest * steepest * (sun[0] * sun[0] + sun[1] * sun[1]);

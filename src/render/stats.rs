@@ -1,5 +1,5 @@
-//! Statistics of a frame (DESIGN 3): totals, per primary ray, hit/miss ratios, and a compact
-//! per-pixel record for heat maps.
+//! Statistics of a frame: the query counters ([`crate::traverse::Counters`]) summed, per
+//! primary ray and as hit/miss ratios, and a compact per-pixel record for heat maps.
 
 use super::shade::{Sample, Shadow, ShadowSkip};
 use crate::traverse::{Counters, HitMiss};
@@ -9,13 +9,18 @@ use std::ops::AddAssign;
 /// Queries one pixel's rays (primary and shadow) made, for heat maps.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PixelStats {
+    /// Block queries.
     pub blocks: u32,
+    /// Run queries.
     pub runs: u32,
+    /// Cell queries.
     pub cells: u32,
+    /// Triangle tests.
     pub triangles: u32,
 }
 
 impl PixelStats {
+    /// The queries of a traced pixel's rays, saturating at `u32::MAX`.
     pub fn of(sample: &Sample) -> PixelStats {
         let total = |f: fn(&Counters) -> HitMiss| {
             (f(&sample.primary).total() + f(&sample.secondary).total()).min(u64::from(u32::MAX))
@@ -33,20 +38,30 @@ impl PixelStats {
 /// Shadow rays not cast, by reason.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Skipped {
+    /// The surface faced away from the sun.
     pub facing_away: u64,
+    /// The sun climbed steeper than any slope.
     pub no_shadow_possible: u64,
+    /// The shadow ray started above the terrain and rose.
     pub above_terrain: u64,
 }
 
 /// Totals of a frame (or of any set of pixels).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct FrameStats {
+    /// Primary rays traced (one per pixel).
     pub primary_rays: u64,
+    /// Primary rays that hit the terrain.
     pub primary_hits: u64,
+    /// Shadow rays cast.
     pub shadow_rays: u64,
+    /// Shadow rays that found the surface.
     pub shadowed: u64,
+    /// Shadow rays left out, by reason.
     pub skipped: Skipped,
+    /// The primary rays' queries.
     pub primary: Counters,
+    /// The shadow rays' queries.
     pub shadow: Counters,
     /// Pixels with a decision exact mode made again exactly after intervals left it unsettled
     /// (see [`Sample::redone`]).
@@ -80,7 +95,8 @@ impl FrameStats {
         all
     }
 
-    /// The DESIGN 3 keys (the caller adds size, threads, method, arith and times).
+    /// The frame's statistics as JSON: rays, hits, shadow rays left out, and the queries in all,
+    /// of primary and of shadow rays (the caller adds size, threads, method, arith and times).
     pub fn to_json(&self) -> Value {
         let q = self.queries();
         json!({

@@ -93,8 +93,8 @@ impl Bounds {
         let z_err = 4.0 * eps * (oz.abs() + dz.abs() * t_max) + dz.abs() * dt + radius[2];
         // The block test's own operands, the ray's height and the block's, are rounded too:
         // bounded once here for the whole segment (a `t` the walk computed may lie a rounding
-        // past its end) rather than at every test, where the sum sat on the walk's critical
-        // path.
+        // past its end) rather than at every test, where the sum would sit on the walk's
+        // critical path.
         let (z_lo, z_hi) = terrain.z_range();
         let operands =
             4.0 * eps * ((oz.abs() + dz.abs() * t_max) * 1.01 + z_lo.abs().max(z_hi.abs()));

@@ -25,7 +25,9 @@ const MAX_STEPS: u32 = 200;
 /// the march tested (one that may touch the surface) was made of level-`level` blocks.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Clearance {
+    /// No ray of the beam touches the surface before this `t`.
     pub t: f64,
+    /// The mipmap level of the blocks of the last footprint tested.
     pub level: u32,
 }
 
@@ -33,7 +35,9 @@ pub struct Clearance {
 /// `DIR_ROOM`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Beam {
+    /// The rays' shared origin (the camera's eye).
     pub origin: [f64; 3],
+    /// The directions of the four corner rays.
     pub corners: [[f64; 3]; 4],
 }
 

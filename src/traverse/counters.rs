@@ -1,4 +1,4 @@
-//! Query counters (DESIGN 3): one struct, summed per frame, kept per pixel.
+//! Query counters: one struct, summed per frame, kept per pixel.
 
 use serde::Serialize;
 use std::ops::AddAssign;
@@ -6,13 +6,15 @@ use std::ops::AddAssign;
 /// Queries of one kind, split into hits ("exists", E) and misses (N).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct HitMiss {
+    /// Queries answered "may be hit" (E).
     pub hit: u64,
+    /// Queries answered "certainly missed" (N).
     pub miss: u64,
 }
 
 impl HitMiss {
     /// Counts one query and passes its answer through. Building with `--features uncounted`
-    /// compiles counting out, to measure what it costs (see README).
+    /// compiles counting out, to measure what it costs (README, 'Performance').
     #[inline]
     pub fn record(&mut self, hit: bool) -> bool {
         if cfg!(feature = "uncounted") {
@@ -25,6 +27,7 @@ impl HitMiss {
         }
         hit
     }
+    /// Hits and misses together.
     pub fn total(&self) -> u64 {
         self.hit + self.miss
     }

@@ -1,6 +1,6 @@
 //! A shadow ray's start given exactly, so that a triangle test intervals cannot settle is
 //! decided exactly on its own: one test in integers, where casting the whole ray again in
-//! rationals cost about sixty times as much.
+//! rationals costs about sixty times as much.
 
 use super::dyadic::Dyadic;
 use super::{exact_t, point_over};
@@ -12,8 +12,11 @@ use crate::Ray;
 /// makes it exactly rather than by its coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlanePoint {
+    /// The ray that hit.
     pub ray: Ray,
+    /// The cell `(i, j)` it hit.
     pub cell: (usize, usize),
+    /// The triangle it hit, 0 or 1.
     pub triangle: u8,
 }
 

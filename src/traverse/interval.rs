@@ -4,8 +4,8 @@
 //! values) do it exactly, with error-free transformations (TwoSum, and the residual of products
 //! and quotients), so that an exact result stays a point and ties between exact values settle.
 //! Ends of wider intervals take the cheaper way: sums still by TwoSum, products and quotients
-//! one float outwards unless their operands show them exact (the residual was most of exact
-//! mode's time). A comparison whose answer the intervals cannot settle raises a per-thread
+//! one float outwards unless their operands show them exact (the residual would be most of
+//! exact mode's time). A comparison whose answer the intervals cannot settle raises a per-thread
 //! flag; exact mode then answers the ray again with [`super::Exact`] rationals. Every decision
 //! made without the flag is the exact decision, so a ray traced without raising it gets the
 //! exact answer (and counters) at interval speed.

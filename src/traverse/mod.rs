@@ -1,5 +1,11 @@
-//! Traversals of a ray across the grid (runs, cell DDA), the arithmetics they are generic
-//! over, and their query counters.
+// (The summary line of this module's docs is its `pub mod` line in lib.rs; the empty line
+// below starts the rest as a paragraph of its own.)
+//!
+//! Four methods walk the grid ([`Method`](crate::traverse::Method)): the min-max mipmap's
+//! blocks, the hierarchical run walk, the run walk and the cell DDA. Each is one
+//! implementation, generic over the arithmetics of [`Scalar`](crate::traverse::Scalar)
+//! ([`Arith`](crate::traverse::Arith)), and counts its queries
+//! ([`Counters`](crate::traverse::Counters)).
 
 mod approximation;
 mod beam;
@@ -72,13 +78,17 @@ impl Method {
 /// The arithmetic a traversal computes in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Arith {
+    /// Single-precision floats: inputs rounded to `f32`.
     F32,
+    /// Double-precision floats.
     F64,
     /// Fractions with denominators at most `bound` (num-rational `Ratio<i64>` sized).
     Rational {
+        /// The largest denominator.
         bound: u32,
     },
-    /// No rounding at all: the DESIGN 2 answer for the given `f64` inputs.
+    /// No rounding at all: the surface contract's answer ([`crate::geometry`]) for the given
+    /// `f64` inputs.
     Exact,
 }
 
@@ -94,7 +104,9 @@ pub enum Query {
 /// How to walk, whatever the arithmetic.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WalkOptions {
+    /// How the grid is walked.
     pub method: Method,
+    /// What the ray asks.
     pub query: Query,
     /// List the cells the walk covered, in order.
     pub record_cells: bool,
@@ -126,8 +138,11 @@ impl WalkOptions {
 /// How to trace.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TraceOptions {
+    /// How the grid is walked.
     pub method: Method,
+    /// The arithmetic traced in.
     pub arith: Arith,
+    /// What the ray asks.
     pub query: Query,
     /// List the cells the walk covered, in order.
     pub record_cells: bool,
@@ -164,16 +179,19 @@ pub struct Hit {
     pub t_exact: Option<BigRational>,
     /// `o + t*d`.
     pub point: [f64; 3],
-    /// The cell `(i, j)` and triangle (0: `P00 P10 P11`, 1: `P00 P11 P01`) hit. Where the
-    /// hit point is shared, the first in visiting order, `T0` before `T1`.
+    /// The cell `(i, j)` hit. Where the hit point is shared, the first in visiting order.
     pub cell: [usize; 2],
+    /// The triangle hit (0: `P00 P10 P11`, 1: `P00 P11 P01`); `T0` where both share the
+    /// hit point.
     pub triangle: u8,
 }
 
 /// The answer for one ray.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Trace {
+    /// The first hit (or, for a shadow query, a hit after the start), if any.
     pub hit: Option<Hit>,
+    /// The queries the ray made.
     pub counters: Counters,
     /// Cells covered, in order (when asked for).
     pub cells: Vec<[usize; 2]>,
@@ -404,8 +422,11 @@ fn trace_in<S: Scalar>(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> 
 /// The answer for one ray, in the arithmetic it was traced in.
 #[derive(Clone, Debug)]
 pub struct ScalarTrace<S> {
+    /// The hit, if any, with `t` in the traversal's arithmetic.
     pub hit: Option<Found<S>>,
+    /// The queries the ray made.
     pub counters: Counters,
+    /// Cells covered, in order (when asked for).
     pub cells: Vec<[usize; 2]>,
     /// A triangle test intervals could not settle was decided exactly (see
     /// [`WalkOptions::exact_start`]).
@@ -485,8 +506,8 @@ pub fn trace_scalar<S: Scalar>(
 }
 
 /// A search for the ray's answer, before any walk.
-// (Inlined by hand: called once per ray, LLVM left it out of line once `Search` grew, which
-// cost exact camera rays 1.5% of their instructions.)
+// (Inlined by hand: called once per ray, but `Search` is large, and out of line its
+// construction costs every ray.)
 #[inline(always)]
 fn new_search<'a, S: Scalar>(
     terrain: &'a Terrain,
@@ -514,9 +535,8 @@ fn new_search<'a, S: Scalar>(
         tied: false,
         cells: options.record_cells.then(Vec::new),
         start_triangle: options.start_triangle,
-        // (`S::EXACT` is asked again where the start is used, which compiles it out of the
-        // rounding arithmetics; left out here, LLVM inlined differently and `f64` rays ran 2%
-        // slower, measured.)
+        // (`S::EXACT` is asked here as well as where the start is used, which compiles it out
+        // of the rounding arithmetics, `f64` included.)
         exact_start: options
             .exact_start
             .filter(|_| S::EXACT && options.query == Query::Shadow),

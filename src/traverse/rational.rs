@@ -1,5 +1,5 @@
 //! Bounded rationals: `Ratio<i64>`-sized fractions whose denominators never exceed a chosen
-//! bound, the arithmetic of the report this project grew from.
+//! bound.
 //!
 //! Every result is computed exactly in `i128` and then, if its reduced denominator exceeds the
 //! bound (or its numerator would not fit an `i64`), rounded to the nearest fraction that fits

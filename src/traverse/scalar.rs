@@ -38,7 +38,9 @@ pub trait Scalar:
     fn floor_i64(&self) -> i64;
     /// Least integer not below `self`, saturating at the `i64` range.
     fn ceil_i64(&self) -> i64;
+    /// Whether the value is zero.
     fn is_zero(&self) -> bool;
+    /// Whether the value is below zero.
     fn is_negative(&self) -> bool;
 
     /// `a*b - c*d`, with a sign that is exact even where the value is rounded.
@@ -113,9 +115,11 @@ pub trait Scalar:
         Self::from_f64(o) + Self::from_f64(d) * t.clone()
     }
 
+    /// Zero.
     fn zero() -> Self {
         Self::from_i64(0)
     }
+    /// One.
     fn one() -> Self {
         Self::from_i64(1)
     }
@@ -222,7 +226,7 @@ macro_rules! float_scalar {
                 // Infinities (a parameter step overflowing for a subnormal direction) are
                 // near nothing but themselves: a finite difference means both are finite.
                 // (`greater`, not `max`: a NaN fails the last comparison anyway, and `max`'s
-                // handling of NaN cost instructions at every block step.)
+                // handling of NaN costs instructions at every block step.)
                 let difference = (self - other).abs();
                 let scale = self.abs().greater(other.abs()).greater(1.0);
                 self == other

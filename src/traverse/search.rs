@@ -17,8 +17,11 @@ use std::ops::ControlFlow;
 /// A hit: the ray parameter, the cell `(i, j)` and its triangle (0 or 1).
 #[derive(Clone, Debug)]
 pub struct Found<S> {
+    /// The ray parameter of the hit.
     pub t: S,
+    /// The cell `(i, j)` hit.
     pub cell: (usize, usize),
+    /// The triangle hit, 0 or 1.
     pub triangle: u8,
 }
 
@@ -31,8 +34,8 @@ impl<S: Scalar> Found<S> {
 
 /// The ray in ray space for the triangle tests, prepared on first use: in exact mode the
 /// `f64` filter settles most rays' tests without it, and preparing it divides in intervals.
-// (The ray is borrowed, not copied: copying it into the search cost `f64` rays 2% of their
-// time in a store that the next load could not be forwarded from.)
+// (The ray is borrowed, not copied: a copy in the search would be a store that the next load
+// cannot be forwarded from.)
 pub struct LazyRaySpace<'a, S> {
     origin: &'a [S; 3],
     dir: &'a [S; 3],
@@ -271,7 +274,7 @@ impl<S: Scalar> Search<'_, S> {
             _ => [None, None],
         };
         // (Built only for a triangle the filter leaves open; built before the loop, not on
-        // first use in it, where filling an `Option` copied the cell's values.)
+        // first use in it, where filling an `Option` would copy the cell's values.)
         let open = |k: u8| tested(k) && certain[k as usize].is_none();
         let cell = (open(0) || open(1))
             .then(|| CellTriangles::new(self.ray.get(), i, j, heights.map(S::from_f64)));
@@ -325,7 +328,7 @@ impl<S: Scalar> Search<'_, S> {
 impl<S: Scalar> Search<'_, S> {
     /// Tests triangle `k` of `cell` for a shadow ray whose start is known exactly: a hit that
     /// counts, or none. A test the intervals cannot settle is decided exactly on its own.
-    // (Out of line: the interval walk's triangle loop stays as small as before.)
+    // (Out of line, so that the interval walk's triangle loop stays small.)
     #[inline(never)]
     fn test_from(
         &mut self,

@@ -12,7 +12,9 @@ use egui::{DragValue, Ui};
 /// The decoding choices for height map images.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Decoding {
+    /// How RGB images become heights.
     pub colour: ColourEncoding,
+    /// Which raster value means no data.
     pub nodata: NoDataValue,
 }
 

@@ -16,6 +16,7 @@ use std::time::{Duration, Instant};
 /// Where a terrain comes from.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Source {
+    /// A built-in terrain, by name.
     Builtin(&'static str),
     /// A height map image, or a `.toml` scene file.
     File(PathBuf),

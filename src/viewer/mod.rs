@@ -1,5 +1,8 @@
-//! The interactive viewer: winit + softbuffer + egui (drawn on the CPU). The renderer fills
-//! the view progressively on worker threads; the window thread never waits for a frame.
+// (The summary line of this module's docs is its `pub mod` line in lib.rs; the empty line
+// below starts the rest as a paragraph of its own.)
+//!
+//! The renderer fills the view progressively on worker threads; the window thread never waits
+//! for a frame.
 //!
 //! This module wires winit's events to `app::App`; the state and drawing live there.
 
@@ -74,10 +77,13 @@ impl Default for ViewerOptions {
 
 /// News for the window thread from the render, loading and saving threads.
 pub enum UserEvent {
+    /// The render worker published a pass.
     FrameReady,
     /// A measurement or comparison reported progress or a result.
     Accuracy,
+    /// The loader's progress, or its result.
     Load(LoadEvent),
+    /// A screenshot was saved to this file, or could not be (why).
     Saved(Result<PathBuf, String>),
 }
 

@@ -16,10 +16,15 @@ const ZOOM_RANGE: (f64, f64) = (1e-3, 50.0);
 /// A camera orbiting `target`: `yaw` from +x towards +y, `pitch` above the horizon.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Orbit {
+    /// The point looked at and turned around.
     pub target: [f64; 3],
+    /// Degrees from +x towards +y.
     pub yaw_deg: f64,
+    /// Degrees above the horizon.
     pub pitch_deg: f64,
+    /// From the target to the eye.
     pub distance: f64,
+    /// Vertical field of view in degrees.
     pub fov_y_deg: f64,
     /// The framing distance of the current terrain, which bounds zooming.
     pub scale: f64,

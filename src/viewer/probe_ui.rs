@@ -79,7 +79,7 @@ fn hit_ui(ui: &mut Ui, probe: &Probe) {
 /// Picks one kind of query out of the counters.
 type Pick = fn(&Counters) -> HitMiss;
 
-/// The four query kinds of DESIGN 3, by name.
+/// The four query kinds of the counters ([`Counters`]), by name.
 pub const QUERY_KINDS: &[(&str, Pick)] = &[
     ("bbox", |c| c.bbox),
     ("block", |c| c.block),

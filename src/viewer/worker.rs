@@ -184,7 +184,7 @@ fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJo
         if complete {
             // Done before the window hears of it: the window reports whether the worker is
             // busy when it shows the frame, and may draw nothing more after it (a report that
-            // said busy then stayed so, and a viewer test waited in vain on a loaded machine).
+            // said busy would then stay so).
             shared.rendering.store(false, Ordering::SeqCst);
         }
         notify();

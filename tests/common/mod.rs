@@ -1,4 +1,4 @@
-//! Helpers shared by the integration tests: the exact reference ([`reference`]), the
+//! Code shared by the integration tests: the exact reference ([`reference`]), the
 //! deterministic ray families ([`families`]), and the comparisons of the crate against the
 //! reference.
 

@@ -1,5 +1,5 @@
-//! Exact mode against the brute-force reference of tests/common/reference.rs: for both
-//! methods, the hit (exact t, cell, triangle), `covered_cells`, the recorded cells and every
+//! Exact mode against the brute-force reference of tests/common/reference.rs: for every
+//! method, the hit (exact t, cell, triangle), `covered_cells`, the recorded cells and every
 //! query counter must match the contract exactly.
 
 use crate::common;

@@ -202,7 +202,7 @@ fn steepest(terrain: &Terrain) -> f64 {
     s
 }
 
-/// Traces every ray in f64 and f32 (both methods) and fails on any miss.
+/// Traces every ray in f64 and f32 (every method) and fails on any miss.
 fn assert_no_holes(label: &str, terrain: &Terrain, rays: &[(Target, Ray)]) {
     let mut holes = Vec::new();
     let mut counted = 0;
@@ -315,8 +315,8 @@ fn watertight_rays_at_shared_vertices_of_non_dyadic_fields() {
 
 /// Rays coming down onto flat ground at the field's lowest height end exactly on the bottom
 /// of the bounding box; rounding must not lift the ray's lowest point over the last cells
-/// above the ground. Found by the viewer (lines of sky across the flat border of this hill);
-/// the first ray is the one it reported.
+/// above the ground, which would show as lines of sky across the flat border of this hill in
+/// the viewer; the first ray is one of them.
 #[test]
 fn rounded_rays_find_flat_ground_at_the_lowest_height() {
     let hill = include_bytes!("../data/hill.pgm");

@@ -1,5 +1,5 @@
-//! A catalogue of numerically hard cases (issue 5, part 3): one test per case, each with its
-//! expected answer written down in its doc comment.
+//! A catalogue of numerically hard cases: one test per case, each with its expected answer
+//! written down in its doc comment.
 //!
 //! For every ray of every case:
 //! - exact mode, every method, must equal the brute-force reference of
@@ -8,16 +8,17 @@
 //!   also checked against the expectation written in the comment;
 //! - `f64` and bounded rationals (bound 2^16 and 2^24), every method, must find the same first
 //!   hit as exact: same cell and triangle and `|t - t_exact| <= 1e-9 * max(|t_exact|, 1)`, or
-//!   both miss. Where an arithmetic cannot, the comment says why, with the numbers measured,
-//!   and the test asserts exactly what it does instead (a [`Verdict`] per arithmetic).
+//!   both miss. Where an arithmetic cannot, the comment says why, with its numbers, and the
+//!   test asserts exactly what it does instead (a [`Verdict`] per arithmetic).
 //!
-//! The last two tests are regressions for bugs this catalogue found (fixed in 1274a00): the
-//! run walk of a path with a slope below about 2^-63 covered no cell at all (exact mode
-//! included), and the f64 DDA of a path with a subnormal minor component left its row.
+//! Two tests hold the walks on extreme slopes ("Extreme slopes" below): the run walk of a path
+//! with a slope below about 2^-63 must still cover its cells (exact mode included), and the
+//! `f64` DDA of a path with a subnormal minor component must stay in its row.
 //!
-//! The rounded-mode numbers (which rays disagree, by how much) were measured on 1274a00. They
-//! describe the current f64 and rational arithmetic, not a promise: a change there that moves
-//! them makes these tests fail on purpose, to be re-measured and re-explained.
+//! The rounded-mode numbers (which rays disagree, by how much) are characterization snapshots
+//! of the `f64` and bounded-rational arithmetic as it is, not a promise: a change there that
+//! moves them makes these tests fail on purpose, for the numbers and their explanations to be
+//! brought up to date.
 
 use crate::common::families::{self, hash, ray, terrain, Family};
 use crate::common::reference::{self, q, qi, Answer, Q};
@@ -354,12 +355,12 @@ fn strip() -> Terrain {
 /// rational:2^24 find the same first hit on all of them.
 ///
 /// rational:2^16 cannot on 6 rays (one answer per method, every method alike): right cell and
-/// triangle, but t off by more than 1e-9 relative (measured: up to 1.2e-8). All 6 climb or
-/// descend (dz != 0): the triangle test shears by dy/dx = 17/41 and dz/dx = 1/5248 (or
-/// -1/2624), and its edge functions multiply sheared coordinates with denominators 41 and
-/// 5248, whose product is beyond 2^16 and gets rounded. Level rays have no such products: their 2^16 traces round
-/// nothing at all (asserted: zero rounding events on all 120). Asserted: exactly 6 rays,
-/// rational:2^16 only, verdict `TOff`, dz != 0, error below 2e-8.
+/// triangle, but t off by more than 1e-9 relative (up to 1.2e-8). All 6 climb or descend
+/// (dz != 0): the triangle test shears by dy/dx = 17/41 and dz/dx = 1/5248 (or -1/2624), and
+/// its edge functions multiply sheared coordinates with denominators 41 and 5248, whose
+/// product is beyond 2^16 and gets rounded. Level rays have no such products: their 2^16
+/// traces round nothing at all (asserted: zero rounding events on all 120). Asserted: exactly
+/// 6 rays, rational:2^16 only, verdict `TOff`, dz != 0, error below 2e-8.
 #[test]
 fn lattice_point_slope_17_41() {
     let family = families::lattice_slope(17, 41);
@@ -676,7 +677,7 @@ fn near_vertical_ray_1e_12() {
 /// Oblique rays from above exactly through shared vertices.
 ///
 /// [`three_by_three`], all inputs small integers, through vertex (1, 1, 3) at t = 3 (from
-/// tests/suite/float_modes.rs, where they once found a hole):
+/// tests/suite/float_modes.rs, the smallest case of its watertightness test):
 /// - o = (-5, -14, 90), d = (2, 5, -29): y-major; the first cell around the vertex in visiting
 ///   order is (0, 0), where the vertex is P11: t = 3, cell (0, 0), T0;
 /// - o = (7, -14, 90), d = (-2, 5, -29): first (1, 0), vertex P01: t = 3, cell (1, 0), T1.
@@ -684,7 +685,7 @@ fn near_vertical_ray_1e_12() {
 /// Rationals agree (exact arithmetic on small integers). f64 cannot: the watertight test hits,
 /// but t = t_scaled / det is rounded differently in each triangle around the vertex, and a
 /// triangle later in visiting order gets a t one or two ulps below 3, which wins as the
-/// earlier hit. Measured and asserted (every method): the first ray in cell (0, 1), T0, at
+/// earlier hit. Asserted (every method): the first ray in cell (0, 1), T0, at
 /// t = 2.9999999999999996 (one ulp below 3); the second in cell (1, 1), T1, at
 /// t = 2.999999999999999 (two ulps below 3). t is within the tolerance; the cell is not the
 /// first in visiting order.
@@ -831,7 +832,7 @@ fn long_distance_origin_far_away() {
 ///
 /// Exact mode matches the reference (all 16385 covered cells and the counters). f64 and
 /// both rationals find the same hit; rational:2^16 rounds (17 to 35 rounding events per
-/// trace) and its t is off by up to 6.8e-10 relative (measured), within the tolerance.
+/// trace) and its t is off by up to 6.8e-10 relative, within the tolerance.
 #[test]
 fn shallow_ray_16384_cells() {
     let strip = strip();
@@ -870,7 +871,7 @@ fn shallow_ray_16384_cells() {
 /// x = 16300.035, passing 2.1e-6 below that lattice point. So the 2^16 run walk also covers
 /// (16299, 1), which touches its path at the lattice point and not the exact one: 16386 cells
 /// instead of 16385, the same cells up to index 16300, the extra (16299, 1) at index 16301,
-/// then the same 84 last cells. Measured and asserted exactly that; compared position by
+/// then the same 84 last cells. Asserted exactly that; compared position by
 /// position from the end, 16 of the last 100 cells differ (the extra one, 85th from the end,
 /// and the 15 before it, shifted by one place), the last 84 are right. The 2^16 DDA (asserted
 /// too) instead steps its u crossings by 1/du rounded to 1/65536: after 16300 steps they are
@@ -1136,7 +1137,7 @@ fn negative_zero_directions() {
 ///   Rationals agree (the inputs are small fractions). f64 cannot: the triangle test shears
 ///   by dx/dz = 2/3 and dy/dz = 1/6, which round, so in ray space the triangles are thin
 ///   slivers instead of segments through the ray: the coplanar case is not recognised and t
-///   comes out of a near-zero determinant. Measured and asserted (every method): f64 reports
+///   comes out of a near-zero determinant. Asserted (every method): f64 reports
 ///   cell (0, 0), T0, at t = 2.0 (the cell's far edge), `Elsewhere([0, 0], 0)`.
 /// - o = (-1, 0.3, 0.6), d = (1, 0.3, 1.6): the same in decimal, but not in f64: the origin is
 ///   exactly in the plane (0.6 = 2 * 0.3 in f64) and the direction climbs 1.6 - 1 - 2 * 0.3
@@ -1181,12 +1182,12 @@ fn ray_in_the_plane_of_a_sloped_surface() {
 /// - d = (1e300, 5e299, -1e300): t = 2.67e-300, cell (4, 2), T0.
 ///
 /// Bounded rationals cannot represent either direction as given: -1e-300 rounds to 0 (the
-/// direction would become (0, 0, 0), which clips to nothing), and 1e300 saturates at
-/// i64::MAX. Until directions far from unit length were traced rescaled by a power of two
-/// (the same line), both bounds missed both rays with every method. Now they hit the exact
+/// direction would become (0, 0, 0), which clips to nothing), and 1e300 saturates at i64::MAX.
+/// Directions far from unit length are traced rescaled by a power of two (the same line),
+/// without which both bounds would miss both rays with every method; so they hit the exact
 /// answer's triangle, and every arithmetic agrees on both rays but for `rational:65536` on the
-/// first, whose `t` is off by a relative 1.4e-9 (1.0799999985e301: it rounds every result to
-/// a denominator of at most 65536). Asserted, with the rounding of the components as given.
+/// first, whose `t` is off by a relative 1.4e-9 (1.0799999985e301: it rounds every result to a
+/// denominator of at most 65536). Asserted, with the rounding of the components as given.
 #[test]
 fn extreme_direction_scales() {
     let hilly = families::hilly();
@@ -1216,7 +1217,7 @@ fn extreme_direction_scales() {
 }
 
 // ---------------------------------------------------------------------------------------
-// Regressions: bugs found while writing this catalogue (both fixed in 1274a00).
+// Extreme slopes: paths whose minor component is tiny or subnormal.
 
 /// Paths with a slope (minor over major horizontal component) below about 2^-63: a level or
 /// near-vertical ray whose minor component is tiny but not zero.
@@ -1228,15 +1229,16 @@ fn extreme_direction_scales() {
 /// - o = (2.3, 1.6, zmax + 1), d = (1e-12, 1e-40, -1) (near vertical): t = zmax + 1 - 10,
 ///   cell (2, 1), T1.
 ///
-/// Exact mode (both methods) must match the reference, and f64 and both rationals (which
+/// Exact mode (every method) must match the reference, and f64 and both rationals (which
 /// round the tiny component to 0: a path along the row, hitting the same triangle) agree.
 ///
-/// The bug (before 1274a00): the run walk covered no cell at all, in exact mode and f64 alike,
-/// and missed. The first run's step count `((1 - beta) / a).ceil_i64()` saturated at i64::MAX
-/// (here 4e24 and more), `exit_after(i64::MAX)` was still negative, and `steps += 1` in
-/// runs.rs overflowed (a panic with overflow checks, a wrap to i64::MIN in release); the run's
-/// span `(lo, col.saturating_add(i64::MIN))` was empty, `Frame::emit` dropped it, and as the
-/// path never leaves its row the walk ended there. The step count now saturates.
+/// What it guards: the first run's step count `((1 - beta) / a).ceil_i64()` saturates at
+/// i64::MAX (here 4e24 and more), and `exit_after(i64::MAX)` is still negative. Were the
+/// step count's `steps += 1` in runs.rs not to saturate, it would overflow (a panic with
+/// overflow checks, a wrap to i64::MIN in release); the run's span
+/// `(lo, col.saturating_add(i64::MIN))` would be empty, `Frame::emit` would drop it, and as
+/// the path never leaves its row the walk would end there: no cell covered, and a miss, in
+/// exact mode and f64 alike.
 #[test]
 fn slope_below_2_pow_minus_63_runs_walk_the_path() {
     let hilly = families::hilly();
@@ -1273,18 +1275,18 @@ fn slope_below_2_pow_minus_63_runs_walk_the_path() {
 /// row 0.
 ///
 /// Expected (the reference): hit at t = 3.5 on the ramp up to x = 4, at (3.5, 0.25): cell
-/// (3, 0), T0; covered cells (0..=4, 0). Exact mode (both methods) must match it; f64 and
-/// both rationals (which round 5e-324 to 0), runs and DDA, must find the same hit and cover
+/// (3, 0), T0; covered cells (0..=4, 0). Exact mode (every method) must match it; f64 and
+/// both rationals (which round 5e-324 to 0), every method, must find the same hit and cover
 /// exactly these cells. (At y = 0.5 the hit point would be on the cell's diagonal for the
 /// rationals only, while the exact path is 1.7e-323 above it, in T1: they would disagree on
 /// the triangle for that reason alone, so this ray avoids it.)
 ///
-/// The bug (before 1274a00): in f64, inv_dv = 1 / 5e-324 = +inf, so the DDA's next v crossing
-/// is at t = +inf, and `nearly_equal(next_u, +inf)` was true (|inf - x| <= 1e-9 * inf), so
-/// every u crossing was taken for a lattice corner: the walk stepped diagonally, covering
-/// (0, 0), (1, 0), (0, 1), (1, 1), (2, 1), (1, 2), (2, 2), (3, 2), rows the path never
-/// enters, and missed. (The run walk, exact mode included, failed on this ray by the bug
-/// above.) Infinities are now near nothing but themselves.
+/// What it guards: in f64, inv_dv = 1 / 5e-324 = +inf, so the DDA's next v crossing is at
+/// t = +inf. Infinities are near nothing but themselves; were `nearly_equal(next_u, +inf)`
+/// true (|inf - x| <= 1e-9 * inf), every u crossing would be taken for a lattice corner and
+/// the walk would step diagonally, covering (0, 0), (1, 0), (0, 1), (1, 1), (2, 1), (1, 2),
+/// (2, 2), (3, 2), rows the path never enters, and miss. (The run walk, exact mode included,
+/// needs the saturating step count of the test above on this ray.)
 #[test]
 fn subnormal_slope_f64_dda_stays_in_its_row() {
     let field = terrain(6, 4, 255, 255.0, |x, _| if x == 4 { 9 } else { 1 });
@@ -1319,8 +1321,8 @@ fn subnormal_slope_f64_dda_stays_in_its_row() {
 /// A ray along the grid's edge `y = 0` that reaches the box only at its end: it comes down
 /// onto the corner sample `(1, 0)`, the field's highest, at `t = 3` exactly, where it leaves
 /// the box too. Exact mode's `f64` walk clips the ray to the box in floats: without room for
-/// that clip's rounding, the segment came out empty and every method missed (found by random
-/// rays, twelfth session). (`f64` misses it: it touches at one point, within rounding.)
+/// that clip's rounding, the segment would come out empty and every method would miss.
+/// (`f64` misses it: it touches at one point, within rounding.)
 #[test]
 fn ray_touching_the_box_only_at_its_highest_corner() {
     let samples = [104, 816, 365, 308];
@@ -1337,9 +1339,10 @@ fn ray_touching_the_box_only_at_its_highest_corner() {
 /// direction scaled by tiny and huge factors. The line is the same, so every arithmetic and
 /// method must hit the same triangle at the same point, with `t = 4 / scale` (exactly, in
 /// exact mode) where that fits an `f64`, and `t` infinite where it does not (2^-1030: t =
-/// 2^1032). Before directions were rescaled, `f64` missed this ray for every scale below
-/// about 1e-307 (its walk's parameters overflowed), and `f32` missed it for every scale
-/// outside its range (a direction of 1e-200 or 1e100 rounds to zero or infinity in `f32`).
+/// 2^1032). Directions are rescaled by a power of two for the walk: unscaled, `f64` would
+/// miss this ray for every scale below about 1e-307 (its walk's parameters would overflow),
+/// and `f32` for every scale outside its range (a direction of 1e-200 or 1e100 rounds to zero
+/// or infinity in `f32`).
 #[test]
 fn directions_far_from_unit_length() {
     let field = peak_on_grid_lines();
@@ -1393,8 +1396,8 @@ fn directions_far_from_unit_length() {
 /// x = 4.75, t = 5.75, T0 (fx = 0.75 >= fy = 0.5).
 ///
 /// Every arithmetic and method agrees. The cells the ray passes under are not tested in the
-/// float arithmetics: it runs below their lowest sample (until the cell test also asked that,
-/// each cost two triangle tests), so the only triangles tested are the hit cell's.
+/// float arithmetics: it runs below their lowest sample, so the only triangles tested are the
+/// hit cell's.
 #[test]
 fn ray_under_the_surface_from_the_grids_edge() {
     let field = terrain(12, 3, 255, 255.0, |x, _| match x {
@@ -1428,8 +1431,7 @@ fn ray_under_the_surface_from_the_grids_edge() {
 /// Every arithmetic and method agrees. The mipmap walk skips every block of 4x4 cells the
 /// ray passes under whole, as it skips those it passes over: in the float arithmetics and in
 /// exact mode's certified walk it queries only cells of the last block column, 36 to 39,
-/// whose blocks hold the pit's first samples (5 cell queries in `f64`, 6 in exact mode; 40
-/// and 41 while the block tests asked for the highest samples only).
+/// whose blocks hold the pit's first samples (5 cell queries in `f64`, 6 in exact mode).
 #[test]
 fn ray_under_the_surface_skips_blocks() {
     let field = terrain(48, 16, 255, 255.0, |x, _| if x <= 39 { 200 } else { 0 });

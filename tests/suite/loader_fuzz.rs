@@ -1,7 +1,7 @@
 //! A bounded, seeded fuzz of the loader on the stable toolchain: valid files of every format
 //! are mutated (bytes flipped, runs overwritten with 0x00 or 0xff, cut short, bytes inserted)
 //! and loaded with every option; no input may panic, and whatever loads is a valid field.
-//! The unbounded, coverage-guided fuzz target is in tests/fuzz (see README).
+//! The unbounded, coverage-guided fuzz target is in tests/fuzz (README, 'Testing').
 
 use crate::common::files::tiff;
 use heightray::heightfield::{load_bytes_with, ColourEncoding, LoadOptions, NoDataValue};

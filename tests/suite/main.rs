@@ -1,7 +1,6 @@
-//! The integration tests, in one crate: each file built alone instantiated the crate's generic
-//! traversal for itself, and linked a binary of its own, which made most of the release test
-//! build. (`tests/huge_header.rs` stays apart: its recording allocator is the whole binary's;
-//! `tests/viewer` drives a window under Xvfb.)
+//! The integration tests, in one crate, so that the crate's generic traversal is instantiated
+//! and a test binary linked once, not once per file. (`tests/huge_header.rs` stays apart: its
+//! recording allocator is the whole binary's; `tests/viewer` drives a window under Xvfb.)
 
 #[path = "../common/mod.rs"]
 mod common;

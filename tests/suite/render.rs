@@ -438,7 +438,7 @@ fn contact_shadows_are_kept_in_float_arithmetic() {
 
 /// The valley's creases, where a triangle facing the sun is shadowed by its neighbour just past
 /// the shared edge: float shadow rays start above the surface by their rounding only, so they
-/// find those shadows as exact arithmetic does (f32 once started far higher and lost 60% of
+/// find those shadows as exact arithmetic does (a start lifted much higher would lose many of
 /// them on this view).
 #[test]
 fn shadows_at_creases_are_kept_in_float_arithmetic() {
@@ -565,9 +565,8 @@ fn exact_frames_are_the_same_with_every_method() {
 /// rays without them; not a ray whose path runs along a grid row, which it leaves to the
 /// interval walk: so here the sun lies in the x-z plane. No pixel of this view of valley513
 /// (terraced slopes, a flat crater floor) then needs its shadow ray cast again in rationals,
-/// with any method. (Without the exact height, 1360 of its 9216 pixels do, at a millisecond
-/// each; until the eleventh session they did with the run walk and the DDA under the scene's
-/// own sun.)
+/// with any method. (Without the exact height, about one pixel in seven would, at a
+/// millisecond each.)
 #[test]
 fn exact_shadow_rays_from_flat_ground_are_settled_by_intervals() {
     let mut scene = builtin_scene("valley513", 96);

@@ -1,5 +1,5 @@
 //! The Traversal panel's accuracy tools: measuring every arithmetic on the view, and
-//! comparing the frame on screen with its exact render (issue 5).
+//! comparing the frame on screen with its exact render.
 
 use super::app::{artifacts, num, widget};
 use super::Session;
@@ -168,7 +168,8 @@ fn cli_differences(scene: &Path, arith: &str) -> u64 {
 }
 
 /// Opens the viewer on the built-in terrain in `arith`, switches the comparison on, checks
-/// its count against the CLI's renders of the same view, and returns the session and state.
+/// its count against the CLI's renders of the same view, and returns the running viewer and
+/// its state.
 fn compare(arith: &str) -> (Session, Value) {
     let dir = tempfile::tempdir().expect("a temporary directory");
     let scene = dir.path().join(format!("{arith}.toml"));

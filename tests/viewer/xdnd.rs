@@ -2,7 +2,7 @@
 //! small "file icon" window of its own, drags the real pointer to the target (the icon keeps
 //! the implicit pointer grab, so the target sees no motion, only XDND messages), offers
 //! `text/uri-list`, serves the target's selection request, releases and drops, then waits
-//! for XdndFinished. Ported from the shared tool `xdnd_drop.py`.
+//! for XdndFinished.
 
 use super::x11::X;
 use std::path::Path;

@@ -1,13 +1,15 @@
-//! Embree 3, the general-purpose CPU ray tracer the reference figures come from, on the
-//! same terrain and view as heightray, so `bench speed --embree` measures both in one run on
-//! one machine (built with the `embree` feature, which links Debian's `libembree3`).
+//! Embree 3, a general-purpose CPU ray tracer and the usual yardstick of CPU ray tracing
+//! speed, on the same terrain and view as heightray, so `bench speed --embree` measures both
+//! in one run on one machine (built with the `embree` feature, which links Debian's
+//! `libembree3`).
 //!
 //! The terrain goes to Embree as what it is, two triangles per cell with heightray's diagonal
-//! (DESIGN 2), its corners the samples in `f32`. A frame does what heightray's does: a ray
-//! per pixel through [`Camera::ray`], Embree's single-ray `rtcIntersect1` (the API of the
-//! reference figures), the hit shaded by heightray's [`Shader`] from the hit's cell and
-//! triangle, and a shadow ray (`rtcOccluded1`) where the surface faces the sun. So the two
-//! images can be compared pixel by pixel, and the time differs only in the tracing.
+//! (the surface contract, [`crate::geometry`]), its corners the samples in `f32`. A frame does
+//! what heightray's does: a ray per pixel through [`Camera::ray`](crate::render::Camera::ray),
+//! Embree's single-ray `rtcIntersect1` (one ray at a time, as heightray traces them), the hit
+//! shaded by heightray's [`Shader`](crate::render::Shader) from the hit's cell and triangle,
+//! and a shadow ray (`rtcOccluded1`) where the surface faces the sun. So the two images can be
+//! compared pixel by pixel, and the time differs only in the tracing.
 
 mod ffi;
 mod hard_cases;
@@ -27,10 +29,19 @@ use thiserror::Error;
 /// Why Embree's scene could not be made.
 #[derive(Debug, Error)]
 pub enum EmbreeError {
+    /// An Embree call failed.
     #[error("Embree failed to {what} (RTCError {code})")]
-    Call { what: &'static str, code: u32 },
+    Call {
+        /// What the call was to do.
+        what: &'static str,
+        /// Embree's `RTCError` code.
+        code: u32,
+    },
+    /// The terrain (width and height in samples) is too large for the geometry: more triangles
+    /// than a 32-bit primitive id counts, or a side longer than a grid primitive's.
     #[error("a {0}x{1} terrain is too large for Embree's {2}")]
     TooLarge(usize, usize, Geometry),
+    /// A grid primitive has no holes, and the terrain has no-data cells.
     #[error("Embree's grid covers every cell; this terrain has cells over no data")]
     Holes,
 }
@@ -38,7 +49,8 @@ pub enum EmbreeError {
 /// How the terrain goes to Embree.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Geometry {
-    /// Two triangles per cell, as heightray defines them (DESIGN 2), each with a primitive id.
+    /// Two triangles per cell, as the surface contract ([`crate::geometry`]) defines them,
+    /// each with a primitive id.
     Triangles,
     /// Embree's grid primitive over the samples: vertices only, cells split into triangles as
     /// Embree splits them.
@@ -57,9 +69,11 @@ impl std::fmt::Display for Geometry {
 /// Where a ray first hits the terrain, as Embree found it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EmbreeHit {
+    /// The cell `(i, j)` hit.
     pub cell: (usize, usize),
-    /// 0 or 1 (DESIGN 2).
+    /// `T0` or `T1` of the cell: 0 or 1 (the surface contract, [`crate::geometry`]).
     pub triangle: u8,
+    /// The ray parameter of the hit, as Embree reports it.
     pub t: f64,
     /// The triangle's unit normal, pointing up.
     pub up: DVec3,

@@ -21,47 +21,96 @@ use watched::Watched;
 #[derive(Debug, Error)]
 pub enum LoadError {
     // `reason`, not `source`: the message already says it, error chains must not repeat it.
+    /// The file could not be read.
     #[error("cannot read {path}: {reason}; check that the file exists and can be read")]
     Io {
+        /// The file.
         path: PathBuf,
+        /// Why it could not be read.
         reason: std::io::Error,
     },
+    /// A directory was given.
     #[error("{path} is a directory; choose a height map file (PNG, PGM or TIFF) instead")]
-    Directory { path: PathBuf },
+    Directory {
+        /// The directory.
+        path: PathBuf,
+    },
+    /// The file has no bytes.
     #[error("{name} is empty (0 bytes); the file may not have been written completely")]
-    Empty { name: String },
+    Empty {
+        /// The file's name in messages.
+        name: String,
+    },
+    /// The file does not start as a PNG, PGM or TIFF does.
     #[error("{name} is not a PNG, PGM or TIFF image (its first bytes are {start}); heightray reads grayscale or RGB PNG, PGM and TIFF height maps")]
-    NotAnImage { name: String, start: String },
+    NotAnImage {
+        /// The file's name in messages.
+        name: String,
+        /// Its first bytes, for the message.
+        start: String,
+    },
+    /// The image is truncated or corrupt.
     #[error("{name} is truncated or corrupt: cannot decode the image ({reason}); export or download it again")]
-    Decode { name: String, reason: String },
+    Decode {
+        /// The file's name in messages.
+        name: String,
+        /// The decoder's message.
+        reason: String,
+    },
+    /// An image whose colour type or sample format is not one heightray reads heights from.
     #[error("{name}: {what} is not a height map; use a grayscale image, or RGB (luminance or a terrain-RGB encoding), or a single-band TIFF")]
-    Unsupported { name: String, what: String },
+    Unsupported {
+        /// The file's name in messages.
+        name: String,
+        /// What kind of image it is.
+        what: String,
+    },
+    /// Fewer than 2 samples along a side.
     #[error("{name} is {width}x{height}: a height field needs at least 2x2 samples")]
     TooSmall {
+        /// The file's name in messages.
         name: String,
+        /// Pixels along x.
         width: u64,
+        /// Pixels along y.
         height: u64,
     },
+    /// More samples than [`MAX_SAMPLES`].
     #[error("{name} is {width}x{height} = {} samples, more than the limit of {MAX_SAMPLES} (2^31); crop or downsample it", width.saturating_mul(*height))]
     TooManySamples {
+        /// The file's name in messages.
         name: String,
+        /// Pixels along x.
         width: u64,
+        /// Pixels along y.
         height: u64,
     },
+    /// Decoding would take more than [`MAX_DECODED_BYTES`].
     #[error("{name}: decoding this {width}x{height} image would take {:.1} GiB, more than the limit of {} GiB; crop it, or store it as 16-bit grayscale", *bytes as f64 / (1u64 << 30) as f64, MAX_DECODED_BYTES >> 30)]
     TooMuchMemory {
+        /// The file's name in messages.
         name: String,
+        /// Pixels along x.
         width: u64,
+        /// Pixels along y.
         height: u64,
+        /// Bytes the decoded image would take.
         bytes: u64,
     },
+    /// The decoded samples make no valid height field.
     #[error("{name}: {source}")]
     Field {
+        /// The file's name in messages.
         name: String,
+        /// Why the field was refused.
         source: HeightfieldError,
     },
+    /// The progress callback asked to stop.
     #[error("loading {name} was cancelled")]
-    Cancelled { name: String },
+    Cancelled {
+        /// The file's name in messages.
+        name: String,
+    },
 }
 
 /// How the three channels of an RGB image become heights.
@@ -144,8 +193,12 @@ impl std::fmt::Display for NoDataValue {
 /// How to read a height map.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LoadOptions {
+    /// Height of the largest sample value (maxval); for float and signed rasters, the factor
+    /// applied to their values.
     pub z_scale: f64,
+    /// How RGB images become heights.
     pub colour: ColourEncoding,
+    /// Which raster value means no data.
     pub nodata: NoDataValue,
 }
 

@@ -1,5 +1,5 @@
 //! PGM (P2 and P5), parsed here: `image` rescales samples of an odd maxval to 8 or 16 bits,
-//! but DESIGN 2 maps heights by the file's own maxval.
+//! but the surface contract maps heights by the file's own maxval.
 
 use super::limits::check_header;
 use super::raster::{Raster, Values};

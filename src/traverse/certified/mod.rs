@@ -98,7 +98,7 @@ impl<S: Scalar> Follower<f64> for Certifying<'_, '_, S> {
     fn stop_before(&mut self, t: &f64) -> ControlFlow<()> {
         self.past_hit(*t)
     }
-    // (Inlined by hand, as the search's.)
+    // (Inlined by hand, as the search's: the block walk asks at every step.)
     #[inline(always)]
     fn may_hit(&mut self, k: u32, block: (usize, usize), t_lo: &f64, t_hi: &f64) -> bool {
         let (terrain, counters) = (self.search.terrain, &mut self.search.counters);

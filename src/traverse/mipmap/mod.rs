@@ -38,8 +38,8 @@ use std::ops::ControlFlow;
 /// A point on the path: its ray parameter and frame coordinates, the frame cell they floor
 /// to, and whether it lies on the `u` or `v` face of the block it leaves (the start lies on
 /// neither).
-// (The cell is kept with the point: its two floors, worked out again at every test of a
-// descent, took 1.5% of an `f64` frame's instructions.)
+// (The cell is kept with the point, so that the tests of a descent do not work its two
+// floors out again.)
 #[derive(Clone)]
 pub(super) struct Point<S> {
     pub t: S,
@@ -108,8 +108,7 @@ pub fn walk<S: Scalar>(
 }
 
 /// The hierarchical run walk ([`descend_runs`]), started as [`walk`] starts the block walk.
-// (Out of line: inlined beside the block walk into the trace, it cost the block walk's
-// camera rays 3% more instructions, measured.)
+// (Out of line: inlined beside the block walk into the trace, it would slow the block walk.)
 #[inline(never)]
 pub fn walk_runs<S: Scalar>(
     f: &Frame<S>,
@@ -319,8 +318,8 @@ impl<S: Scalar> Follower<S> for Search<'_, S> {
     fn stop_before(&mut self, t: &S) -> ControlFlow<()> {
         Search::stop_before(self, t)
     }
-    // Inlined by hand: LLVM's choice flips with unrelated code elsewhere in the crate, and
-    // the call costs a fifth of the walk's time.
+    // Inlined by hand: a call costs a fifth of the walk's time, and whether the compiler
+    // inlines it by itself depends on unrelated code elsewhere in the crate.
     #[inline(always)]
     fn may_hit(&mut self, k: u32, (bi, bj): (usize, usize), t_lo: &S, t_hi: &S) -> bool {
         if k == 0 {
@@ -336,8 +335,8 @@ impl<S: Scalar> Follower<S> for Search<'_, S> {
     fn run_may_hit(&mut self, f: &Frame<S>, run: &BlockRun, t_lo: &S, t_hi: &S) -> bool {
         self.blocks_run_may_hit(f, run, t_lo, t_hi)
     }
-    // (Inlined by hand too: out of line once the run walk called it as well, it cost the
-    // block walk's camera rays 2% more instructions, measured.)
+    // (Inlined by hand too: the run walk calls it as well, and out of line it would slow the
+    // block walk.)
     #[inline(always)]
     fn cell(&mut self, (i, j): (usize, usize), part: Part<'_, S>) -> ControlFlow<()> {
         if part.alone {
@@ -363,8 +362,7 @@ impl<S: Scalar> Follower<S> for Search<'_, S> {
 /// Where the path leaves the block whose far faces are `u = eu` and `v = ev`: on the face it
 /// crosses first (both at a corner), with that coordinate exact. The other coordinate and `t`
 /// are kept from falling behind `from` by rounding, so every step moves forward.
-// (Inlined by hand: with the run walk calling it too, LLVM left it out of the block walk's
-// loop, which took 2.3% more instructions for camera rays, measured.)
+// (Inlined by hand: the run walk calls it too, and the block walk's loop needs it inline.)
 #[inline(always)]
 fn exit_point<S: Scalar>(f: &Frame<S>, from: &Point<S>, eu: i64, ev: i64) -> Point<S> {
     let (tu, tv) = (f.t_at_u(eu), f.t_at_v(ev));

@@ -1,5 +1,5 @@
-//! The hierarchical run walk: the seed method's runs (Henning & Stephenson) at every level of
-//! the min-max mipmap.
+//! The hierarchical run walk: the run walk's runs (Henning & Stephenson) at every level of the
+//! min-max mipmap.
 //!
 //! At level `k` the path is walked one row of `2^k x 2^k` blocks at a time; the blocks of one
 //! such row that the path crosses are a run, from where the path enters the row to where it
@@ -136,9 +136,9 @@ pub(in crate::traverse) struct BlockRun {
 
 /// The highest sample of a run's blocks, or with `lowest` a lower bound of their samples
 /// ([`crate::heightfield::Mipmap::lowest`]).
-// (Inlined by hand, and a plain loop: it is most of a run test, and LLVM left an iterator's
-// fold out of line. Block by block: most runs hold one or two blocks, and a reduction over
-// slices of them took 5% more instructions, measured.)
+// (Inlined by hand, and a plain loop rather than an iterator's fold: it is most of a run
+// test. Block by block: most runs hold one or two blocks, too few for a reduction over slices
+// to pay.)
 #[inline(always)]
 pub(in crate::traverse) fn run_sample<S: Scalar>(
     terrain: &Terrain,

@@ -34,8 +34,8 @@ impl Stretch {
 /// exact walk only follows the stretches: the approach to the first hit, and what lies
 /// between the places a shadow ray grazes the surface, are left to the `f64` walk. For a
 /// first-hit query the first stretch runs to the segment's end: a camera ray mostly hits
-/// where it first may, and measured, its exact walk is faster on from there than an `f64`
-/// walk gathering more stretches.
+/// where it first may, and its exact walk is faster on from there than an `f64` walk
+/// gathering more stretches.
 pub fn clear_way(
     ray: &Approximation,
     terrain: &Terrain,
@@ -97,7 +97,7 @@ impl<F: FnMut(Stretch) -> ControlFlow<()>> Follower<f64> for Clearing<'_, F> {
             _ => ControlFlow::Continue(()),
         }
     }
-    // (Inlined by hand, as the search's.)
+    // (Inlined by hand, as the search's: the block walk asks at every step.)
     #[inline(always)]
     fn may_hit(&mut self, k: u32, block: (usize, usize), t_lo: &f64, t_hi: &f64) -> bool {
         self.bounds

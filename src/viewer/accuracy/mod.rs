@@ -1,10 +1,10 @@
-//! What accuracy costs, for the view on screen (issue 5): measuring every arithmetic's time
-//! per ray and pixels differing from exact, and comparing the frame on screen with its exact
-//! render. Both run on background threads of their own and start only once the view has
-//! converged; a change of view cancels them. A measurement then starts again by itself for the
-//! new view (it was asked for and never finished); a finished table stays, marked as being of
-//! an earlier view. The comparison, while switched on, follows the view: it is redone for
-//! every converged frame, and its overlay shows only on the frame it was made for.
+//! What accuracy costs, for the view on screen (the viewer's accuracy panel): measuring every
+//! arithmetic's time per ray and pixels differing from exact, and comparing the frame on screen
+//! with its exact render. Both run on background threads of their own and start only once the
+//! view has converged; a change of view cancels them. A measurement then starts again by itself
+//! for the new view (it was asked for and never finished); a finished table stays, marked as
+//! being of an earlier view. The comparison, while switched on, follows the view: it is redone
+//! for every converged frame, and its overlay shows only on the frame it was made for.
 
 mod compare;
 mod measure;
