@@ -21,3 +21,8 @@ pub mod viewer;
 pub use geometry::{Ray, RayError};
 pub use heightfield::{Heightfield, HeightfieldError, LoadError, Terrain};
 pub use traverse::{trace, Arith, Counters, Hit, Method, Query, Trace, TraceOptions};
+
+// The README's Rust example runs as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
