@@ -6,6 +6,7 @@
 pub mod bench;
 pub mod geometry;
 pub mod heightfield;
+mod regular_file;
 pub mod render;
 pub mod traverse;
 pub mod viewer;
