@@ -11,6 +11,7 @@ pub mod bench;
 pub mod geometry;
 /// Height fields: samples, loading, and the maxima the walks skip empty space with.
 pub mod heightfield;
+mod regular_file;
 /// Turning rays into pixels: cameras, scene files, shading, progressive passes, statistics.
 pub mod render;
 /// Walking a ray across the grid: the methods, their arithmetics and query counters.

@@ -1,11 +1,12 @@
 //! `heightray trace`: one JSON object per ray (README, 'The command line').
 
 use super::{loading, TraceArgs};
-use anyhow::Context;
+use anyhow::{bail, Context};
 use heightray::traverse::{trace, Trace, TraceOptions};
 use heightray::Ray;
 use serde_json::{json, Value};
-use std::io::Write;
+use std::io::{BufRead, BufReader, Read, Write};
+use std::path::Path;
 use std::process::ExitCode;
 
 pub fn run(args: &TraceArgs) -> anyhow::Result<ExitCode> {
@@ -25,9 +26,10 @@ pub fn run(args: &TraceArgs) -> anyhow::Result<ExitCode> {
         emit(Ray::new(origin, dir)?)?;
     }
     if let Some(path) = &args.rays {
-        let text = std::fs::read_to_string(path)
+        let file = std::fs::File::open(path)
             .with_context(|| format!("cannot read rays from {}", path.display()))?;
-        for (number, line) in text.lines().enumerate() {
+        let mut lines = Lines::new(BufReader::new(file));
+        while let Some(line) = lines.next(path)? {
             let line = line.split('#').next().unwrap_or("").trim();
             if line.is_empty() {
                 continue;
@@ -35,7 +37,7 @@ pub fn run(args: &TraceArgs) -> anyhow::Result<ExitCode> {
             match parse_ray(line) {
                 Ok(ray) => emit(ray)?,
                 Err(reason) => {
-                    eprintln!("heightray: {}:{}: {reason}", path.display(), number + 1);
+                    eprintln!("heightray: {}:{}: {reason}", path.display(), lines.number);
                     failed = true;
                 }
             }
@@ -46,6 +48,56 @@ pub fn run(args: &TraceArgs) -> anyhow::Result<ExitCode> {
     } else {
         ExitCode::SUCCESS
     })
+}
+
+/// The longest line of a rays file: six numbers, and a comment, take far less.
+const MOST_PER_LINE: u64 = 1 << 16;
+
+/// The lines of a rays file, read one at a time (the file may be a pipe, or endless), each
+/// at most [`MOST_PER_LINE`] bytes of text with its end.
+struct Lines<R> {
+    reader: R,
+    line: Vec<u8>,
+    /// The number of the line last read, from 1.
+    number: u64,
+}
+
+impl<R: BufRead> Lines<R> {
+    fn new(reader: R) -> Self {
+        Lines {
+            reader,
+            line: Vec::new(),
+            number: 0,
+        }
+    }
+
+    /// The next line, with its end; None at the end of the file.
+    fn next(&mut self, path: &Path) -> anyhow::Result<Option<&str>> {
+        self.line.clear();
+        self.number += 1;
+        let at = || format!("{}:{}", path.display(), self.number);
+        let read = (&mut self.reader)
+            .take(MOST_PER_LINE + 1)
+            .read_until(b'\n', &mut self.line)
+            .with_context(|| format!("cannot read rays from {}", at()))?;
+        if read == 0 {
+            return Ok(None);
+        }
+        if self.line.len() as u64 > MOST_PER_LINE {
+            bail!(
+                "{}: a line longer than {MOST_PER_LINE} bytes; a rays file has lines of six \
+                 numbers 'ox oy oz dx dy dz'",
+                at()
+            );
+        }
+        match std::str::from_utf8(&self.line) {
+            Ok(text) => Ok(Some(text)),
+            Err(_) => bail!(
+                "{}: not text; a rays file has lines of six numbers 'ox oy oz dx dy dz'",
+                at()
+            ),
+        }
+    }
 }
 
 fn parse_ray(line: &str) -> Result<Ray, String> {

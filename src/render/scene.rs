@@ -3,8 +3,10 @@
 
 use super::camera::{Camera, CameraError};
 use crate::heightfield::{self, Builtin, Heightfield, LoadError, LoadOptions, NoDataValue};
+use crate::regular_file::{self, OpenError};
 use crate::traverse::{Arith, Method};
 use serde::Deserialize;
+use std::io::Read;
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -26,6 +28,23 @@ pub enum SceneError {
          to look at a height map, open it with `heightray view {path}`"
     )]
     NotText {
+        /// The file given as a scene.
+        path: PathBuf,
+    },
+    /// The path names a directory, a device, a FIFO or a socket.
+    #[error("scene {path} is {what}, not a file; choose a scene file (.toml) instead")]
+    NotAFile {
+        /// The path given as a scene.
+        path: PathBuf,
+        /// What it names instead ("a directory", ...).
+        what: &'static str,
+    },
+    /// Longer than any scene file: most likely not the file meant.
+    #[error(
+        "scene {path} is longer than {MOST_SCENE_BYTES} bytes, far more than a scene file's \
+         few lines of TOML; check that it is the scene you meant"
+    )]
+    TooLong {
         /// The file given as a scene.
         path: PathBuf,
     },
@@ -63,6 +82,9 @@ pub enum SceneError {
     },
 }
 
+/// The longest scene file read: a scene is a few hundred bytes of TOML.
+const MOST_SCENE_BYTES: u64 = 1 << 20;
+
 /// A scene as written in its file.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -95,14 +117,34 @@ const BUILTIN_SCENES: [(&str, &str); 2] = [
 impl SceneFile {
     /// Reads and parses a scene file, without checking or loading what it names.
     pub fn read(path: &Path) -> Result<SceneFile, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| {
-            let path = path.to_owned();
-            match source.kind() {
-                std::io::ErrorKind::InvalidData => SceneError::NotText { path },
-                _ => SceneError::Io { path, source },
-            }
+        let io = |source| SceneError::Io {
+            path: path.to_owned(),
+            source,
+        };
+        let (file, _) = regular_file::open(path).map_err(|error| match error {
+            OpenError::NotAFile(what) => SceneError::NotAFile {
+                path: path.to_owned(),
+                what,
+            },
+            OpenError::Io(source) => io(source),
         })?;
-        SceneFile::parse(&text, path)
+        // One byte more than the limit tells a file that is too long.
+        let mut bytes = Vec::new();
+        file.take(MOST_SCENE_BYTES + 1)
+            .read_to_end(&mut bytes)
+            .map_err(io)?;
+        let too_long = bytes.len() as u64 > MOST_SCENE_BYTES;
+        // Text whose last character the limit cut in two is still text.
+        let cut = |e: &std::string::FromUtf8Error| e.utf8_error().error_len().is_none();
+        match String::from_utf8(bytes) {
+            text if too_long && text.as_ref().err().is_none_or(cut) => Err(SceneError::TooLong {
+                path: path.to_owned(),
+            }),
+            Ok(text) => SceneFile::parse(&text, path),
+            Err(_) => Err(SceneError::NotText {
+                path: path.to_owned(),
+            }),
+        }
     }
 
     /// The built-in terrains' scene files, by name, each on its embedded map.

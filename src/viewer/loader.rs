@@ -259,6 +259,16 @@ mod tests {
         }
     }
 
+    fn file(path: PathBuf) -> LoadRequest {
+        LoadRequest {
+            source: Source::File(path),
+            z_scale: None,
+            reframe: true,
+            from_memory: None,
+            decoding: Decoding::default(),
+        }
+    }
+
     #[test]
     fn the_newest_load_wins() {
         let loaded = run_all(vec![builtin(1.0), builtin(2.0), builtin(3.0)]).expect("loads");
@@ -277,16 +287,64 @@ mod tests {
         let dir = tempfile::tempdir().expect("temp dir");
         let path = dir.path().join("notes.txt");
         std::fs::write(&path, "not a height map").expect("write");
-        let error = run(LoadRequest {
-            source: Source::File(path),
-            z_scale: None,
-            reframe: true,
-            from_memory: None,
-            decoding: Decoding::default(),
-        })
-        .err()
-        .expect("refused");
+        let error = run(file(path)).err().expect("refused");
         assert!(error.contains("not a PNG, PGM or TIFF"), "{error}");
+    }
+
+    #[test]
+    fn a_newer_request_stops_the_reading_of_a_file() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        // 400 MB of samples (zeros that take no disk space), then a small map.
+        let big = dir.path().join("big.pgm");
+        let head = b"P5 20000 20000 255\n";
+        std::fs::write(&big, head).expect("write");
+        let opened = std::fs::OpenOptions::new().write(true).open(&big);
+        opened
+            .and_then(|f| f.set_len(head.len() as u64 + 400_000_000))
+            .expect("a sparse file");
+        let small = dir.path().join("ramp.pgm");
+        std::fs::write(&small, "P2 3 2 255\n0 1 2\n3 4 5\n").expect("write");
+
+        let (send, receive) = mpsc::channel();
+        let send = Mutex::new(send);
+        let (go_on, wait) = mpsc::channel::<()>();
+        let wait = Mutex::new(wait);
+        // The first load, about to read, waits until the newer request has been made.
+        let mut loader = Loader::new(move |event| {
+            let reading = matches!(event, LoadEvent::Stage { generation: 1, .. });
+            let _ = send.lock().map(|s| s.send(event));
+            if reading {
+                let _ = wait.lock().map(|w| w.recv());
+            }
+        })
+        .expect("a loading thread");
+        loader.start(file(big));
+        let receive = |what| {
+            receive
+                .recv_timeout(Duration::from_secs(10))
+                .unwrap_or_else(|_| panic!("no {what} within 10 s"))
+        };
+        assert!(matches!(
+            receive("stage"),
+            LoadEvent::Stage { generation: 1, .. }
+        ));
+        loader.start(file(small));
+        go_on.send(()).expect("the loading thread waits");
+        let (mut first, mut newest) = (None, None);
+        while first.is_none() || newest.is_none() {
+            match receive("result") {
+                LoadEvent::Done {
+                    generation: 1,
+                    result,
+                } => first = Some(*result),
+                event => newest = loader.accept(event).or(newest),
+            }
+        }
+        let first = first.and_then(Result::err).expect("the first load stopped");
+        assert!(first.contains("big.pgm was cancelled"), "{first}");
+        let (label, newest) = newest.expect("the newest load's result");
+        assert_eq!(label, "ramp.pgm");
+        assert_eq!(newest.expect("ramp.pgm loads").terrain.field().width(), 3);
     }
 
     #[test]
@@ -298,14 +356,7 @@ mod tests {
             "P2\n8 4\n255\n".to_owned() + &"0 1 2 3 4 5 6 7\n".repeat(4),
         )
         .expect("write");
-        let loaded = run(LoadRequest {
-            source: Source::File(path),
-            z_scale: None,
-            reframe: true,
-            from_memory: None,
-            decoding: Decoding::default(),
-        })
-        .expect("loads");
+        let loaded = run(file(path)).expect("loads");
         assert_eq!(loaded.terrain.field().z_scale(), 2.0);
     }
 

@@ -175,8 +175,11 @@ fn source_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
                 .hint_text("path to a PNG, PGM, TIFF or .toml")
                 .desired_width(190.0),
         );
+        let field = named(model, "open_path", field);
         let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-        if (ui.button("Open").clicked() || entered) && !model.path_text.trim().is_empty() {
+        let open = ui.button("Open");
+        let open = named(model, "open", open);
+        if (open.clicked() || entered) && !model.path_text.trim().is_empty() {
             let path = PathBuf::from(model.path_text.trim());
             actions.push(load(Source::File(path), model.decoding));
         }

@@ -1,6 +1,7 @@
 //! The integration tests, in one crate, so that the crate's generic traversal is instantiated
-//! and a test binary linked once, not once per file. (`tests/huge_header.rs` stays apart: its
-//! recording allocator is the whole binary's; `tests/viewer` drives a window under Xvfb.)
+//! and a test binary linked once, not once per file. (`tests/huge_header.rs` and
+//! `tests/bounded_reading.rs` stay apart: their recording allocator is the whole binary's;
+//! `tests/viewer` drives a window under Xvfb.)
 
 #[path = "../common/mod.rs"]
 mod common;
@@ -8,6 +9,7 @@ mod common;
 mod bad_input;
 mod beams;
 mod cli_bench;
+mod cli_paths;
 mod cli_trace;
 mod exact_paths;
 mod exact_reference;

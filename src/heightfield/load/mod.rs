@@ -2,7 +2,9 @@
 //! (P2, P5) and TIFF (8/16-bit integer and floating-point samples, as DEMs use).
 //!
 //! Every format's size is checked from its header before decoding (see `limits`); whatever a
-//! file holds, loading returns a [`LoadError`] that names the file, never a panic.
+//! file holds, loading returns a [`LoadError`] that names the file, never a panic. A path that
+//! is not a regular file is refused before it is opened, and files are decoded as streams:
+//! memory follows the image's size, never the file's.
 
 mod pgm;
 mod png;
@@ -12,10 +14,13 @@ mod watched;
 
 use super::limits::{self, MAX_DECODED_BYTES, MAX_SAMPLES};
 use super::{Heightfield, HeightfieldError};
+use crate::regular_file::{self, OpenError};
+use raster::Raster;
+use std::io::{Cursor, Read, Seek};
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
-use watched::Watched;
+use watched::{Watch, Watched};
 
 /// Why a file could not be loaded as a height field.
 #[derive(Debug, Error)]
@@ -29,11 +34,13 @@ pub enum LoadError {
         /// Why it could not be read.
         reason: std::io::Error,
     },
-    /// A directory was given.
-    #[error("{path} is a directory; choose a height map file (PNG, PGM or TIFF) instead")]
-    Directory {
-        /// The directory.
+    /// The path names a directory, a device, a FIFO or a socket.
+    #[error("{path} is {what}, not a file; choose a height map file (PNG, PGM or TIFF) instead")]
+    NotAFile {
+        /// The path.
         path: PathBuf,
+        /// What it names instead ("a directory", ...).
+        what: &'static str,
     },
     /// The file has no bytes.
     #[error("{name} is empty (0 bytes); the file may not have been written completely")]
@@ -213,7 +220,8 @@ impl LoadOptions {
     }
 }
 
-/// Called with the fraction of the file decoded so far; breaking cancels the load.
+/// Called with the fraction of the file decoding has reached, each time it moves on by 1/256
+/// of the file or 64 KiB, whichever is less; breaking cancels the load, even while reading.
 pub type Progress<'a> = &'a dyn Fn(f64) -> ControlFlow<()>;
 
 /// Loads a height field from a file with the default options.
@@ -223,22 +231,24 @@ pub fn load(path: &Path, z_scale: f64) -> Result<Heightfield, LoadError> {
     })
 }
 
-/// Loads a height field from a file, reporting progress.
+/// Loads a height field from a file, reporting progress. Only a regular file is opened, and
+/// only as much of it is read as its image needs.
 pub fn load_with(
     path: &Path,
     options: &LoadOptions,
     progress: Progress,
 ) -> Result<Heightfield, LoadError> {
-    if path.is_dir() {
-        return Err(LoadError::Directory {
+    let (file, len) = regular_file::open(path).map_err(|error| match error {
+        OpenError::NotAFile(what) => LoadError::NotAFile {
             path: path.to_owned(),
-        });
-    }
-    let bytes = std::fs::read(path).map_err(|reason| LoadError::Io {
-        path: path.to_owned(),
-        reason,
+            what,
+        },
+        OpenError::Io(reason) => LoadError::Io {
+            path: path.to_owned(),
+            reason,
+        },
     })?;
-    load_bytes_with(&bytes, options, &path.display().to_string(), progress)
+    load_from(file, len, options, &path.display().to_string(), progress)
 }
 
 /// Loads a height field from the bytes of a file with the default options; `name` labels
@@ -256,22 +266,38 @@ pub fn load_bytes_with(
     name: &str,
     progress: Progress,
 ) -> Result<Heightfield, LoadError> {
-    if bytes.is_empty() {
+    load_from(
+        Cursor::new(bytes),
+        bytes.len() as u64,
+        options,
+        name,
+        progress,
+    )
+}
+
+/// Loads a height field from `file`, `len` bytes long, through a buffer.
+fn load_from(
+    file: impl Read + Seek,
+    len: u64,
+    options: &LoadOptions,
+    name: &str,
+    progress: Progress,
+) -> Result<Heightfield, LoadError> {
+    if len == 0 {
         return Err(LoadError::Empty { name: name.into() });
     }
-    let input = Watched::new(bytes, progress);
-    let raster = match Format::of(bytes) {
-        Some(Format::Pgm) => pgm::decode(bytes, name),
-        Some(Format::Png) => png::decode(&input, name, options.colour),
-        Some(Format::Tiff) => tiff::decode(&input, name),
-        None => Err(LoadError::NotAnImage {
-            name: name.into(),
-            start: first_bytes(bytes),
+    let watch = Watch::new(len, progress);
+    let input = watch.reader(file);
+    let raster = match decode(input, len, name, options.colour) {
+        Err(_) if watch.cancelled() => Err(LoadError::Cancelled { name: name.into() }),
+        Err(error) => Err(match watch.take_failure() {
+            Some(reason) => LoadError::Io {
+                path: name.into(),
+                reason,
+            },
+            None => error,
         }),
-    };
-    let raster = match raster {
-        Err(_) if input.cancelled() => Err(LoadError::Cancelled { name: name.into() }),
-        other => other,
+        ok => ok,
     }?;
     raster
         .into_field(options)
@@ -279,6 +305,31 @@ pub fn load_bytes_with(
             name: name.into(),
             source,
         })
+}
+
+/// Decodes the image of a file, `len` bytes long, in whichever format its first bytes say.
+fn decode<R: Read + Seek>(
+    mut input: Watched<R>,
+    len: u64,
+    name: &str,
+    colour: ColourEncoding,
+) -> Result<Raster, LoadError> {
+    let mut start = Vec::with_capacity(8);
+    // Back to the start within the buffer: the decoders begin with what was just read.
+    (&mut input)
+        .take(8)
+        .read_to_end(&mut start)
+        .and_then(|count| input.back(count as u64))
+        .map_err(|e| decode_error(name, e))?;
+    match Format::of(&start) {
+        Some(Format::Pgm) => pgm::decode(input, len, name),
+        Some(Format::Png) => png::decode(input, name, colour),
+        Some(Format::Tiff) => tiff::decode(input, name),
+        None => Err(LoadError::NotAnImage {
+            name: name.into(),
+            start: first_bytes(&start),
+        }),
+    }
 }
 
 /// The formats read, told apart by their first bytes.

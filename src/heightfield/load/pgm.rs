@@ -1,101 +1,193 @@
 //! PGM (P2 and P5), parsed here: `image` rescales samples of an odd maxval to 8 or 16 bits,
-//! but the surface contract maps heights by the file's own maxval.
+//! but the surface contract maps heights by the file's own maxval. Read as a stream: what
+//! follows the raster is never read.
 
 use super::limits::check_header;
 use super::raster::{Raster, Values};
 use super::{decode_error, LoadError};
+use std::io::{self, BufRead};
 
-/// Parses a binary (P5) or ASCII (P2) PGM with maxval 1..=65535.
-pub fn decode(bytes: &[u8], name: &str) -> Result<Raster, LoadError> {
-    let (width, height, header_end, maxval) =
-        parse_header(bytes).map_err(|reason| decode_error(name, reason))?;
+/// The most whitespace, comments and digits read for one number: a header or a sample never
+/// needs more, and a file of endless spaces is refused instead of read through.
+const MOST_PER_NUMBER: u64 = 1 << 20;
+
+/// Bytes of the binary raster read at once.
+const BLOCK: usize = 1 << 16;
+
+/// Parses a binary (P5) or ASCII (P2) PGM with maxval 1..=65535 from the start of a file of
+/// `len` bytes.
+pub fn decode(input: impl BufRead, len: u64, name: &str) -> Result<Raster, LoadError> {
+    let mut scanner = Scanner { input, position: 0 };
+    let (binary, width, height, maxval) =
+        parse_header(&mut scanner).map_err(|reason| decode_error(name, reason))?;
     // Refuse oversized images before allocating.
     check_header(name, width, height, 2)?;
-    let (width, height) = (width as usize, height as usize);
-    let samples = parse_raster(bytes, width * height, header_end, maxval)
-        .map_err(|reason| decode_error(name, reason))?;
+    let count = (width * height) as usize;
+    let remaining = len.saturating_sub(scanner.position);
+    let samples = if binary {
+        read_binary(scanner, count, remaining, maxval)
+    } else {
+        read_ascii(scanner, count, remaining)
+    }
+    .map_err(|reason| decode_error(name, reason))?;
     Ok(Raster {
-        width,
-        height,
+        width: width as usize,
+        height: height as usize,
         values: Values::Unsigned { samples, maxval },
         file_nodata: None,
     })
 }
 
-/// Width, height, the position after the header, and maxval.
-fn parse_header(bytes: &[u8]) -> Result<(u64, u64, usize, u16), String> {
-    let mut pos = 2;
+/// Whether the raster is binary (P5), then width, height and maxval; the scanner is left at
+/// the byte after maxval.
+fn parse_header(scanner: &mut Scanner<impl BufRead>) -> Result<(bool, u64, u64, u16), String> {
+    let mut magic = [0u8; 2];
+    scanner.read_exact(&mut magic)?;
+    let binary = match &magic {
+        b"P5" => true,
+        b"P2" => false,
+        _ => return Err("not a PGM (P2 or P5)".into()),
+    };
     let mut header = [0u64; 3];
     for (field, name) in header.iter_mut().zip(["width", "height", "maxval"]) {
-        *field = number(bytes, &mut pos).ok_or(format!("PGM header has no valid {name}"))?;
+        *field = scanner
+            .number()?
+            .ok_or(format!("PGM header has no valid {name}"))?;
     }
     let [w, h, maxval] = header;
     let maxval = u16::try_from(maxval)
         .ok()
         .filter(|&m| m > 0)
         .ok_or(format!("PGM maxval must be 1..=65535, got {maxval}"))?;
-    Ok((w, h, pos, maxval))
+    Ok((binary, w, h, maxval))
 }
 
-/// The samples of a PGM raster that starts after the header at `pos`.
-fn parse_raster(
-    bytes: &[u8],
+/// A P5 raster of `count` samples; `remaining` bytes follow maxval in the file.
+fn read_binary(
+    mut scanner: Scanner<impl BufRead>,
     count: usize,
-    mut pos: usize,
+    remaining: u64,
     maxval: u16,
 ) -> Result<Vec<u16>, String> {
-    let samples = if bytes[1] == b'5' {
-        // Exactly one whitespace byte separates the header from the raster.
-        let start = pos + 1;
-        let bytes_per_sample = if maxval < 256 { 1 } else { 2 };
-        let raster = bytes
-            .get(start..)
-            .filter(|r| r.len() >= count * bytes_per_sample)
-            .ok_or(format!(
-                "PGM raster is truncated: {} of {} bytes",
-                bytes.len().saturating_sub(start),
-                count * bytes_per_sample
-            ))?;
+    let bytes_per_sample = if maxval < 256 { 1 } else { 2 };
+    let needed = count * bytes_per_sample;
+    // Exactly one whitespace byte separates the header from the raster.
+    let available = remaining.saturating_sub(1);
+    if available < needed as u64 {
+        return Err(format!(
+            "PGM raster is truncated: {available} of {needed} bytes"
+        ));
+    }
+    scanner.read_exact(&mut [0u8])?;
+    let mut samples = Vec::with_capacity(count);
+    let mut block = vec![0u8; BLOCK.min(needed)];
+    while samples.len() < count {
+        let take = ((count - samples.len()) * bytes_per_sample).min(block.len());
+        let bytes = &mut block[..take];
+        scanner.read_exact(bytes).map_err(|e| {
+            format!(
+                "PGM raster is truncated after {} samples ({e})",
+                samples.len()
+            )
+        })?;
         if bytes_per_sample == 1 {
-            raster[..count].iter().map(|&b| u16::from(b)).collect()
+            samples.extend(bytes.iter().map(|&b| u16::from(b)));
         } else {
-            raster[..count * 2]
-                .chunks_exact(2)
-                .map(|p| u16::from_be_bytes([p[0], p[1]]))
-                .collect()
+            let pairs = bytes.chunks_exact(2);
+            samples.extend(pairs.map(|p| u16::from_be_bytes([p[0], p[1]])));
         }
-    } else {
-        // Each ASCII sample takes at least two bytes: a short file must not reserve much.
-        let mut samples = Vec::with_capacity(count.min(bytes.len() / 2 + 1));
-        for k in 0..count {
-            let s = number(bytes, &mut pos)
-                .ok_or(format!("PGM raster ends after {k} of {count} samples"))?;
-            samples.push(u16::try_from(s).map_err(|_| format!("PGM sample {s} exceeds 65535"))?);
-        }
-        samples
-    };
+    }
     Ok(samples)
 }
 
-/// Reads the next decimal number of a PGM header or ASCII raster, skipping whitespace and
-/// `#` comments.
-fn number(bytes: &[u8], pos: &mut usize) -> Option<u64> {
-    loop {
-        match bytes.get(*pos)? {
-            b'#' => {
-                while *bytes.get(*pos)? != b'\n' {
-                    *pos += 1;
-                }
+/// A P2 raster of `count` samples; `remaining` bytes follow maxval in the file.
+fn read_ascii(
+    mut scanner: Scanner<impl BufRead>,
+    count: usize,
+    remaining: u64,
+) -> Result<Vec<u16>, String> {
+    // Each ASCII sample takes at least two bytes: a short file must not reserve much.
+    let most = usize::try_from(remaining / 2 + 1).unwrap_or(usize::MAX);
+    let mut samples = Vec::with_capacity(count.min(most));
+    for k in 0..count {
+        let s = scanner
+            .number()?
+            .ok_or(format!("PGM raster ends after {k} of {count} samples"))?;
+        samples.push(u16::try_from(s).map_err(|_| format!("PGM sample {s} exceeds 65535"))?);
+    }
+    Ok(samples)
+}
+
+/// A PGM's bytes, looked at one at a time through the buffer, counting how many were taken.
+struct Scanner<R> {
+    input: R,
+    position: u64,
+}
+
+impl<R: BufRead> Scanner<R> {
+    /// The next byte, without taking it; None at the end of the file.
+    fn peek(&mut self) -> Result<Option<u8>, String> {
+        loop {
+            match self.input.fill_buf() {
+                Ok(bytes) => return Ok(bytes.first().copied()),
+                Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
+                Err(e) => return Err(e.to_string()),
             }
-            b if b.is_ascii_whitespace() => *pos += 1,
-            _ => break,
         }
     }
-    let start = *pos;
-    while bytes.get(*pos).is_some_and(u8::is_ascii_digit) {
-        *pos += 1;
+
+    fn take(&mut self) {
+        self.input.consume(1);
+        self.position += 1;
     }
-    std::str::from_utf8(&bytes[start..*pos]).ok()?.parse().ok()
+
+    fn read_exact(&mut self, buf: &mut [u8]) -> Result<(), String> {
+        self.input.read_exact(buf).map_err(|e| match e.kind() {
+            io::ErrorKind::UnexpectedEof => "the file ends in the PGM header".to_owned(),
+            _ => e.to_string(),
+        })?;
+        self.position += buf.len() as u64;
+        Ok(())
+    }
+
+    /// The next decimal number of a PGM header or ASCII raster, skipping whitespace and `#`
+    /// comments; None if something else, or the end of the file, comes first.
+    fn number(&mut self) -> Result<Option<u64>, String> {
+        let start = self.position;
+        let budget = |position: u64| {
+            if position - start > MOST_PER_NUMBER {
+                Err(format!(
+                    "more than {MOST_PER_NUMBER} bytes of spaces, comments or digits at byte {start}"
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        let mut in_comment = false;
+        loop {
+            budget(self.position)?;
+            match self.peek()? {
+                None => return Ok(None),
+                Some(b'\n') => in_comment = false,
+                Some(_) if in_comment => {}
+                Some(b'#') => in_comment = true,
+                Some(b) if b.is_ascii_whitespace() => {}
+                Some(_) => break,
+            }
+            self.take();
+        }
+        let mut value: Option<u64> = None;
+        while let Some(digit) = self.peek()?.filter(u8::is_ascii_digit) {
+            budget(self.position)?;
+            let so_far = value.unwrap_or(0);
+            let next = so_far
+                .checked_mul(10)
+                .and_then(|v| v.checked_add(u64::from(digit - b'0')));
+            value = Some(next.ok_or(format!("a number at byte {start} is too large"))?);
+            self.take();
+        }
+        Ok(value)
+    }
 }
 
 #[cfg(test)]
@@ -109,5 +201,28 @@ mod tests {
         assert_eq!((f.width(), f.height(), f.maxval()), (3, 2, 1000));
         assert_eq!(f.z(2, 1), 10.0);
         assert_eq!(f.z(1, 0), 750.0 * (10.0 / 1000.0));
+    }
+
+    #[test]
+    fn what_follows_the_raster_is_not_read() {
+        let mut pgm = b"P5 2 2 255\n\x01\x02\x03\x04".to_vec();
+        pgm.extend(b"trailing bytes that are not samples");
+        let f = load_bytes(&pgm, 255.0, "t.pgm").unwrap();
+        assert_eq!(f.samples(), [3, 4, 1, 2]);
+    }
+
+    #[test]
+    fn endless_spaces_and_long_numbers_are_refused() {
+        let mut spaces = b"P2 2 2 255\n1 2".to_vec();
+        spaces.resize(spaces.len() + (1 << 20) + 10, b' ');
+        spaces.extend(b"3 4\n");
+        let error = load_bytes(&spaces, 1.0, "spaces.pgm").unwrap_err();
+        assert!(
+            error.to_string().contains("spaces, comments or digits"),
+            "{error}"
+        );
+        let long = b"P2 2 2 99999999999999999999999\n1 2 3 4\n";
+        let error = load_bytes(long, 1.0, "long.pgm").unwrap_err();
+        assert!(error.to_string().contains("too large"), "{error}");
     }
 }

@@ -3,17 +3,21 @@
 
 use super::limits::{check_header, MAX_DECODED_BYTES};
 use super::raster::{Raster, TerrainRgb, Values};
-use super::watched::Watched;
 use super::{decode_error, ColourEncoding, LoadError};
 use image::codecs::png::PngDecoder;
 use image::{DynamicImage, ImageDecoder, Limits};
+use std::io::{BufRead, Seek};
 
-pub fn decode(input: &Watched, name: &str, colour: ColourEncoding) -> Result<Raster, LoadError> {
+/// Decodes a PNG from the start of `input`; reading stops at the end of the image data.
+pub fn decode(
+    input: impl BufRead + Seek,
+    name: &str,
+    colour: ColourEncoding,
+) -> Result<Raster, LoadError> {
     let mut limits = Limits::no_limits();
     limits.max_alloc = Some(MAX_DECODED_BYTES);
     // Reads the header only: the size is checked before any pixel is decoded.
-    let decoder =
-        PngDecoder::with_limits(input.reader(), limits).map_err(|e| decode_error(name, e))?;
+    let decoder = PngDecoder::with_limits(input, limits).map_err(|e| decode_error(name, e))?;
     let (width, height) = decoder.dimensions();
     let bytes_per_pixel = decoder.color_type().bytes_per_pixel();
     check_header(name, width.into(), height.into(), bytes_per_pixel.into())?;

@@ -4,19 +4,20 @@
 
 use super::limits::{check_header, MAX_DECODED_BYTES};
 use super::raster::{Raster, Values};
-use super::watched::Watched;
 use super::{decode_error, LoadError};
+use std::io::{Read, Seek};
 use tiff::decoder::{Decoder, DecodingResult, Limits};
 use tiff::tags::Tag;
 use tiff::ColorType;
 
-pub fn decode(input: &Watched, name: &str) -> Result<Raster, LoadError> {
+/// Decodes the first image of a TIFF from `input`, reading only what its directory points at.
+pub fn decode(input: impl Read + Seek, name: &str) -> Result<Raster, LoadError> {
     let unsupported = |what: String| LoadError::Unsupported {
         name: name.into(),
         what,
     };
     // Reads the header and the first directory only: the size is checked before decoding.
-    let mut decoder = Decoder::new(input.reader()).map_err(|e| decode_error(name, e))?;
+    let mut decoder = Decoder::new(input).map_err(|e| decode_error(name, e))?;
     let (width, height) = decoder.dimensions().map_err(|e| decode_error(name, e))?;
     let bits = match decoder.colortype().map_err(|e| decode_error(name, e))? {
         ColorType::Gray(bits @ (8 | 16 | 32 | 64)) => bits,
