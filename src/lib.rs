@@ -5,6 +5,8 @@
 
 #![warn(missing_docs)]
 
+/// Numbers: the scalar trait, intervals, bounded and exact rationals, the `Arith` a user picks.
+pub mod arith;
 /// Benchmarks: methods, arithmetics and thread counts measured side by side in one run.
 pub mod bench;
 /// Rays, box clipping, the watertight two-triangle cell test, and the surface contract.

@@ -24,7 +24,7 @@
 //! `4 e M + 2 e^2 + 6.01 eps M^2`.
 
 use super::{plane_crossing, triangle_corners, RaySpace};
-use crate::traverse::Interval;
+use crate::arith::Interval;
 use std::ops::{Add, Mul, Sub};
 
 /// The `f64` stand-in of one ray.
@@ -227,10 +227,10 @@ impl Mul for Near {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::arith::scalar::exact_from_f64;
+    use crate::arith::Exact;
     use crate::geometry::strategies::component;
     use crate::geometry::CellTriangles;
-    use crate::traverse::scalar::exact_from_f64;
-    use crate::traverse::Exact;
     use num_rational::BigRational;
     use proptest::prelude::*;
     use proptest::test_runner::RngSeed;

@@ -1,6 +1,6 @@
 //! Clipping a ray to an axis-aligned box (slabs), in any arithmetic.
 
-use crate::traverse::scalar::Scalar;
+use crate::arith::scalar::Scalar;
 
 /// The part of a ray inside a box: `t0..=t1` (with `t0 >= 0`), and for each end the box face
 /// it lies on, if a face and not the ray's origin fixes it: `(axis, value)`. The end point's

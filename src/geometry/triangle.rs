@@ -10,7 +10,7 @@
 //! triangles, and a ray
 //! lying in a triangle's plane hits where it first touches the triangle.
 
-use crate::traverse::scalar::{max, min, Scalar};
+use crate::arith::scalar::{max, min, Scalar};
 use std::ops::{Add, Mul, Sub};
 
 /// A ray prepared for many triangle tests: the axis permutation and shear of Woop et al.

@@ -4,9 +4,9 @@
 use super::counters::{Counters, HitMiss};
 use super::frame::Frame;
 use super::mipmap::start_level;
-use super::scalar::F64_TOLERANCE;
 use super::search::moves_away;
 use super::{F64Ray, Query};
+use crate::arith::scalar::F64_TOLERANCE;
 use crate::heightfield::Terrain;
 
 /// An `f64` ray near an exact one, for an `f64` walk to clear the way for it.

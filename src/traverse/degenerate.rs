@@ -2,7 +2,7 @@
 //! segment clipped to length zero in the plane) and a path parallel to the rows.
 
 use super::frame::{Frame, Span};
-use super::scalar::{max, min, Scalar};
+use crate::arith::scalar::{max, min, Scalar};
 use std::ops::ControlFlow;
 
 /// Whether the path is a single point: a vertical ray, or one clipped to length zero. Its

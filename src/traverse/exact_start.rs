@@ -2,8 +2,8 @@
 //! decided exactly on its own: one test in integers, where casting the whole ray again in
 //! rationals costs about sixty times as much.
 
-use super::dyadic::Dyadic;
 use super::{exact_t, point_over};
+use crate::arith::dyadic::Dyadic;
 use crate::geometry::{ray_space_axes, triangle_corners};
 use crate::heightfield::Terrain;
 use crate::Ray;
@@ -107,11 +107,11 @@ fn sign(x: &Dyadic) -> i8 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::arith::scalar::exact_from_f64;
+    use crate::arith::{Exact, Scalar};
     use crate::geometry::strategies::component;
     use crate::geometry::{plane_crossing, CellTriangles, RaySpace};
     use crate::heightfield::Heightfield;
-    use crate::traverse::scalar::exact_from_f64;
-    use crate::traverse::{Exact, Scalar};
     use num_rational::BigRational;
     use num_traits::Zero;
     use proptest::prelude::*;

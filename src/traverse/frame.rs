@@ -2,8 +2,8 @@
 //! slope `dv/du` in `[0, 1]`, by mirroring axes (negation, exact in every arithmetic) and
 //! exchanging x and y. Cells are named by frame indices `(cu, cv)` until they are reported.
 
+use crate::arith::scalar::Scalar;
 use crate::geometry::Clipped;
-use crate::traverse::scalar::Scalar;
 
 /// A span of cells the walk reached, in visiting order: one row of cells (`rows == 1`), or
 /// two rows walked side by side column by column when the path runs along the grid line

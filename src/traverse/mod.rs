@@ -3,8 +3,8 @@
 //!
 //! Four methods walk the grid ([`Method`](crate::traverse::Method)): the min-max mipmap's
 //! blocks, the hierarchical run walk, the run walk and the cell DDA. Each is one
-//! implementation, generic over the arithmetics of [`Scalar`](crate::traverse::Scalar)
-//! ([`Arith`](crate::traverse::Arith)), and counts its queries
+//! implementation, generic over the arithmetics of [`Scalar`](crate::arith::Scalar)
+//! ([`Arith`](crate::arith::Arith)), and counts its queries
 //! ([`Counters`](crate::traverse::Counters)).
 
 mod approximation;
@@ -13,29 +13,25 @@ mod certified;
 mod counters;
 mod dda;
 mod degenerate;
-mod dyadic;
-mod exact;
 mod exact_start;
 mod frame;
-mod interval;
 mod mipmap;
-mod rational;
 mod runs;
-pub mod scalar;
 mod search;
 
 pub use beam::{Beam, Clearance};
 pub use counters::{Counters, HitMiss};
-pub use exact::Exact;
 pub use exact_start::PlanePoint;
-pub use interval::{settled, Interval};
-pub use rational::{with_bound, Rational, RationalEvents, DEFAULT_BOUND};
-pub use scalar::Scalar;
+// The number layer, re-exported: every traversal is generic over these.
+pub use crate::arith::{
+    scalar, settled, with_bound, Arith, Exact, Interval, Rational, RationalEvents, Scalar,
+    DEFAULT_BOUND,
+};
 
+use crate::arith::dyadic::Dyadic;
 use crate::geometry::{clip_to_box, plane_crossing, times_power_of_two, CertainMiss, Ray};
 use crate::heightfield::Terrain;
 use approximation::Approximation;
-use dyadic::Dyadic;
 use frame::{Frame, Span};
 use num_rational::BigRational;
 pub use search::Found;
@@ -73,23 +69,6 @@ impl Method {
     pub fn is_hierarchical(self) -> bool {
         matches!(self, Method::Mipmap | Method::HierarchicalRuns)
     }
-}
-
-/// The arithmetic a traversal computes in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Arith {
-    /// Single-precision floats: inputs rounded to `f32`.
-    F32,
-    /// Double-precision floats.
-    F64,
-    /// Fractions with denominators at most `bound` (num-rational `Ratio<i64>` sized).
-    Rational {
-        /// The largest denominator.
-        bound: u32,
-    },
-    /// No rounding at all: the surface contract's answer ([`crate::geometry`]) for the given
-    /// `f64` inputs.
-    Exact,
 }
 
 /// What a ray asks.
@@ -735,41 +714,6 @@ impl FromStr for Method {
             _ => Err(format!(
                 "unknown method '{s}': use mipmap, hruns, runs, dda or auto"
             )),
-        }
-    }
-}
-
-impl fmt::Display for Arith {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Arith::F32 => f.write_str("f32"),
-            Arith::F64 => f.write_str("f64"),
-            Arith::Rational { bound } => write!(f, "rational:{bound}"),
-            Arith::Exact => f.write_str("exact"),
-        }
-    }
-}
-
-impl FromStr for Arith {
-    type Err = String;
-    /// `f32`, `f64`, `exact`, `rational` (bound 2^16) or `rational:BOUND`.
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "f32" => Ok(Arith::F32),
-            "f64" => Ok(Arith::F64),
-            "exact" => Ok(Arith::Exact),
-            "rational" => Ok(Arith::Rational {
-                bound: DEFAULT_BOUND,
-            }),
-            _ => {
-                let bound = s
-                    .strip_prefix("rational:")
-                    .and_then(|b| b.parse::<u32>().ok())
-                    .filter(|&b| (1..=1 << 30).contains(&b));
-                bound.map(|bound| Arith::Rational { bound }).ok_or(format!(
-                    "unknown arithmetic '{s}': use f32, f64, rational, rational:BOUND (1..=2^30) or exact"
-                ))
-            }
         }
     }
 }

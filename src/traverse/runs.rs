@@ -15,7 +15,7 @@
 
 use super::degenerate::{is_point, walk_level, walk_point};
 use super::frame::{Frame, Span};
-use super::scalar::{min, Scalar};
+use crate::arith::scalar::{min, Scalar};
 use std::ops::ControlFlow;
 
 /// Walks the clipped path run by run, handing each run to `visit` until it breaks.

@@ -4,10 +4,10 @@
 use super::counters::Counters;
 use super::exact_start::PlanePoint;
 use super::frame::{Frame, Span};
-use super::interval::settled;
 use super::mipmap::{run_sample, BlockRun};
-use super::scalar::{max, min, Scalar};
 use super::Query;
+use crate::arith::scalar::{max, min, Scalar};
+use crate::arith::settled;
 use crate::geometry::{CellTriangles, Certain, CertainMiss, RaySpace, TriangleHit};
 use crate::heightfield::Terrain;
 use std::cell::OnceCell;

@@ -24,8 +24,8 @@ mod runs;
 use super::approximation::{Approximation, Bounds};
 use super::mipmap::{descend, descend_runs, run_sample, BlockRun, Follower, Part};
 use super::Method;
+use crate::arith::scalar::Scalar;
 use crate::traverse::frame::Frame;
-use crate::traverse::scalar::Scalar;
 use crate::traverse::search::{Found, Search};
 use std::ops::ControlFlow;
 

@@ -11,8 +11,8 @@
 //! [`Bounds`]: crate::traverse::approximation::Bounds
 
 use super::Certifying;
+use crate::arith::scalar::Scalar;
 use crate::traverse::frame::Frame;
-use crate::traverse::scalar::Scalar;
 use crate::traverse::search::run_highest;
 use std::ops::ControlFlow;
 

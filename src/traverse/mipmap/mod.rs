@@ -31,8 +31,8 @@ pub use stretches::clear_way;
 use super::degenerate::is_point;
 use super::frame::Frame;
 use super::runs;
-use super::scalar::{max, Scalar};
 use super::search::Search;
+use crate::arith::scalar::{max, Scalar};
 use std::ops::ControlFlow;
 
 /// A point on the path: its ray parameter and frame coordinates, the frame cell they floor

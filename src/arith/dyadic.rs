@@ -121,7 +121,7 @@ impl Mul for Dyadic {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::traverse::scalar::exact_from_f64;
+    use crate::arith::scalar::exact_from_f64;
 
     #[test]
     fn f64_values_are_read_exactly() {

@@ -433,7 +433,7 @@ impl Scalar for Interval {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::traverse::scalar::exact_from_f64;
+    use crate::arith::scalar::exact_from_f64;
     use num_rational::BigRational;
     use proptest::prelude::*;
     use proptest::test_runner::RngSeed;
