@@ -1,0 +1,169 @@
+//! What a caller asks of a traversal: the method, the query, the options of a walk and of a
+//! trace, and the answer they get back.
+
+use super::{Clearance, Counters, PlanePoint};
+use crate::arith::Arith;
+use num_rational::BigRational;
+use std::fmt;
+use std::str::FromStr;
+
+/// How the grid is walked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// Row by row, run lengths from the intercept recurrence (Henning & Stephenson).
+    Runs,
+    /// Cell by cell (Amanatides & Woo).
+    Dda,
+    /// Block by block down a max-mipmap (Tevs et al.), runs at the bottom.
+    Mipmap,
+    /// Run by run at every level of the mipmap: a run of coarse blocks is a run of runs,
+    /// skipped whole or walked again a level down.
+    HierarchicalRuns,
+}
+
+impl Method {
+    /// Every method, the default (fastest) first.
+    pub const ALL: [Method; 4] = [
+        Method::Mipmap,
+        Method::HierarchicalRuns,
+        Method::Runs,
+        Method::Dda,
+    ];
+
+    /// Whether the method walks the mipmap's levels (and so starts behind a beam, see
+    /// [`WalkOptions::beam`]).
+    pub fn is_hierarchical(self) -> bool {
+        matches!(self, Method::Mipmap | Method::HierarchicalRuns)
+    }
+}
+
+/// What a ray asks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Query {
+    /// The least `t >= 0` at which the ray touches the surface.
+    FirstHit,
+    /// Whether the ray touches the surface at some `t > 0` (the start point does not count).
+    Shadow,
+}
+
+/// How to walk, whatever the arithmetic.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WalkOptions {
+    /// How the grid is walked.
+    pub method: Method,
+    /// What the ray asks.
+    pub query: Query,
+    /// List the cells the walk covered, in order.
+    pub record_cells: bool,
+    /// A triangle `(cell, k)` the ray starts on and leaves at once (it touches it only at
+    /// `t = 0`), not to be tested: a shadow ray's own triangle.
+    pub start_triangle: Option<((usize, usize), u8)>,
+    /// A [`Beam`](super::Beam) around the ray cleared the way: the ray touches nothing before
+    /// its `t`, and the hierarchical walk starts there, at the beam's last level.
+    pub beam: Option<Clearance>,
+    /// For a shadow ray in intervals: its start, exactly (the hit point it starts at). A
+    /// triangle test the intervals cannot settle is then decided exactly on its own.
+    pub exact_start: Option<PlanePoint>,
+}
+
+impl WalkOptions {
+    /// A query of the given kind without cell recording.
+    pub fn new(method: Method, query: Query) -> Self {
+        WalkOptions {
+            method,
+            query,
+            record_cells: false,
+            start_triangle: None,
+            beam: None,
+            exact_start: None,
+        }
+    }
+}
+
+/// How to trace.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TraceOptions {
+    /// How the grid is walked.
+    pub method: Method,
+    /// The arithmetic traced in.
+    pub arith: Arith,
+    /// What the ray asks.
+    pub query: Query,
+    /// List the cells the walk covered, in order.
+    pub record_cells: bool,
+}
+
+impl TraceOptions {
+    /// The walk part of the options.
+    pub fn walk(&self) -> WalkOptions {
+        WalkOptions {
+            method: self.method,
+            query: self.query,
+            record_cells: self.record_cells,
+            ..WalkOptions::new(self.method, self.query)
+        }
+    }
+
+    /// A first-hit query without cell recording.
+    pub fn new(method: Method, arith: Arith) -> Self {
+        TraceOptions {
+            method,
+            arith,
+            query: Query::FirstHit,
+            record_cells: false,
+        }
+    }
+}
+
+/// Where a ray hit.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Hit {
+    /// The ray parameter (nearest `f64` of the exact value in exact mode).
+    pub t: f64,
+    /// The exact parameter, in exact mode.
+    pub t_exact: Option<BigRational>,
+    /// `o + t*d`.
+    pub point: [f64; 3],
+    /// The cell `(i, j)` hit. Where the hit point is shared, the first in visiting order.
+    pub cell: [usize; 2],
+    /// The triangle hit (0: `P00 P10 P11`, 1: `P00 P11 P01`); `T0` where both share the
+    /// hit point.
+    pub triangle: u8,
+}
+
+/// The answer for one ray.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Trace {
+    /// The first hit (or, for a shadow query, a hit after the start), if any.
+    pub hit: Option<Hit>,
+    /// The queries the ray made.
+    pub counters: Counters,
+    /// Cells covered, in order (when asked for).
+    pub cells: Vec<[usize; 2]>,
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Method::Runs => "runs",
+            Method::Dda => "dda",
+            Method::Mipmap => "mipmap",
+            Method::HierarchicalRuns => "hruns",
+        })
+    }
+}
+
+impl FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "runs" => Ok(Method::Runs),
+            "dda" => Ok(Method::Dda),
+            "mipmap" | "auto" => Ok(Method::Mipmap),
+            "hruns" => Ok(Method::HierarchicalRuns),
+            _ => Err(format!(
+                "unknown method '{s}': use mipmap, hruns, runs, dda or auto"
+            )),
+        }
+    }
+}
