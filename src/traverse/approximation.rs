@@ -2,10 +2,11 @@
 //! the exact ray does not touch.
 
 use super::counters::{Counters, HitMiss};
+use super::exact_mode::F64Ray;
 use super::frame::Frame;
 use super::mipmap::start_level;
 use super::search::moves_away;
-use super::{F64Ray, Query};
+use super::Query;
 use crate::arith::scalar::F64_TOLERANCE;
 use crate::heightfield::Terrain;
 
