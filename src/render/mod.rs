@@ -3,16 +3,18 @@
 
 mod camera;
 mod gamma;
+mod normals;
 mod passes;
+mod ramp;
 mod scene;
 mod shade;
 mod stats;
 
 pub use camera::{Camera, CameraError};
 pub use passes::{Frame, Renderer, PASS_BLOCKS};
+pub use ramp::Ramp;
 pub use scene::{
-    EffectsSection, Lighting, Normals, Ramp, Scene, SceneError, SceneFile, ShadingSection,
-    SunSection,
+    EffectsSection, Lighting, Normals, Scene, SceneError, SceneFile, ShadingSection, SunSection,
 };
 pub use shade::{Culling, Sample, Shader, Shadow, ShadowSkip};
 pub use stats::{FrameStats, PixelStats};

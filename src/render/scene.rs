@@ -1,6 +1,7 @@
 //! Scene files (DESIGN 5): TOML, paths relative to the file, unknown keys refused by name.
 
 use super::camera::{Camera, CameraError};
+use super::ramp::Ramp;
 use crate::heightfield::{self, Builtin, Heightfield, LoadError, LoadOptions, NoDataValue};
 use crate::traverse::{Arith, Method};
 use serde::Deserialize;
@@ -169,15 +170,6 @@ pub enum Normals {
     #[default]
     Flat,
     Smooth,
-}
-
-/// Colour by elevation.
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub enum Ramp {
-    #[default]
-    Terrain,
-    Gray,
 }
 
 #[derive(Clone, Debug, Deserialize, PartialEq)]

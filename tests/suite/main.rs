@@ -18,3 +18,4 @@ mod hard_cases;
 mod holes;
 mod loader_fuzz;
 mod render;
+mod terminator;
