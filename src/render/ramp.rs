@@ -61,7 +61,9 @@ impl Ramp {
     /// heights span `(lo, hi)`.
     pub fn colour(self, z: f64, (lo, hi): (f64, f64)) -> DVec3 {
         if self.shows_sea((lo, hi)) {
-            if z < 0.0 {
+            // A hit on ground at sea level lies a rounding above or below it: such ground is
+            // land, not speckled with sea.
+            if z < -1e-9 * (hi - lo) {
                 return sea((z / lo).clamp(0.0, 1.0));
             }
             return self.land(fraction(z, 0.0, hi));

@@ -17,5 +17,6 @@ mod formats;
 mod hard_cases;
 mod holes;
 mod loader_fuzz;
+mod ramps;
 mod render;
 mod terminator;

@@ -5,7 +5,7 @@ use heightray::render::{Camera, Culling, Frame, Lighting, Normals, Ramp, Rendere
 use heightray::{trace, Arith, Heightfield, Method, Terrain, TraceOptions};
 
 /// Radius and height of the cap, and its centre, in samples.
-const RADIUS: f64 = 9.0;
+const RADIUS: f64 = 8.0;
 const TOP: f64 = 7.0;
 const CENTRE: f64 = 12.0;
 
@@ -33,8 +33,8 @@ fn looking_down(size: u32) -> Camera {
 }
 
 fn render(terrain: &Terrain, camera: Camera, arith: Arith, shadows: bool) -> Frame {
-    // Low in the sky, and off the grid's axes and diagonals.
-    let sun = [-1.0f64, -0.35, 0.3];
+    // Ten degrees above the horizon, and off the grid's axes and diagonals.
+    let sun = [-1.0f64, -0.35, 0.19];
     let length = sun.iter().map(|c| c * c).sum::<f64>().sqrt();
     let renderer = Renderer {
         shader: Shader {
@@ -94,22 +94,25 @@ fn a_convex_bump_under_a_grazing_sun_has_no_shadowed_triangles() {
     let terrain = cap();
     let camera = looking_down(160);
     let cap = on_the_cap(&terrain, camera);
-    assert!(cap.len() > 10_000, "{} pixels on the cap", cap.len());
+    assert!(cap.len() > 5000, "{} pixels on the cap", cap.len());
     for arith in [Arith::F32, Arith::F64, Arith::Exact] {
         let on = render(&terrain, camera, arith, true);
         let off = render(&terrain, camera, arith, false);
         let dark = darkened(&on, &off, &cap);
-        eprintln!(
-            "{arith}: {} of {} darker, worst {:?}; {} shadow rays",
-            dark.len(),
-            cap.len(),
-            &dark[..dark.len().min(8)],
-            on.totals.shadow_rays
-        );
         assert!(
             on.totals.shadow_rays > 1000,
             "{arith}: the cap casts shadow rays"
         );
-        assert!(dark.is_empty(), "{arith}");
+        assert!(
+            on.totals.shadowed > 500,
+            "{arith}: the cap still shadows the ground behind it"
+        );
+        assert!(
+            dark.is_empty(),
+            "{arith}: {} of {} pixels of the cap darker with shadows, worst (pixel, levels): {:?}",
+            dark.len(),
+            cap.len(),
+            &dark[..dark.len().min(8)]
+        );
     }
 }
