@@ -12,7 +12,7 @@ mod stats;
 
 pub use camera::{Camera, CameraError};
 pub use passes::{Frame, Renderer, PASS_BLOCKS};
-pub use ramp::Ramp;
+pub use ramp::{HeightSpan, Ramp};
 pub use scene::{
     EffectsSection, Lighting, Normals, Scene, SceneError, SceneFile, ShadingSection, SunSection,
 };

@@ -12,6 +12,7 @@
 //! ramps, `gray`, `viridis`, `magma` and `turbo`, always span the field's whole range.
 
 use super::gamma;
+use crate::heightfield::Terrain;
 use glam::DVec3;
 use serde::Deserialize;
 
@@ -26,6 +27,28 @@ pub enum Ramp {
     Viridis,
     Magma,
     Turbo,
+}
+
+/// The heights a field is coloured over.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HeightSpan {
+    pub lo: f64,
+    pub hi: f64,
+    /// How far from 0 a height still counts as sea level: half the field's quantisation step
+    /// (a height stored as 0 lies within it), and at least what rounding moves a hit point.
+    pub shore: f64,
+}
+
+impl HeightSpan {
+    /// The span of a terrain's heights.
+    pub fn of(terrain: &Terrain) -> HeightSpan {
+        let (lo, hi) = terrain.z_range();
+        HeightSpan {
+            lo,
+            hi,
+            shore: (0.5 * terrain.field().step()).max(1e-9 * (hi - lo)),
+        }
+    }
 }
 
 impl Ramp {
@@ -51,19 +74,20 @@ impl Ramp {
         }
     }
 
-    /// Whether a field whose heights span `(lo, hi)` is coloured as land and sea, the sea
-    /// below height 0.
-    pub fn shows_sea(self, (lo, _): (f64, f64)) -> bool {
-        matches!(self, Ramp::Terrain | Ramp::Hypsometric) && lo < 0.0
+    /// Whether a field whose heights span `span` is coloured as land and sea, the sea below
+    /// sea level.
+    pub fn shows_sea(self, span: HeightSpan) -> bool {
+        matches!(self, Ramp::Terrain | Ramp::Hypsometric) && span.lo < -span.shore
     }
 
     /// The surface colour (linear light, before shading) at height `z` of a field whose
-    /// heights span `(lo, hi)`.
-    pub fn colour(self, z: f64, (lo, hi): (f64, f64)) -> DVec3 {
-        if self.shows_sea((lo, hi)) {
-            // A hit on ground at sea level lies a rounding above or below it: such ground is
-            // land, not speckled with sea.
-            if z < -1e-9 * (hi - lo) {
+    /// heights span `span`.
+    pub fn colour(self, z: f64, span: HeightSpan) -> DVec3 {
+        let HeightSpan { lo, hi, shore } = span;
+        if self.shows_sea(span) {
+            // Ground at sea level is land, though quantisation and rounding put some of it a
+            // little below 0: a coastal plain is not speckled with sea.
+            if z < -shore {
                 return sea((z / lo).clamp(0.0, 1.0));
             }
             return self.land(fraction(z, 0.0, hi));
@@ -72,8 +96,8 @@ impl Ramp {
     }
 
     /// The colour at height `z` as display bytes `[r, g, b]`, unshaded: what a legend shows.
-    pub fn display_rgb(self, z: f64, range: (f64, f64)) -> [u8; 3] {
-        let c = self.colour(z, range);
+    pub fn display_rgb(self, z: f64, span: HeightSpan) -> [u8; 3] {
+        let c = self.colour(z, span);
         [c.x, c.y, c.z].map(gamma::byte)
     }
 
@@ -164,6 +188,10 @@ fn sea(depth: f64) -> DVec3 {
 mod tests {
     use super::*;
 
+    fn span(lo: f64, hi: f64) -> HeightSpan {
+        HeightSpan { lo, hi, shore: 0.5 }
+    }
+
     /// Each name parses as itself, and the names are those `name` gives.
     #[test]
     fn every_ramp_parses_by_its_name() {
@@ -178,10 +206,15 @@ mod tests {
     /// depth, and is bluer than it is red or green.
     #[test]
     fn the_sea_is_blue_and_darkens_with_depth() {
-        let topobathy = (-4000.0, 2000.0);
+        let topobathy = span(-4000.0, 2000.0);
         for ramp in [Ramp::Terrain, Ramp::Hypsometric] {
             assert!(ramp.shows_sea(topobathy));
-            assert!(!ramp.shows_sea((0.0, 2000.0)));
+            assert!(!ramp.shows_sea(span(0.0, 2000.0)));
+            assert!(
+                !ramp.shows_sea(span(-0.4, 2000.0)),
+                "only a quantisation below 0"
+            );
+            assert_eq!(ramp.colour(-0.4, topobathy), ramp.land(0.0), "sea level");
             assert_eq!(ramp.colour(0.0, topobathy), ramp.land(0.0));
             assert_eq!(ramp.colour(2000.0, topobathy), ramp.land(1.0));
             assert_eq!(ramp.colour(1000.0, topobathy), ramp.land(0.5));
@@ -203,7 +236,7 @@ mod tests {
     /// show as the reference bytes (matplotlib's viridis and magma, Google's turbo).
     #[test]
     fn library_ramps_show_the_published_colours() {
-        let range = (0.0, 1.0);
+        let range = span(0.0, 1.0);
         for (ramp, ends) in [
             (Ramp::Viridis, [[68, 1, 84], [33, 145, 140], [253, 231, 37]]),
             (Ramp::Magma, [[0, 0, 4], [183, 55, 121], [252, 253, 191]]),

@@ -3,6 +3,7 @@
 
 use super::gamma;
 use super::normals;
+use super::ramp::HeightSpan;
 use super::scene::{Lighting, Normals};
 use crate::geometry::{gradient, plane_height, triangle_corners};
 use crate::heightfield::Terrain;
@@ -200,7 +201,7 @@ impl Shader<'_> {
             _ => facing.max(0.0),
         };
         let light = self.lighting.ambient + self.lighting.intensity * lit;
-        let mut colour = self.lighting.ramp.colour(p.z, self.terrain.z_range()) * light;
+        let mut colour = self.lighting.ramp.colour(p.z, HeightSpan::of(self.terrain)) * light;
         if self.lighting.fog > 0.0 {
             let distance = t * DVec3::from(ray.dir()).length();
             let clear = (-self.lighting.fog * distance).exp();

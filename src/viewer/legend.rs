@@ -3,7 +3,7 @@
 
 use super::model::Model;
 use super::settings::HeatMode;
-use crate::render::Ramp;
+use crate::render::{HeightSpan, Ramp};
 use egui::{Align2, Color32, FontId, Rect, Ui, Vec2};
 
 /// Bar size in points.
@@ -23,14 +23,14 @@ pub fn height_legend_ui(ui: &Ui, rect: Rect, model: &Model) {
         return;
     }
     let ramp = latest.job.lighting.ramp;
-    let range = latest.job.terrain.z_range();
+    let span = HeightSpan::of(&latest.job.terrain);
     let painter = ui.painter_at(rect);
     let bar = Rect::from_min_size(
         rect.right_bottom() - Vec2::new(16.0 + BAR.x, 24.0 + BAR.y),
         BAR,
     );
     let font = FontId::proportional(12.0);
-    let marks = marks(ramp, range, BAR.y);
+    let marks = marks(ramp, span, BAR.y);
     let label_width = marks
         .iter()
         .map(|(_, text)| {
@@ -40,23 +40,24 @@ pub fn height_legend_ui(ui: &Ui, rect: Rect, model: &Model) {
                 .x
         })
         .fold(0.0f32, f32::max);
+    let title = painter.layout_no_wrap("height".to_owned(), font.clone(), Color32::WHITE);
+    // Labels on the bar's left; the title ends over the bar's right edge.
+    let left = (bar.left() - label_width - 14.0).min(bar.right() - title.size().x - 8.0);
     let backdrop = Rect::from_min_max(
-        bar.left_top() - Vec2::new(label_width + 14.0, 26.0),
+        egui::pos2(left, bar.top() - 26.0),
         bar.right_bottom() + Vec2::new(8.0, 10.0),
     );
     painter.rect_filled(backdrop, 4.0, Color32::from_black_alpha(170));
-    painter.text(
-        bar.center_top() - Vec2::new(0.0, 8.0),
-        Align2::CENTER_BOTTOM,
-        "height",
-        font.clone(),
+    painter.galley(
+        bar.right_top() - Vec2::new(title.size().x, 8.0 + title.size().y),
+        title,
         Color32::WHITE,
     );
-    let (lo, hi) = range;
+    let HeightSpan { lo, hi, .. } = span;
     for k in 0..BANDS {
         // Band `k` counts from the bottom; its colour is the height at its middle.
         let z = lo + (hi - lo) * (k as f64 + 0.5) / BANDS as f64;
-        let [r, g, b] = ramp.display_rgb(z, range);
+        let [r, g, b] = ramp.display_rgb(z, span);
         let y1 = bar.bottom() - BAR.y * k as f32 / BANDS as f32;
         let y0 = bar.bottom() - BAR.y * (k + 1) as f32 / BANDS as f32;
         painter.rect_filled(
@@ -84,15 +85,15 @@ pub fn height_legend_ui(ui: &Ui, rect: Rect, model: &Model) {
 /// The labelled heights, each as its distance up from the bar's bottom (of `length` points)
 /// and its text: the lowest and highest heights, and 0 where the ramp shows a sea, unless it
 /// would crowd one of the ends.
-fn marks(ramp: Ramp, (lo, hi): (f64, f64), length: f32) -> Vec<(f32, String)> {
-    let span = hi - lo;
-    let text = |z: f64| height_text(z, span);
-    if span <= 0.0 {
+fn marks(ramp: Ramp, span: HeightSpan, length: f32) -> Vec<(f32, String)> {
+    let HeightSpan { lo, hi, .. } = span;
+    let text = |z: f64| height_text(z, hi - lo);
+    if hi <= lo {
         return vec![(0.0, text(lo))];
     }
     let mut marks = vec![(0.0, text(lo)), (length, text(hi))];
-    if ramp.shows_sea((lo, hi)) {
-        let up = (length as f64 * -lo / span) as f32;
+    if ramp.shows_sea(span) {
+        let up = (length as f64 * -lo / (hi - lo)) as f32;
         if up >= LABEL_GAP && up <= length - LABEL_GAP {
             marks.push((up, text(0.0)));
         }
@@ -126,7 +127,7 @@ mod tests {
 
     #[test]
     fn sea_level_is_marked_where_it_lies_on_the_bar() {
-        let marks = marks(Ramp::Hypsometric, (-3000.0, 1000.0), 200.0);
+        let marks = marks(Ramp::Hypsometric, span(-3000.0, 1000.0), 200.0);
         assert_eq!(
             marks,
             vec![
@@ -142,8 +143,12 @@ mod tests {
         assert_eq!(marks_len(Ramp::Terrain, (-1.0, 1000.0)), 2);
     }
 
-    fn marks_len(ramp: Ramp, range: (f64, f64)) -> usize {
-        marks(ramp, range, 200.0).len()
+    fn marks_len(ramp: Ramp, (lo, hi): (f64, f64)) -> usize {
+        marks(ramp, span(lo, hi), 200.0).len()
+    }
+
+    fn span(lo: f64, hi: f64) -> HeightSpan {
+        HeightSpan { lo, hi, shore: 0.5 }
     }
 
     #[test]
