@@ -159,6 +159,8 @@ pub struct EffectsSection {
 pub struct ShadingSection {
     #[serde(default)]
     pub normals: Normals,
+    /// Colour by height: `terrain` (the default), `hypsometric`, `gray`, `viridis`, `magma` or
+    /// `turbo`; the land ramps show a sea below height 0 (see [`Ramp`]).
     #[serde(default)]
     pub ramp: Ramp,
 }
