@@ -1,15 +1,17 @@
 mod camera;
 mod gamma;
+mod normals;
 mod passes;
+mod ramp;
 mod scene;
 mod shade;
 mod stats;
 
 pub use camera::{Camera, CameraError};
 pub use passes::{Frame, Renderer, PASS_BLOCKS};
+pub use ramp::{HeightSpan, Ramp};
 pub use scene::{
-    EffectsSection, Lighting, Normals, Ramp, Scene, SceneError, SceneFile, ShadingSection,
-    SunSection,
+    EffectsSection, Lighting, Normals, Scene, SceneError, SceneFile, ShadingSection, SunSection,
 };
 pub use shade::{Culling, Sample, Shader, Shadow, ShadowSkip};
 pub use stats::{FrameStats, PixelStats};

@@ -2,6 +2,7 @@
 //! name.
 
 use super::camera::{Camera, CameraError};
+use super::ramp::Ramp;
 use crate::heightfield::{self, Builtin, Heightfield, LoadError, LoadOptions, NoDataValue};
 use crate::regular_file::{self, OpenError};
 use crate::traverse::{Arith, Method};
@@ -262,7 +263,8 @@ pub struct ShadingSection {
     /// Flat or smooth normals (default flat).
     #[serde(default)]
     pub normals: Normals,
-    /// The colour ramp by elevation (default terrain colours).
+    /// Colour by height: `terrain` (the default), `hypsometric`, `gray`, `viridis`, `magma` or
+    /// `turbo`; the land ramps show a sea below height 0 (see [`Ramp`]).
     #[serde(default)]
     pub ramp: Ramp,
 }
@@ -276,17 +278,6 @@ pub enum Normals {
     Flat,
     /// Vertex normals (central differences) interpolated across the triangle.
     Smooth,
-}
-
-/// Colour by elevation.
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub enum Ramp {
-    /// Greens, browns and grey rock up to snow, over the map's height range.
-    #[default]
-    Terrain,
-    /// From dark to light gray over the map's height range.
-    Gray,
 }
 
 /// A scene file's `[render]` section, as written (parsed when the scene is validated).

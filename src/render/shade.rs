@@ -2,7 +2,9 @@
 //! Lambert shading with an elevation ramp, sky and fog.
 
 use super::gamma;
-use super::scene::{Lighting, Normals, Ramp};
+use super::normals;
+use super::ramp::HeightSpan;
+use super::scene::{Lighting, Normals};
 use crate::geometry::{gradient, plane_height, triangle_corners};
 use crate::heightfield::Terrain;
 use crate::traverse::{
@@ -106,11 +108,11 @@ impl Shader<'_> {
     /// rationals: a whole pixel in rationals costs about a millisecond.
     /// `beam`: see [`WalkOptions::beam`].
     pub fn sample_exact(&self, ray: &Ray, beam: Option<Clearance>) -> Sample {
-        let cast = |found: &Found<Interval>, facing| match settled(|| {
-            self.shadow::<Interval>(found, ray, facing)
+        let cast = |found: &Found<Interval>, p, facing| match settled(|| {
+            self.shadow::<Interval>(found, ray, p, facing)
         }) {
             (cast, true) => Ok(cast),
-            (_, false) => self.shadow_in_rationals(found, ray, facing),
+            (_, false) => self.shadow_in_rationals(found, ray, p, facing),
         };
         match settled(|| self.sample_with::<Interval, ()>(ray, beam, cast)) {
             (Ok(sample), true) => sample,
@@ -122,12 +124,13 @@ impl Shader<'_> {
     }
 
     /// The shadow ray of a hit found in intervals, cast again in rationals from the exact hit
-    /// point. `Err` where the primary ray runs in the hit triangle's plane, whose exact hit
-    /// only the walk tells.
+    /// point (`p` is the point shaded). `Err` where the primary ray runs in the hit triangle's
+    /// plane, whose exact hit only the walk tells.
     fn shadow_in_rationals(
         &self,
         found: &Found<Interval>,
         ray: &Ray,
+        p: DVec3,
         facing: f64,
     ) -> Result<Cast, ()> {
         let t = plane_t_exact(self.terrain, ray, found.cell, found.triangle).ok_or(())?;
@@ -136,26 +139,27 @@ impl Shader<'_> {
             cell: found.cell,
             triangle: found.triangle,
         };
-        let (shadow, counters, _) = self.shadow::<Exact>(&exact, ray, facing);
+        let (shadow, counters, _) = self.shadow::<Exact>(&exact, ray, p, facing);
         Ok((shadow, counters, true))
     }
 
     /// Traces and shades one primary ray in arithmetic `S`, behind a beam that cleared the
     /// way if given (see [`WalkOptions::beam`]).
     pub fn sample<S: Scalar>(&self, ray: &Ray, beam: Option<Clearance>) -> Sample {
-        let cast = |found: &Found<S>, facing| Ok::<_, Never>(self.shadow::<S>(found, ray, facing));
+        let cast =
+            |found: &Found<S>, p, facing| Ok::<_, Never>(self.shadow::<S>(found, ray, p, facing));
         let Ok(sample) = self.sample_with(ray, beam, cast);
         sample
     }
 
-    /// [`Shader::sample`], with the shadow ray of a hit cast by `cast` (given the hit and how
-    /// the surface faces the sun), which also tells whether it was cast again in rationals, or
-    /// fails.
+    /// [`Shader::sample`], with the shadow ray of a hit cast by `cast` (given the hit, the point
+    /// shaded and how the surface faces the sun there), which also tells whether it was cast
+    /// again in rationals, or fails.
     fn sample_with<S: Scalar, E>(
         &self,
         ray: &Ray,
         beam: Option<Clearance>,
-        cast: impl FnOnce(&Found<S>, f64) -> Result<Cast, E>,
+        cast: impl FnOnce(&Found<S>, DVec3, f64) -> Result<Cast, E>,
     ) -> Result<Sample, E> {
         let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
         let walk = WalkOptions {
@@ -183,7 +187,7 @@ impl Shader<'_> {
             DVec3::from(found.point(&o, &d).map(|c| c.to_f64()))
         };
         let facing = self.facing(found.cell, found.triangle, p);
-        let (shadow, secondary, redone) = cast(&found, facing)?;
+        let (shadow, secondary, redone) = cast(&found, p, facing)?;
         Ok(Sample {
             rgb: self.surface_rgb(ray, p, t, facing, shadow),
             hit: true,
@@ -213,7 +217,7 @@ impl Shader<'_> {
             _ => facing.max(0.0),
         };
         let light = self.lighting.ambient + self.lighting.intensity * lit;
-        let mut colour = self.ramp(p.z) * light;
+        let mut colour = self.lighting.ramp.colour(p.z, HeightSpan::of(self.terrain)) * light;
         if self.lighting.fog > 0.0 {
             let distance = t * DVec3::from(ray.dir()).length();
             let clear = (-self.lighting.fog * distance).exp();
@@ -227,8 +231,9 @@ impl Shader<'_> {
         pack(self.sky(ray.dir()))
     }
 
-    /// Decides whether a shadow ray can change the pixel, and casts it if so.
-    fn shadow<S: Scalar>(&self, found: &Found<S>, ray: &Ray, facing: f64) -> Cast {
+    /// Decides whether a shadow ray of the hit `found`, shaded at `p`, can change the pixel,
+    /// and casts it if so.
+    fn shadow<S: Scalar>(&self, found: &Found<S>, ray: &Ray, p: DVec3, facing: f64) -> Cast {
         let skip = |why| (Shadow::Skipped(why), Counters::default(), false);
         if !self.lighting.shadows {
             return (Shadow::NotAsked, Counters::default(), false);
@@ -253,6 +258,46 @@ impl Shader<'_> {
         let (ray_o, ray_d) = (ray.origin(), ray.dir());
         let largest = (0..3).fold(0.0f64, |m, k| m.max(ray_o[k].abs() + t * ray_d[k].abs()));
         let lift = 64.0 * S::rounding_error(largest) * (1.0 + self.terrain.max_slope());
+        let smooth = self.lighting.normals == Normals::Smooth;
+        let origin = if smooth {
+            // Smooth shading: from the curved surface the shading describes, which its own
+            // flat triangle may cross (see `normals`); the ray is then an ordinary one from
+            // that point, traced exactly in exact arithmetics.
+            let start = normals::shadow_origin(self.terrain, found.cell, found.triangle, p);
+            [start.x, start.y, start.z + lift].map(S::from_f64)
+        } else {
+            let [x, y, z] = self.plane_point(found, ray);
+            [x, y, z + S::from_f64(lift)]
+        };
+        let (_, z_max) = self.terrain.z_range();
+        if self.culling.above_terrain && sun[2] > 0.0 && origin[2] > S::from_f64(z_max) {
+            return skip(ShadowSkip::AboveTerrain);
+        }
+        // A smoothly shaded ray skips its own triangle, which stands for the curved surface it
+        // starts on.
+        let walk = WalkOptions {
+            start_triangle: (smooth || self.leaves_at_once(found))
+                .then_some((found.cell, found.triangle)),
+            exact_start: (S::EXACT && !smooth).then_some(PlanePoint {
+                ray: *ray,
+                cell: found.cell,
+                triangle: found.triangle,
+            }),
+            ..WalkOptions::new(self.method, Query::Shadow)
+        };
+        let answer = trace_scalar(self.terrain, &origin, &sun.map(S::from_f64), sun, walk);
+        (
+            Shadow::Cast {
+                shadowed: answer.hit.is_some(),
+            },
+            answer.counters,
+            answer.decided_exactly,
+        )
+    }
+
+    /// The hit point as a shadow ray from the flat triangle starts at, in arithmetic `S`.
+    fn plane_point<S: Scalar>(&self, found: &Found<S>, ray: &Ray) -> [S; 3] {
+        let (ray_o, ray_d) = (ray.origin(), ray.dir());
         let [x, y] = [0, 1].map(|k| S::along(ray_o[k], ray_d[k], &found.t));
         // Rounding arithmetics take the height on the hit triangle's plane: exact on flat
         // ground. Without rounding the ray's own point is on the plane, and enclosing it takes
@@ -272,30 +317,7 @@ impl Shader<'_> {
             let heights = self.terrain.corner_heights(i, j).map(S::from_f64);
             plane_height(found.triangle, found.cell, heights, x.clone(), y.clone())
         };
-        let origin = [x, y, z + S::from_f64(lift)];
-        let (_, z_max) = self.terrain.z_range();
-        if self.culling.above_terrain && sun[2] > 0.0 && origin[2] > S::from_f64(z_max) {
-            return skip(ShadowSkip::AboveTerrain);
-        }
-        let walk = WalkOptions {
-            start_triangle: self
-                .leaves_at_once(found)
-                .then_some((found.cell, found.triangle)),
-            exact_start: S::EXACT.then_some(PlanePoint {
-                ray: *ray,
-                cell: found.cell,
-                triangle: found.triangle,
-            }),
-            ..WalkOptions::new(self.method, Query::Shadow)
-        };
-        let answer = trace_scalar(self.terrain, &origin, &sun.map(S::from_f64), sun, walk);
-        (
-            Shadow::Cast {
-                shadowed: answer.hit.is_some(),
-            },
-            answer.counters,
-            answer.decided_exactly,
-        )
+        [x, y, z]
     }
 
     /// Whether a ray towards the sun leaves the hit triangle's plane at once, so that it
@@ -330,88 +352,10 @@ impl Shader<'_> {
 
     /// The shading normal at `p` on triangle `triangle` of cell `(i, j)`.
     #[inline(always)]
-    fn normal(&self, (i, j): (usize, usize), triangle: u8, p: DVec3) -> DVec3 {
-        let (u, w) = (
-            (p.x - i as f64).clamp(0.0, 1.0),
-            (p.y - j as f64).clamp(0.0, 1.0),
-        );
-        let n = match (self.lighting.normals, triangle) {
-            (Normals::Flat, _) => self.geometric_normal((i, j), triangle),
-            // Interpolate vertex normals with the triangle's barycentric weights.
-            (Normals::Smooth, 0) => {
-                self.vertex_normal(i, j) * (1.0 - u)
-                    + self.vertex_normal(i + 1, j) * (u - w)
-                    + self.vertex_normal(i + 1, j + 1) * w
-            }
-            (Normals::Smooth, _) => {
-                self.vertex_normal(i, j) * (1.0 - w)
-                    + self.vertex_normal(i + 1, j + 1) * u
-                    + self.vertex_normal(i, j + 1) * (w - u)
-            }
-        };
-        n.normalize_or(DVec3::Z)
-    }
-
-    /// Central-difference normal at sample `(i, j)`, one-sided at the border and next to a
-    /// no-data sample (whose stand-in height is not terrain); flat where both sides are.
-    fn vertex_normal(&self, i: usize, j: usize) -> DVec3 {
-        let field = self.terrain.field();
-        let (w, h) = (field.width() - 1, field.height() - 1);
-        let (i0, i1, j0, j1) = (
-            Some(i.saturating_sub(1))
-                .filter(|&x| !field.is_nodata(x, j))
-                .unwrap_or(i),
-            Some((i + 1).min(w))
-                .filter(|&x| !field.is_nodata(x, j))
-                .unwrap_or(i),
-            Some(j.saturating_sub(1))
-                .filter(|&y| !field.is_nodata(i, y))
-                .unwrap_or(j),
-            Some((j + 1).min(h))
-                .filter(|&y| !field.is_nodata(i, y))
-                .unwrap_or(j),
-        );
-        let slope = |z1: f64, z0: f64, run: usize| {
-            if run == 0 {
-                0.0
-            } else {
-                (z1 - z0) / run as f64
-            }
-        };
-        let dzdx = slope(field.z(i1, j), field.z(i0, j), i1 - i0);
-        let dzdy = slope(field.z(i, j1), field.z(i, j0), j1 - j0);
-        DVec3::new(-dzdx, -dzdy, 1.0).normalize_or(DVec3::Z)
-    }
-
-    /// Surface colour by elevation.
-    fn ramp(&self, z: f64) -> DVec3 {
-        let (lo, hi) = self.terrain.z_range();
-        // A flat field has one colour (and rounding must not make up a range).
-        let range = hi - lo;
-        let e = if range > 1e-9 * hi.abs().max(1.0) {
-            ((z - lo) / range).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        match self.lighting.ramp {
-            Ramp::Gray => DVec3::splat(0.25 + 0.75 * e),
-            Ramp::Terrain => {
-                const STOPS: [(f64, [f64; 3]); 5] = [
-                    (0.0, [0.18, 0.32, 0.14]),
-                    (0.35, [0.36, 0.52, 0.22]),
-                    (0.6, [0.52, 0.43, 0.29]),
-                    (0.82, [0.55, 0.53, 0.50]),
-                    (0.95, [0.95, 0.95, 0.97]),
-                ];
-                let k = STOPS
-                    .iter()
-                    .rposition(|s| s.0 <= e)
-                    .unwrap_or(0)
-                    .min(STOPS.len() - 2);
-                let ((e0, c0), (e1, c1)) = (STOPS[k], STOPS[k + 1]);
-                let f = ((e - e0) / (e1 - e0)).clamp(0.0, 1.0);
-                DVec3::from(c0).lerp(DVec3::from(c1), f)
-            }
+    fn normal(&self, cell: (usize, usize), triangle: u8, p: DVec3) -> DVec3 {
+        match self.lighting.normals {
+            Normals::Flat => self.geometric_normal(cell, triangle).normalize_or(DVec3::Z),
+            Normals::Smooth => normals::smooth_normal(self.terrain, cell, triangle, p),
         }
     }
 

@@ -12,6 +12,7 @@ mod background;
 mod compose;
 mod decoding;
 mod hooks;
+mod legend;
 mod loader;
 mod mailbox;
 mod model;

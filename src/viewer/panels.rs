@@ -125,11 +125,13 @@ fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         ui.radio_value(&mut s.normals, Normals::Flat, "flat");
         ui.radio_value(&mut s.normals, Normals::Smooth, "smooth");
     });
-    ui.horizontal(|ui| {
-        ui.label("colour ramp");
-        ui.radio_value(&mut s.ramp, Ramp::Terrain, "terrain");
-        ui.radio_value(&mut s.ramp, Ramp::Gray, "gray");
-    });
+    egui::ComboBox::from_label("colour ramp")
+        .selected_text(s.ramp.name())
+        .show_ui(ui, |ui| {
+            for ramp in Ramp::ALL {
+                ui.selectable_value(&mut s.ramp, ramp, ramp.name());
+            }
+        });
     let terrain = &model.shown.terrain;
     let field = terrain.field();
     let (lo, hi) = terrain.z_range();

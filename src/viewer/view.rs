@@ -42,6 +42,7 @@ pub fn view_ui(ui: &mut Ui, model: &mut Model) -> Rect {
         );
     }
     status_ui(ui, model, rect);
+    super::legend::height_legend_ui(ui, rect, model);
     messages_ui(ui, model, rect);
     if model.drop_hover {
         drop_hint_ui(ui, rect);

@@ -18,4 +18,6 @@ mod formats;
 mod hard_cases;
 mod holes;
 mod loader_fuzz;
+mod ramps;
 mod render;
+mod terminator;

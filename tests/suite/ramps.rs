@@ -1,0 +1,122 @@
+//! Colour ramps: scene files name them (an unknown name is an error listing the valid ones),
+//! and a map reaching below height 0 is coloured as land and sea by the land ramps.
+
+use heightray::heightfield::Quantisation;
+use heightray::render::{Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Scene, Shader};
+use heightray::{Arith, Heightfield, Method, Terrain};
+
+const SCENE: &str = r#"
+[heightmap]
+path = "builtin:small49"
+z_scale = 12.0
+[camera]
+eye = [-10.0, -10.0, 30.0]
+target = [24.0, 24.0, 0.0]
+width = 16
+height = 16
+"#;
+
+fn load(text: &str) -> Result<Scene, String> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("ramp.toml");
+    std::fs::write(&path, text).unwrap();
+    Scene::load(&path).map_err(|e| e.to_string())
+}
+
+#[test]
+fn scene_files_name_every_ramp_and_an_unknown_one_is_refused_with_the_valid_names() {
+    for ramp in Ramp::ALL {
+        let text = format!("{SCENE}[shading]\nramp = \"{}\"\n", ramp.name());
+        let scene = load(&text).unwrap_or_else(|e| panic!("{}: {e}", ramp.name()));
+        assert_eq!(scene.lighting.ramp, ramp);
+    }
+    assert_eq!(load(SCENE).unwrap().lighting.ramp, Ramp::Terrain);
+    let error = load(&format!("{SCENE}[shading]\nramp = \"rainbow\"\n")).unwrap_err();
+    assert!(
+        error.contains("ramp.toml") && error.contains("rainbow"),
+        "{error}"
+    );
+    for ramp in Ramp::ALL {
+        assert!(error.contains(ramp.name()), "{error}");
+    }
+}
+
+/// A coast in metres, as a signed or float raster holds it: the western half a sea floor at
+/// -1600, the eastern half a plain at sea level, on a 9 x 9 grid (`z_scale` shrinks both
+/// alike, to -6.25 and 0, and keeps sea level at 0).
+fn coast() -> Terrain {
+    let samples = (0..9)
+        .flat_map(|_| (0..9).map(|x| if x < 4 { 0 } else { 1600 }))
+        .collect();
+    let quantisation = Quantisation::Offset {
+        lowest: -1600.0,
+        step: 1.0,
+    };
+    let field = Heightfield::new(9, 9, samples, quantisation, 1.0 / 256.0, None).unwrap();
+    Terrain::new(field)
+}
+
+/// Straight down on the coast, lit straight from above without ambient light: flat ground
+/// shows its ramp colour at full light, which the display gamma returns to the ramp's bytes.
+fn top_down(terrain: &Terrain, ramp: Ramp) -> Frame {
+    let lighting = Lighting {
+        sun: [0.0, 0.0, 1.0],
+        intensity: 1.0,
+        ambient: 0.0,
+        shadows: false,
+        fog: 0.0,
+        normals: Normals::Flat,
+        ramp,
+    };
+    let camera = Camera::look_at(
+        [4.0, 4.0, 40.0],
+        [4.0, 4.0, 0.0],
+        [0.0, 1.0, 0.0],
+        11.0,
+        (16, 16),
+    )
+    .unwrap();
+    let renderer = Renderer {
+        shader: Shader {
+            terrain,
+            lighting,
+            method: Method::Runs,
+            culling: Culling::default(),
+        },
+        camera,
+        arith: Arith::F64,
+    };
+    let mut frame = Frame::new(16, 16);
+    renderer.render(&mut frame);
+    frame
+}
+
+fn bytes(pixel: u32) -> [u8; 3] {
+    [(pixel >> 16) as u8, (pixel >> 8) as u8, pixel as u8]
+}
+
+#[test]
+fn the_land_ramps_colour_below_sea_level_as_sea() {
+    let terrain = coast();
+    assert_eq!(terrain.z_range(), (-6.25, 0.0));
+    // Columns 1 and 14 of the middle row: over x < 3 (the sea floor) and x > 5 (the plain).
+    let row = 8 * 16;
+    let (west, east) = (row + 1, row + 14);
+    // The hypsometric ramp's lowest tint (Wikipedia's 0 m, #ACD0A5) on the plain; a dark
+    // blue on the sea floor.
+    let hypsometric = top_down(&terrain, Ramp::Hypsometric);
+    assert_eq!(bytes(hypsometric.pixels[east]), [172, 208, 165]);
+    let [r, g, b] = bytes(hypsometric.pixels[west]);
+    assert!(b > 90 && b > g + 30 && g > r + 30, "sea floor {r} {g} {b}");
+    // The default ramp: its own lowest colour on land (0.18, 0.32, 0.14 in linear light), the
+    // same sea.
+    let terrain_ramp = top_down(&terrain, Ramp::Terrain);
+    let lowland = [0.18f64, 0.32, 0.14].map(|v| (v.powf(1.0 / 2.2) * 255.0 + 0.5) as u8);
+    assert_eq!(bytes(terrain_ramp.pixels[east]), lowland);
+    assert_eq!(terrain_ramp.pixels[west], hypsometric.pixels[west]);
+    // A data ramp spans the heights without a sea: matplotlib's viridis from its first
+    // colour (#440154) at the lowest height to its last (#FDE725) at the highest.
+    let viridis = top_down(&terrain, Ramp::Viridis);
+    assert_eq!(bytes(viridis.pixels[west]), [68, 1, 84]);
+    assert_eq!(bytes(viridis.pixels[east]), [253, 231, 37]);
+}
