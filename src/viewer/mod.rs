@@ -8,10 +8,14 @@ mod app;
 mod background;
 mod compose;
 mod decoding;
+mod export;
+mod framing;
+mod ground;
 mod hooks;
 mod loader;
 mod mailbox;
 mod model;
+mod navigation;
 mod orbit;
 mod panels;
 mod probe;
@@ -51,8 +55,10 @@ pub struct ViewerOptions {
     pub render_scale: Option<f32>,
     /// Quit after this many fully refined frames were shown (for tests).
     pub exit_after_frames: Option<u64>,
-    /// Where screenshots go (with `exit_after_frames`: the last frame, saved on exit).
+    /// With `exit_after_frames`: where the window's last frame is saved on exit.
     pub screenshot: Option<PathBuf>,
+    /// Where S exports rendered images (None: the current directory).
+    pub export_dir: Option<PathBuf>,
     /// Write the window's state as JSON here after every frame (for tests).
     pub report_state: Option<PathBuf>,
 }
@@ -67,6 +73,7 @@ impl Default for ViewerOptions {
             render_scale: None,
             exit_after_frames: None,
             screenshot: None,
+            export_dir: None,
             report_state: None,
         }
     }
@@ -78,7 +85,8 @@ pub enum UserEvent {
     /// A measurement or comparison reported progress or a result.
     Accuracy,
     Load(LoadEvent),
-    Saved(Result<PathBuf, String>),
+    /// An export was written, or why not.
+    Exported(Result<export::Exported, String>),
 }
 
 /// Opens the window and runs until it is closed.
@@ -141,13 +149,17 @@ impl Shell {
             screenshot: self.options.screenshot.clone(),
             report_state: self.options.report_state.clone(),
         };
-        App::new(
+        let mut app = App::new(
             window,
             self.proxy.clone(),
             loaded,
             self.options.render_scale,
             hooks,
-        )
+        )?;
+        if let Some(dir) = &self.options.export_dir {
+            app.set_export_dir(dir);
+        }
+        Ok(app)
     }
 }
 

@@ -4,6 +4,7 @@
 
 use super::compose::{self, HeatScale};
 use super::model::Model;
+use super::navigation;
 use super::probe::{Probe, ProbeSetup};
 use super::settings::HeatMode;
 use crate::render::PASS_BLOCKS;
@@ -55,7 +56,9 @@ pub fn view_ui(ui: &mut Ui, model: &mut Model) -> Rect {
     rect
 }
 
-/// Orbit (left drag), pan (right or middle drag, or shift + left drag), zoom (wheel).
+/// Orbit (left drag), pan (right or middle drag, or shift + left drag), zoom towards the point
+/// under the pointer (wheel); then the framed view follows the view's shape and the camera
+/// stays above the ground.
 fn camera_input(ui: &Ui, response: &egui::Response, model: &mut Model, rect: Rect) {
     use egui::PointerButton::{Middle, Primary, Secondary};
     let delta = response.drag_delta();
@@ -87,8 +90,38 @@ fn camera_input(ui: &Ui, response: &egui::Response, model: &mut Model, rect: Rec
                 })
                 .sum()
         });
-        if steps != 0.0 {
-            model.orbit.zoom(f64::from(steps));
+        if let (true, Some(pos)) = (steps != 0.0, response.hover_pos()) {
+            let point = zoom_point(ui, model, rect, pos);
+            model.orbit.zoom_towards(point, f64::from(steps));
+        }
+    }
+    let aspect = f64::from(rect.width()) / f64::from(rect.height());
+    navigation::settle(model, aspect);
+}
+
+/// What the wheel zooms towards: the terrain under the pointer in the current camera, or where
+/// the pointer's ray passes the target's distance when it meets only sky.
+fn zoom_point(ui: &Ui, model: &Model, rect: Rect, pos: Pos2) -> [f64; 3] {
+    let ppp = ui.ctx().pixels_per_point();
+    let physical = compose::physical_rect(rect, ppp);
+    let size = (physical.width.max(1), physical.height.max(1));
+    let pixel = (
+        ((pos.x - rect.min.x) * ppp).max(0.0) as u32,
+        ((pos.y - rect.min.y) * ppp).max(0.0) as u32,
+    );
+    let Ok(camera) = model.orbit.camera(size) else {
+        return model.orbit.target;
+    };
+    let ray = camera.ray(pixel.0.min(size.0 - 1), pixel.1.min(size.1 - 1));
+    let options = TraceOptions::new(model.settings.method, crate::Arith::F64);
+    match crate::trace(&model.shown.terrain, &ray, &options).hit {
+        Some(hit) => hit.point,
+        None => {
+            let (origin, dir) = (
+                glam::DVec3::from(ray.origin()),
+                glam::DVec3::from(ray.dir()),
+            );
+            (origin + dir.normalize_or_zero() * model.orbit.distance).into()
         }
     }
 }
@@ -399,7 +432,12 @@ fn help_ui(ui: &Ui, model: &mut Model) {
 const HELP: &[(&str, &str)] = &[
     ("Left drag", "orbit around the target"),
     ("Right drag, Shift + left drag", "pan"),
-    ("Wheel", "zoom"),
+    ("Wheel", "zoom towards the point under the cursor"),
+    ("Arrow keys", "move over the map"),
+    ("Q, E", "turn around the target"),
+    ("+, -", "zoom in, out"),
+    ("Page Up, Page Down", "look down more, less"),
+    ("F", "frame the whole map from this direction"),
     (
         "Double-click",
         "orbit around the terrain point under the cursor",
@@ -412,8 +450,8 @@ const HELP: &[(&str, &str)] = &[
         "Drop a file",
         "open a height map (PNG, PGM, TIFF) or a scene (.toml)",
     ),
-    ("R", "reset the view"),
-    ("S", "save a screenshot (PNG)"),
+    ("R", "reset the view (the whole map)"),
+    ("S", "export the rendered image (PNG, no panels)"),
     ("H", "hide or show the panels"),
     ("F1", "this help"),
 ];
