@@ -8,6 +8,8 @@
 mod accuracy;
 mod app;
 mod decoding;
+mod export;
+mod navigation;
 mod x11;
 mod xdnd;
 

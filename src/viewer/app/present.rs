@@ -114,9 +114,24 @@ pub(super) fn keys_ui(ui: &egui::Ui, model: &mut Model, actions: &mut Vec<Action
     }
     navigation::keys_ui(ui, model, actions);
     let pressed = |key| ui.input(|i| i.key_pressed(key));
-    if pressed(egui::Key::S) {
-        actions.push(Action::Screenshot);
-    }
+    // Every press is one export, even two within one frame; holding the key is one press.
+    let exports = ui.input(|i| {
+        i.events
+            .iter()
+            .filter(|e| {
+                matches!(
+                    e,
+                    egui::Event::Key {
+                        key: egui::Key::S,
+                        pressed: true,
+                        repeat: false,
+                        ..
+                    }
+                )
+            })
+            .count()
+    });
+    actions.extend((0..exports).map(|_| Action::Screenshot));
     if pressed(egui::Key::H) {
         model.panels_visible = !model.panels_visible;
     }
