@@ -32,10 +32,6 @@ impl Map {
         f64::from(*self.samples.iter().min().unwrap_or(&0)) * self.unit
     }
 
-    fn highest(&self) -> f64 {
-        f64::from(*self.samples.iter().max().unwrap_or(&0)) * self.unit
-    }
-
     /// The surface at `(x, y)`: the plane through the three corners of the cell's triangle
     /// that holds the point (cells split from corner (i, j) to (i+1, j+1)); off the map, the
     /// lowest height.
@@ -200,7 +196,11 @@ fn wheel_drags_and_keys_never_put_the_eye_under_the_surface() {
             0 | 1 => {
                 session.x.move_to(session.screen(at));
                 sleep(Duration::from_millis(40));
-                let (button, notches) = if dice.next() % 4 == 0 { (5, 2) } else { (4, 6) };
+                let (button, notches) = if dice.next().is_multiple_of(4) {
+                    (5, 2)
+                } else {
+                    (4, 6)
+                };
                 for _ in 0..notches {
                     session.x.press(button);
                     session.x.release(button);
