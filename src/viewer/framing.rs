@@ -1,7 +1,7 @@
 //! Framing the whole map: the orbit, from given angles, whose view holds every corner of the
 //! map's bounding box, whatever the view's aspect.
 
-use super::ground::surface_z;
+use super::ground::on_map;
 use super::orbit::Orbit;
 use crate::Terrain;
 use glam::DVec3;
@@ -47,11 +47,7 @@ pub fn fit(terrain: &Terrain, yaw_deg: f64, pitch_deg: f64, fov_y_deg: f64, aspe
     let corners = box_corners(terrain);
     let centre = 0.5 * (corners[0] + corners[7]);
     let mut orbit = Orbit {
-        target: [
-            centre.x,
-            centre.y,
-            centre.z.max(surface_z(terrain, centre.x, centre.y)),
-        ],
+        target: on_map(centre.into(), terrain),
         yaw_deg,
         pitch_deg,
         distance: 1.0,
@@ -86,8 +82,8 @@ pub fn fit(terrain: &Terrain, yaw_deg: f64, pitch_deg: f64, fov_y_deg: f64, aspe
             (x, y) = ((x.0.min(sx), x.1.max(sx)), (y.0.min(sy), y.1.max(sy)));
         }
         let shift = right * (0.5 * (x.0 + x.1) * distance) + up * (0.5 * (y.0 + y.1) * distance);
-        let moved = target + shift;
-        orbit.target = [moved.x, moved.y, moved.z];
+        // (The target stays where every camera move leaves it, or the framing would not last.)
+        orbit.target = on_map((target + shift).into(), terrain);
     }
     orbit
 }
@@ -96,6 +92,7 @@ pub fn fit(terrain: &Terrain, yaw_deg: f64, pitch_deg: f64, fov_y_deg: f64, aspe
 mod tests {
     use super::*;
     use crate::heightfield::Builtin;
+    use crate::viewer::ground::keep_above;
 
     /// Every corner of the map lands inside the image of the orbit's camera.
     fn corners_inside(terrain: &Terrain, orbit: &Orbit, size: (u32, u32)) -> bool {
@@ -124,6 +121,10 @@ mod tests {
             let aspect = f64::from(size.0) / f64::from(size.1);
             let orbit = fit(&terrain, yaw, pitch, DEFAULT_FOV_Y_DEG, aspect);
             assert!(corners_inside(&terrain, &orbit, size), "{size:?}");
+            // Already where the ground rule would put it: the framing lasts.
+            let mut kept = orbit;
+            keep_above(&mut kept, &terrain);
+            assert_eq!(kept, orbit, "{size:?}");
             // Tight: a fifth closer and some corner leaves the view.
             let closer = Orbit {
                 distance: 0.8 * orbit.distance,

@@ -31,6 +31,14 @@ pub fn surface_z(terrain: &Terrain, x: f64, y: f64) -> f64 {
     }
 }
 
+/// The nearest point to `point` over the map and not below its surface.
+pub fn on_map([x, y, z]: [f64; 3], terrain: &Terrain) -> [f64; 3] {
+    let field = terrain.field();
+    let (w, h) = ((field.width() - 1) as f64, (field.height() - 1) as f64);
+    let (x, y) = (x.clamp(0.0, w), y.clamp(0.0, h));
+    [x, y, z.max(surface_z(terrain, x, y))]
+}
+
 /// The height the eye keeps above the surface.
 pub fn clearance(orbit: &Orbit) -> f64 {
     CLEARANCE * orbit.scale
@@ -48,11 +56,7 @@ fn shortfall(orbit: &Orbit, terrain: &Terrain) -> f64 {
 /// distance), as if it slid up over the ground; if even looking straight down is too low, the
 /// whole camera rises.
 pub fn keep_above(orbit: &mut Orbit, terrain: &Terrain) {
-    let field = terrain.field();
-    let (w, h) = ((field.width() - 1) as f64, (field.height() - 1) as f64);
-    let [x, y, z] = orbit.target;
-    let (x, y) = (x.clamp(0.0, w), y.clamp(0.0, h));
-    orbit.target = [x, y, z.max(surface_z(terrain, x, y))];
+    orbit.target = on_map(orbit.target, terrain);
     orbit.pitch_deg = orbit.pitch_deg.clamp(MIN_PITCH_DEG, PITCH_LIMIT_DEG);
     if shortfall(orbit, terrain) <= 0.0 {
         return;

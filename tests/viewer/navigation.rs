@@ -15,7 +15,8 @@ const LEFT: u32 = 0xff51;
 const RIGHT: u32 = 0xff53;
 const PAGE_DOWN: u32 = 0xff56;
 
-/// A height map as samples (row `j`, column `i`) with its height per sample value.
+/// A height map as its image's samples (row by row from the top) with the height per sample
+/// value. Image row `r` is the terrain's row `j = height - 1 - r` (y grows north).
 struct Map {
     width: usize,
     height: usize,
@@ -25,7 +26,7 @@ struct Map {
 
 impl Map {
     fn z(&self, i: usize, j: usize) -> f64 {
-        f64::from(self.samples[j * self.width + i]) * self.unit
+        f64::from(self.samples[(self.height - 1 - j) * self.width + i]) * self.unit
     }
 
     fn lowest(&self) -> f64 {
