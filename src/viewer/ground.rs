@@ -31,12 +31,17 @@ pub fn surface_z(terrain: &Terrain, x: f64, y: f64) -> f64 {
     }
 }
 
-/// The nearest point to `point` over the map and not below its surface.
+/// The nearest point to `point` in the map's box and not below its surface: a target in the
+/// air above the highest peak leaves the view looking at nothing.
 pub fn on_map([x, y, z]: [f64; 3], terrain: &Terrain) -> [f64; 3] {
     let field = terrain.field();
     let (w, h) = ((field.width() - 1) as f64, (field.height() - 1) as f64);
     let (x, y) = (x.clamp(0.0, w), y.clamp(0.0, h));
-    [x, y, z.max(surface_z(terrain, x, y))]
+    [
+        x,
+        y,
+        z.min(terrain.z_range().1).max(surface_z(terrain, x, y)),
+    ]
 }
 
 /// The height the eye keeps above the surface.
@@ -50,8 +55,8 @@ fn shortfall(orbit: &Orbit, terrain: &Terrain) -> f64 {
     surface_z(terrain, eye.x, eye.y) + clearance(orbit) - eye.z
 }
 
-/// Brings the orbit back within the rules after a move: the target over the map and not
-/// below its surface, the pitch within its limits, and the eye above the surface under it.
+/// Brings the orbit back within the rules after a move: the target over the map, not below
+/// its surface nor above its highest point, the pitch within its limits, and the eye above the surface under it.
 /// An eye that is too low first rises on its orbit (more pitch, the same target and
 /// distance), as if it slid up over the ground; if even looking straight down is too low, the
 /// whole camera rises.
@@ -136,6 +141,14 @@ mod tests {
         keep_above(&mut orbit, &terrain);
         assert_eq!(orbit.target[0], 2.0);
         assert!(orbit.target[2] >= 0.0);
+        // A target in the air comes down to the highest point of the map.
+        let mut high = Orbit {
+            target: [1.0, 0.0, 50.0],
+            pitch_deg: 80.0,
+            ..orbit
+        };
+        keep_above(&mut high, &terrain);
+        assert_eq!(high.target, [1.0, 0.0, 8.0]);
         let eye = orbit.eye();
         assert!(eye.z >= surface_z(&terrain, eye.x, eye.y) + clearance(&orbit));
         // A target on the peak's flank, the eye level with it inside the other flank: the eye

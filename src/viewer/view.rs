@@ -91,39 +91,31 @@ fn camera_input(ui: &Ui, response: &egui::Response, model: &mut Model, rect: Rec
                 .sum()
         });
         if let (true, Some(pos)) = (steps != 0.0, response.hover_pos()) {
-            let point = zoom_point(ui, model, rect, pos);
-            model.orbit.zoom_towards(point, f64::from(steps));
+            match terrain_under(ui, model, rect, pos) {
+                Some(point) => model.orbit.zoom_towards(point, f64::from(steps)),
+                // Over the sky: towards the target, not up into the air.
+                None => model.orbit.zoom(f64::from(steps)),
+            }
         }
     }
     let aspect = f64::from(rect.width()) / f64::from(rect.height());
     navigation::settle(model, aspect);
 }
 
-/// What the wheel zooms towards: the terrain under the pointer in the current camera, or where
-/// the pointer's ray passes the target's distance when it meets only sky.
-fn zoom_point(ui: &Ui, model: &Model, rect: Rect, pos: Pos2) -> [f64; 3] {
+/// The terrain point under `pos` in the current camera (not the frame on screen, which may
+/// lag behind it), if the pointer is over the terrain.
+fn terrain_under(ui: &Ui, model: &Model, rect: Rect, pos: Pos2) -> Option<[f64; 3]> {
     let ppp = ui.ctx().pixels_per_point();
     let physical = compose::physical_rect(rect, ppp);
     let size = (physical.width.max(1), physical.height.max(1));
     let pixel = (
-        ((pos.x - rect.min.x) * ppp).max(0.0) as u32,
-        ((pos.y - rect.min.y) * ppp).max(0.0) as u32,
+        (((pos.x - rect.min.x) * ppp).max(0.0) as u32).min(size.0 - 1),
+        (((pos.y - rect.min.y) * ppp).max(0.0) as u32).min(size.1 - 1),
     );
-    let Ok(camera) = model.orbit.camera(size) else {
-        return model.orbit.target;
-    };
-    let ray = camera.ray(pixel.0.min(size.0 - 1), pixel.1.min(size.1 - 1));
+    let ray = model.orbit.camera(size).ok()?.ray(pixel.0, pixel.1);
     let options = TraceOptions::new(model.settings.method, crate::Arith::F64);
-    match crate::trace(&model.shown.terrain, &ray, &options).hit {
-        Some(hit) => hit.point,
-        None => {
-            let (origin, dir) = (
-                glam::DVec3::from(ray.origin()),
-                glam::DVec3::from(ray.dir()),
-            );
-            (origin + dir.normalize_or_zero() * model.orbit.distance).into()
-        }
-    }
+    let hit = crate::trace(&model.shown.terrain, &ray, &options).hit?;
+    Some(hit.point)
 }
 
 /// The rendered pixel under a point of the view, in the frame on screen.
