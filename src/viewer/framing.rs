@@ -27,6 +27,32 @@ pub fn box_corners(terrain: &Terrain) -> [DVec3; 8] {
     })
 }
 
+/// Points whose hull holds the whole surface, and not much more: the corners of the boxes of
+/// the mipmap's blocks on a level of at most 16 x 16 blocks (each block's box spans its lowest
+/// and highest sample). The map's own bounding box would leave the air over its low corners
+/// in the view, and show the map small.
+fn block_corners(terrain: &Terrain) -> Vec<DVec3> {
+    let (field, mipmap) = (terrain.field(), terrain.mipmap());
+    let level = mipmap.top().saturating_sub(4).max(2).min(mipmap.top());
+    let side = 1usize << level;
+    let (cells_x, cells_y) = (field.width() - 1, field.height() - 1);
+    let mut points = Vec::new();
+    for bj in 0..cells_y.div_ceil(side) {
+        for bi in 0..cells_x.div_ceil(side) {
+            let xs = [bi * side, ((bi + 1) * side).min(cells_x)].map(|x| x as f64);
+            let ys = [bj * side, ((bj + 1) * side).min(cells_y)].map(|y| y as f64);
+            let zs = [mipmap.lowest(level, bi, bj), mipmap.highest(level, bi, bj)]
+                .map(|sample| field.height_of(sample));
+            for x in xs {
+                for y in ys {
+                    points.extend(zs.map(|z| DVec3::new(x, y, z)));
+                }
+            }
+        }
+    }
+    points
+}
+
 /// A length for the map's size that does not depend on the view: about the distance that
 /// frames it. Zooming is bounded in multiples of it.
 pub fn scale(terrain: &Terrain) -> f64 {
@@ -35,16 +61,17 @@ pub fn scale(terrain: &Terrain) -> f64 {
     (0.8 * radius / (DEFAULT_FOV_Y_DEG.to_radians() / 2.0).tan()).max(1.0)
 }
 
-/// The orbit from `yaw_deg` and `pitch_deg` that shows the whole map's box in a view of
-/// `aspect` (width over height), as near as it can.
+/// The orbit from `yaw_deg` and `pitch_deg` that shows the whole map in a view of `aspect`
+/// (width over height), as near as it can.
 ///
-/// For a target `T`, eye direction `o` and distance `d`, a corner at `q = c - T` from the
+/// For a target `T`, eye direction `o` and distance `d`, a point at `q = c - T` from the
 /// target lies at depth `d + q.f` (`f = -o`) and at `q.r`, `q.u` across: it is inside the view
 /// when `|q.r| <= m h a (d + q.f)` and `|q.u| <= m h (d + q.f)`, with `h = tan(fov/2)`. So the
-/// smallest `d` is a maximum over the corners. The target then moves to centre the corners'
-/// extent on screen, and the distance is found again for the new target.
+/// smallest `d` is a maximum over the points of [`block_corners`]. The target then moves to
+/// centre the points' extent on screen, and the distance is found again for the new target.
 pub fn fit(terrain: &Terrain, yaw_deg: f64, pitch_deg: f64, fov_y_deg: f64, aspect: f64) -> Orbit {
     let corners = box_corners(terrain);
+    let points = block_corners(terrain);
     let centre = 0.5 * (corners[0] + corners[7]);
     let mut orbit = Orbit {
         target: on_map(centre.into(), terrain),
@@ -64,7 +91,7 @@ pub fn fit(terrain: &Terrain, yaw_deg: f64, pitch_deg: f64, fov_y_deg: f64, aspe
     for round in 0..3 {
         let target = DVec3::from(orbit.target);
         let mut distance = f64::MIN_POSITIVE;
-        for c in corners {
+        for &c in &points {
             let q = c - target;
             let across = (q.dot(right).abs() / aspect).max(q.dot(up).abs());
             distance = distance.max(across / (MARGIN * half_height) - q.dot(forward));
@@ -75,7 +102,7 @@ pub fn fit(terrain: &Terrain, yaw_deg: f64, pitch_deg: f64, fov_y_deg: f64, aspe
         }
         // Where the corners' extent is centred on screen, in the plane through the target.
         let (mut x, mut y) = ((f64::MAX, f64::MIN), (f64::MAX, f64::MIN));
-        for c in corners {
+        for &c in &points {
             let q = c - target;
             let depth = distance + q.dot(forward);
             let (sx, sy) = (q.dot(right) / depth, q.dot(up) / depth);
@@ -94,17 +121,20 @@ mod tests {
     use crate::heightfield::Builtin;
     use crate::viewer::ground::keep_above;
 
-    /// Every corner of the map lands inside the image of the orbit's camera.
-    fn corners_inside(terrain: &Terrain, orbit: &Orbit, size: (u32, u32)) -> bool {
+    /// Every sample of the map lands inside the image of the orbit's camera.
+    fn map_inside(terrain: &Terrain, orbit: &Orbit, size: (u32, u32)) -> bool {
         let (forward, right, up) = orbit.axes();
         let eye = orbit.eye();
         let h = (orbit.fov_y_deg.to_radians() / 2.0).tan();
         let aspect = f64::from(size.0) / f64::from(size.1);
-        box_corners(terrain).iter().all(|&c| {
-            let q = c - eye;
-            let depth = q.dot(forward);
-            let (sx, sy) = (q.dot(right) / depth / (h * aspect), q.dot(up) / depth / h);
-            depth > 0.0 && sx.abs() < 1.0 && sy.abs() < 1.0
+        let field = terrain.field();
+        (0..field.height()).all(|j| {
+            (0..field.width()).all(|i| {
+                let q = DVec3::new(i as f64, j as f64, field.z(i, j)) - eye;
+                let depth = q.dot(forward);
+                let (sx, sy) = (q.dot(right) / depth / (h * aspect), q.dot(up) / depth / h);
+                depth > 0.0 && sx.abs() < 1.0 && sy.abs() < 1.0
+            })
         })
     }
 
@@ -120,7 +150,7 @@ mod tests {
         ] {
             let aspect = f64::from(size.0) / f64::from(size.1);
             let orbit = fit(&terrain, yaw, pitch, DEFAULT_FOV_Y_DEG, aspect);
-            assert!(corners_inside(&terrain, &orbit, size), "{size:?}");
+            assert!(map_inside(&terrain, &orbit, size), "{size:?}");
             // Already where the ground rule would put it: the framing lasts.
             let mut kept = orbit;
             keep_above(&mut kept, &terrain);
@@ -130,7 +160,7 @@ mod tests {
                 distance: 0.8 * orbit.distance,
                 ..orbit
             };
-            assert!(!corners_inside(&terrain, &closer, size), "{size:?}");
+            assert!(!map_inside(&terrain, &closer, size), "{size:?}");
         }
     }
 }

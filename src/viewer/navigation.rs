@@ -88,7 +88,10 @@ pub fn settle(model: &mut Model, aspect: f64) {
         }
         _ => {}
     }
-    ground::keep_above(&mut model.orbit, &model.shown.terrain);
+    // A scene's camera is shown as its file has it, wherever that is, until it is moved.
+    if model.home != Home::Scene(model.orbit) {
+        ground::keep_above(&mut model.orbit, &model.shown.terrain);
+    }
 }
 
 /// Arrows walk the target over the ground, Q and E turn, + and - zoom, PageUp and PageDown
