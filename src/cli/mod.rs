@@ -74,6 +74,9 @@ pub struct ViewArgs {
     /// Folder that S exports rendered images to (default: the current directory).
     #[arg(long, value_name = "DIR")]
     pub export_dir: Option<PathBuf>,
+    /// Size S exports at, WIDTHxHEIGHT, rendered anew (default: the view's render size).
+    #[arg(long, value_parser = parse_size, value_name = "WIDTHxHEIGHT")]
+    pub export_size: Option<(u32, u32)>,
     /// Write the window's state as JSON to this file after every frame (for tests).
     #[arg(long)]
     pub report_state: Option<PathBuf>,
@@ -289,6 +292,7 @@ pub fn view(args: ViewArgs) -> anyhow::Result<ExitCode> {
         exit_after_frames: args.exit_after_frames,
         screenshot: args.screenshot,
         export_dir: args.export_dir,
+        export_size: args.export_size,
         report_state: args.report_state,
     })?;
     Ok(ExitCode::SUCCESS)

@@ -389,9 +389,15 @@ impl App {
 }
 
 impl App {
-    /// Where exports go (the panel can change it).
-    pub fn set_export_dir(&mut self, dir: &std::path::Path) {
-        self.model.export.dir = dir.display().to_string();
+    /// Where exports go and at which size (the panel can change both).
+    pub fn set_export(&mut self, dir: Option<&std::path::Path>, size: Option<(u32, u32)>) {
+        let export = &mut self.model.export;
+        if let Some(dir) = dir {
+            export.dir = dir.display().to_string();
+        }
+        if let Some(size) = size {
+            (export.custom, export.size) = (true, size);
+        }
     }
 
     /// A render of the current view at `size` pixels.

@@ -59,6 +59,8 @@ pub struct ViewerOptions {
     pub screenshot: Option<PathBuf>,
     /// Where S exports rendered images (None: the current directory).
     pub export_dir: Option<PathBuf>,
+    /// The size S exports at (None: the view's render size).
+    pub export_size: Option<(u32, u32)>,
     /// Write the window's state as JSON here after every frame (for tests).
     pub report_state: Option<PathBuf>,
 }
@@ -74,6 +76,7 @@ impl Default for ViewerOptions {
             exit_after_frames: None,
             screenshot: None,
             export_dir: None,
+            export_size: None,
             report_state: None,
         }
     }
@@ -156,9 +159,7 @@ impl Shell {
             self.options.render_scale,
             hooks,
         )?;
-        if let Some(dir) = &self.options.export_dir {
-            app.set_export_dir(dir);
-        }
+        app.set_export(self.options.export_dir.as_deref(), self.options.export_size);
         Ok(app)
     }
 }

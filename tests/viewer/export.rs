@@ -1,6 +1,6 @@
 //! S exports the rendered image: the same pixels `heightray render` makes of a scene written
-//! from the viewer's reported camera and light, at the render resolution, with no panels or
-//! overlays; each press a new file, none overwritten.
+//! from the viewer's reported camera and light, at the render resolution or at a chosen size,
+//! with no panels or overlays; each press a new file, none overwritten.
 
 use super::app::num;
 use super::Session;
@@ -124,14 +124,42 @@ fn s_exports_the_render_without_ui_and_never_overwrites() {
     );
     let reference = render(session.viewer.dir.path(), &scene_of(&done, size));
     for (file, image) in files.iter().zip(&images) {
-        let differing = image
-            .pixels()
-            .zip(reference.pixels())
-            .filter(|(a, b)| a != b)
-            .count();
-        assert_eq!(
-            differing, 0,
-            "{file:?} differs from `heightray render` of the same view in {differing} pixels"
-        );
+        assert_same(file, image, &reference);
     }
+}
+
+fn assert_same(file: &Path, image: &image::RgbImage, reference: &image::RgbImage) {
+    assert_eq!(image.dimensions(), reference.dimensions(), "{file:?}");
+    let differing = image
+        .pixels()
+        .zip(reference.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(
+        differing, 0,
+        "{file:?} differs from `heightray render` of the same view in {differing} pixels"
+    );
+}
+
+#[test]
+fn an_export_at_a_chosen_size_is_rendered_anew_into_the_export_folder() {
+    let mut session = Session::start(&["--export-size", "333x211", "--export-dir", "out/images"]);
+    let state = session.state();
+    let folder = PathBuf::from(
+        state["export"]["folder"]
+            .as_str()
+            .expect("an export folder"),
+    );
+    assert_eq!(folder, session.viewer.path("out/images"));
+    session.x.focus(session.window);
+    session.x.key('s' as u32);
+    let done = session.viewer.wait_for("the export", |s| {
+        s["export"]["saved"] == 1 && s["export"]["running"] == 0
+    });
+    assert_eq!(done["error"], Value::Null);
+    let file = folder.join("heightray-valley513-001.png");
+    assert_eq!(done["export"]["last"].as_str(), file.to_str());
+    let image = image::open(&file).expect("an exported PNG").to_rgb8();
+    let reference = render(session.viewer.dir.path(), &scene_of(&done, (333, 211)));
+    assert_same(&file, &image, &reference);
 }
