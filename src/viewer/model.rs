@@ -152,6 +152,7 @@ impl Model {
                 pitch_deg: orbit.pitch_deg,
                 aspect: 0.0,
                 orbit,
+                terrain: 0,
             }),
             view_aspect: 16.0 / 9.0,
             export: Exports::default(),

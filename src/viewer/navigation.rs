@@ -26,13 +26,20 @@ pub enum Home {
 }
 
 /// The camera shows the whole map as framed from these angles for a view of `aspect`; while it
-/// is untouched, a view of another shape frames it again.
+/// is untouched, a view of another shape, or the map with another z scale, frames it again.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Framed {
     pub yaw_deg: f64,
     pub pitch_deg: f64,
     pub aspect: f64,
     pub orbit: Orbit,
+    /// The terrain it framed (its address: a rescaled map is a new terrain).
+    pub terrain: usize,
+}
+
+/// The identity of the terrain on screen.
+fn terrain_id(model: &Model) -> usize {
+    std::sync::Arc::as_ptr(&model.shown.terrain) as usize
 }
 
 /// Frames the whole map from the given angles for the view's current shape.
@@ -52,6 +59,7 @@ pub fn frame_map(model: &mut Model, yaw_deg: f64, pitch_deg: f64) {
         pitch_deg,
         aspect,
         orbit,
+        terrain: terrain_id(model),
     });
 }
 
@@ -83,7 +91,9 @@ pub fn settle(model: &mut Model, aspect: f64) {
     }
     match model.framed {
         Some(framed) if framed.orbit != model.orbit => model.framed = None,
-        Some(framed) if framed.aspect != model.view_aspect => {
+        Some(framed)
+            if framed.aspect != model.view_aspect || framed.terrain != terrain_id(model) =>
+        {
             frame_map(model, framed.yaw_deg, framed.pitch_deg);
         }
         _ => {}
