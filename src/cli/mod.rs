@@ -68,9 +68,15 @@ pub struct ViewArgs {
     /// Quit after this many fully refined frames have been shown (for scripts and tests).
     #[arg(long)]
     pub exit_after_frames: Option<u64>,
-    /// Where S saves screenshots; with --exit-after-frames the last frame is saved there.
+    /// With --exit-after-frames: save the window's last frame (panels included) there.
     #[arg(long)]
     pub screenshot: Option<PathBuf>,
+    /// Folder that S exports rendered images to (default: the current directory).
+    #[arg(long, value_name = "DIR")]
+    pub export_dir: Option<PathBuf>,
+    /// Size S exports at, WIDTHxHEIGHT, rendered anew (default: the view's render size).
+    #[arg(long, value_parser = parse_size, value_name = "WIDTHxHEIGHT")]
+    pub export_size: Option<(u32, u32)>,
     /// Write the window's state as JSON to this file after every frame (for tests).
     #[arg(long)]
     pub report_state: Option<PathBuf>,
@@ -285,6 +291,8 @@ pub fn view(args: ViewArgs) -> anyhow::Result<ExitCode> {
         render_scale: args.render_scale,
         exit_after_frames: args.exit_after_frames,
         screenshot: args.screenshot,
+        export_dir: args.export_dir,
+        export_size: args.export_size,
         report_state: args.report_state,
     })?;
     Ok(ExitCode::SUCCESS)

@@ -350,6 +350,13 @@ pub struct Lighting {
 }
 
 impl Lighting {
+    /// `direction` scaled to unit length, as a scene's sun is: the viewer scales its sun the
+    /// same way, so a scene written from the viewer's sun renders the same image.
+    pub fn unit(direction: [f64; 3]) -> [f64; 3] {
+        let length = direction.iter().map(|c| c * c).sum::<f64>().sqrt();
+        direction.map(|c| c / length)
+    }
+
     /// The lighting a scene file's sections describe (the sun's direction non-zero: scene
     /// files are checked for that first), with the direction normalised.
     pub fn from_sections(
@@ -357,9 +364,8 @@ impl Lighting {
         effects: &EffectsSection,
         shading: &ShadingSection,
     ) -> Lighting {
-        let length = sun.direction.iter().map(|c| c * c).sum::<f64>().sqrt();
         Lighting {
-            sun: sun.direction.map(|c| c / length),
+            sun: Lighting::unit(sun.direction),
             intensity: sun.intensity,
             ambient: sun.ambient,
             shadows: effects.shadows,

@@ -4,10 +4,11 @@
 
 use super::accuracy::Accuracy;
 use super::compose::{self, PixelRect};
+use super::export::{self, Exports};
 use super::hooks::{Counts, Hooks};
 use super::loader::{LoadRequest, Loaded, Loader, Source};
 use super::model::{Action, Model, Shown};
-use super::orbit::Orbit;
+use super::navigation::{self, Home};
 use super::quality::{detail, JobKey, Quality, ViewKey};
 use super::worker::{RenderJob, RenderWorker, RenderedFrame};
 use super::{panels, view, UserEvent};
@@ -54,7 +55,6 @@ pub struct App {
     input_since_redraw: Option<Instant>,
     converged_counted: u64,
     next_repaint: Option<Instant>,
-    screenshot_requested: bool,
 }
 
 impl App {
@@ -109,7 +109,6 @@ impl App {
             input_since_redraw: None,
             converged_counted: 0,
             next_repaint: None,
-            screenshot_requested: false,
         })
     }
 
@@ -166,11 +165,7 @@ impl App {
                 }
                 None => {}
             },
-            UserEvent::Saved(Ok(path)) => {
-                self.model.notify(format!("Saved {}", path.display()));
-                self.counts.last_screenshot = Some(path);
-            }
-            UserEvent::Saved(Err(message)) => self.model.error = Some(message),
+            UserEvent::Exported(result) => Exports::finished(&mut self.model, result),
         }
         self.window.request_redraw();
     }
@@ -215,14 +210,19 @@ impl App {
         // A rescale keeps the z scale field as the user has it (they may still be dragging).
         if loaded.request.reframe {
             model.z_scale = terrain.field().z_scale();
-            model.orbit = loaded
-                .scene
-                .map_or_else(|| Orbit::framing(&terrain), |s| s.orbit);
-            model.home = model.orbit;
-            if let Some(scene) = loaded.scene {
-                model
-                    .settings
-                    .adopt_scene(&scene.lighting, scene.method, scene.arith);
+            match loaded.scene {
+                Some(scene) => {
+                    model.orbit = scene.orbit;
+                    model.home = Home::Scene(scene.orbit);
+                    model.framed = None;
+                    model
+                        .settings
+                        .adopt_scene(&scene.lighting, scene.method, scene.arith);
+                }
+                None => {
+                    model.home = Home::WholeMap;
+                    navigation::reset(model);
+                }
             }
             let field = terrain.field();
             model.notify(format!(
@@ -240,11 +240,9 @@ impl App {
     fn apply(&mut self, action: Action) {
         match action {
             Action::Load(request) => self.start_load(request),
-            Action::ResetView => self.model.orbit = self.model.home,
-            Action::Screenshot => {
-                self.screenshot_requested = true;
-                self.window.request_redraw();
-            }
+            Action::ResetView => navigation::reset(&mut self.model),
+            Action::FrameMap => navigation::frame_from_here(&mut self.model),
+            Action::Screenshot => self.export(),
             Action::MeasureArithmetics => self.accuracy.toggle_measure(&mut self.model.accuracy),
         }
     }
@@ -378,17 +376,8 @@ impl App {
         if self.submitted.as_ref() == Some(&key) {
             return;
         }
-        let Ok(camera) = model.orbit.camera(size) else {
+        let Ok(job) = self.job(size) else {
             return;
-        };
-        let job = RenderJob {
-            terrain: model.shown.terrain.clone(),
-            orbit: model.orbit,
-            camera,
-            lighting: model.settings.lighting(),
-            method: model.settings.method,
-            arith: model.settings.arith(),
-            view_id: self.quality.view_id(),
         };
         let generation = self.worker.submit(job);
         if let Some(at) = caused_by {
@@ -396,6 +385,58 @@ impl App {
         }
         self.counts.submitted_generation = generation;
         self.submitted = Some(key);
+    }
+}
+
+impl App {
+    /// Where exports go and at which size (the panel can change both).
+    pub fn set_export(&mut self, dir: Option<&std::path::Path>, size: Option<(u32, u32)>) {
+        let export = &mut self.model.export;
+        if let Some(dir) = dir {
+            export.dir = dir.display().to_string();
+        }
+        if let Some(size) = size {
+            (export.custom, export.size) = (true, size);
+        }
+    }
+
+    /// A render of the current view at `size` pixels.
+    fn job(&self, size: (u32, u32)) -> Result<RenderJob, crate::render::CameraError> {
+        let model = &self.model;
+        Ok(RenderJob {
+            terrain: model.shown.terrain.clone(),
+            orbit: model.orbit,
+            camera: model.orbit.camera(size)?,
+            lighting: model.settings.lighting(),
+            method: model.settings.method,
+            arith: model.settings.arith(),
+            view_id: self.quality.view_id(),
+        })
+    }
+
+    /// Exports the view at its render size (the converged frame, if it is on screen) or at
+    /// the size the panel asks for.
+    fn export(&mut self) {
+        let Some(submitted) = &self.submitted else {
+            self.model
+                .notify("Nothing to export yet: the view is not rendered");
+            return;
+        };
+        let exports = &self.model.export;
+        let size = if exports.custom {
+            exports.size
+        } else {
+            submitted.view.full_size()
+        };
+        let job = match self.job(size) {
+            Ok(job) => job,
+            Err(e) => {
+                self.model.error = Some(format!("cannot export at {} x {}: {e}", size.0, size.1));
+                return;
+            }
+        };
+        let ready = self.converged().filter(|frame| export::shows(frame, &job));
+        export::start(&mut self.model, job, ready, self.proxy.clone());
     }
 }
 
@@ -431,7 +472,8 @@ fn initial_model(loaded: Loaded, settings: super::settings::Settings) -> Model {
     let mut model = Model::new(shown, settings);
     if let Some(scene) = loaded.scene {
         model.orbit = scene.orbit;
-        model.home = scene.orbit;
+        model.home = Home::Scene(scene.orbit);
+        model.framed = None;
         model
             .settings
             .adopt_scene(&scene.lighting, scene.method, scene.arith);

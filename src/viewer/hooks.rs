@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 pub struct Hooks {
     /// Quit after this many converged frames (all passes) have been presented.
     pub exit_after_frames: Option<u64>,
-    /// Where S saves (and, with `exit_after_frames`, where the last frame is saved on exit).
+    /// With `exit_after_frames`: where the window's last frame is saved on exit.
     pub screenshot: Option<PathBuf>,
     /// Where to write the state report after each presented frame.
     pub report_state: Option<PathBuf>,
@@ -41,14 +41,6 @@ pub fn save_png(pixels: &[u32], width: u32, height: u32, path: &Path) -> Result<
     image
         .save(path)
         .map_err(|e| format!("cannot write {}: {e}", path.display()))
-}
-
-/// A file name for a screenshot taken now, in the current directory.
-pub fn default_screenshot_path() -> PathBuf {
-    let seconds = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.as_secs());
-    PathBuf::from(format!("heightray-{seconds}.png"))
 }
 
 /// Writes the report atomically (a reader never sees half a file).
@@ -78,12 +70,19 @@ fn report(model: &Model, counts: &Counts) -> Value {
         "frame": frame_report(model),
         "camera": {
             "yaw_deg": orbit.yaw_deg, "pitch_deg": orbit.pitch_deg, "distance": orbit.distance,
-            "fov_y_deg": orbit.fov_y_deg, "target": orbit.target,
+            "fov_y_deg": orbit.fov_y_deg, "target": orbit.target, "eye": orbit.eye().to_array(),
+            "framed": model.framed.is_some(),
         },
         "sun": {
             "azimuth_deg": model.settings.sun_azimuth_deg,
             "elevation_deg": model.settings.sun_elevation_deg,
             "direction": model.settings.sun(),
+        },
+        "lighting": lighting_report(model),
+        "method": model.settings.method.to_string(),
+        "export": {
+            "folder": model.export.folder(), "running": model.export.running,
+            "saved": model.export.saved, "last": model.export.last,
         },
         "shadows": model.settings.shadows,
         "arith": model.settings.arith().to_string(),
@@ -187,6 +186,17 @@ fn widget_report(model: &Model) -> serde_json::Map<String, Value> {
             ((*name).to_owned(), json!(physical))
         })
         .collect()
+}
+
+/// Everything a scene file's `[sun]`, `[effects]` and `[shading]` say.
+fn lighting_report(model: &Model) -> Value {
+    let lighting = model.settings.lighting();
+    json!({
+        "intensity": lighting.intensity, "ambient": lighting.ambient,
+        "shadows": lighting.shadows, "fog": lighting.fog,
+        "normals": format!("{:?}", lighting.normals).to_lowercase(),
+        "ramp": format!("{:?}", lighting.ramp).to_lowercase(),
+    })
 }
 
 fn decoding_report(decoding: Decoding) -> Value {

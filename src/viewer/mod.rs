@@ -11,11 +11,15 @@ mod app;
 mod background;
 mod compose;
 mod decoding;
+mod export;
+mod framing;
+mod ground;
 mod hooks;
 mod legend;
 mod loader;
 mod mailbox;
 mod model;
+mod navigation;
 mod orbit;
 mod panels;
 mod probe;
@@ -55,8 +59,12 @@ pub struct ViewerOptions {
     pub render_scale: Option<f32>,
     /// Quit after this many fully refined frames were shown (for tests).
     pub exit_after_frames: Option<u64>,
-    /// Where screenshots go (with `exit_after_frames`: the last frame, saved on exit).
+    /// With `exit_after_frames`: where the window's last frame is saved on exit.
     pub screenshot: Option<PathBuf>,
+    /// Where S exports rendered images (None: the current directory).
+    pub export_dir: Option<PathBuf>,
+    /// The size S exports at (None: the view's render size).
+    pub export_size: Option<(u32, u32)>,
     /// Write the window's state as JSON here after every frame (for tests).
     pub report_state: Option<PathBuf>,
 }
@@ -71,6 +79,8 @@ impl Default for ViewerOptions {
             render_scale: None,
             exit_after_frames: None,
             screenshot: None,
+            export_dir: None,
+            export_size: None,
             report_state: None,
         }
     }
@@ -84,8 +94,8 @@ pub enum UserEvent {
     Accuracy,
     /// The loader's progress, or its result.
     Load(LoadEvent),
-    /// A screenshot was saved to this file, or could not be (why).
-    Saved(Result<PathBuf, String>),
+    /// An export was written, or why not.
+    Exported(Result<export::Exported, String>),
 }
 
 /// Opens the window and runs until it is closed.
@@ -148,13 +158,15 @@ impl Shell {
             screenshot: self.options.screenshot.clone(),
             report_state: self.options.report_state.clone(),
         };
-        App::new(
+        let mut app = App::new(
             window,
             self.proxy.clone(),
             loaded,
             self.options.render_scale,
             hooks,
-        )
+        )?;
+        app.set_export(self.options.export_dir.as_deref(), self.options.export_size);
+        Ok(app)
     }
 }
 

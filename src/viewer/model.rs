@@ -4,7 +4,9 @@
 use super::accuracy::AccuracyState;
 use super::compose::HeatScale;
 use super::decoding::Decoding;
+use super::export::Exports;
 use super::loader::{LoadRequest, Progress, Source};
+use super::navigation::{Framed, Home};
 use super::orbit::Orbit;
 use super::probe::Probe;
 use super::settings::Settings;
@@ -29,6 +31,9 @@ pub struct Shown {
 pub enum Action {
     Load(LoadRequest),
     ResetView,
+    /// Fit the whole map in the view, from the current direction.
+    FrameMap,
+    /// Save the rendered image, without the window's panels and overlays.
     Screenshot,
     /// Measure every arithmetic on the view, or cancel the measurement under way.
     MeasureArithmetics,
@@ -88,7 +93,13 @@ pub struct Model {
     pub shown: Shown,
     pub orbit: Orbit,
     /// Where R returns to.
-    pub home: Orbit,
+    pub home: Home,
+    /// Set while the camera shows the whole map as framed, and not moved since.
+    pub framed: Option<Framed>,
+    /// The 3D view's width over its height.
+    pub view_aspect: f64,
+    /// Where and how large images are exported.
+    pub export: Exports,
     pub settings: Settings,
     /// The z scale field of the heightmap panel (applied when editing ends).
     pub z_scale: f64,
@@ -126,7 +137,8 @@ pub struct Model {
 }
 
 impl Model {
-    /// A model showing `shown` from its framing view.
+    /// A model showing the whole of `shown` (framed again for the view's shape once it is
+    /// known).
     pub fn new(shown: Shown, settings: Settings) -> Model {
         let orbit = Orbit::framing(&shown.terrain);
         Model {
@@ -134,7 +146,16 @@ impl Model {
             decoding: shown.decoding,
             shown,
             orbit,
-            home: orbit,
+            home: Home::WholeMap,
+            framed: Some(Framed {
+                yaw_deg: orbit.yaw_deg,
+                pitch_deg: orbit.pitch_deg,
+                aspect: 0.0,
+                orbit,
+                terrain: 0,
+            }),
+            view_aspect: 16.0 / 9.0,
+            export: Exports::default(),
             settings,
             path_text: String::new(),
             panels_visible: true,

@@ -1,17 +1,23 @@
-//! The viewer's camera: an orbit around a target point, moved by drags, the wheel and
+//! The viewer's camera: an orbit around a target point, moved by drags, the wheel, keys and
 //! double-clicks, and turned into a [`Camera`] for each render size.
 
+use super::framing;
 use crate::render::{Camera, CameraError};
 use crate::Terrain;
 use glam::DVec3;
 
 /// Pitch stays this far from straight up or down: there the orbit's up vector would be
 /// parallel to the view and the camera undefined.
-const PITCH_LIMIT_DEG: f64 = 89.0;
+pub const PITCH_LIMIT_DEG: f64 = 89.0;
+/// The lowest pitch: a little below the horizon, to look up at a peak from a valley, never so
+/// far that the eye ends under the ground it looks at.
+pub const MIN_PITCH_DEG: f64 = -5.0;
 /// Degrees of yaw and pitch per pixel of drag.
 const DEG_PER_PIXEL: f64 = 0.3;
-/// Closest and farthest zoom, as fractions and multiples of the framing distance.
-const ZOOM_RANGE: (f64, f64) = (1e-3, 50.0);
+/// Closest and farthest zoom, as fractions and multiples of the orbit's scale.
+const ZOOM_RANGE: (f64, f64) = (2e-3, 50.0);
+/// How much one wheel step zooms (the factor is `exp(-ZOOM_PER_STEP)`).
+const ZOOM_PER_STEP: f64 = 0.15;
 
 /// A camera orbiting `target`: `yaw` from +x towards +y, `pitch` above the horizon.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -26,29 +32,21 @@ pub struct Orbit {
     pub distance: f64,
     /// Vertical field of view in degrees.
     pub fov_y_deg: f64,
-    /// The framing distance of the current terrain, which bounds zooming.
+    /// A length for the terrain's size (about its framing distance), which bounds zooming.
     pub scale: f64,
 }
 
 impl Orbit {
-    /// Looks at the whole terrain from the south-west, the sun behind the viewer's shoulder.
+    /// The whole terrain from the south-west, the sun behind the viewer's shoulder, in a
+    /// 16:9 view (the viewer frames it again for its view's own shape).
     pub fn framing(terrain: &Terrain) -> Orbit {
-        let field = terrain.field();
-        let (w, h) = ((field.width() - 1) as f64, (field.height() - 1) as f64);
-        let (lo, hi) = terrain.z_range();
-        let fov_y_deg: f64 = 45.0;
-        // Nearly the bounding sphere of the terrain's box in the vertical field of view: the
-        // view is wider than high and the box's corners rarely all face the camera.
-        let radius = 0.5 * DVec3::new(w, h, hi - lo).length();
-        let distance = (0.8 * radius / (fov_y_deg.to_radians() / 2.0).tan()).max(1.0);
-        Orbit {
-            target: [w / 2.0, h / 2.0, (lo + hi) / 2.0],
-            yaw_deg: -130.0,
-            pitch_deg: 35.0,
-            distance,
-            fov_y_deg,
-            scale: distance,
-        }
+        framing::fit(
+            terrain,
+            framing::DEFAULT_YAW_DEG,
+            framing::DEFAULT_PITCH_DEG,
+            framing::DEFAULT_FOV_Y_DEG,
+            16.0 / 9.0,
+        )
     }
 
     /// The orbit whose eye and target are the given points (a scene file's `eye`/`target`).
@@ -59,7 +57,7 @@ impl Orbit {
         Orbit {
             target,
             yaw_deg: offset.y.atan2(offset.x).to_degrees(),
-            pitch_deg: pitch.clamp(-PITCH_LIMIT_DEG, PITCH_LIMIT_DEG),
+            pitch_deg: pitch.clamp(MIN_PITCH_DEG, PITCH_LIMIT_DEG),
             distance,
             fov_y_deg,
             scale,
@@ -91,15 +89,23 @@ impl Orbit {
             self.yaw_deg -= 360.0;
         }
         self.pitch_deg =
-            (self.pitch_deg + dy * DEG_PER_PIXEL).clamp(-PITCH_LIMIT_DEG, PITCH_LIMIT_DEG);
+            (self.pitch_deg + dy * DEG_PER_PIXEL).clamp(MIN_PITCH_DEG, PITCH_LIMIT_DEG);
+    }
+
+    /// Turns the eye around the target by `degrees` of yaw.
+    pub fn turn(&mut self, degrees: f64) {
+        self.rotate(-degrees / DEG_PER_PIXEL, 0.0);
+    }
+
+    /// Lifts the eye on its orbit by `degrees` of pitch (lowers it for negative degrees).
+    pub fn tilt(&mut self, degrees: f64) {
+        self.rotate(0.0, degrees / DEG_PER_PIXEL);
     }
 
     /// Moves the target (and the eye with it) so the terrain follows a drag of `(dx, dy)`
     /// pixels in a view `view_height` pixels high.
     pub fn pan(&mut self, dx: f64, dy: f64, view_height: f64) {
-        let forward = -self.offset_direction();
-        let right = forward.cross(DVec3::Z).normalize_or(DVec3::X);
-        let up = right.cross(forward);
+        let (_, right, up) = self.axes();
         // One pixel covers this much of the plane through the target.
         let per_pixel =
             2.0 * self.distance * (self.fov_y_deg.to_radians() / 2.0).tan() / view_height.max(1.0);
@@ -107,10 +113,41 @@ impl Orbit {
         self.target = moved.into();
     }
 
-    /// Moves the eye towards the target (`steps > 0`) or away, by a factor per step.
-    pub fn zoom(&mut self, steps: f64) {
+    /// Moves the target over the ground by `(ahead, aside)` times the distance: ahead is the
+    /// view's direction on the ground, aside to its right.
+    pub fn walk(&mut self, ahead: f64, aside: f64) {
+        let (yaw_sin, yaw_cos) = self.yaw_deg.to_radians().sin_cos();
+        // The eye looks along minus its offset: (-cos yaw, -sin yaw) on the ground.
+        let step = self.distance;
+        self.target[0] += step * (-ahead * yaw_cos - aside * yaw_sin);
+        self.target[1] += step * (-ahead * yaw_sin + aside * yaw_cos);
+    }
+
+    /// Zooms by `steps` (positive: in) towards `point`: the eye and the target move towards it
+    /// by the same factor, so the point stays where it is on screen and each step covers a
+    /// fixed share of the way left to it, slowing as the eye nears it. The eye's distance to
+    /// the point stays within the zoom range.
+    pub fn zoom_towards(&mut self, point: [f64; 3], steps: f64) {
+        let point = DVec3::from(point);
+        let eye = self.eye();
+        let reach = (eye - point).length();
         let (near, far) = (ZOOM_RANGE.0 * self.scale, ZOOM_RANGE.1 * self.scale);
-        self.distance = (self.distance * (-steps * 0.06).exp()).clamp(near, far);
+        if !(reach > 0.0 && steps.is_finite()) {
+            return;
+        }
+        let wanted = reach * (-steps * ZOOM_PER_STEP).exp();
+        // Never farther out than the range, nor in past its near end; a step from outside the
+        // range only moves towards it.
+        let bounded = wanted.clamp(near.min(reach), far.max(reach));
+        let factor = bounded / reach;
+        let target = point + (DVec3::from(self.target) - point) * factor;
+        self.target = target.into();
+        self.distance = (self.distance * factor).max(1e-9 * self.scale);
+    }
+
+    /// Zooms towards (or away from) the target.
+    pub fn zoom(&mut self, steps: f64) {
+        self.zoom_towards(self.target, steps);
     }
 
     /// Orbits around `point` from where the eye is now (the view turns to face it).
@@ -120,6 +157,13 @@ impl Orbit {
         if retargeted.distance > 1e-9 * self.scale {
             *self = retargeted;
         }
+    }
+
+    /// The camera's unit axes: forward (eye to target), right and up, as [`Camera`] has them.
+    pub fn axes(&self) -> (DVec3, DVec3, DVec3) {
+        let forward = -self.offset_direction();
+        let right = forward.cross(DVec3::Z).normalize_or(DVec3::X);
+        (forward, right, right.cross(forward))
     }
 
     /// Unit vector from the target towards the eye.
@@ -146,10 +190,10 @@ mod tests {
     }
 
     #[test]
-    fn framing_centres_the_terrain_and_builds_a_camera() {
+    fn framing_looks_at_the_terrain_and_builds_a_camera() {
         let orbit = Orbit::framing(&terrain());
-        assert_eq!(orbit.target[0], 24.0);
-        assert_eq!(orbit.target[1], 24.0);
+        assert!((0.0..=48.0).contains(&orbit.target[0]));
+        assert!((0.0..=48.0).contains(&orbit.target[1]));
         assert!(orbit.camera((640, 360)).is_ok());
         // The eye is outside the terrain's bounding sphere.
         assert!(orbit.distance > 0.5 * (48.0f64 * 48.0 * 2.0).sqrt());
@@ -171,8 +215,28 @@ mod tests {
         assert_eq!(orbit.pitch_deg, PITCH_LIMIT_DEG);
         assert!(orbit.camera((10, 10)).is_ok());
         orbit.zoom(1e6);
-        assert!(orbit.distance >= ZOOM_RANGE.0 * orbit.scale);
+        assert!(orbit.distance >= 0.999 * ZOOM_RANGE.0 * orbit.scale);
         assert!(orbit.camera((10, 10)).is_ok());
+        orbit.zoom(-1e6);
+        assert!(orbit.distance <= 1.001 * ZOOM_RANGE.1 * orbit.scale);
+        orbit.zoom(f64::NAN);
+        assert!(orbit.camera((10, 10)).is_ok());
+    }
+
+    #[test]
+    fn zooming_towards_a_point_keeps_it_in_line_and_slows_near_it() {
+        let mut orbit = Orbit::framing(&terrain());
+        let point = DVec3::new(10.0, 30.0, 2.0);
+        let towards = |o: &Orbit| (point - o.eye()).normalize();
+        let (before, reach) = (towards(&orbit), (point - orbit.eye()).length());
+        orbit.zoom_towards(point.into(), 1.0);
+        assert!((towards(&orbit) - before).length() < 1e-12);
+        let first = reach - (point - orbit.eye()).length();
+        orbit.zoom_towards(point.into(), 1.0);
+        let second = reach - first - (point - orbit.eye()).length();
+        // Each step covers the same share of the way left.
+        assert!((second / first - (-ZOOM_PER_STEP).exp()).abs() < 1e-9);
+        assert_eq!(orbit.axes().0, Orbit::framing(&terrain()).axes().0);
     }
 
     #[test]

@@ -81,10 +81,11 @@ fn camera_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         if ui.button("Reset view (R)").clicked() {
             actions.push(Action::ResetView);
         }
-        if ui.button("Screenshot (S)").clicked() {
+        if ui.button("Export image (S)").clicked() {
             actions.push(Action::Screenshot);
         }
     });
+    super::navigation::tools_ui(ui, model, actions);
     let settings = &mut model.settings;
     ui.add(
         Slider::new(&mut settings.render_scale, 0.25..=2.0)

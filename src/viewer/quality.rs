@@ -42,6 +42,11 @@ impl ViewKey {
             arith: model.settings.arith(),
         }
     }
+
+    /// The full-resolution render size.
+    pub fn full_size(&self) -> (u32, u32) {
+        self.full_size
+    }
 }
 
 /// What a render shows, at which size.

@@ -146,7 +146,7 @@ impl Settings {
     /// The renderer's lighting.
     pub fn lighting(&self) -> Lighting {
         Lighting {
-            sun: self.sun(),
+            sun: Lighting::unit(self.sun()),
             intensity: self.intensity,
             ambient: self.ambient,
             shadows: self.shadows,

@@ -4,6 +4,7 @@
 
 use super::compose::{self, HeatScale};
 use super::model::Model;
+use super::navigation;
 use super::probe::{Probe, ProbeSetup};
 use super::settings::HeatMode;
 use crate::render::PASS_BLOCKS;
@@ -56,7 +57,9 @@ pub fn view_ui(ui: &mut Ui, model: &mut Model) -> Rect {
     rect
 }
 
-/// Orbit (left drag), pan (right or middle drag, or shift + left drag), zoom (wheel).
+/// Orbit (left drag), pan (right or middle drag, or shift + left drag), zoom towards the point
+/// under the pointer (wheel); then the framed view follows the view's shape and the camera
+/// stays above the ground.
 fn camera_input(ui: &Ui, response: &egui::Response, model: &mut Model, rect: Rect) {
     use egui::PointerButton::{Middle, Primary, Secondary};
     let delta = response.drag_delta();
@@ -88,10 +91,32 @@ fn camera_input(ui: &Ui, response: &egui::Response, model: &mut Model, rect: Rec
                 })
                 .sum()
         });
-        if steps != 0.0 {
-            model.orbit.zoom(f64::from(steps));
+        if let (true, Some(pos)) = (steps != 0.0, response.hover_pos()) {
+            match terrain_under(ui, model, rect, pos) {
+                Some(point) => model.orbit.zoom_towards(point, f64::from(steps)),
+                // Over the sky: towards the target, not up into the air.
+                None => model.orbit.zoom(f64::from(steps)),
+            }
         }
     }
+    let aspect = f64::from(rect.width()) / f64::from(rect.height());
+    navigation::settle(model, aspect);
+}
+
+/// The terrain point under `pos` in the current camera (not the frame on screen, which may
+/// lag behind it), if the pointer is over the terrain.
+fn terrain_under(ui: &Ui, model: &Model, rect: Rect, pos: Pos2) -> Option<[f64; 3]> {
+    let ppp = ui.ctx().pixels_per_point();
+    let physical = compose::physical_rect(rect, ppp);
+    let size = (physical.width.max(1), physical.height.max(1));
+    let pixel = (
+        (((pos.x - rect.min.x) * ppp).max(0.0) as u32).min(size.0 - 1),
+        (((pos.y - rect.min.y) * ppp).max(0.0) as u32).min(size.1 - 1),
+    );
+    let ray = model.orbit.camera(size).ok()?.ray(pixel.0, pixel.1);
+    let options = TraceOptions::new(model.settings.method, crate::Arith::F64);
+    let hit = crate::trace(&model.shown.terrain, &ray, &options).hit?;
+    Some(hit.point)
 }
 
 /// The rendered pixel under a point of the view, in the frame on screen.
@@ -400,7 +425,12 @@ fn help_ui(ui: &Ui, model: &mut Model) {
 const HELP: &[(&str, &str)] = &[
     ("Left drag", "orbit around the target"),
     ("Right drag, Shift + left drag", "pan"),
-    ("Wheel", "zoom"),
+    ("Wheel", "zoom towards the point under the cursor"),
+    ("Arrow keys", "move over the map"),
+    ("Q, E", "turn around the target"),
+    ("+, -", "zoom in, out"),
+    ("Page Up, Page Down", "look down more, less"),
+    ("F", "frame the whole map from this direction"),
     (
         "Double-click",
         "orbit around the terrain point under the cursor",
@@ -413,8 +443,8 @@ const HELP: &[(&str, &str)] = &[
         "Drop a file",
         "open a height map (PNG, PGM, TIFF) or a scene (.toml)",
     ),
-    ("R", "reset the view"),
-    ("S", "save a screenshot (PNG)"),
+    ("R", "reset the view (the whole map)"),
+    ("S", "export the rendered image (PNG, no panels)"),
     ("H", "hide or show the panels"),
     ("F1", "this help"),
 ];

@@ -1,14 +1,15 @@
-//! Drawing a frame into the window (terrain first, egui over it), screenshots, the latency
-//! and frame counts after each present, and the keys.
+//! Drawing a frame into the window (terrain first, egui over it), the window grab that
+//! `--exit-after-frames` saves, the latency and frame counts after each present, and the keys.
 
-use super::{App, UserEvent, BACKGROUND};
+use super::{App, BACKGROUND};
 use crate::viewer::compose::{self, Canvas, HeatScale, PixelRect};
 use crate::viewer::hooks;
 use crate::viewer::model::{Action, Model};
+use crate::viewer::navigation;
 use crate::viewer::settings::HeatMode;
 use egui_software_backend::BufferMutRef;
 use std::num::NonZeroU32;
-use winit::event_loop::{ActiveEventLoop, EventLoopProxy};
+use winit::event_loop::ActiveEventLoop;
 
 impl App {
     /// Draws the terrain, then egui over it, and shows the result.
@@ -20,13 +21,6 @@ impl App {
     ) -> Result<(), String> {
         let fail = |e: softbuffer::SoftBufferError| format!("cannot draw the window: {e}");
         let exiting = self.exiting_now();
-        let screenshot = std::mem::take(&mut self.screenshot_requested).then(|| {
-            let path = self.hooks.screenshot.clone();
-            (
-                path.unwrap_or_else(hooks::default_screenshot_path),
-                self.proxy.clone(),
-            )
-        });
         self.surface.resize(width, height).map_err(fail)?;
         let mut buffer = self.surface.buffer_mut().map_err(fail)?;
         buffer.fill(BACKGROUND);
@@ -61,9 +55,6 @@ impl App {
         self.egui_renderer
             .render(&mut target, &primitives, &output.textures_delta, ppp);
         let size = (width.get(), height.get());
-        if let Some((path, proxy)) = screenshot {
-            save_in_background(buffer.to_vec(), size, path, proxy);
-        }
         if let (true, Some(path)) = (exiting, &self.hooks.screenshot) {
             hooks::save_png(&buffer, size.0, size.1, path)?;
             self.counts.last_screenshot = Some(path.clone());
@@ -116,31 +107,31 @@ impl App {
     }
 }
 
-/// Encodes a screenshot off the window's thread and reports back through `proxy`.
-fn save_in_background(
-    pixels: Vec<u32>,
-    (width, height): (u32, u32),
-    path: std::path::PathBuf,
-    proxy: EventLoopProxy<UserEvent>,
-) {
-    std::thread::spawn(move || {
-        let saved = hooks::save_png(&pixels, width, height, &path).map(|()| path);
-        let _ = proxy.send_event(UserEvent::Saved(saved));
-    });
-}
-
-/// R, S, H and F1, unless a text field has the keyboard.
+/// The navigation keys, S, H and F1, unless a text field has the keyboard.
 pub(super) fn keys_ui(ui: &egui::Ui, model: &mut Model, actions: &mut Vec<Action>) {
     if ui.ctx().egui_wants_keyboard_input() {
         return;
     }
+    navigation::keys_ui(ui, model, actions);
     let pressed = |key| ui.input(|i| i.key_pressed(key));
-    if pressed(egui::Key::R) {
-        actions.push(Action::ResetView);
-    }
-    if pressed(egui::Key::S) {
-        actions.push(Action::Screenshot);
-    }
+    // Every press is one export, even two within one frame; holding the key is one press.
+    let exports = ui.input(|i| {
+        i.events
+            .iter()
+            .filter(|e| {
+                matches!(
+                    e,
+                    egui::Event::Key {
+                        key: egui::Key::S,
+                        pressed: true,
+                        repeat: false,
+                        ..
+                    }
+                )
+            })
+            .count()
+    });
+    actions.extend((0..exports).map(|_| Action::Screenshot));
     if pressed(egui::Key::H) {
         model.panels_visible = !model.panels_visible;
     }

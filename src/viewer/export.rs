@@ -1,0 +1,237 @@
+//! Exporting the rendered image: the view's converged frame, or a new render at a chosen size
+//! with the same camera, light and effects, saved as a PNG under a name no other file has, in
+//! the export folder. Never the window's pixels: no panels, overlays or messages.
+
+use super::model::Model;
+use super::worker::{RenderJob, RenderedFrame};
+use super::UserEvent;
+use crate::render::Frame;
+use std::fs::OpenOptions;
+use std::io::{BufWriter, ErrorKind};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use winit::event_loop::EventLoopProxy;
+
+/// Numbers past this are not tried: a folder with that many exports of one map is full.
+const LAST_NUMBER: u32 = 99_999;
+
+/// Where and how large images are exported, and how exports went.
+#[derive(Clone, Debug, Default)]
+pub struct Exports {
+    /// The export folder as typed; empty means the current directory.
+    pub dir: String,
+    /// Export at `size` instead of the view's render size.
+    pub custom: bool,
+    pub size: (u32, u32),
+    /// Exports rendering or being written.
+    pub running: usize,
+    /// Images written so far, and the last one.
+    pub saved: u64,
+    pub last: Option<PathBuf>,
+}
+
+/// An image written.
+#[derive(Clone, Debug)]
+pub struct Exported {
+    pub path: PathBuf,
+    pub size: (u32, u32),
+}
+
+impl Exports {
+    /// The export folder in full.
+    pub fn folder(&self) -> PathBuf {
+        let typed = self.dir.trim();
+        let dir = if typed.is_empty() {
+            std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."))
+        } else {
+            PathBuf::from(typed)
+        };
+        std::path::absolute(&dir).unwrap_or(dir)
+    }
+
+    /// Records a finished export and says where it went.
+    pub fn finished(model: &mut Model, result: Result<Exported, String>) {
+        model.export.running = model.export.running.saturating_sub(1);
+        match result {
+            Ok(exported) => {
+                let (w, h) = exported.size;
+                model.notify(format!("Saved {} ({w} x {h})", exported.path.display()));
+                model.export.saved += 1;
+                model.export.last = Some(exported.path);
+            }
+            Err(message) => model.error = Some(message),
+        }
+    }
+}
+
+/// Starts exporting `job`'s view: `ready` is its converged frame when that has the size to
+/// export, otherwise the view is rendered anew at the job camera's size, off the window's
+/// thread. The result comes back as [`UserEvent::Exported`].
+pub fn start(
+    model: &mut Model,
+    job: RenderJob,
+    ready: Option<Arc<RenderedFrame>>,
+    proxy: EventLoopProxy<UserEvent>,
+) {
+    let size = job.camera.size();
+    let folder = model.export.folder();
+    let stem = format!("heightray-{}", file_stem(&model.shown.source.label()));
+    let fresh = ready.is_none();
+    let spawned = std::thread::Builder::new()
+        .name("heightray-export".into())
+        .spawn(move || {
+            let pixels = match ready {
+                Some(frame) => frame.frame.pixels.clone(),
+                None => {
+                    let mut frame = Frame::new(size.0, size.1);
+                    job.renderer(job.arith).render(&mut frame);
+                    frame.pixels
+                }
+            };
+            let saved = save_numbered(&folder, &stem, &pixels, size);
+            // The window may be gone at exit; then nobody needs the news.
+            let _ = proxy.send_event(UserEvent::Exported(
+                saved.map(|path| Exported { path, size }),
+            ));
+        });
+    match spawned {
+        Ok(_) => {
+            model.export.running += 1;
+            if fresh {
+                model.notify(format!("Rendering {} x {} to export…", size.0, size.1));
+            }
+        }
+        Err(e) => model.error = Some(format!("cannot start exporting: {e}")),
+    }
+}
+
+/// Whether `frame` is the image `job` asks for: the same terrain, camera, light and traversal.
+pub fn shows(frame: &RenderedFrame, job: &RenderJob) -> bool {
+    let done = &frame.job;
+    frame.frame.complete()
+        && Arc::ptr_eq(&done.terrain, &job.terrain)
+        && done.camera == job.camera
+        && done.lighting == job.lighting
+        && (done.method, done.arith) == (job.method, job.arith)
+}
+
+/// A file name part from a map's label: its first word (a built-in's name, or a file name
+/// without its extension), with anything but letters, digits, `-` and `_` replaced.
+pub fn file_stem(label: &str) -> String {
+    let word = label.split(" (").next().unwrap_or(label);
+    let word = Path::new(word)
+        .file_stem()
+        .map_or(word.into(), |s| s.to_string_lossy());
+    let stem: String = word
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if stem.is_empty() {
+        "map".into()
+    } else {
+        stem
+    }
+}
+
+/// Writes 0x00RRGGBB pixels as `folder/stem-NNN.png` with the first number no file has yet
+/// (the file is created only if it does not exist, so no export ever replaces another).
+pub fn save_numbered(
+    folder: &Path,
+    stem: &str,
+    pixels: &[u32],
+    (width, height): (u32, u32),
+) -> Result<PathBuf, String> {
+    std::fs::create_dir_all(folder)
+        .map_err(|e| format!("cannot make the export folder {}: {e}", folder.display()))?;
+    for number in 1..=LAST_NUMBER {
+        let path = folder.join(format!("{stem}-{number:03}.png"));
+        let file = match OpenOptions::new().write(true).create_new(true).open(&path) {
+            Ok(file) => file,
+            Err(e) if e.kind() == ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(format!("cannot write {}: {e}", path.display())),
+        };
+        let image = image::RgbImage::from_fn(width, height, |x, y| {
+            let rgb = pixels[(y * width + x) as usize];
+            image::Rgb([(rgb >> 16) as u8, (rgb >> 8) as u8, rgb as u8])
+        });
+        let written = image.write_to(&mut BufWriter::new(file), image::ImageFormat::Png);
+        return match written {
+            Ok(()) => Ok(path),
+            Err(e) => {
+                // A half-written image is worse than none.
+                let _ = std::fs::remove_file(&path);
+                Err(format!("cannot write {}: {e}", path.display()))
+            }
+        };
+    }
+    Err(format!(
+        "cannot export: {} already holds {stem}-001.png to {stem}-{LAST_NUMBER}.png",
+        folder.display()
+    ))
+}
+
+/// The export folder and size, for the side panel.
+pub fn settings_ui(ui: &mut egui::Ui, exports: &mut Exports, render_size: Option<(u32, u32)>) {
+    ui.horizontal(|ui| {
+        ui.label("export folder");
+        ui.add(
+            egui::TextEdit::singleline(&mut exports.dir)
+                .hint_text("current directory")
+                .desired_width(150.0),
+        );
+    });
+    ui.weak(format!("saves to {}", exports.folder().display()));
+    ui.horizontal(|ui| {
+        let render = match render_size {
+            Some((w, h)) => format!("view ({w} x {h})"),
+            None => "view".into(),
+        };
+        ui.radio_value(&mut exports.custom, false, render);
+        ui.radio_value(&mut exports.custom, true, "size");
+        if exports.size == (0, 0) {
+            exports.size = render_size.unwrap_or((1920, 1080));
+        }
+        ui.add_enabled(
+            exports.custom,
+            egui::DragValue::new(&mut exports.size.0).range(1..=16384),
+        );
+        ui.add_enabled(
+            exports.custom,
+            egui::DragValue::new(&mut exports.size.1).range(1..=16384),
+        );
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_come_from_the_map_and_numbers_never_repeat() {
+        assert_eq!(file_stem("valley513 (built-in)"), "valley513");
+        assert_eq!(file_stem("my hill.pgm"), "my_hill");
+        assert_eq!(file_stem(""), "map");
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        let folder = dir.path().join("new folder");
+        let pixels = [0x00ff_0000, 0x0000_ff00, 0x0000_00ff, 0x00ff_ffff];
+        let first = save_numbered(&folder, "x", &pixels, (2, 2)).expect("saved");
+        // A file the user put there keeps its number and its contents.
+        std::fs::write(folder.join("x-002.png"), "mine").expect("write");
+        let third = save_numbered(&folder, "x", &pixels, (2, 2)).expect("saved");
+        assert_eq!(first, folder.join("x-001.png"));
+        assert_eq!(third, folder.join("x-003.png"));
+        assert_eq!(
+            std::fs::read_to_string(folder.join("x-002.png")).ok(),
+            Some("mine".into())
+        );
+        let image = image::open(&third).expect("a PNG").to_rgb8();
+        assert_eq!(image.get_pixel(1, 0).0, [0, 255, 0]);
+        assert_eq!(image.get_pixel(1, 1).0, [255, 255, 255]);
+    }
+}

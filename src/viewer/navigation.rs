@@ -1,0 +1,163 @@
+//! Moving about the map: the framed view that follows the view's shape, R and F, the keys that
+//! walk, turn and zoom, and the rule applied after every move (see [`ground::keep_above`]).
+
+use super::framing::{self, DEFAULT_PITCH_DEG, DEFAULT_YAW_DEG};
+use super::ground;
+use super::model::{Action, Model};
+use super::orbit::Orbit;
+
+/// Share of the distance one arrow key press walks the target.
+const WALK_STEP: f64 = 0.1;
+/// Degrees one Q or E press turns.
+const TURN_STEP_DEG: f64 = 10.0;
+/// Wheel steps one + or - press zooms.
+const ZOOM_KEY_STEPS: f64 = 2.0;
+/// Framing from the current direction looks down at least this much, so the map is seen
+/// from above rather than edge on.
+const FRAME_MIN_PITCH_DEG: f64 = 20.0;
+
+/// Where R goes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Home {
+    /// The whole map from the default direction, framed for the view's shape.
+    WholeMap,
+    /// A scene file's camera.
+    Scene(Orbit),
+}
+
+/// The camera shows the whole map as framed from these angles for a view of `aspect`; while it
+/// is untouched, a view of another shape, or the map with another z scale, frames it again.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Framed {
+    pub yaw_deg: f64,
+    pub pitch_deg: f64,
+    pub aspect: f64,
+    pub orbit: Orbit,
+    /// The terrain it framed (its address: a rescaled map is a new terrain).
+    pub terrain: usize,
+}
+
+/// The identity of the terrain on screen.
+fn terrain_id(model: &Model) -> usize {
+    std::sync::Arc::as_ptr(&model.shown.terrain) as usize
+}
+
+/// Frames the whole map from the given angles for the view's current shape.
+pub fn frame_map(model: &mut Model, yaw_deg: f64, pitch_deg: f64) {
+    let aspect = model.view_aspect;
+    let mut orbit = framing::fit(
+        &model.shown.terrain,
+        yaw_deg,
+        pitch_deg,
+        model.orbit.fov_y_deg,
+        aspect,
+    );
+    ground::keep_above(&mut orbit, &model.shown.terrain);
+    model.orbit = orbit;
+    model.framed = Some(Framed {
+        yaw_deg,
+        pitch_deg,
+        aspect,
+        orbit,
+        terrain: terrain_id(model),
+    });
+}
+
+/// Frames the whole map from where the camera looks now (F, and the panel's button).
+pub fn frame_from_here(model: &mut Model) {
+    let (yaw, pitch) = (model.orbit.yaw_deg, model.orbit.pitch_deg);
+    frame_map(model, yaw, pitch.max(FRAME_MIN_PITCH_DEG));
+}
+
+/// Returns to the home view (R): a scene's camera, or the whole map from the default angles.
+pub fn reset(model: &mut Model) {
+    match model.home {
+        Home::Scene(orbit) => {
+            model.orbit = orbit;
+            model.framed = None;
+        }
+        Home::WholeMap => {
+            model.orbit.fov_y_deg = framing::DEFAULT_FOV_Y_DEG;
+            frame_map(model, DEFAULT_YAW_DEG, DEFAULT_PITCH_DEG);
+        }
+    }
+}
+
+/// Run once per frame after the camera input, with the view's shape: a framed view that was
+/// not moved since follows the shape, and every move ends within the ground rule.
+pub fn settle(model: &mut Model, aspect: f64) {
+    if aspect.is_finite() && aspect > 0.0 {
+        model.view_aspect = aspect;
+    }
+    match model.framed {
+        Some(framed) if framed.orbit != model.orbit => model.framed = None,
+        Some(framed)
+            if framed.aspect != model.view_aspect || framed.terrain != terrain_id(model) =>
+        {
+            frame_map(model, framed.yaw_deg, framed.pitch_deg);
+        }
+        _ => {}
+    }
+    // A scene's camera is shown as its file has it, wherever that is, until it is moved.
+    if model.home != Home::Scene(model.orbit) {
+        ground::keep_above(&mut model.orbit, &model.shown.terrain);
+    }
+}
+
+/// Arrows walk the target over the ground, Q and E turn, + and - zoom, PageUp and PageDown
+/// tilt, F frames the whole map and R returns home.
+pub fn keys_ui(ui: &egui::Ui, model: &mut Model, actions: &mut Vec<Action>) {
+    use egui::Key;
+    let pressed = |key| ui.input(|i| i.key_pressed(key));
+    let walks = [
+        (Key::ArrowUp, (1.0, 0.0)),
+        (Key::ArrowDown, (-1.0, 0.0)),
+        (Key::ArrowLeft, (0.0, -1.0)),
+        (Key::ArrowRight, (0.0, 1.0)),
+    ];
+    for (key, (ahead, aside)) in walks {
+        if pressed(key) {
+            model.orbit.walk(WALK_STEP * ahead, WALK_STEP * aside);
+            // The target walks on the ground, not through the air above a valley.
+            let [x, y, _] = model.orbit.target;
+            model.orbit.target[2] = ground::surface_z(&model.shown.terrain, x, y);
+        }
+    }
+    if pressed(Key::Q) {
+        model.orbit.turn(TURN_STEP_DEG);
+    }
+    if pressed(Key::E) {
+        model.orbit.turn(-TURN_STEP_DEG);
+    }
+    if pressed(Key::Plus) || pressed(Key::Equals) {
+        model.orbit.zoom(ZOOM_KEY_STEPS);
+    }
+    if pressed(Key::Minus) {
+        model.orbit.zoom(-ZOOM_KEY_STEPS);
+    }
+    if pressed(Key::PageUp) {
+        model.orbit.tilt(TURN_STEP_DEG);
+    }
+    if pressed(Key::PageDown) {
+        model.orbit.tilt(-TURN_STEP_DEG);
+    }
+    if pressed(Key::F) {
+        actions.push(Action::FrameMap);
+    }
+    if pressed(Key::R) {
+        actions.push(Action::ResetView);
+    }
+}
+
+/// The camera section's extras: framing the map, and where and how large exports are.
+pub fn tools_ui(ui: &mut egui::Ui, model: &mut Model, actions: &mut Vec<Action>) {
+    if ui
+        .button("Frame map (F)")
+        .on_hover_text("fit the whole map in the view, from the current direction")
+        .clicked()
+    {
+        actions.push(Action::FrameMap);
+    }
+    let shown = model.latest.as_ref().map(|l| l.job.camera.size());
+    super::export::settings_ui(ui, &mut model.export, shown);
+}

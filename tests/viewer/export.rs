@@ -1,0 +1,165 @@
+//! S exports the rendered image: the same pixels `heightray render` makes of a scene written
+//! from the viewer's reported camera and light, at the render resolution or at a chosen size,
+//! with no panels or overlays; each press a new file, none overwritten.
+
+use super::app::num;
+use super::Session;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// A scene file for the view in `state`, on the built-in valley, at `size` pixels.
+fn scene_of(state: &Value, size: (u32, u32)) -> String {
+    let n = |p: &str| format!("{:?}", num(state, p));
+    let triple = |p: &str| {
+        format!(
+            "[{}, {}, {}]",
+            n(&format!("{p}/0")),
+            n(&format!("{p}/1")),
+            n(&format!("{p}/2"))
+        )
+    };
+    let text = |p: &str| {
+        state
+            .pointer(p)
+            .and_then(Value::as_str)
+            .unwrap_or_default()
+            .to_owned()
+    };
+    let flag = |p: &str| {
+        state
+            .pointer(p)
+            .and_then(Value::as_bool)
+            .unwrap_or_default()
+    };
+    format!(
+        "[heightmap]\npath = \"builtin:valley513\"\nz_scale = {z}\n\n\
+         [camera]\norbit = {{ target = {target}, yaw_deg = {yaw}, pitch_deg = {pitch}, distance = {distance} }}\n\
+         fov_y_deg = {fov}\nwidth = {w}\nheight = {h}\n\n\
+         [sun]\ndirection = {sun}\nintensity = {intensity}\nambient = {ambient}\n\n\
+         [effects]\nshadows = {shadows}\nfog = {fog}\n\n\
+         [shading]\nnormals = \"{normals}\"\nramp = \"{ramp}\"\n\n\
+         [render]\nmethod = \"{method}\"\narith = \"{arith}\"\n",
+        z = n("/terrain/z_scale"),
+        target = triple("/camera/target"),
+        yaw = n("/camera/yaw_deg"),
+        pitch = n("/camera/pitch_deg"),
+        distance = n("/camera/distance"),
+        fov = n("/camera/fov_y_deg"),
+        w = size.0,
+        h = size.1,
+        sun = triple("/sun/direction"),
+        intensity = n("/lighting/intensity"),
+        ambient = n("/lighting/ambient"),
+        shadows = flag("/lighting/shadows"),
+        fog = n("/lighting/fog"),
+        normals = text("/lighting/normals"),
+        ramp = text("/lighting/ramp"),
+        method = text("/method"),
+        arith = text("/arith"),
+    )
+}
+
+/// `heightray render` of a scene, as RGB pixels.
+fn render(dir: &Path, scene: &str) -> image::RgbImage {
+    let (scene_path, out) = (dir.join("export-check.toml"), dir.join("reference.png"));
+    std::fs::write(&scene_path, scene).expect("write the scene");
+    let status = Command::new(env!("CARGO_BIN_EXE_heightray"))
+        .arg("render")
+        .arg(&scene_path)
+        .arg("-o")
+        .arg(&out)
+        .stdout(std::process::Stdio::null())
+        .status()
+        .expect("run heightray render");
+    assert!(status.success(), "heightray render failed on\n{scene}");
+    image::open(&out).expect("the rendered PNG").to_rgb8()
+}
+
+#[test]
+fn s_exports_the_render_without_ui_and_never_overwrites() {
+    let mut session = Session::start(&[]);
+    let state = session.state();
+    let folder = PathBuf::from(
+        state["export"]["folder"]
+            .as_str()
+            .expect("an export folder"),
+    );
+    assert!(folder.is_absolute(), "{folder:?}");
+    // A file already there keeps its name and contents.
+    let taken = folder.join("heightray-valley513-001.png");
+    std::fs::write(&taken, "not an export").expect("write a file");
+    session.x.focus(session.window);
+    // Two presses in quick succession: two files.
+    session.x.key('s' as u32);
+    session.x.key('s' as u32);
+    let done = session.viewer.wait_for("two exports", |s| {
+        s["export"]["saved"] == 2 && s["export"]["running"] == 0
+    });
+    assert_eq!(done["error"], Value::Null);
+    assert_eq!(
+        std::fs::read_to_string(&taken).ok().as_deref(),
+        Some("not an export")
+    );
+    let files: Vec<PathBuf> = ["002", "003"]
+        .iter()
+        .map(|n| folder.join(format!("heightray-valley513-{n}.png")))
+        .collect();
+    let last = PathBuf::from(done["export"]["last"].as_str().expect("the last export"));
+    assert!(files.contains(&last), "{last:?} is not one of {files:?}");
+    let images: Vec<image::RgbImage> = files
+        .iter()
+        .map(|f| image::open(f).expect("an exported PNG").to_rgb8())
+        .collect();
+    // At the render resolution (the view without the panel), not the window's size.
+    let size = (
+        num(&done, "/frame/width") as u32,
+        num(&done, "/frame/height") as u32,
+    );
+    assert_eq!(images[0].dimensions(), size);
+    assert!(size.0 < num(&done, "/window_size/0") as u32);
+    assert_eq!(
+        done["camera"], state["camera"],
+        "the camera moved while exporting"
+    );
+    let reference = render(session.viewer.dir.path(), &scene_of(&done, size));
+    for (file, image) in files.iter().zip(&images) {
+        assert_same(file, image, &reference);
+    }
+}
+
+fn assert_same(file: &Path, image: &image::RgbImage, reference: &image::RgbImage) {
+    assert_eq!(image.dimensions(), reference.dimensions(), "{file:?}");
+    let differing = image
+        .pixels()
+        .zip(reference.pixels())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(
+        differing, 0,
+        "{file:?} differs from `heightray render` of the same view in {differing} pixels"
+    );
+}
+
+#[test]
+fn an_export_at_a_chosen_size_is_rendered_anew_into_the_export_folder() {
+    let mut session = Session::start(&["--export-size", "333x211", "--export-dir", "out/images"]);
+    let state = session.state();
+    let folder = PathBuf::from(
+        state["export"]["folder"]
+            .as_str()
+            .expect("an export folder"),
+    );
+    assert_eq!(folder, session.viewer.path("out/images"));
+    session.x.focus(session.window);
+    session.x.key('s' as u32);
+    let done = session.viewer.wait_for("the export", |s| {
+        s["export"]["saved"] == 1 && s["export"]["running"] == 0
+    });
+    assert_eq!(done["error"], Value::Null);
+    let file = folder.join("heightray-valley513-001.png");
+    assert_eq!(done["export"]["last"].as_str(), file.to_str());
+    let image = image::open(&file).expect("an exported PNG").to_rgb8();
+    let reference = render(session.viewer.dir.path(), &scene_of(&done, (333, 211)));
+    assert_same(&file, &image, &reference);
+}
