@@ -28,9 +28,16 @@ pub fn view_ui(ui: &mut Ui, model: &mut Model) -> Rect {
     model.view_held = dragging;
     match response.hover_pos() {
         Some(pos) if model.show_probe && !dragging && !model.drop_hover => {
-            hover_probe(ui, model, rect, pos)
+            if rested(ui, model, pos) {
+                hover_probe(ui, model, rect, pos);
+            } else {
+                model.probe = None;
+            }
         }
-        _ => model.probe = None,
+        _ => {
+            model.probe = None;
+            model.pointer_rest = None;
+        }
     }
     if model.latest.is_none() {
         ui.painter().text(
@@ -47,7 +54,7 @@ pub fn view_ui(ui: &mut Ui, model: &mut Model) -> Rect {
         drop_hint_ui(ui, rect);
     }
     if !model.panels_visible {
-        corner_text(ui, rect, Align2::RIGHT_TOP, "H: panels   F1: help");
+        corner_text(ui, rect, Align2::RIGHT_TOP, "H: show panel   F1: help");
     }
     if model.help_open {
         help_ui(ui, model);
@@ -126,6 +133,28 @@ fn retarget(ui: &Ui, model: &mut Model, rect: Rect, pos: Pos2) {
         Some(hit) => model.orbit.retarget(hit.point),
         None => model.notify("Double-click on the terrain to orbit around that point"),
     }
+}
+
+/// How long the pointer rests before the probe shows: long enough that moving across the
+/// view or letting go of a drag shows nothing.
+const PROBE_REST: Duration = Duration::from_millis(500);
+
+/// Whether the pointer has rested at `pos` for [`PROBE_REST`]; until then it asks for a
+/// redraw at the moment it will have.
+fn rested(ui: &Ui, model: &mut Model, pos: Pos2) -> bool {
+    let since = match model.pointer_rest {
+        Some((at, since)) if at.distance(pos) < 3.0 => since,
+        _ => {
+            let now = std::time::Instant::now();
+            model.pointer_rest = Some((pos, now));
+            now
+        }
+    };
+    let waited = since.elapsed();
+    if waited < PROBE_REST {
+        ui.ctx().request_repaint_after(PROBE_REST - waited);
+    }
+    waited >= PROBE_REST
 }
 
 /// Re-traces the hovered pixel's ray when the pixel or the frame changed, and shows it.
@@ -267,18 +296,21 @@ fn legend_ui(ui: &Ui, rect: Rect, scale: HeatScale) {
     );
 }
 
-/// The loading progress, the last error and short notices, at the top of the view.
+/// The loading progress, the last error and short notices, at the top of the view and
+/// inside it: long text wraps to the view's width, never over the panel.
 fn messages_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
     let mut dismiss = false;
+    let width = (rect.width() - 32.0).clamp(80.0, 640.0);
     egui::Area::new(Id::new("view messages"))
         .pivot(Align2::CENTER_TOP)
         .fixed_pos(Pos2::new(rect.center().x, rect.top() + 12.0))
+        .constrain_to(rect)
         .order(egui::Order::Foreground)
         .show(ui.ctx(), |ui| {
-            ui.set_max_width((rect.width() - 40.0).clamp(200.0, 640.0));
+            ui.set_max_width(width);
             if let Some(progress) = &model.progress {
                 egui::Frame::popup(ui.style()).show(ui, |ui| {
-                    ui.horizontal(|ui| {
+                    ui.horizontal_wrapped(|ui| {
                         ui.spinner();
                         ui.label(format!(
                             "Loading {}: {}",
@@ -294,14 +326,17 @@ fn messages_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
                 });
             }
             if let Some(error) = &model.error {
-                egui::Frame::popup(ui.style())
+                let frame = egui::Frame::popup(ui.style())
                     .fill(Color32::from_rgb(110, 24, 24))
                     .show(ui, |ui| {
-                        ui.horizontal(|ui| {
-                            ui.colored_label(Color32::WHITE, format!("⚠ {error}"));
-                            dismiss = ui.button("Dismiss").clicked();
-                        });
+                        ui.label(egui::RichText::new(format!("⚠ {error}")).color(Color32::WHITE));
+                        let button = ui.button("Dismiss");
+                        model.widget_rects.insert("error_dismiss", button.rect);
+                        dismiss = button.clicked();
                     });
+                model
+                    .widget_rects
+                    .insert("error_message", frame.response.rect);
             }
             if let Some(notice) = &model.notice {
                 if notice.at.elapsed() < NOTICE_TIME {
@@ -405,8 +440,8 @@ const HELP: &[(&str, &str)] = &[
         "orbit around the terrain point under the cursor",
     ),
     (
-        "Hover",
-        "the pixel's ray: hit, cell, triangle and its queries",
+        "Rest the pointer",
+        "with the probe on (Statistics): the pixel's ray, its hit and its queries",
     ),
     (
         "Drop a file",

@@ -23,6 +23,37 @@ pub fn accuracy_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     compare_ui(ui, model);
 }
 
+/// A warning or note on what the arithmetic on screen costs, and whether it is a warning:
+/// from the measurement of this view when it has the row, else from the README's figures
+/// (bounded rationals cost hundreds of times f64 per ray; exact about 1.3 times).
+pub fn speed_note(arith: Arith, measurement: Option<&Measurement>) -> Option<(String, bool)> {
+    let measured = measurement.and_then(|m| {
+        let f64_ns = ns_per_ray(m.row(Arith::F64)?);
+        Some(ns_per_ray(m.row(arith)?) / f64_ns.max(1e-9))
+    });
+    match (arith, measured) {
+        (Arith::Rational { .. }, Some(ratio)) => Some((
+            format!("measured here: {ratio:.0}x the time of f64 per ray; frames take a while"),
+            ratio > 10.0,
+        )),
+        (Arith::Rational { .. }, None) => Some((
+            "bounded rationals are slow: hundreds to a thousand times f64 per ray, so a frame \
+             can take many seconds"
+                .into(),
+            true,
+        )),
+        (Arith::Exact, Some(ratio)) => Some((
+            format!("measured here: exact takes {ratio:.1}x the time of f64 per ray"),
+            ratio > 10.0,
+        )),
+        (Arith::Exact, None) => Some((
+            "exact costs about 1.3x the time of f64 per ray on the built-in maps".into(),
+            false,
+        )),
+        _ => None,
+    }
+}
+
 fn measure_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let state = &mut model.accuracy;
     let busy = matches!(
