@@ -341,8 +341,7 @@ impl App {
         self.accuracy.update(
             &mut self.model.accuracy,
             converged.as_ref(),
-            self.quality.view_id(),
-            self.model.latest.as_ref().map(|l| l.generation),
+            self.model.latest.as_ref(),
         );
     }
 

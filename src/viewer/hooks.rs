@@ -159,7 +159,7 @@ fn accuracy_report(state: &AccuracyState) -> Value {
         } => Some(r.fraction),
         _ => None,
     };
-    let stale = matches!(measure, MeasureState::Done { view_id, .. } if *view_id != state.view_id);
+    let stale = state.measured_elsewhere();
     let comparison = state.comparison_shown();
     json!({
         "measure": {

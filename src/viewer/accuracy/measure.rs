@@ -5,9 +5,11 @@
 
 use crate::bench::{view_pixel_differences, PixelRow, View};
 use crate::render::CameraError;
+use crate::render::Lighting;
 use crate::viewer::background::Step;
-use crate::viewer::worker::RenderedFrame;
-use crate::Arith;
+use crate::viewer::orbit::Orbit;
+use crate::viewer::worker::{RenderJob, RenderedFrame};
+use crate::{Arith, Method};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -17,6 +19,28 @@ pub const BOUNDS: [u32; 5] = [1 << 4, 1 << 8, 1 << 12, 1 << 16, 1 << 24];
 /// Pixels of the measured frame offered: a full view in bounded rationals would take minutes
 /// (a ray costs them 0.1 to 2 ms), so the view is measured at a reduced resolution.
 pub const PIXEL_BUDGETS: [u32; 3] = [2_304, 9_216, 36_864];
+
+/// What a measurement depends on: the camera, the terrain, the method and the light. The
+/// arithmetic on screen is not part of it: every arithmetic is measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Subject {
+    orbit: Orbit,
+    /// The terrain's identity: a new load, or a new z scale, is a new allocation.
+    terrain: usize,
+    method: Method,
+    lighting: Lighting,
+}
+
+impl Subject {
+    pub fn of(job: &RenderJob) -> Subject {
+        Subject {
+            orbit: job.orbit,
+            terrain: Arc::as_ptr(&job.terrain) as usize,
+            method: job.method,
+            lighting: job.lighting,
+        }
+    }
+}
 
 /// The view to measure and in which arithmetics.
 pub struct MeasureJob {
@@ -34,8 +58,6 @@ pub struct Measurement {
     pub rows: Vec<PixelRow>,
     /// Rows there will be when it is done.
     pub planned: usize,
-    /// The arithmetic on screen when it started (its row is marked).
-    pub shown: Arith,
 }
 
 impl Measurement {
@@ -117,7 +139,6 @@ pub fn run(job: MeasureJob, step: &Step<'_, MeasureJob, Measurement>) {
         size: job.size,
         rows: Vec::new(),
         planned: job.ariths.len() + 1,
-        shown: render_job.arith,
     };
     let started = Instant::now();
     let status = |done: usize| match [Arith::Exact].iter().chain(&job.ariths).nth(done) {

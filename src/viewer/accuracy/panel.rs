@@ -117,7 +117,7 @@ fn measure_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
                 ui.label("starting");
             });
         }
-        MeasureState::Done { view_id, .. } if *view_id != state.view_id => {
+        MeasureState::Done { .. } if state.measured_elsewhere() => {
             ui.colored_label(
                 Color32::from_rgb(230, 180, 80),
                 "measured for an earlier view: measure again for this one",
@@ -132,13 +132,13 @@ fn measure_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         MeasureState::Idle | MeasureState::Done { .. } => {}
     }
     if let Some(measurement) = state.measure.measurement() {
-        table_ui(ui, measurement);
+        table_ui(ui, measurement, model.settings.arith());
         super::plot::plot_ui(ui, measurement);
     }
 }
 
 /// Arithmetic, time per ray, ratio to f64, pixels differing from exact.
-fn table_ui(ui: &mut Ui, measurement: &Measurement) {
+fn table_ui(ui: &mut Ui, measurement: &Measurement, on_screen: Arith) {
     let (w, h) = measurement.size;
     ui.weak(format!("{w} x {h} = {} pixels", w * h));
     let f64_ns = measurement.row(Arith::F64).map(ns_per_ray);
@@ -158,7 +158,7 @@ fn table_ui(ui: &mut Ui, measurement: &Measurement) {
                 .chain(measurement.row(Arith::Exact));
             for row in ordered {
                 let mut name = RichText::new(label(row.arith));
-                if row.arith == measurement.shown {
+                if row.arith == on_screen {
                     name = name.strong().color(Color32::WHITE);
                 }
                 ui.label(name)
