@@ -99,6 +99,8 @@ fn report(model: &Model, counts: &Counts) -> Value {
         "drop_hover": model.drop_hover,
         "panels_visible": model.panels_visible,
         "help_open": model.help_open,
+        "show_probe": model.show_probe,
+        "probe": model.probe.as_ref().map(|p| [p.pixel.0, p.pixel.1]),
         "heat_map": model.settings.heat.label(),
         "widgets": widget_report(model),
         "latency_ms": {

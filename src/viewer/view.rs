@@ -54,7 +54,8 @@ pub fn view_ui(ui: &mut Ui, model: &mut Model) -> Rect {
         drop_hint_ui(ui, rect);
     }
     if !model.panels_visible {
-        corner_text(ui, rect, Align2::RIGHT_TOP, "H: show panel   F1: help");
+        let hint = corner_text(ui, rect, Align2::RIGHT_TOP, "H: show panel   F1: help");
+        model.widget_rects.insert("show_panel_hint", hint);
     }
     if model.help_open {
         help_ui(ui, model);
@@ -391,7 +392,8 @@ fn drop_hint_ui(ui: &Ui, rect: Rect) {
     }
 }
 
-fn corner_text(ui: &Ui, rect: Rect, align: Align2, text: &str) {
+/// Writes `text` in a corner of `rect`; returns where.
+fn corner_text(ui: &Ui, rect: Rect, align: Align2, text: &str) -> Rect {
     let painter = ui.painter_at(rect);
     let galley = painter.layout_no_wrap(
         text.to_owned(),
@@ -403,12 +405,10 @@ fn corner_text(ui: &Ui, rect: Rect, align: Align2, text: &str) {
         Align2::RIGHT_TOP => rect.right_top() + Vec2::new(-margin.x - galley.size().x, margin.y),
         _ => rect.left_top() + margin,
     };
-    painter.rect_filled(
-        Rect::from_min_size(min, galley.size()).expand(4.0),
-        3.0,
-        Color32::from_black_alpha(120),
-    );
+    let backdrop = Rect::from_min_size(min, galley.size()).expand(4.0);
+    painter.rect_filled(backdrop, 3.0, Color32::from_black_alpha(120));
     painter.galley(min, galley, Color32::WHITE);
+    backdrop
 }
 
 /// The F1 window: what the mouse and keys do.

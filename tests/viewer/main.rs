@@ -8,6 +8,7 @@
 mod accuracy;
 mod app;
 mod decoding;
+mod panel;
 mod x11;
 mod xdnd;
 
