@@ -1,7 +1,6 @@
 //! The side panel: camera, light, height map, traversal, effects and statistics.
 
-use super::accuracy::panel::accuracy_ui;
-use super::accuracy::panel::speed_note;
+use super::accuracy::panel::{accuracy_ui, speed_note};
 use super::decoding::{decoding_ui, Decoding};
 use super::loader::{LoadRequest, Source};
 use super::model::{Action, Model};
@@ -75,11 +74,12 @@ fn sections_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         heightmap_ui(ui, model, actions)
     });
     named(model, "heightmap_section", heightmap);
-    let title = format!(
-        "Traversal: {}, {}",
+    let summary = format!(
+        "{}, {}",
         model.settings.method,
         model.settings.arith.label()
     );
+    let title = format!("Traversal: {}", shortened(&summary, 24));
     let traversal = section(ui, "Traversal", &title, false, |ui| {
         traversal_ui(ui, model, actions)
     });

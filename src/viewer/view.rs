@@ -235,6 +235,21 @@ fn status_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
             }
         };
         legend_ui(ui, rect, scale);
+        // Chosen under another method: say why the view is one flat colour.
+        if let Some(why) = model.settings.heat.unavailable(model.settings.method) {
+            let text = format!("{why}: choose another heat map or method");
+            let painter = ui.painter_at(rect);
+            let galley = painter.layout(
+                text,
+                egui::FontId::proportional(15.0),
+                Color32::WHITE,
+                (rect.width() - 40.0).max(80.0),
+            );
+            let min = rect.center() - galley.size() / 2.0;
+            let backdrop = Rect::from_min_size(min, galley.size()).expand(8.0);
+            painter.rect_filled(backdrop, 4.0, Color32::from_black_alpha(170));
+            painter.galley(min, galley, Color32::WHITE);
+        }
     }
     if !frame.complete() {
         let text = format!(
