@@ -52,8 +52,10 @@ pub fn side_panel_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) 
         .resizable(false)
         .exact_size(width)
         .show_inside(ui, |ui| {
-            // Sliders share the width with their labels instead of pushing past the edge.
-            ui.spacing_mut().slider_width = (ui.available_width() - 110.0).max(80.0);
+            // A slider row is the slider, its value and its label (at most about 80 points):
+            // the slider takes what is left, so the row ends at the panel's edge.
+            let indent = ui.spacing().indent;
+            ui.spacing_mut().slider_width = (ui.available_width() - indent - 150.0).max(50.0);
             egui::ScrollArea::vertical()
                 .auto_shrink([false, false])
                 .show(ui, |ui| {
@@ -175,10 +177,10 @@ fn camera_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
 
 fn light_ui(ui: &mut Ui, model: &mut Model) {
     let s = &mut model.settings;
-    let azimuth = ui.add(Slider::new(&mut s.sun_azimuth_deg, -180.0..=180.0).text("sun azimuth °"));
+    let azimuth = ui.add(Slider::new(&mut s.sun_azimuth_deg, -180.0..=180.0).text("azimuth °"));
     named(model, "sun_azimuth", azimuth);
     let s = &mut model.settings;
-    ui.add(Slider::new(&mut s.sun_elevation_deg, 1.0..=90.0).text("sun elevation °"));
+    ui.add(Slider::new(&mut s.sun_elevation_deg, 1.0..=90.0).text("elevation °"));
     ui.add(Slider::new(&mut s.intensity, 0.0..=3.0).text("intensity"));
     ui.add(Slider::new(&mut s.ambient, 0.0..=1.0).text("ambient"));
     ui.checkbox(&mut s.shadows, "shadows");

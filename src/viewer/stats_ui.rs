@@ -139,7 +139,7 @@ fn heat_map_ui(ui: &mut Ui, model: &mut Model) {
     }
 }
 
-/// Totals, per primary ray and hit:miss ratio of each query kind, primary and shadow together.
+/// Totals, per primary ray and misses per hit of each query kind, primary and shadow together.
 fn queries_ui(ui: &mut Ui, totals: &FrameStats) {
     let all = totals.queries();
     let per_ray = |n: u64| n as f64 / totals.primary_rays.max(1) as f64;
@@ -147,8 +147,21 @@ fn queries_ui(ui: &mut Ui, totals: &FrameStats) {
         .num_columns(4)
         .striped(true)
         .show(ui, |ui| {
-            for heading in ["query", "total", "per primary", "hit : miss"] {
-                ui.strong(heading).on_hover_text(HIT_MISS);
+            // Short headings keep the table inside the panel; hovering explains them.
+            let headings = [
+                ("query", "the four query kinds, and the beam test of a tile"),
+                (
+                    "total",
+                    "queries of the frame, camera and shadow rays together",
+                ),
+                (
+                    "per ray",
+                    "per camera (primary) ray, its shadow ray's included",
+                ),
+                ("miss/hit", HIT_MISS),
+            ];
+            for (heading, meaning) in headings {
+                ui.strong(heading).on_hover_text(meaning);
             }
             ui.end_row();
             // Beams are tested once per tile of camera rays, not per ray (a lone ray, as
@@ -159,7 +172,7 @@ fn queries_ui(ui: &mut Ui, totals: &FrameStats) {
                 ui.label(*name);
                 ui.label(h.total().to_string());
                 ui.label(format!("{:.2}", per_ray(h.total())));
-                ui.label(format!("1 : {:.2}", h.miss as f64 / h.hit.max(1) as f64));
+                ui.label(format!("{:.2}", h.miss as f64 / h.hit.max(1) as f64));
                 ui.end_row();
             }
         });

@@ -27,8 +27,8 @@ fn the_default_panel_fits_720_pixels_and_keeps_its_width_when_a_section_opens() 
         content[3]
     );
     assert!(
-        panel[2] - panel[0] <= 0.3 * width,
-        "the panel takes {panel:?} of a {width} px window"
+        panel[2] - panel[0] <= 0.3 * width && panel[2] <= width && content[2] <= width,
+        "the panel {panel:?} (content {content:?}) in a {width} px window"
     );
 
     // Opening the widest section changes neither the panel's width nor the view.
@@ -56,10 +56,11 @@ fn a_small_window_gets_a_narrower_panel_and_a_tiny_one_none_with_a_hint() {
     let state = session.state();
     assert_eq!(window_size(&state), (800.0, 500.0));
     let panel = widget(&state, "side_panel");
+    let content = widget(&state, "panel_content");
     session.capture("panel-800x500.png");
     assert!(
-        panel[2] - panel[0] <= 0.32 * 800.0,
-        "the panel takes {panel:?} of an 800 px window"
+        panel[2] - panel[0] <= 0.32 * 800.0 && panel[2] <= 800.0 && content[2] <= 800.0,
+        "the panel {panel:?} (content {content:?}) in an 800 px window"
     );
     assert!(num(&state, "/view_rect/2") >= 0.68 * 800.0);
     drop(session);
