@@ -176,6 +176,36 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_measurement_is_of_the_same_view_whatever_arithmetic_is_on_screen() {
+        let field = crate::heightfield::Builtin::named("small49")
+            .and_then(|b| b.load().ok())
+            .expect("decodes");
+        let terrain = Arc::new(crate::Terrain::new(field));
+        let orbit = Orbit::framing(&terrain);
+        let job = |orbit: Orbit, method, arith| RenderJob {
+            terrain: Arc::clone(&terrain),
+            orbit,
+            camera: orbit.camera((16, 16)).expect("a camera"),
+            lighting: crate::viewer::settings::Settings::default().lighting(),
+            method,
+            arith,
+            view_id: 0,
+        };
+        let measured = Subject::of(&job(orbit, Method::Runs, Arith::F64));
+        let exact = Subject::of(&job(orbit, Method::Runs, Arith::Exact));
+        assert_eq!(measured, exact, "only the arithmetic changed");
+        let turned = Orbit {
+            yaw_deg: orbit.yaw_deg + 5.0,
+            ..orbit
+        };
+        assert_ne!(
+            measured,
+            Subject::of(&job(turned, Method::Runs, Arith::F64))
+        );
+        assert_ne!(measured, Subject::of(&job(orbit, Method::Dda, Arith::F64)));
+    }
+
+    #[test]
     fn reduced_size_keeps_the_aspect_and_the_budget() {
         assert_eq!(reduced_size((1280, 720), 2_304), (64, 36));
         assert_eq!(reduced_size((40, 30), 2_304), (40, 30));
