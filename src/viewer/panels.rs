@@ -330,19 +330,19 @@ fn traversal_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     accuracy_ui(ui, model, actions);
 }
 
-/// The effects: shadows and fog. The fog slider is a visibility distance on a log scale over
-/// the useful range for this map; the renderer and scene files keep a density.
+/// The effects (shadows are with the light). The fog slider is a visibility distance on a
+/// log scale over the useful range for this map; the renderer and scene files keep a density.
 fn effects_ui(ui: &mut Ui, model: &mut Model) {
     let field = model.shown.terrain.field();
     let size = (field.width().max(field.height()) as f64 - 1.0).max(1.0);
-    let s = &mut model.settings;
-    ui.checkbox(&mut s.shadows, "shadows");
     let range = fog::range(size);
-    let mut on = s.fog > 0.0;
-    if ui.checkbox(&mut on, "fog").changed() {
+    let mut on = model.settings.fog > 0.0;
+    let toggle = ui.checkbox(&mut on, "fog");
+    if named(model, "fog_toggle", toggle).changed() {
         // Twice the map's size: the far side is hazy, the near side clear.
-        s.fog = if on { fog::density(2.0 * size) } else { 0.0 };
+        model.settings.fog = if on { fog::density(2.0 * size) } else { 0.0 };
     }
+    let s = &mut model.settings;
     if s.fog > 0.0 {
         let mut distance = fog::distance(s.fog);
         let slider = Slider::new(&mut distance, range)
