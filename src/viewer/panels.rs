@@ -339,8 +339,13 @@ fn effects_ui(ui: &mut Ui, model: &mut Model) {
     let mut on = model.settings.fog > 0.0;
     let toggle = ui.checkbox(&mut on, "fog");
     if named(model, "fog_toggle", toggle).changed() {
-        // Twice the map's size: the far side is hazy, the near side clear.
-        model.settings.fog = if on { fog::density(2.0 * size) } else { 0.0 };
+        // A haze: about half the contrast left on the far side of the map, more on the near.
+        let far_side = model.orbit.distance + size;
+        model.settings.fog = if on {
+            fog::density(4.0 * far_side)
+        } else {
+            0.0
+        };
     }
     let s = &mut model.settings;
     if s.fog > 0.0 {
