@@ -94,6 +94,7 @@ fn report(model: &Model, counts: &Counts) -> Value {
             "decoded_as": decoding_report(model.shown.decoding),
         },
         "decoding": decoding_report(model.decoding),
+        "path_field": model.path_text,
         "loading": model.progress.as_ref().map(|p| p.label.clone()),
         "error": model.error,
         "drop_hover": model.drop_hover,

@@ -317,9 +317,11 @@ fn legend_ui(ui: &Ui, rect: Rect, scale: HeatScale) {
 fn messages_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
     let mut dismiss = false;
     let width = (rect.width() - 32.0).clamp(80.0, 640.0);
+    // Below the corner's hint to bring the panel back, when it is there.
+    let top = if model.panels_visible { 12.0 } else { 40.0 };
     egui::Area::new(Id::new("view messages"))
         .pivot(Align2::CENTER_TOP)
-        .fixed_pos(Pos2::new(rect.center().x, rect.top() + 12.0))
+        .fixed_pos(Pos2::new(rect.center().x, rect.top() + top))
         .constrain_to(rect)
         .order(egui::Order::Foreground)
         .show(ui.ctx(), |ui| {
@@ -464,6 +466,9 @@ const HELP: &[(&str, &str)] = &[
     ),
     ("R", "reset the view"),
     ("S", "save a screenshot (PNG)"),
-    ("H", "hide or show the panels"),
+    (
+        "H",
+        "hide or show the panel (it hides itself in narrow windows)",
+    ),
     ("F1", "this help"),
 ];

@@ -90,6 +90,19 @@ fn a_long_error_wraps_inside_the_view_and_dismiss_takes_it_away() {
     let mut session = Session::start(&["--size", "800x500"]);
     let state = session.state();
     let at = session.screen(session.view_centre(&state));
+
+    // A map that loads: the path field shows it, however it was opened.
+    let hill = session.viewer.path("hill.pgm");
+    super::write_hill(&hill);
+    assert_eq!(
+        super::xdnd::drag_file(&session.x, &hill, at, false),
+        super::xdnd::Outcome::Accepted
+    );
+    let loaded = session
+        .viewer
+        .wait_for("the hill to load", |s| s["terrain"]["name"] == "hill.pgm");
+    assert_eq!(loaded["path_field"], hill.display().to_string());
+
     let name = format!("{}.txt", "this-file-is-not-a-height-map-".repeat(6));
     let notes = session.viewer.path(&name);
     std::fs::write(&notes, "not a height map\n").expect("write notes");
