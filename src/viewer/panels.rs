@@ -67,6 +67,7 @@ pub fn side_panel_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) 
 }
 
 fn sections_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
+    follow_shown_path(model);
     section(ui, "Camera", "Camera", true, |ui| {
         camera_ui(ui, model, actions)
     });
@@ -223,6 +224,20 @@ fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     ));
 }
 
+/// Fills the path field in with the file on screen whenever a new one is shown, however it
+/// was opened (a built-in empties it).
+fn follow_shown_path(model: &mut Model) {
+    let current = &model.shown.source;
+    if model.path_source.as_ref() == Some(current) {
+        return;
+    }
+    model.path_text = match current {
+        Source::File(path) => path.display().to_string(),
+        Source::Builtin(_) => String::new(),
+    };
+    model.path_source = Some(current.clone());
+}
+
 /// The built-in list and the path field.
 fn source_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let current = model.shown.source.clone();
@@ -240,14 +255,6 @@ fn source_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
                 }
             }
         });
-    // The field shows the file on screen whenever a new one is, however it was opened.
-    if model.path_source.as_ref() != Some(&current) {
-        model.path_text = match &current {
-            Source::File(path) => path.display().to_string(),
-            Source::Builtin(_) => String::new(),
-        };
-        model.path_source = Some(current.clone());
-    }
     ui.horizontal(|ui| {
         let field = ui.add(
             egui::TextEdit::singleline(&mut model.path_text)

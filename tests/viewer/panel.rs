@@ -138,6 +138,44 @@ fn a_long_error_wraps_inside_the_view_and_dismiss_takes_it_away() {
         .viewer
         .wait_for("Dismiss to take the error away", |s| s["error"].is_null());
     assert!(gone["widgets"]["error_message"].is_null());
+    assert_eq!(
+        gone["path_field"],
+        hill.display().to_string(),
+        "the path field no longer shows the map on screen"
+    );
+}
+
+#[test]
+fn reading_a_grey_image_again_is_offered_only_for_what_changes_it() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let hill = dir.path().join("grey-hill.pgm");
+    super::write_hill(&hill);
+    let file = hill.to_str().expect("a UTF-8 path");
+    let mut session = Session::start(&[file]);
+    let state = session.state();
+    session.click(&state, "heightmap_section");
+    session.viewer.wait_for("the Heightmap section", |s| {
+        s["widgets"]["decode_mapbox"].is_array()
+    });
+    std::thread::sleep(Duration::from_millis(600));
+
+    // The colour encoding changes nothing in a grey image.
+    session.click(&session.state(), "decode_mapbox");
+    session
+        .viewer
+        .wait_for("Mapbox chosen", |s| s["decoding"]["colour"] == "mapbox");
+    std::thread::sleep(Duration::from_millis(300));
+    let chosen = session.state();
+    assert!(
+        chosen["widgets"]["decode_again"].is_null(),
+        "reading a grey image again is offered for an RGB encoding"
+    );
+
+    // No data does change it.
+    session.click(&chosen, "nodata_none");
+    session.viewer.wait_for("the read-again button", |s| {
+        s["decoding"]["nodata"] == "none" && s["widgets"]["decode_again"].is_array()
+    });
 }
 
 /// Moves the pointer to `at` (window pixels) by two steps, so that a motion arrives even when
