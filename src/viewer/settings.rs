@@ -60,6 +60,17 @@ impl HeatMode {
         }
     }
 
+    /// The name of its entry in the heat-map list, for scripted tests.
+    pub fn widget_name(self) -> &'static str {
+        match self {
+            HeatMode::Off => "heat_off",
+            HeatMode::Cells => "heat_cells",
+            HeatMode::Triangles => "heat_triangles",
+            HeatMode::Blocks => "heat_blocks",
+            HeatMode::Runs => "heat_runs",
+        }
+    }
+
     /// Why `method` leaves this map empty, if it does: only the mipmap asks block queries,
     /// only the run methods ask run queries.
     pub fn unavailable(self, method: Method) -> Option<&'static str> {

@@ -122,6 +122,7 @@ fn heat_map_ui(ui: &mut Ui, model: &mut Model) {
                     why.is_none(),
                     egui::Button::selectable(chosen, mode.label()),
                 );
+                model.widget_rects.insert(mode.widget_name(), item.rect);
                 if let Some(why) = why {
                     item.on_disabled_hover_text(why);
                 } else if item.clicked() {

@@ -248,3 +248,41 @@ fn the_probe_is_off_until_ticked_then_shows_only_where_the_pointer_rests() {
     );
     drop(dragging);
 }
+
+#[test]
+fn a_heat_map_the_method_cannot_fill_cannot_be_chosen() {
+    let mut session = Session::start(&[]);
+    let state = session.state();
+    assert_eq!(state["heat_map"], "off (shaded image)");
+    session.click(&state, "statistics_section");
+    session.viewer.wait_for("the Statistics section", |s| {
+        s["widgets"]["heat_map"].is_array()
+    });
+    std::thread::sleep(Duration::from_millis(600));
+    session.click(&session.state(), "heat_map");
+    let open = session.viewer.wait_for("the heat-map list", |s| {
+        s["widgets"]["heat_runs"].is_array()
+    });
+    std::thread::sleep(Duration::from_millis(300));
+
+    // The default method, the mipmap, makes no run queries.
+    session.click(&open, "heat_runs");
+    std::thread::sleep(Duration::from_millis(500));
+    assert_eq!(
+        session.state()["heat_map"],
+        "off (shaded image)",
+        "a run-query map was chosen under the mipmap"
+    );
+    let state = session.state();
+    if !state["widgets"]["heat_blocks"].is_array() {
+        session.click(&state, "heat_map");
+        session.viewer.wait_for("the heat-map list again", |s| {
+            s["widgets"]["heat_blocks"].is_array()
+        });
+        std::thread::sleep(Duration::from_millis(300));
+    }
+    session.click(&session.state(), "heat_blocks");
+    session.viewer.wait_for("the block-query map", |s| {
+        s["heat_map"] == "block queries (mipmap)"
+    });
+}

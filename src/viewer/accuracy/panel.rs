@@ -60,7 +60,7 @@ fn measure_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         state.measure,
         MeasureState::Running { .. } | MeasureState::Waiting
     );
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         let text = if busy {
             "Cancel measuring"
         } else {
