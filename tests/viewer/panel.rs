@@ -286,3 +286,42 @@ fn a_heat_map_the_method_cannot_fill_cannot_be_chosen() {
         s["heat_map"] == "block queries (mipmap)"
     });
 }
+
+#[test]
+fn ticking_and_unticking_compare_with_exact_moves_nothing_below_it() {
+    let mut session = Session::start(&[]);
+    let state = session.state();
+    session.click(&state, "traversal_section");
+    session.viewer.wait_for("the Traversal section", |s| {
+        s["widgets"]["compare_toggle"].is_array()
+    });
+    std::thread::sleep(Duration::from_millis(600));
+    let before = session.state();
+    let below = widget(&before, "effects_section");
+    session.click(&before, "compare_toggle");
+    let on = session.viewer.wait_for("the comparison to run", |s| {
+        s["accuracy"]["compare"]["on"] == true
+    });
+    assert_eq!(
+        widget(&on, "effects_section"),
+        below,
+        "ticking moved the panel"
+    );
+    let done = session.viewer.wait_for("the comparison's count", |s| {
+        s["accuracy"]["compare"]["differing"].is_u64()
+    });
+    assert_eq!(
+        widget(&done, "effects_section"),
+        below,
+        "the count moved the panel"
+    );
+    session.click(&done, "compare_toggle");
+    let off = session.viewer.wait_for("the comparison to be off", |s| {
+        s["accuracy"]["compare"]["on"] == false
+    });
+    assert_eq!(
+        widget(&off, "effects_section"),
+        below,
+        "unticking moved the panel"
+    );
+}

@@ -176,7 +176,16 @@ fn compare_ui(ui: &mut Ui, model: &mut Model) {
     let state = &mut model.accuracy;
     let toggle = ui.checkbox(&mut state.compare_on, "Compare with exact");
     model.widget_rects.insert("compare_toggle", toggle.rect);
-    let state = &model.accuracy;
+    // Both states take the same height, so ticking or unticking never moves what is below
+    // or makes a scrolled panel jump.
+    ui.vertical(|ui| {
+        ui.set_min_height(64.0);
+        compare_status_ui(ui, &model.accuracy);
+    });
+}
+
+/// What the switch does when off; how far the comparison is when on.
+fn compare_status_ui(ui: &mut Ui, state: &super::AccuracyState) {
     if !state.compare_on {
         ui.weak(
             "renders the frame on screen again in exact arithmetic and marks the pixels that \
