@@ -299,6 +299,7 @@ impl App {
             actions.clear();
             model.widget_rects.clear();
             keys_ui(ui, model, &mut actions);
+            panels::fit_to_window(ui, model);
             if model.panels_visible {
                 panels::side_panel_ui(ui, model, &mut actions);
             }
@@ -338,8 +339,7 @@ impl App {
         self.accuracy.update(
             &mut self.model.accuracy,
             converged.as_ref(),
-            self.quality.view_id(),
-            self.model.latest.as_ref().map(|l| l.generation),
+            self.model.latest.as_ref(),
         );
     }
 

@@ -8,6 +8,7 @@ use super::model::{Action, Model};
 use super::panels::named;
 use crate::heightfield::{ColourEncoding, NoDataValue};
 use egui::{DragValue, Ui};
+use std::path::{Path, PathBuf};
 
 /// The decoding choices for height map images.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -21,7 +22,7 @@ pub struct Decoding {
 /// The choices, and a button that reads the shown image again when they differ from how it
 /// was read.
 pub fn decoding_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         ui.label("RGB images as");
         for colour in [
             ColourEncoding::Luminance,
@@ -38,9 +39,19 @@ pub fn decoding_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             named(model, name, radio);
         }
     });
-    ui.horizontal(|ui| nodata_ui(ui, model));
-    let image = matches!(model.shown.source, Source::File(_)) && !model.shown.source.is_scene();
-    if image && model.decoding != model.shown.decoding {
+    ui.horizontal_wrapped(|ui| nodata_ui(ui, model));
+    let Source::File(path) = &model.shown.source else {
+        return;
+    };
+    if model.shown.source.is_scene() {
+        return;
+    }
+    // The colour choice changes nothing in a grey image: reading it again is offered only
+    // for what would change.
+    let (chosen, shown) = (model.decoding, model.shown.decoding);
+    let differs =
+        chosen.nodata != shown.nodata || (chosen.colour != shown.colour && has_colour(ui, path));
+    if differs {
         let again = ui.button(format!("read {} again", model.shown.source.label()));
         if named(model, "decode_again", again).clicked() {
             actions.push(Action::Load(LoadRequest {
@@ -52,6 +63,26 @@ pub fn decoding_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             }));
         }
     }
+}
+
+/// Whether the image at `path` has colour channels, from its header (remembered per path:
+/// the panel asks every frame). Unreadable headers count as colour, so the choice stays.
+fn has_colour(ui: &Ui, path: &Path) -> bool {
+    let id = egui::Id::new("image has colour");
+    let known: Option<(PathBuf, bool)> = ui.data(|d| d.get_temp(id));
+    if let Some((_, colour)) = known.filter(|(p, _)| p == path) {
+        return colour;
+    }
+    let colour = image::ImageReader::open(path)
+        .and_then(|reader| reader.with_guessed_format())
+        .ok()
+        .and_then(|reader| reader.into_decoder().ok())
+        .is_none_or(|decoder| {
+            use image::ImageDecoder;
+            decoder.color_type().has_color()
+        });
+    ui.data_mut(|d| d.insert_temp(id, (path.to_path_buf(), colour)));
+    colour
 }
 
 /// No data: the file's own (auto), none, or a value.

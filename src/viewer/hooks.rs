@@ -93,11 +93,14 @@ fn report(model: &Model, counts: &Counts) -> Value {
             "decoded_as": decoding_report(model.shown.decoding),
         },
         "decoding": decoding_report(model.decoding),
+        "path_field": model.path_text,
         "loading": model.progress.as_ref().map(|p| p.label.clone()),
         "error": model.error,
         "drop_hover": model.drop_hover,
         "panels_visible": model.panels_visible,
         "help_open": model.help_open,
+        "show_probe": model.show_probe,
+        "probe": model.probe.as_ref().map(|p| [p.pixel.0, p.pixel.1]),
         "heat_map": model.settings.heat.label(),
         "widgets": widget_report(model),
         "latency_ms": {
@@ -158,7 +161,7 @@ fn accuracy_report(state: &AccuracyState) -> Value {
         } => Some(r.fraction),
         _ => None,
     };
-    let stale = matches!(measure, MeasureState::Done { view_id, .. } if *view_id != state.view_id);
+    let stale = state.measured_elsewhere();
     let comparison = state.comparison_shown();
     json!({
         "measure": {

@@ -105,11 +105,19 @@ pub struct Model {
     pub z_scale: f64,
     /// The path field of the heightmap panel.
     pub path_text: String,
+    /// The terrain the path field was last filled in for (it shows what is loaded).
+    pub path_source: Option<Source>,
     /// How images opened or dropped from now on are decoded.
     pub decoding: Decoding,
     pub panels_visible: bool,
-    /// Show the hovered pixel's ray next to the pointer.
+    /// The panel was hidden because the window became too narrow for it.
+    pub panel_auto_hidden: bool,
+    /// The window is too narrow for the panel beside the view.
+    pub narrow_window: bool,
+    /// Show the ray of the pixel under a resting pointer.
     pub show_probe: bool,
+    /// Where the pointer came to rest over the view, and when (the probe waits for it).
+    pub pointer_rest: Option<(egui::Pos2, Instant)>,
     pub help_open: bool,
     /// A file is being dragged over the window.
     pub drop_hover: bool,
@@ -158,8 +166,12 @@ impl Model {
             export: Exports::default(),
             settings,
             path_text: String::new(),
+            path_source: None,
             panels_visible: true,
-            show_probe: true,
+            panel_auto_hidden: false,
+            narrow_window: false,
+            show_probe: false,
+            pointer_rest: None,
             help_open: false,
             drop_hover: false,
             error: None,

@@ -1,49 +1,121 @@
 //! The side panel: camera, light, height map, traversal, effects and statistics.
 
-use super::accuracy::panel::accuracy_ui;
+use super::accuracy::panel::{accuracy_ui, speed_note};
 use super::decoding::{decoding_ui, Decoding};
 use super::loader::{LoadRequest, Source};
 use super::model::{Action, Model};
-use super::settings::ArithKind;
+use super::settings::{fog, ArithKind};
 use super::stats_ui::statistics_ui;
 use crate::heightfield::BUILTINS;
 use crate::render::{Normals, Ramp};
 use crate::Method;
-use egui::{CollapsingHeader, DragValue, Slider, Ui};
+use egui::{CollapsingHeader, DragValue, RichText, Slider, Ui};
 use std::path::PathBuf;
 
-/// The panel on the right, with one collapsible section per concern.
+/// The panel's width in points: fixed, so opening a section never moves the view's edge.
+const PANEL_WIDTH: f32 = 300.0;
+/// Its width in windows narrower than [`NARROW_BELOW`].
+const NARROW_PANEL_WIDTH: f32 = 240.0;
+const NARROW_BELOW: f32 = 900.0;
+/// Below this window width the panel hides itself (H brings it back).
+const HIDE_BELOW: f32 = 640.0;
+
+/// Hides the panel when the window becomes too narrow for it and the view, and shows it
+/// again when the window widens, unless H was pressed in between. Called every frame.
+pub fn fit_to_window(ui: &Ui, model: &mut Model) {
+    if model.panels_visible {
+        model.panel_auto_hidden = false;
+    }
+    let narrow = ui.available_width() < HIDE_BELOW;
+    if narrow == model.narrow_window {
+        return;
+    }
+    model.narrow_window = narrow;
+    if narrow && model.panels_visible {
+        model.panels_visible = false;
+        model.panel_auto_hidden = true;
+        model.notify("The window is narrow: the panel is hidden (H shows it)");
+    } else if !narrow && model.panel_auto_hidden {
+        model.panels_visible = true;
+    }
+}
+
+/// The panel on the right, with one collapsible section per concern. Only the sections
+/// used most start open, so that the panel fits a 720 pixel high window without scrolling.
 pub fn side_panel_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
-    // Never more than half the window: the view is what the window is for.
-    let widest = (ui.available_width() * 0.5).clamp(120.0, 560.0);
-    egui::Panel::right("settings panel")
-        .resizable(true)
-        .default_size(320.0_f32.min(widest))
-        .size_range(240.0_f32.min(widest)..=widest)
+    let width = if ui.available_width() < NARROW_BELOW {
+        NARROW_PANEL_WIDTH
+    } else {
+        PANEL_WIDTH
+    };
+    let panel = egui::Panel::right("settings panel")
+        .resizable(false)
+        .exact_size(width)
         .show_inside(ui, |ui| {
-            egui::ScrollArea::vertical().show(ui, |ui| {
-                section(ui, "Camera", |ui| camera_ui(ui, model, actions));
-                section(ui, "Light", |ui| light_ui(ui, model));
-                section(ui, "Heightmap", |ui| heightmap_ui(ui, model, actions));
-                let traversal =
-                    section_closed(ui, "Traversal", |ui| traversal_ui(ui, model, actions));
-                named(model, "traversal_section", traversal);
-                section_closed(ui, "Effects", |ui| effects_ui(ui, model));
-                section(ui, "Statistics", |ui| statistics_ui(ui, model));
-            });
+            // A slider row is the slider, its value and its label (at most about 80 points):
+            // the slider takes what is left, so the row ends at the panel's edge.
+            let indent = ui.spacing().indent;
+            ui.spacing_mut().slider_width = (ui.available_width() - indent - 150.0).max(50.0);
+            egui::ScrollArea::vertical()
+                .auto_shrink([false, false])
+                .show(ui, |ui| {
+                    sections_ui(ui, model, actions);
+                    model.widget_rects.insert("panel_content", ui.min_rect());
+                });
         });
+    model.widget_rects.insert("side_panel", panel.response.rect);
 }
 
-fn section(ui: &mut Ui, title: &str, add: impl FnOnce(&mut Ui)) {
-    CollapsingHeader::new(title)
-        .default_open(true)
-        .show(ui, add);
+fn sections_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
+    follow_shown_path(model);
+    section(ui, "Camera", "Camera", true, |ui| {
+        camera_ui(ui, model, actions)
+    });
+    section(ui, "Light", "Light", true, |ui| light_ui(ui, model));
+    let title = format!("Heightmap: {}", shortened(&model.shown.source.label(), 22));
+    let heightmap = section(ui, "Heightmap", &title, false, |ui| {
+        heightmap_ui(ui, model, actions)
+    });
+    named(model, "heightmap_section", heightmap);
+    let summary = format!(
+        "{}, {}",
+        model.settings.method,
+        model.settings.arith.label()
+    );
+    let title = format!("Traversal: {}", shortened(&summary, 24));
+    let traversal = section(ui, "Traversal", &title, false, |ui| {
+        traversal_ui(ui, model, actions)
+    });
+    named(model, "traversal_section", traversal);
+    let effects = section(ui, "Effects", "Effects", false, |ui| effects_ui(ui, model));
+    named(model, "effects_section", effects);
+    let statistics = section(ui, "Statistics", "Statistics and probe", false, |ui| {
+        statistics_ui(ui, model)
+    });
+    named(model, "statistics_section", statistics);
 }
 
-/// A section that starts closed; returns its header (to click open).
-fn section_closed(ui: &mut Ui, title: &str, add: impl FnOnce(&mut Ui)) -> egui::Response {
-    CollapsingHeader::new(title)
-        .default_open(false)
+/// `text`, cut to `most` characters with an ellipsis (a header never wraps).
+fn shortened(text: &str, most: usize) -> String {
+    if text.chars().count() <= most {
+        return text.to_owned();
+    }
+    let kept: String = text.chars().take(most.saturating_sub(1)).collect();
+    format!("{kept}…")
+}
+
+/// A collapsible section (its state is kept under `id`, whatever the title says); returns
+/// its header, to click open.
+fn section(
+    ui: &mut Ui,
+    id: &str,
+    title: &str,
+    open: bool,
+    add: impl FnOnce(&mut Ui),
+) -> egui::Response {
+    CollapsingHeader::new(RichText::new(title).strong())
+        .id_salt(id)
+        .default_open(open)
         .show(ui, add)
         .header_response
 }
@@ -107,10 +179,10 @@ fn camera_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
 
 fn light_ui(ui: &mut Ui, model: &mut Model) {
     let s = &mut model.settings;
-    let azimuth = ui.add(Slider::new(&mut s.sun_azimuth_deg, -180.0..=180.0).text("sun azimuth °"));
+    let azimuth = ui.add(Slider::new(&mut s.sun_azimuth_deg, -180.0..=180.0).text("azimuth °"));
     named(model, "sun_azimuth", azimuth);
     let s = &mut model.settings;
-    ui.add(Slider::new(&mut s.sun_elevation_deg, 1.0..=90.0).text("sun elevation °"));
+    ui.add(Slider::new(&mut s.sun_elevation_deg, 1.0..=90.0).text("elevation °"));
     ui.add(Slider::new(&mut s.intensity, 0.0..=3.0).text("intensity"));
     ui.add(Slider::new(&mut s.ambient, 0.0..=1.0).text("ambient"));
     ui.checkbox(&mut s.shadows, "shadows");
@@ -155,6 +227,20 @@ fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     ));
 }
 
+/// Fills the path field in with the file on screen whenever a new one is shown, however it
+/// was opened (a built-in empties it).
+fn follow_shown_path(model: &mut Model) {
+    let current = &model.shown.source;
+    if model.path_source.as_ref() == Some(current) {
+        return;
+    }
+    model.path_text = match current {
+        Source::File(path) => path.display().to_string(),
+        Source::Builtin(_) => String::new(),
+    };
+    model.path_source = Some(current.clone());
+}
+
 /// The built-in list and the path field.
 fn source_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let current = model.shown.source.clone();
@@ -176,7 +262,7 @@ fn source_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         let field = ui.add(
             egui::TextEdit::singleline(&mut model.path_text)
                 .hint_text("path to a PNG, PGM, TIFF or .toml")
-                .desired_width(190.0),
+                .desired_width(ui.available_width() - 50.0),
         );
         let field = named(model, "open_path", field);
         let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
@@ -224,7 +310,7 @@ fn load(source: Source, decoding: Decoding) -> Action {
 
 fn traversal_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let s = &mut model.settings;
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         ui.label("method");
         ui.radio_value(&mut s.method, Method::Mipmap, "mipmap");
         ui.radio_value(&mut s.method, Method::HierarchicalRuns, "hierarchical runs");
@@ -246,19 +332,48 @@ fn traversal_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
                 .prefix("denominator bound "),
         );
     }
-    if s.arith == ArithKind::Exact {
-        ui.weak("exact arithmetic is much slower: passes take a while");
+    let arith = model.settings.arith();
+    if let Some((note, slow)) = speed_note(arith, model.accuracy.measure.measurement()) {
+        if slow {
+            ui.colored_label(egui::Color32::from_rgb(230, 180, 80), note);
+        } else {
+            ui.weak(note);
+        }
     }
     accuracy_ui(ui, model, actions);
 }
 
+/// The effects (shadows are with the light). The fog slider is a visibility distance on a
+/// log scale over the useful range for this map; the renderer and scene files keep a density.
 fn effects_ui(ui: &mut Ui, model: &mut Model) {
+    let field = model.shown.terrain.field();
+    let size = (field.width().max(field.height()) as f64 - 1.0).max(1.0);
+    let range = fog::range(size);
+    let mut on = model.settings.fog > 0.0;
+    let toggle = ui.checkbox(&mut on, "fog");
+    if named(model, "fog_toggle", toggle).changed() {
+        // A haze: about half the contrast left on the far side of the map, more on the near.
+        let far_side = model.orbit.distance + size;
+        model.settings.fog = if on {
+            fog::density(4.0 * far_side)
+        } else {
+            0.0
+        };
+    }
     let s = &mut model.settings;
-    ui.checkbox(&mut s.shadows, "shadows");
-    ui.add(
-        Slider::new(&mut s.fog, 0.0..=0.02)
+    if s.fog > 0.0 {
+        let mut distance = fog::distance(s.fog);
+        let slider = Slider::new(&mut distance, range)
             .logarithmic(true)
-            .smallest_positive(1e-5)
-            .text("fog density"),
-    );
+            .max_decimals(0)
+            .clamping(egui::SliderClamping::Edits)
+            .text("visibility");
+        if ui.add(slider).changed() {
+            s.fog = fog::density(distance);
+        }
+        ui.weak(format!(
+            "contrast falls to 5% at {:.0} map units; the map is {size:.0} across",
+            fog::distance(s.fog)
+        ));
+    }
 }

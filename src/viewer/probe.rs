@@ -13,7 +13,6 @@ pub struct Probe {
     pub pixel: (u32, u32),
     /// The frame generation the pixel belonged to.
     pub generation: u64,
-    pub ray: Ray,
     pub primary: Trace,
     /// The shadow query from the hit point towards the sun (when the primary ray hit).
     pub shadow: Option<Trace>,
@@ -45,7 +44,6 @@ impl Probe {
         Probe {
             pixel,
             generation,
-            ray,
             primary,
             shadow,
             elapsed: start.elapsed(),

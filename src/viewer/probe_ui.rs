@@ -6,73 +6,75 @@ use crate::traverse::HitMiss;
 use crate::Counters;
 use egui::Ui;
 
-/// The hovered ray's details; `rendered` is what the frame recorded for that pixel.
+/// The hovered ray's details, compact: where it hit, then a table of its queries (rows that
+/// are zero for both rays are left out); `rendered` is what the frame recorded for the pixel.
 pub fn probe_ui(ui: &mut Ui, probe: &Probe, rendered: Option<&PixelStats>) {
-    ui.set_max_width(340.0);
-    ui.strong(format!("Pixel ({}, {})", probe.pixel.0, probe.pixel.1));
-    let [dx, dy, dz] = probe.ray.dir();
-    ui.label(format!("direction ({dx:.3}, {dy:.3}, {dz:.3})"));
+    ui.set_max_width(260.0);
+    ui.spacing_mut().item_spacing.y = 2.0;
     hit_ui(ui, probe);
-    ui.separator();
     egui::Grid::new("probe queries")
         .num_columns(3)
         .striped(true)
         .show(ui, |ui| {
-            ui.label("queries E/N");
-            ui.label("primary");
-            ui.label("shadow");
+            ui.strong("queries");
+            ui.strong("ray hit / miss");
+            ui.strong("shadow");
             ui.end_row();
             let shadow = probe.shadow.as_ref().map(|s| s.counters);
             for (name, pick) in QUERY_KINDS {
+                let own = pick(&probe.primary.counters);
+                let other = shadow.map(|c| pick(&c));
+                if own.total() + other.map_or(0, |h| h.total()) == 0 {
+                    continue;
+                }
                 ui.label(*name);
-                ui.label(hit_miss(pick(&probe.primary.counters)));
-                ui.label(shadow.map_or("-".into(), |c| hit_miss(pick(&c))));
+                ui.label(hit_miss(own));
+                ui.label(other.map_or("-".into(), hit_miss));
                 ui.end_row();
             }
         });
+    ui.weak("hit: the ray may meet the surface there, so look closer; miss: ruled out");
     if let Some(stats) = rendered {
-        ui.label(format!(
-            "in the frame: {} blocks, {} runs, {} cells, {} triangles",
-            stats.blocks, stats.runs, stats.cells, stats.triangles
+        // The frame's rays start behind their tile's beam, hence fewer block or run queries.
+        ui.weak(format!(
+            "in the frame: {} blocks, {} runs, {} cells, {} triangles (traced again in {:.2} ms)",
+            stats.blocks,
+            stats.runs,
+            stats.cells,
+            stats.triangles,
+            probe.elapsed.as_secs_f64() * 1e3
         ));
     }
-    ui.weak(format!(
-        // (Hence fewer block or run queries in the frame than in the table above.)
-        "traced again alone in {:.3} ms; with the mipmap or hierarchical runs, the frame's rays start behind their tile's beam",
-        probe.elapsed.as_secs_f64() * 1e3
-    ));
 }
 
 /// Where the ray hit, and what its shadow query found.
 fn hit_ui(ui: &mut Ui, probe: &Probe) {
-    match &probe.primary.hit {
-        Some(hit) => {
-            let [x, y, z] = hit.point;
-            ui.label(format!("hit at t = {:.4}", hit.t));
-            if let Some(exact) = &hit.t_exact {
-                let text = exact.to_string();
-                let shown = if text.len() > 60 {
-                    format!("{}…", &text[..60])
-                } else {
-                    text
-                };
-                ui.label(format!("exact t = {shown}"));
-            }
-            ui.label(format!("point ({x:.3}, {y:.3}, {z:.3})"));
-            ui.label(format!(
-                "cell ({}, {}), triangle T{}",
-                hit.cell[0], hit.cell[1], hit.triangle
-            ));
-            let shadow = match probe.shadowed() {
-                Some(true) => "in shadow",
-                Some(false) => "lit (nothing towards the sun)",
-                None => "not asked",
-            };
-            ui.label(format!("shadow query: {shadow}"));
-        }
-        None => {
-            ui.label("miss: the ray leaves the terrain (sky)");
-        }
+    let (px, py) = probe.pixel;
+    let Some(hit) = &probe.primary.hit else {
+        ui.strong(format!(
+            "pixel ({px}, {py}): miss, the ray leaves the terrain"
+        ));
+        return;
+    };
+    let [x, y, z] = hit.point;
+    let shadow = match probe.shadowed() {
+        Some(true) => ", in shadow",
+        Some(false) => ", lit",
+        None => "",
+    };
+    ui.strong(format!(
+        "pixel ({px}, {py}): cell ({}, {}) T{}{shadow}",
+        hit.cell[0], hit.cell[1], hit.triangle
+    ));
+    ui.label(format!("at ({x:.2}, {y:.2}, {z:.2}), t = {:.4}", hit.t));
+    if let Some(exact) = &hit.t_exact {
+        let text = exact.to_string();
+        let shown = if text.chars().count() > 40 {
+            format!("{}…", text.chars().take(40).collect::<String>())
+        } else {
+            text
+        };
+        ui.weak(format!("exact t = {shown}"));
     }
 }
 

@@ -59,6 +59,56 @@ impl HeatMode {
             HeatMode::Runs => "run queries",
         }
     }
+
+    /// The name of its entry in the heat-map list, for scripted tests.
+    pub fn widget_name(self) -> &'static str {
+        match self {
+            HeatMode::Off => "heat_off",
+            HeatMode::Cells => "heat_cells",
+            HeatMode::Triangles => "heat_triangles",
+            HeatMode::Blocks => "heat_blocks",
+            HeatMode::Runs => "heat_runs",
+        }
+    }
+
+    /// Why `method` leaves this map empty, if it does: only the mipmap asks block queries,
+    /// only the run methods ask run queries.
+    pub fn unavailable(self, method: Method) -> Option<&'static str> {
+        match (self, method) {
+            (HeatMode::Blocks, Method::Mipmap) => None,
+            (HeatMode::Blocks, _) => Some("only the mipmap method makes block queries"),
+            (HeatMode::Runs, Method::Runs | Method::HierarchicalRuns) => None,
+            (HeatMode::Runs, _) => {
+                Some("only the runs and hierarchical runs methods make run queries")
+            }
+            _ => None,
+        }
+    }
+}
+
+/// Fog as the viewer's slider shows it: the distance, in map units, at which contrast falls to
+/// 5% (e^-3). Scene files keep the density, `3 / distance`.
+pub mod fog {
+    /// Density for a visibility distance.
+    pub fn density(distance: f64) -> f64 {
+        3.0 / distance.max(f64::MIN_POSITIVE)
+    }
+
+    /// Visibility distance for a density (infinite when the fog is off).
+    pub fn distance(density: f64) -> f64 {
+        if density > 0.0 {
+            3.0 / density
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// The slider's range for a map `size` across: from a tenth of it, where the far side is
+    /// gone, to twenty times it, where fog only tints the horizon.
+    pub fn range(size: f64) -> std::ops::RangeInclusive<f64> {
+        let size = size.max(1.0);
+        size * 0.1..=size * 20.0
+    }
 }
 
 /// Everything the panels edit besides the camera and the height map.
@@ -191,5 +241,26 @@ mod tests {
         settings.adopt_scene(&lighting, Method::Dda, Arith::Rational { bound: 77 });
         assert_eq!(settings.arith(), Arith::Rational { bound: 77 });
         assert_eq!(settings.method, Method::Dda);
+    }
+
+    #[test]
+    fn fog_distance_and_density_round_trip() {
+        assert_eq!(fog::density(300.0), 0.01);
+        assert!((fog::distance(fog::density(1234.5)) - 1234.5).abs() < 1e-9);
+        assert_eq!(fog::distance(0.0), f64::INFINITY);
+        // At the visibility distance 5% of the contrast is left.
+        let left = (-fog::density(500.0) * 500.0).exp();
+        assert!((left - 0.0498).abs() < 1e-3);
+    }
+
+    #[test]
+    fn heat_maps_a_method_cannot_fill_are_refused_with_a_reason() {
+        assert_eq!(HeatMode::Blocks.unavailable(Method::Mipmap), None);
+        assert!(HeatMode::Blocks.unavailable(Method::Runs).is_some());
+        assert_eq!(HeatMode::Runs.unavailable(Method::HierarchicalRuns), None);
+        assert!(HeatMode::Runs.unavailable(Method::Mipmap).is_some());
+        for method in [Method::Mipmap, Method::Runs, Method::Dda] {
+            assert_eq!(HeatMode::Cells.unavailable(method), None);
+        }
     }
 }

@@ -2,22 +2,26 @@
 //! times, pass progress, input latency and the heat-map mode.
 
 use super::model::Model;
+use super::panels::named;
 use super::probe_ui::QUERY_KINDS;
 use super::settings::HeatMode;
 use crate::render::{FrameStats, PASS_BLOCKS};
 use crate::traverse::{Counters, HitMiss};
 use egui::Ui;
 
+/// Says what the hit and miss counts are, wherever they are shown.
+pub const HIT_MISS: &str = "hit: the query found that the ray may meet the surface in that \
+    box, block, run, cell or triangle (and looks closer); miss: it ruled it out";
+
 pub fn statistics_ui(ui: &mut Ui, model: &mut Model) {
-    let heat = egui::ComboBox::from_label("heat map")
-        .selected_text(model.settings.heat.label())
-        .show_ui(ui, |ui| {
-            for mode in HeatMode::ALL {
-                ui.selectable_value(&mut model.settings.heat, mode, mode.label());
-            }
-        });
-    model.widget_rects.insert("heat_map", heat.response.rect);
-    ui.checkbox(&mut model.show_probe, "show the hovered pixel's ray");
+    let probe = ui
+        .checkbox(
+            &mut model.show_probe,
+            "probe the ray under the resting pointer",
+        )
+        .on_hover_text("where it hits, and every query it and its shadow ray make");
+    named(model, "probe_toggle", probe);
+    heat_map_ui(ui, model);
     let Some(latest) = model.latest.clone() else {
         ui.label("no frame yet");
         return;
@@ -105,7 +109,38 @@ fn totals_ui(ui: &mut Ui, totals: &FrameStats) {
         });
 }
 
-/// Totals, per primary ray and E:N ratio of each query kind, primary and shadow together.
+/// The heat-map choice; maps the traversal method cannot fill are offered disabled, with why.
+fn heat_map_ui(ui: &mut Ui, model: &mut Model) {
+    let method = model.settings.method;
+    let heat = egui::ComboBox::from_label("heat map")
+        .selected_text(model.settings.heat.label())
+        .show_ui(ui, |ui| {
+            for mode in HeatMode::ALL {
+                let why = mode.unavailable(method);
+                let chosen = model.settings.heat == mode;
+                let item = ui.add_enabled(
+                    why.is_none(),
+                    egui::Button::selectable(chosen, mode.label()),
+                );
+                model.widget_rects.insert(mode.widget_name(), item.rect);
+                if let Some(why) = why {
+                    item.on_disabled_hover_text(why);
+                } else if item.clicked() {
+                    model.settings.heat = mode;
+                }
+            }
+        });
+    named(model, "heat_map", heat.response);
+    // Chosen under another method: say why the map is empty rather than show a blank view.
+    if let Some(why) = model.settings.heat.unavailable(method) {
+        ui.colored_label(
+            egui::Color32::from_rgb(230, 180, 80),
+            format!("{why}: this map is empty"),
+        );
+    }
+}
+
+/// Totals, per primary ray and misses per hit of each query kind, primary and shadow together.
 fn queries_ui(ui: &mut Ui, totals: &FrameStats) {
     let all = totals.queries();
     let per_ray = |n: u64| n as f64 / totals.primary_rays.max(1) as f64;
@@ -113,8 +148,21 @@ fn queries_ui(ui: &mut Ui, totals: &FrameStats) {
         .num_columns(4)
         .striped(true)
         .show(ui, |ui| {
-            for heading in ["query", "total", "per primary", "E : N"] {
-                ui.strong(heading);
+            // Short headings keep the table inside the panel; hovering explains them.
+            let headings = [
+                ("query", "the four query kinds, and the beam test of a tile"),
+                (
+                    "total",
+                    "queries of the frame, camera and shadow rays together",
+                ),
+                (
+                    "per ray",
+                    "per camera (primary) ray, its shadow ray's included",
+                ),
+                ("miss/hit", HIT_MISS),
+            ];
+            for (heading, meaning) in headings {
+                ui.strong(heading).on_hover_text(meaning);
             }
             ui.end_row();
             // Beams are tested once per tile of camera rays, not per ray (a lone ray, as
@@ -125,7 +173,7 @@ fn queries_ui(ui: &mut Ui, totals: &FrameStats) {
                 ui.label(*name);
                 ui.label(h.total().to_string());
                 ui.label(format!("{:.2}", per_ray(h.total())));
-                ui.label(format!("1 : {:.2}", h.miss as f64 / h.hit.max(1) as f64));
+                ui.label(format!("{:.2}", h.miss as f64 / h.hit.max(1) as f64));
                 ui.end_row();
             }
         });

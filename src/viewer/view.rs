@@ -29,9 +29,16 @@ pub fn view_ui(ui: &mut Ui, model: &mut Model) -> Rect {
     model.view_held = dragging;
     match response.hover_pos() {
         Some(pos) if model.show_probe && !dragging && !model.drop_hover => {
-            hover_probe(ui, model, rect, pos)
+            if rested(ui, model, pos) {
+                hover_probe(ui, model, rect, pos);
+            } else {
+                model.probe = None;
+            }
         }
-        _ => model.probe = None,
+        _ => {
+            model.probe = None;
+            model.pointer_rest = None;
+        }
     }
     if model.latest.is_none() {
         ui.painter().text(
@@ -49,7 +56,8 @@ pub fn view_ui(ui: &mut Ui, model: &mut Model) -> Rect {
         drop_hint_ui(ui, rect);
     }
     if !model.panels_visible {
-        corner_text(ui, rect, Align2::RIGHT_TOP, "H: panels   F1: help");
+        let hint = corner_text(ui, rect, Align2::RIGHT_TOP, "H: show panel   F1: help");
+        model.widget_rects.insert("show_panel_hint", hint);
     }
     if model.help_open {
         help_ui(ui, model);
@@ -154,6 +162,28 @@ fn retarget(ui: &Ui, model: &mut Model, rect: Rect, pos: Pos2) {
     }
 }
 
+/// How long the pointer rests before the probe shows: long enough that moving across the
+/// view or letting go of a drag shows nothing.
+const PROBE_REST: Duration = Duration::from_millis(500);
+
+/// Whether the pointer has rested at `pos` for [`PROBE_REST`]; until then it asks for a
+/// redraw at the moment it will have.
+fn rested(ui: &Ui, model: &mut Model, pos: Pos2) -> bool {
+    let since = match model.pointer_rest {
+        Some((at, since)) if at.distance(pos) < 3.0 => since,
+        _ => {
+            let now = std::time::Instant::now();
+            model.pointer_rest = Some((pos, now));
+            now
+        }
+    };
+    let waited = since.elapsed();
+    if waited < PROBE_REST {
+        ui.ctx().request_repaint_after(PROBE_REST - waited);
+    }
+    waited >= PROBE_REST
+}
+
 /// Re-traces the hovered pixel's ray when the pixel or the frame changed, and shows it.
 fn hover_probe(ui: &Ui, model: &mut Model, rect: Rect, pos: Pos2) {
     let (Some(pixel), Some(latest)) = (pixel_at(ui, model, rect, pos), model.latest.clone()) else {
@@ -231,6 +261,21 @@ fn status_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
             }
         };
         legend_ui(ui, rect, scale);
+        // Chosen under another method: say why the view is one flat colour.
+        if let Some(why) = model.settings.heat.unavailable(model.settings.method) {
+            let text = format!("{why}: choose another heat map or method");
+            let painter = ui.painter_at(rect);
+            let galley = painter.layout(
+                text,
+                egui::FontId::proportional(15.0),
+                Color32::WHITE,
+                (rect.width() - 40.0).max(80.0),
+            );
+            let min = rect.center() - galley.size() / 2.0;
+            let backdrop = Rect::from_min_size(min, galley.size()).expand(8.0);
+            painter.rect_filled(backdrop, 4.0, Color32::from_black_alpha(170));
+            painter.galley(min, galley, Color32::WHITE);
+        }
     }
     if !frame.complete() {
         let text = format!(
@@ -293,18 +338,23 @@ fn legend_ui(ui: &Ui, rect: Rect, scale: HeatScale) {
     );
 }
 
-/// The loading progress, the last error and short notices, at the top of the view.
+/// The loading progress, the last error and short notices, at the top of the view and
+/// inside it: long text wraps to the view's width, never over the panel.
 fn messages_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
     let mut dismiss = false;
+    let width = (rect.width() - 32.0).clamp(80.0, 640.0);
+    // Below the corner's hint to bring the panel back, when it is there.
+    let top = if model.panels_visible { 12.0 } else { 40.0 };
     egui::Area::new(Id::new("view messages"))
         .pivot(Align2::CENTER_TOP)
-        .fixed_pos(Pos2::new(rect.center().x, rect.top() + 12.0))
+        .fixed_pos(Pos2::new(rect.center().x, rect.top() + top))
+        .constrain_to(rect)
         .order(egui::Order::Foreground)
         .show(ui.ctx(), |ui| {
-            ui.set_max_width((rect.width() - 40.0).clamp(200.0, 640.0));
+            ui.set_max_width(width);
             if let Some(progress) = &model.progress {
                 egui::Frame::popup(ui.style()).show(ui, |ui| {
-                    ui.horizontal(|ui| {
+                    ui.horizontal_wrapped(|ui| {
                         ui.spinner();
                         ui.label(format!(
                             "Loading {}: {}",
@@ -320,14 +370,17 @@ fn messages_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
                 });
             }
             if let Some(error) = &model.error {
-                egui::Frame::popup(ui.style())
+                let frame = egui::Frame::popup(ui.style())
                     .fill(Color32::from_rgb(110, 24, 24))
                     .show(ui, |ui| {
-                        ui.horizontal(|ui| {
-                            ui.colored_label(Color32::WHITE, format!("⚠ {error}"));
-                            dismiss = ui.button("Dismiss").clicked();
-                        });
+                        ui.label(egui::RichText::new(format!("⚠ {error}")).color(Color32::WHITE));
+                        let button = ui.button("Dismiss");
+                        model.widget_rects.insert("error_dismiss", button.rect);
+                        dismiss = button.clicked();
                     });
+                model
+                    .widget_rects
+                    .insert("error_message", frame.response.rect);
             }
             if let Some(notice) = &model.notice {
                 if notice.at.elapsed() < NOTICE_TIME {
@@ -382,7 +435,8 @@ fn drop_hint_ui(ui: &Ui, rect: Rect) {
     }
 }
 
-fn corner_text(ui: &Ui, rect: Rect, align: Align2, text: &str) {
+/// Writes `text` in a corner of `rect`; returns where.
+fn corner_text(ui: &Ui, rect: Rect, align: Align2, text: &str) -> Rect {
     let painter = ui.painter_at(rect);
     let galley = painter.layout_no_wrap(
         text.to_owned(),
@@ -394,12 +448,10 @@ fn corner_text(ui: &Ui, rect: Rect, align: Align2, text: &str) {
         Align2::RIGHT_TOP => rect.right_top() + Vec2::new(-margin.x - galley.size().x, margin.y),
         _ => rect.left_top() + margin,
     };
-    painter.rect_filled(
-        Rect::from_min_size(min, galley.size()).expand(4.0),
-        3.0,
-        Color32::from_black_alpha(120),
-    );
+    let backdrop = Rect::from_min_size(min, galley.size()).expand(4.0);
+    painter.rect_filled(backdrop, 3.0, Color32::from_black_alpha(120));
     painter.galley(min, galley, Color32::WHITE);
+    backdrop
 }
 
 /// The F1 window: what the mouse and keys do.
@@ -436,8 +488,8 @@ const HELP: &[(&str, &str)] = &[
         "orbit around the terrain point under the cursor",
     ),
     (
-        "Hover",
-        "the pixel's ray: hit, cell, triangle and its queries",
+        "Rest the pointer",
+        "with the probe on (Statistics): the pixel's ray, its hit and its queries",
     ),
     (
         "Drop a file",
@@ -445,6 +497,9 @@ const HELP: &[(&str, &str)] = &[
     ),
     ("R", "reset the view (the whole map)"),
     ("S", "export the rendered image (PNG, no panels)"),
-    ("H", "hide or show the panels"),
+    (
+        "H",
+        "hide or show the panel (it hides itself in narrow windows)",
+    ),
     ("F1", "this help"),
 ];

@@ -10,6 +10,7 @@ mod app;
 mod decoding;
 mod export;
 mod navigation;
+mod panel;
 mod special_paths;
 mod x11;
 mod xdnd;

@@ -5,9 +5,11 @@
 
 use crate::bench::{view_pixel_differences, PixelRow, View};
 use crate::render::CameraError;
+use crate::render::Lighting;
 use crate::viewer::background::Step;
-use crate::viewer::worker::RenderedFrame;
-use crate::Arith;
+use crate::viewer::orbit::Orbit;
+use crate::viewer::worker::{RenderJob, RenderedFrame};
+use crate::{Arith, Method};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -17,6 +19,28 @@ pub const BOUNDS: [u32; 5] = [1 << 4, 1 << 8, 1 << 12, 1 << 16, 1 << 24];
 /// Pixels of the measured frame offered: a full view in bounded rationals would take minutes
 /// (a ray costs them 0.1 to 2 ms), so the view is measured at a reduced resolution.
 pub const PIXEL_BUDGETS: [u32; 3] = [2_304, 9_216, 36_864];
+
+/// What a measurement depends on: the camera, the terrain, the method and the light. The
+/// arithmetic on screen is not part of it: every arithmetic is measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Subject {
+    orbit: Orbit,
+    /// The terrain's identity: a new load, or a new z scale, is a new allocation.
+    terrain: usize,
+    method: Method,
+    lighting: Lighting,
+}
+
+impl Subject {
+    pub fn of(job: &RenderJob) -> Subject {
+        Subject {
+            orbit: job.orbit,
+            terrain: Arc::as_ptr(&job.terrain) as usize,
+            method: job.method,
+            lighting: job.lighting,
+        }
+    }
+}
 
 /// The view to measure and in which arithmetics.
 pub struct MeasureJob {
@@ -34,8 +58,6 @@ pub struct Measurement {
     pub rows: Vec<PixelRow>,
     /// Rows there will be when it is done.
     pub planned: usize,
-    /// The arithmetic on screen when it started (its row is marked).
-    pub shown: Arith,
 }
 
 impl Measurement {
@@ -117,7 +139,6 @@ pub fn run(job: MeasureJob, step: &Step<'_, MeasureJob, Measurement>) {
         size: job.size,
         rows: Vec::new(),
         planned: job.ariths.len() + 1,
-        shown: render_job.arith,
     };
     let started = Instant::now();
     let status = |done: usize| match [Arith::Exact].iter().chain(&job.ariths).nth(done) {
@@ -153,6 +174,36 @@ fn fail(step: &Step<'_, MeasureJob, Measurement>, error: &CameraError) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_measurement_is_of_the_same_view_whatever_arithmetic_is_on_screen() {
+        let field = crate::heightfield::Builtin::named("small49")
+            .and_then(|b| b.load().ok())
+            .expect("decodes");
+        let terrain = Arc::new(crate::Terrain::new(field));
+        let orbit = Orbit::framing(&terrain);
+        let job = |orbit: Orbit, method, arith| RenderJob {
+            terrain: Arc::clone(&terrain),
+            orbit,
+            camera: orbit.camera((16, 16)).expect("a camera"),
+            lighting: crate::viewer::settings::Settings::default().lighting(),
+            method,
+            arith,
+            view_id: 0,
+        };
+        let measured = Subject::of(&job(orbit, Method::Runs, Arith::F64));
+        let exact = Subject::of(&job(orbit, Method::Runs, Arith::Exact));
+        assert_eq!(measured, exact, "only the arithmetic changed");
+        let turned = Orbit {
+            yaw_deg: orbit.yaw_deg + 5.0,
+            ..orbit
+        };
+        assert_ne!(
+            measured,
+            Subject::of(&job(turned, Method::Runs, Arith::F64))
+        );
+        assert_ne!(measured, Subject::of(&job(orbit, Method::Dda, Arith::F64)));
+    }
 
     #[test]
     fn reduced_size_keeps_the_aspect_and_the_budget() {

@@ -12,7 +12,7 @@ pub mod panel;
 mod plot;
 
 pub use compare::Comparison;
-pub use measure::{ns_per_ray, Measurement};
+pub use measure::{ns_per_ray, Measurement, Subject};
 
 use super::background::{Background, Report};
 use super::worker::RenderedFrame;
@@ -29,11 +29,11 @@ pub enum MeasureState {
     Waiting,
     Running {
         generation: u64,
-        view_id: u64,
+        subject: Subject,
         report: Option<Arc<Report<Measurement>>>,
     },
     Done {
-        view_id: u64,
+        subject: Subject,
         measurement: Arc<Measurement>,
     },
     /// Cancelled by a second click, with the rows measured until then.
@@ -101,8 +101,9 @@ pub struct AccuracyState {
     pub measure: MeasureState,
     pub compare_on: bool,
     pub compare: CompareState,
-    /// The view on screen (to tell a result of an earlier view).
-    pub view_id: u64,
+    /// What the frame on screen shows, as far as a measurement depends on it (to tell a
+    /// result of an earlier view).
+    pub subject: Option<Subject>,
     /// The generation of the frame on screen (the overlay belongs to one frame).
     pub shown_generation: Option<u64>,
 }
@@ -114,13 +115,19 @@ impl Default for AccuracyState {
             measure: MeasureState::Idle,
             compare_on: false,
             compare: CompareState::Off,
-            view_id: 0,
+            subject: None,
             shown_generation: None,
         }
     }
 }
 
 impl AccuracyState {
+    /// Whether the finished measurement is of another view than the one on screen.
+    pub fn measured_elsewhere(&self) -> bool {
+        matches!(&self.measure, MeasureState::Done { subject, .. }
+            if self.subject.as_ref().is_some_and(|s| s != subject))
+    }
+
     /// The comparison of the frame on screen, if done.
     pub fn comparison_shown(&self) -> Option<&Comparison> {
         match &self.compare {
@@ -166,53 +173,50 @@ impl Accuracy {
     }
 
     /// Called on every redraw: `converged` is the frame on screen if it is complete and shows
-    /// the current view (`view_id`) at full resolution.
+    /// the current view at full resolution; `shown` is the frame on screen.
     pub fn update(
         &self,
         state: &mut AccuracyState,
         converged: Option<&Arc<RenderedFrame>>,
-        view_id: u64,
-        shown_generation: Option<u64>,
+        shown: Option<&Arc<RenderedFrame>>,
     ) {
-        state.view_id = view_id;
-        state.shown_generation = shown_generation;
-        self.update_measure(state, converged, view_id);
+        state.subject = shown.map(|frame| Subject::of(&frame.job));
+        state.shown_generation = shown.map(|frame| frame.generation);
+        self.update_measure(state, converged);
         self.update_compare(state, converged);
     }
 
-    fn update_measure(
-        &self,
-        state: &mut AccuracyState,
-        converged: Option<&Arc<RenderedFrame>>,
-        view_id: u64,
-    ) {
+    fn update_measure(&self, state: &mut AccuracyState, converged: Option<&Arc<RenderedFrame>>) {
         let next = match &state.measure {
             MeasureState::Waiting => converged.map(|frame| MeasureState::Running {
                 generation: self
                     .measurer
                     .submit(MeasureJob::new(Arc::clone(frame), state.budget)),
-                view_id: frame.job.view_id,
+                subject: Subject::of(&frame.job),
                 report: None,
             }),
-            // The view changed under it: start again once the new one has converged.
-            MeasureState::Running { view_id: v, .. } if *v != view_id => {
+            // What it measures changed under it: start again once the new view has converged.
+            // Another arithmetic on screen is no change: every one is measured.
+            MeasureState::Running { subject, .. }
+                if state.subject.as_ref().is_some_and(|s| s != subject) =>
+            {
                 self.measurer.cancel();
                 Some(MeasureState::Waiting)
             }
             MeasureState::Running {
                 generation,
-                view_id,
+                subject,
                 ..
             } => self.measurer.report(*generation).map(|report| {
                 match (&report.result, report.finished) {
                     (Some(m), true) => MeasureState::Done {
-                        view_id: *view_id,
+                        subject: subject.clone(),
                         measurement: Arc::new(m.clone()),
                     },
                     (None, true) => MeasureState::Failed(report.status.clone()),
                     _ => MeasureState::Running {
                         generation: *generation,
-                        view_id: *view_id,
+                        subject: subject.clone(),
                         report: Some(report),
                     },
                 }

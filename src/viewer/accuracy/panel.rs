@@ -23,13 +23,44 @@ pub fn accuracy_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     compare_ui(ui, model);
 }
 
+/// A warning or note on what the arithmetic on screen costs, and whether it is a warning:
+/// from the measurement of this view when it has the row, else from the README's figures
+/// (bounded rationals cost hundreds of times f64 per ray; exact about 1.3 times).
+pub fn speed_note(arith: Arith, measurement: Option<&Measurement>) -> Option<(String, bool)> {
+    let measured = measurement.and_then(|m| {
+        let f64_ns = ns_per_ray(m.row(Arith::F64)?);
+        Some(ns_per_ray(m.row(arith)?) / f64_ns.max(1e-9))
+    });
+    match (arith, measured) {
+        (Arith::Rational { .. }, Some(ratio)) => Some((
+            format!("measured here: {ratio:.0}x the time of f64 per ray; frames take a while"),
+            ratio > 10.0,
+        )),
+        (Arith::Rational { .. }, None) => Some((
+            "bounded rationals are slow: hundreds to a thousand times f64 per ray, so a frame \
+             can take many seconds"
+                .into(),
+            true,
+        )),
+        (Arith::Exact, Some(ratio)) => Some((
+            format!("measured here: exact takes {ratio:.1}x the time of f64 per ray"),
+            ratio > 10.0,
+        )),
+        (Arith::Exact, None) => Some((
+            "exact costs about 1.3x the time of f64 per ray on the built-in maps".into(),
+            false,
+        )),
+        _ => None,
+    }
+}
+
 fn measure_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let state = &mut model.accuracy;
     let busy = matches!(
         state.measure,
         MeasureState::Running { .. } | MeasureState::Waiting
     );
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         let text = if busy {
             "Cancel measuring"
         } else {
@@ -86,7 +117,7 @@ fn measure_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
                 ui.label("starting");
             });
         }
-        MeasureState::Done { view_id, .. } if *view_id != state.view_id => {
+        MeasureState::Done { .. } if state.measured_elsewhere() => {
             ui.colored_label(
                 Color32::from_rgb(230, 180, 80),
                 "measured for an earlier view: measure again for this one",
@@ -101,13 +132,13 @@ fn measure_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         MeasureState::Idle | MeasureState::Done { .. } => {}
     }
     if let Some(measurement) = state.measure.measurement() {
-        table_ui(ui, measurement);
+        table_ui(ui, measurement, model.settings.arith());
         super::plot::plot_ui(ui, measurement);
     }
 }
 
 /// Arithmetic, time per ray, ratio to f64, pixels differing from exact.
-fn table_ui(ui: &mut Ui, measurement: &Measurement) {
+fn table_ui(ui: &mut Ui, measurement: &Measurement, on_screen: Arith) {
     let (w, h) = measurement.size;
     ui.weak(format!("{w} x {h} = {} pixels", w * h));
     let f64_ns = measurement.row(Arith::F64).map(ns_per_ray);
@@ -127,7 +158,7 @@ fn table_ui(ui: &mut Ui, measurement: &Measurement) {
                 .chain(measurement.row(Arith::Exact));
             for row in ordered {
                 let mut name = RichText::new(label(row.arith));
-                if row.arith == measurement.shown {
+                if row.arith == on_screen {
                     name = name.strong().color(Color32::WHITE);
                 }
                 ui.label(name)
@@ -145,7 +176,16 @@ fn compare_ui(ui: &mut Ui, model: &mut Model) {
     let state = &mut model.accuracy;
     let toggle = ui.checkbox(&mut state.compare_on, "Compare with exact");
     model.widget_rects.insert("compare_toggle", toggle.rect);
-    let state = &model.accuracy;
+    // Both states take the same height, so ticking or unticking never moves what is below
+    // or makes a scrolled panel jump.
+    ui.vertical(|ui| {
+        ui.set_min_height(64.0);
+        compare_status_ui(ui, &model.accuracy);
+    });
+}
+
+/// What the switch does when off; how far the comparison is when on.
+fn compare_status_ui(ui: &mut Ui, state: &super::AccuracyState) {
     if !state.compare_on {
         ui.weak(
             "renders the frame on screen again in exact arithmetic and marks the pixels that \

@@ -53,36 +53,39 @@ pub fn plot_ui(ui: &mut Ui, measurement: &Measurement) {
     let font = FontId::proportional(10.0);
     let grey = Color32::from_gray(170);
     let label = |pos: Pos2, align, text: String| painter.text(pos, align, text, font.clone(), grey);
-    label(
-        at(x_lo, ZERO_AT) + Vec2::new(-4.0, 0.0),
-        Align2::RIGHT_CENTER,
-        "0".into(),
-    );
-    label(
-        at(x_lo, 0.0) + Vec2::new(-4.0, 0.0),
-        Align2::RIGHT_CENTER,
-        "1".into(),
-    );
-    label(
-        at(x_lo, y_hi) + Vec2::new(-4.0, 0.0),
-        Align2::RIGHT_CENTER,
-        format!("{:.0}", 10f64.powf(y_hi)),
-    );
-    label(
-        at(x_lo, ZERO_AT) + Vec2::new(0.0, 3.0),
-        Align2::LEFT_TOP,
-        format!("{:.0} ns", 10f64.powf(x_lo)),
-    );
-    label(
-        at(x_hi, ZERO_AT) + Vec2::new(0.0, 3.0),
-        Align2::RIGHT_TOP,
-        format!("{:.0} ns", 10f64.powf(x_hi)),
-    );
-    label(
-        Pos2::new(area.center().x, frame.bottom() - 2.0),
-        Align2::CENTER_BOTTOM,
-        "time per ray (log) against pixels ≠ exact (log)".into(),
-    );
+    // The axes' labels, which the points' labels keep clear of.
+    let taken = [
+        label(
+            at(x_lo, ZERO_AT) + Vec2::new(-4.0, 0.0),
+            Align2::RIGHT_CENTER,
+            "0".into(),
+        ),
+        label(
+            at(x_lo, 0.0) + Vec2::new(-4.0, 0.0),
+            Align2::RIGHT_CENTER,
+            "1".into(),
+        ),
+        label(
+            at(x_lo, y_hi) + Vec2::new(-4.0, 0.0),
+            Align2::RIGHT_CENTER,
+            format!("{:.0}", 10f64.powf(y_hi)),
+        ),
+        label(
+            at(x_lo, ZERO_AT) + Vec2::new(0.0, 3.0),
+            Align2::LEFT_TOP,
+            format!("{:.0} ns", 10f64.powf(x_lo)),
+        ),
+        label(
+            at(x_hi, ZERO_AT) + Vec2::new(0.0, 3.0),
+            Align2::RIGHT_TOP,
+            format!("{:.0} ns", 10f64.powf(x_hi)),
+        ),
+        label(
+            Pos2::new(area.center().x, frame.bottom() - 2.0),
+            Align2::CENTER_BOTTOM,
+            "time per ray (log) vs pixels ≠ exact (log)".into(),
+        ),
+    ];
     // Points that coincide (f64, exact and the fine rationals often do) share one label.
     let mut marks: Vec<(Pos2, String)> = Vec::new();
     for (name, x, y) in &points {
@@ -102,7 +105,10 @@ pub fn plot_ui(ui: &mut Ui, measurement: &Measurement) {
         .zip(&galleys)
         .map(|((p, _), g)| (*p, g.size()))
         .collect();
-    for (spot, galley) in place_labels(&anchors, frame).into_iter().zip(galleys) {
+    for (spot, galley) in place_labels(&anchors, frame, &taken)
+        .into_iter()
+        .zip(galleys)
+    {
         if let Some(spot) = spot {
             painter.galley(spot, galley, Color32::WHITE);
         }
@@ -110,10 +116,10 @@ pub fn plot_ui(ui: &mut Ui, measurement: &Measurement) {
 }
 
 /// Where to put each label of `size` next to its point: the first spot around it that stays
-/// inside `bounds` and clear of the labels placed before it (`None`: no room, the table has
-/// it anyway).
-fn place_labels(anchors: &[(Pos2, Vec2)], bounds: Rect) -> Vec<Option<Pos2>> {
-    let mut placed: Vec<Rect> = Vec::new();
+/// inside `bounds` and clear of `taken` and of the labels placed before it (`None`: no room,
+/// the table has it anyway).
+fn place_labels(anchors: &[(Pos2, Vec2)], bounds: Rect, taken: &[Rect]) -> Vec<Option<Pos2>> {
+    let mut placed: Vec<Rect> = taken.to_vec();
     anchors
         .iter()
         .map(|&(p, size)| {
@@ -161,7 +167,9 @@ mod tests {
             (Pos2::new(60.0, 48.0), size),
             (Pos2::new(195.0, 50.0), size),
         ];
-        let spots = place_labels(&anchors, bounds);
+        // An axis label just below the first point.
+        let axis = Rect::from_min_size(Pos2::new(40.0, 52.0), Vec2::new(30.0, 12.0));
+        let spots = place_labels(&anchors, bounds, &[axis]);
         let rects: Vec<Rect> = spots
             .iter()
             .zip(&anchors)
@@ -169,6 +177,7 @@ mod tests {
             .collect();
         for (k, a) in rects.iter().enumerate() {
             assert!(bounds.contains_rect(*a), "{a:?}");
+            assert!(!a.intersects(axis), "{a:?} covers the axis label");
             for b in &rects[k + 1..] {
                 assert!(!a.intersects(*b), "{a:?} and {b:?}");
             }
