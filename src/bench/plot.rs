@@ -59,10 +59,12 @@ fn draw_svg(points: &[Point]) -> anyhow::Result<String> {
             .y_desc("share of answers differing from exact (0 drawn at 1e-5)")
             .label_style(("sans-serif", 14))
             .draw()?;
+        // One colour per method (matplotlib's first four), so every method has its own.
         let palette = [
             RGBColor(31, 119, 180),
             RGBColor(214, 39, 40),
             RGBColor(44, 160, 44),
+            RGBColor(255, 127, 14),
         ];
         let mut methods: Vec<&str> = points.iter().map(|p| p.method.as_str()).collect();
         methods.dedup();

@@ -261,7 +261,7 @@ pub fn print_growth<W: Write>(out: &mut W, terrains: &[TerrainReport]) -> io::Re
                 let value = row.and_then(|r| cell(base, r));
                 line += &format!(" {} |", value.as_deref().unwrap_or("-"));
             }
-            if first.rows.iter().any(|r| cell(base, r).is_some()) {
+            if cell(base, base).is_some() {
                 writeln!(out, "{line}")?;
             }
         }

@@ -178,16 +178,15 @@ pub fn save_numbered(
 
 /// The export folder and size, for the side panel.
 pub fn settings_ui(ui: &mut egui::Ui, exports: &mut Exports, render_size: Option<(u32, u32)>) {
-    ui.horizontal(|ui| {
-        ui.label("export folder");
-        ui.add(
-            egui::TextEdit::singleline(&mut exports.dir)
-                .hint_text("current directory")
-                .desired_width(150.0),
-        );
-    });
+    // Wrapped rows and a field as wide as the panel: the panel narrows in small windows.
+    ui.label("export folder");
+    ui.add(
+        egui::TextEdit::singleline(&mut exports.dir)
+            .hint_text("current directory")
+            .desired_width(ui.available_width()),
+    );
     ui.weak(format!("saves to {}", exports.folder().display()));
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         let render = match render_size {
             Some((w, h)) => format!("view ({w} x {h})"),
             None => "view".into(),
