@@ -5,11 +5,12 @@
 //! uses, not its format's range.
 
 use crate::common::files::tiff;
+use crate::common::top_down::render_top_down;
 use heightray::heightfield::{
     load, load_with, ColourEncoding, LoadOptions, NoDataValue, Quantisation,
 };
-use heightray::render::{Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Shader};
-use heightray::{Arith, Heightfield, Method, Terrain};
+use heightray::render::Ramp;
+use heightray::{Heightfield, Terrain};
 use image::{GrayImage, ImageBuffer, Luma, LumaA, Rgb, Rgba};
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
@@ -353,41 +354,6 @@ fn float_tiff_dems_load_in_their_units_with_the_file_nodata_value() {
     assert!(field.is_nodata(2, 1));
 }
 
-/// A top-down render with light straight from above and the gray ramp: brightness shows
-/// elevation.
-fn render_top_down(terrain: &Terrain) -> Frame {
-    let lighting = Lighting {
-        sun: [0.0, 0.0, 1.0],
-        intensity: 1.0,
-        ambient: 0.0,
-        shadows: false,
-        fog: 0.0,
-        normals: Normals::Flat,
-        ramp: Ramp::Gray,
-    };
-    let camera = Camera::look_at(
-        [4.0, 4.0, 30.0],
-        [4.0, 4.0, 0.0],
-        [0.0, 1.0, 0.0],
-        10.0,
-        (16, 16),
-    )
-    .unwrap();
-    let renderer = Renderer {
-        shader: Shader {
-            terrain,
-            lighting,
-            method: Method::Runs,
-            culling: Culling::default(),
-        },
-        camera,
-        arith: Arith::F64,
-    };
-    let mut frame = Frame::new(16, 16);
-    renderer.render(&mut frame);
-    frame
-}
-
 #[test]
 fn the_colour_ramp_spans_the_heights_a_map_uses() {
     // A 16-bit ramp that uses samples 1000..=1200 of 0..=65535, rising eastwards.
@@ -401,7 +367,7 @@ fn the_colour_ramp_spans_the_heights_a_map_uses() {
         terrain.z_range(),
         (1000.0 * 100.0 / 65535.0, 1200.0 * 100.0 / 65535.0)
     );
-    let frame = render_top_down(&terrain);
+    let frame = render_top_down(&terrain, Ramp::Gray, 30.0, 10.0);
     // Gray ramp: 0.25 + 0.75 e with e the position in the map's own range, then gamma 2.2.
     // The view spans x = 1.55 .. 6.45 of 0 .. 8, so e runs from about 0.2 to 0.8: about 168
     // to 238 in 8 bits. Over 0..=65535 e would stay below 0.02 and every pixel near 136.

@@ -1,9 +1,10 @@
 //! Colour ramps: scene files name them (an unknown name is an error listing the valid ones),
 //! and a map reaching below height 0 is coloured as land and sea by the land ramps.
 
+use crate::common::top_down::render_top_down;
 use heightray::heightfield::Quantisation;
-use heightray::render::{Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Scene, Shader};
-use heightray::{Arith, Heightfield, Method, Terrain};
+use heightray::render::{Ramp, Scene};
+use heightray::{Heightfield, Terrain};
 
 const SCENE: &str = r#"
 [heightmap]
@@ -56,41 +57,6 @@ fn coast() -> Terrain {
     Terrain::new(field)
 }
 
-/// Straight down on the coast, lit straight from above without ambient light: flat ground
-/// shows its ramp colour at full light, which the display gamma returns to the ramp's bytes.
-fn top_down(terrain: &Terrain, ramp: Ramp) -> Frame {
-    let lighting = Lighting {
-        sun: [0.0, 0.0, 1.0],
-        intensity: 1.0,
-        ambient: 0.0,
-        shadows: false,
-        fog: 0.0,
-        normals: Normals::Flat,
-        ramp,
-    };
-    let camera = Camera::look_at(
-        [4.0, 4.0, 40.0],
-        [4.0, 4.0, 0.0],
-        [0.0, 1.0, 0.0],
-        11.0,
-        (16, 16),
-    )
-    .unwrap();
-    let renderer = Renderer {
-        shader: Shader {
-            terrain,
-            lighting,
-            method: Method::Runs,
-            culling: Culling::default(),
-        },
-        camera,
-        arith: Arith::F64,
-    };
-    let mut frame = Frame::new(16, 16);
-    renderer.render(&mut frame);
-    frame
-}
-
 fn bytes(pixel: u32) -> [u8; 3] {
     [(pixel >> 16) as u8, (pixel >> 8) as u8, pixel as u8]
 }
@@ -104,19 +70,19 @@ fn the_land_ramps_colour_below_sea_level_as_sea() {
     let (west, east) = (row + 1, row + 14);
     // The hypsometric ramp's lowest tint (Wikipedia's 0 m, #ACD0A5) on the plain; a dark
     // blue on the sea floor.
-    let hypsometric = top_down(&terrain, Ramp::Hypsometric);
+    let hypsometric = render_top_down(&terrain, Ramp::Hypsometric, 40.0, 11.0);
     assert_eq!(bytes(hypsometric.pixels[east]), [172, 208, 165]);
     let [r, g, b] = bytes(hypsometric.pixels[west]);
     assert!(b > 90 && b > g + 30 && g > r + 30, "sea floor {r} {g} {b}");
     // The default ramp: its own lowest colour on land (0.18, 0.32, 0.14 in linear light), the
     // same sea.
-    let terrain_ramp = top_down(&terrain, Ramp::Terrain);
+    let terrain_ramp = render_top_down(&terrain, Ramp::Terrain, 40.0, 11.0);
     let lowland = [0.18f64, 0.32, 0.14].map(|v| (v.powf(1.0 / 2.2) * 255.0 + 0.5) as u8);
     assert_eq!(bytes(terrain_ramp.pixels[east]), lowland);
     assert_eq!(terrain_ramp.pixels[west], hypsometric.pixels[west]);
     // A data ramp spans the heights without a sea: matplotlib's viridis from its first
     // colour (#440154) at the lowest height to its last (#FDE725) at the highest.
-    let viridis = top_down(&terrain, Ramp::Viridis);
+    let viridis = render_top_down(&terrain, Ramp::Viridis, 40.0, 11.0);
     assert_eq!(bytes(viridis.pixels[west]), [68, 1, 84]);
     assert_eq!(bytes(viridis.pixels[east]), [253, 231, 37]);
 }
