@@ -211,14 +211,7 @@ impl App {
         if loaded.request.reframe {
             model.z_scale = terrain.field().z_scale();
             match loaded.scene {
-                Some(scene) => {
-                    model.orbit = scene.orbit;
-                    model.home = Home::Scene(scene.orbit);
-                    model.framed = None;
-                    model
-                        .settings
-                        .adopt_scene(&scene.lighting, scene.method, scene.arith);
-                }
+                Some(scene) => model.adopt_scene(&scene),
                 None => {
                     model.home = Home::WholeMap;
                     navigation::reset(model);
@@ -471,12 +464,7 @@ fn initial_model(loaded: Loaded, settings: super::settings::Settings) -> Model {
     };
     let mut model = Model::new(shown, settings);
     if let Some(scene) = loaded.scene {
-        model.orbit = scene.orbit;
-        model.home = Home::Scene(scene.orbit);
-        model.framed = None;
-        model
-            .settings
-            .adopt_scene(&scene.lighting, scene.method, scene.arith);
+        model.adopt_scene(&scene);
     }
     model
 }

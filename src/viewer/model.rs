@@ -145,6 +145,16 @@ pub struct Model {
 }
 
 impl Model {
+    /// Shows a scene file's camera as written (R returns to it), with its light, method and
+    /// arithmetic.
+    pub fn adopt_scene(&mut self, scene: &super::loader::SceneSetup) {
+        self.orbit = scene.orbit;
+        self.home = Home::Scene(scene.orbit);
+        self.framed = None;
+        self.settings
+            .adopt_scene(&scene.lighting, scene.method, scene.arith);
+    }
+
     /// A model showing the whole of `shown` (framed again for the view's shape once it is
     /// known).
     pub fn new(shown: Shown, settings: Settings) -> Model {
