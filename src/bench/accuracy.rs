@@ -1,9 +1,9 @@
 //! What accuracy costs in time: per method and arithmetic, time per ray, queries per ray, and
 //! how far the answers are from exact arithmetic on the same rays.
 
-use super::fastest::{fastest, fastest_cancellable, timed};
 use super::ray_sets::RaySet;
-use crate::render::{Camera, Culling, Frame, Lighting, Renderer, Scene, Shader};
+use crate::render::timing::{fastest, timed, TIMING_BUDGET};
+use crate::render::{view_pixel_differences, PixelRow, Scene, View};
 use crate::traverse::{covered_cells, trace, Arith, Counters, Hit, Method, TraceOptions};
 use crate::Terrain;
 use std::collections::HashSet;
@@ -81,12 +81,6 @@ impl AccuracyRow {
     }
 }
 
-/// Each configuration's time is the fastest of the passes over its rays (or renders of its
-/// frame) that fit in this budget (at least one): a set of camera rays takes a millisecond or
-/// two in `f64`, and a single pass on a shared machine can take up to twice as long as the
-/// next.
-const PASS_BUDGET: Duration = Duration::from_millis(100);
-
 /// Traces every ray of `set` with each method and arithmetic, one thread, and compares each
 /// with exact arithmetic (if among `ariths`): answers, and cells of the exact walk skipped.
 pub fn accuracy(
@@ -107,7 +101,7 @@ pub fn accuracy(
                     .map(|ray| trace(&set.terrain, ray, &options));
                 traces.collect::<Vec<_>>()
             };
-            let measured = fastest(PASS_BUDGET, || timed(trace_all));
+            let measured = fastest(TIMING_BUDGET, || timed(trace_all));
             let (traces, time) = (measured.out, measured.fastest);
             let mut counters = Counters::default();
             for t in &traces {
@@ -154,21 +148,6 @@ pub fn accuracy(
     rows
 }
 
-/// A scene rendered in one method and arithmetic, against the exact render.
-#[derive(Clone, Debug)]
-pub struct PixelRow {
-    /// The traversal method.
-    pub method: Method,
-    /// The arithmetic rendered in.
-    pub arith: Arith,
-    /// Pixels whose colour differs from the exact render's.
-    pub differing: u64,
-    /// Pixels in the frame.
-    pub pixels: u64,
-    /// Wall time of the frame (all threads of the pool), the fastest of its renders.
-    pub time: Duration,
-}
-
 /// Renders `scene` in each arithmetic and counts pixels that differ from the exact render
 /// (which is rendered too, whether or not `ariths` names it).
 pub fn pixel_differences(
@@ -191,89 +170,4 @@ pub fn pixel_differences(
         rows.extend(measured.unwrap_or_default());
     }
     rows
-}
-
-/// What a view shows: the terrain through a camera, lit, walked with one method.
-#[derive(Clone, Copy)]
-pub struct View<'a> {
-    /// The terrain seen.
-    pub terrain: &'a Terrain,
-    /// The camera it is seen through.
-    pub camera: Camera,
-    /// The sun, shading and effects.
-    pub lighting: Lighting,
-    /// The traversal method.
-    pub method: Method,
-}
-
-/// Renders `view` exactly, then in each arithmetic (on the current rayon pool), and counts the
-/// pixels that differ from the exact render. Each render's row goes to `rendered` as soon as
-/// it is done, the exact reference first (for a caller showing progress or a growing table).
-/// `cancelled` is asked between bands of rows; once it says yes, the result is None.
-pub fn view_pixel_differences(
-    view: &View<'_>,
-    ariths: &[Arith],
-    cancelled: &(dyn Fn() -> bool + Sync),
-    rendered: &mut dyn FnMut(&PixelRow),
-) -> Option<Vec<PixelRow>> {
-    let render = |arith| {
-        let renderer = Renderer {
-            shader: Shader {
-                terrain: view.terrain,
-                lighting: view.lighting,
-                method: view.method,
-                culling: Culling::default(),
-            },
-            camera: view.camera,
-            arith,
-        };
-        let (w, h) = view.camera.size();
-        let measured = fastest_cancellable(PASS_BUDGET, || {
-            let mut frame = Frame::new(w, h);
-            let (complete, time) = timed(|| {
-                while !frame.complete() {
-                    if !renderer.render_pass(&mut frame, cancelled) {
-                        return false;
-                    }
-                }
-                true
-            });
-            complete.then_some((frame.pixels, time))
-        })?;
-        Some((measured.out, measured.fastest))
-    };
-    let row = |arith, pixels: &[u32], exact: &[u32], time| PixelRow {
-        method: view.method,
-        arith,
-        differing: differing_pixels(pixels, exact).count() as u64,
-        pixels: pixels.len() as u64,
-        time,
-    };
-    let (exact, exact_time) = render(Arith::Exact)?;
-    rendered(&row(Arith::Exact, &exact, &exact, exact_time));
-    let mut rows = Vec::new();
-    for &arith in ariths {
-        let measured = if arith == Arith::Exact {
-            row(arith, &exact, &exact, exact_time)
-        } else {
-            let (pixels, time) = render(arith)?;
-            row(arith, &pixels, &exact, time)
-        };
-        rendered(&measured);
-        rows.push(measured);
-    }
-    Some(rows)
-}
-
-/// Indices of the pixels whose colour differs between two renders of one view.
-pub fn differing_pixels<'a>(
-    pixels: &'a [u32],
-    exact: &'a [u32],
-) -> impl Iterator<Item = usize> + 'a {
-    pixels
-        .iter()
-        .zip(exact)
-        .enumerate()
-        .filter(|(_, (a, b))| a != b)
-        .map(|(k, _)| k)
 }

@@ -1,7 +1,7 @@
 //! Rays per second of whole frames: primary and shadow rays, per scene, method, arithmetic
 //! and thread count, measured in one run so the rows compare as ratios.
 
-use super::fastest::{fastest, timed};
+use crate::render::timing::{fastest, timed};
 use crate::render::{Culling, Frame, FrameStats, Renderer, Scene, Shader};
 use crate::traverse::{Arith, Counters, Method};
 use crate::Terrain;

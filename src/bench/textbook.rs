@@ -7,8 +7,8 @@
 //! ratio of the two times is what those guarantees cost a ray. It is not a method: it misses
 //! hits at lattice points and on level ground a ray grazes (see [`hard_cases_versus_exact`]).
 
-use super::fastest::{fastest, timed};
 use super::ray_sets::{hard_cases, RaySet};
+use crate::render::timing::{fastest, timed};
 use crate::render::Scene;
 use crate::traverse::{trace, Arith, Method, TraceOptions};
 use crate::{Ray, Terrain};

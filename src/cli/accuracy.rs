@@ -3,9 +3,8 @@
 use super::bench::{progress_bar, scene_at_size, scenes_or_builtins};
 use super::AccuracyArgs;
 use anyhow::Context;
-use heightray::bench::{
-    accuracy, hard_cases, pixel_differences, plot, scene_sets, AccuracyRow, PixelRow,
-};
+use heightray::bench::{accuracy, hard_cases, pixel_differences, plot, scene_sets, AccuracyRow};
+use heightray::render::PixelRow;
 use heightray::traverse::{Arith, Method};
 use heightray::Terrain;
 use std::fmt::Write as _;

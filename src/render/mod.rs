@@ -6,6 +6,8 @@ mod ramp;
 mod scene;
 mod shade;
 mod stats;
+pub mod timing;
+mod versus_exact;
 
 pub use camera::{Camera, CameraError};
 pub use passes::{Frame, Renderer, PASS_BLOCKS};
@@ -15,3 +17,4 @@ pub use scene::{
 };
 pub use shade::{Culling, Sample, Shader, Shadow, ShadowSkip};
 pub use stats::{FrameStats, PixelStats};
+pub use versus_exact::{differing_pixels, view_pixel_differences, PixelRow, View};

@@ -1,7 +1,7 @@
 //! "Compare with exact": the frame on screen rendered again, at its own size, in exact
 //! arithmetic, and the pixels where the two differ (for the overlay and the count).
 
-use crate::bench::differing_pixels;
+use crate::render::differing_pixels;
 use crate::render::{Frame, PASS_BLOCKS};
 use crate::viewer::background::Step;
 use crate::viewer::worker::RenderedFrame;

@@ -1,11 +1,11 @@
 //! "Measure all arithmetics": the view on screen rendered small in every arithmetic on one
 //! thread, timed, and compared pixel by pixel with its exact render. The rendering and the
-//! comparison are bench accuracy's ([`view_pixel_differences`]); this adds the choice of size
-//! and arithmetics, cancelling, and progress.
+//! comparison are the renderer's ([`view_pixel_differences`]), as `bench accuracy` uses them;
+//! this adds the choice of size and arithmetics, cancelling, and progress.
 
-use crate::bench::{view_pixel_differences, PixelRow, View};
 use crate::render::CameraError;
 use crate::render::Lighting;
+use crate::render::{view_pixel_differences, PixelRow, View};
 use crate::viewer::background::Step;
 use crate::viewer::orbit::Orbit;
 use crate::viewer::worker::{RenderJob, RenderedFrame};

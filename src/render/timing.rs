@@ -3,6 +3,11 @@
 
 use std::time::{Duration, Instant};
 
+/// Each figure is the fastest of the runs that fit in this budget (at least one): a set of
+/// camera rays takes a millisecond or two in `f64`, and a single run on a shared machine can
+/// take up to twice as long as the next.
+pub const TIMING_BUDGET: Duration = Duration::from_millis(100);
+
 /// `f`'s output and the time it took.
 pub fn timed<T>(f: impl FnOnce() -> T) -> (T, Duration) {
     let start = Instant::now();
@@ -41,6 +46,7 @@ pub fn fastest<T>(budget: Duration, mut run: impl FnMut() -> (T, Duration)) -> F
 pub struct Fastest<T> {
     /// The first run's output.
     pub out: T,
+    /// The time of the fastest run.
     pub fastest: Duration,
 }
 
