@@ -4,6 +4,7 @@ use super::accuracy::panel::{accuracy_ui, speed_note};
 use super::decoding::{decoding_ui, Decoding};
 use super::loader::{LoadRequest, Source};
 use super::model::{Action, Model};
+use super::orbit::{MIN_PITCH_DEG, PITCH_LIMIT_DEG};
 use super::settings::{fog, ArithKind};
 use super::stats_ui::statistics_ui;
 use crate::heightfield::BUILTINS;
@@ -136,7 +137,7 @@ fn camera_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let yaw = ui.add(Slider::new(&mut orbit.yaw_deg, -180.0..=180.0).text("yaw °"));
     named(model, "camera_yaw", yaw);
     let orbit = &mut model.orbit;
-    ui.add(Slider::new(&mut orbit.pitch_deg, -89.0..=89.0).text("pitch °"));
+    ui.add(Slider::new(&mut orbit.pitch_deg, MIN_PITCH_DEG..=PITCH_LIMIT_DEG).text("pitch °"));
     ui.add(
         Slider::new(&mut orbit.distance, scale * 1e-3..=scale * 50.0)
             .logarithmic(true)
