@@ -11,6 +11,7 @@ pub(crate) mod dyadic;
 mod exact;
 mod interval;
 mod rational;
+mod rounding;
 pub mod scalar;
 
 pub use exact::Exact;
