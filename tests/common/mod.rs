@@ -6,6 +6,7 @@ pub mod families;
 pub mod files;
 pub mod random;
 pub mod reference;
+pub mod scenes;
 pub mod top_down;
 
 use heightray::traverse::covered_cells;

@@ -1,38 +1,29 @@
 //! Colour ramps: scene files name them (an unknown name is an error listing the valid ones),
 //! and a map reaching below height 0 is coloured as land and sea by the land ramps.
 
+use crate::common::scenes::{load_scene_text, SMALL_SCENE as SCENE};
 use crate::common::top_down::render_top_down;
 use heightray::heightfield::Quantisation;
-use heightray::render::{Ramp, Scene};
+use heightray::render::Ramp;
 use heightray::{Heightfield, Terrain};
-
-const SCENE: &str = r#"
-[heightmap]
-path = "builtin:small49"
-z_scale = 12.0
-[camera]
-eye = [-10.0, -10.0, 30.0]
-target = [24.0, 24.0, 0.0]
-width = 16
-height = 16
-"#;
-
-fn load(text: &str) -> Result<Scene, String> {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("ramp.toml");
-    std::fs::write(&path, text).unwrap();
-    Scene::load(&path).map_err(|e| e.to_string())
-}
 
 #[test]
 fn scene_files_name_every_ramp_and_an_unknown_one_is_refused_with_the_valid_names() {
     for ramp in Ramp::ALL {
         let text = format!("{SCENE}[shading]\nramp = \"{}\"\n", ramp.name());
-        let scene = load(&text).unwrap_or_else(|e| panic!("{}: {e}", ramp.name()));
+        let scene =
+            load_scene_text("ramp.toml", &text).unwrap_or_else(|e| panic!("{}: {e}", ramp.name()));
         assert_eq!(scene.lighting.ramp, ramp);
     }
-    assert_eq!(load(SCENE).unwrap().lighting.ramp, Ramp::Terrain);
-    let error = load(&format!("{SCENE}[shading]\nramp = \"rainbow\"\n")).unwrap_err();
+    assert_eq!(
+        load_scene_text("ramp.toml", SCENE).unwrap().lighting.ramp,
+        Ramp::Terrain
+    );
+    let error = load_scene_text(
+        "ramp.toml",
+        &format!("{SCENE}[shading]\nramp = \"rainbow\"\n"),
+    )
+    .unwrap_err();
     assert!(
         error.contains("ramp.toml") && error.contains("rainbow"),
         "{error}"

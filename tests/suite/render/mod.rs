@@ -3,6 +3,7 @@
 //!
 //! Golden images are regenerated with `HEIGHTRAY_BLESS=1 cargo test --profile release-tests --test suite render::`.
 
+use crate::common::scenes::{load_scene_text, SMALL_SCENE};
 use heightray::render::{
     Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Scene, SceneFile, Shader,
 };
@@ -252,55 +253,42 @@ fn flat_lit_plane_has_the_lambert_shade() {
     }
 }
 
+/// The message a scene file's text is refused with.
 fn scene_error(text: &str) -> String {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("bad.toml");
-    std::fs::write(&path, text).unwrap();
-    match Scene::load(&path) {
+    match load_scene_text("bad.toml", text) {
         Ok(_) => panic!("scene loaded:\n{text}"),
-        Err(e) => e.to_string(),
+        Err(e) => e,
     }
 }
-
-const GOOD: &str = r#"
-[heightmap]
-path = "builtin:small49"
-z_scale = 12.0
-[camera]
-eye = [-10.0, -10.0, 30.0]
-target = [24.0, 24.0, 0.0]
-width = 16
-height = 16
-"#;
 
 #[test]
 fn scene_errors_name_the_key_and_the_file() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("good.toml");
-    std::fs::write(&path, GOOD).unwrap();
+    std::fs::write(&path, SMALL_SCENE).unwrap();
     let scene = Scene::load(&path).unwrap();
     assert_eq!(scene.camera.size(), (16, 16));
 
-    let unknown = scene_error(&GOOD.replace("width = 16", "width = 16\nfov = 30.0"));
+    let unknown = scene_error(&SMALL_SCENE.replace("width = 16", "width = 16\nfov = 30.0"));
     assert!(
         unknown.contains("fov") && unknown.contains("bad.toml"),
         "{unknown}"
     );
-    let missing = scene_error(&GOOD.replace("z_scale = 12.0\n", ""));
+    let missing = scene_error(&SMALL_SCENE.replace("z_scale = 12.0\n", ""));
     assert!(
         missing.contains("z_scale") && missing.contains("bad.toml"),
         "{missing}"
     );
-    let unknown_section = scene_error(&format!("{GOOD}\n[lights]\nsun = 1\n"));
+    let unknown_section = scene_error(&format!("{SMALL_SCENE}\n[lights]\nsun = 1\n"));
     assert!(unknown_section.contains("lights"), "{unknown_section}");
-    let bad_method = scene_error(&format!("{GOOD}\n[render]\nmethod = \"bvh\"\n"));
+    let bad_method = scene_error(&format!("{SMALL_SCENE}\n[render]\nmethod = \"bvh\"\n"));
     assert!(
         bad_method.contains("method") && bad_method.contains("bvh"),
         "{bad_method}"
     );
-    let no_map = scene_error(&GOOD.replace("builtin:small49", "missing.png"));
+    let no_map = scene_error(&SMALL_SCENE.replace("builtin:small49", "missing.png"));
     assert!(no_map.contains("missing.png"), "{no_map}");
-    let bad_camera = scene_error(&GOOD.replace(
+    let bad_camera = scene_error(&SMALL_SCENE.replace(
         "target = [24.0, 24.0, 0.0]",
         "target = [-10.0, -10.0, 30.0]",
     ));
