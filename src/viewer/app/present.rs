@@ -112,7 +112,10 @@ pub(super) fn keys_ui(ui: &egui::Ui, model: &mut Model, actions: &mut Vec<Action
     if ui.ctx().egui_wants_keyboard_input() {
         return;
     }
-    navigation::keys_ui(ui, model, actions);
+    // A focused slider or drag value takes the arrow keys itself: the camera leaves them.
+    if ui.ctx().memory(|m| m.focused().is_none()) {
+        navigation::keys_ui(ui, model, actions);
+    }
     let pressed = |key| ui.input(|i| i.key_pressed(key));
     // Every press is one export, even two within one frame; holding the key is one press.
     let exports = ui.input(|i| {
