@@ -39,15 +39,7 @@ fn decoding_choices_apply_to_the_image_on_screen() {
     session.capture("decoded-mapbox.png");
 
     // Choose luminance and no marker: the button to read it again appears, and reads it so.
-    session.click(&state, "heightmap_section");
-    session
-        .viewer
-        .wait_for("the Heightmap section to open", |s| {
-            s["widgets"]["decode_luminance"].is_array()
-        });
-    // Let the section finish opening: what it holds is not clickable until then.
-    std::thread::sleep(std::time::Duration::from_millis(600));
-    let state = session.state();
+    let state = session.open_section("heightmap_section", "decode_luminance");
     session.click(&state, "decode_luminance");
     let state = session.viewer.wait_for("luminance chosen", |s| {
         s["decoding"]["colour"] == "luminance"

@@ -94,6 +94,19 @@ impl Session {
         self.x.release(1);
     }
 
+    /// Opens a closed panel section by its header and returns the state once `inside` (a
+    /// widget the section holds) can be clicked.
+    fn open_section(&mut self, header: &str, inside: &str) -> Value {
+        let state = self.state();
+        self.click(&state, header);
+        self.viewer.wait_for(&format!("the {header} to open"), |s| {
+            s["widgets"][inside].is_array()
+        });
+        // Let the section finish opening: what it holds is not clickable until then.
+        std::thread::sleep(std::time::Duration::from_millis(600));
+        self.state()
+    }
+
     fn capture(&self, name: &str) -> Shot {
         let shot = self.x.capture(self.window);
         shot.save(&artifacts().join(name));

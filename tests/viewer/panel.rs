@@ -152,12 +152,7 @@ fn reading_a_grey_image_again_is_offered_only_for_what_changes_it() {
     super::write_hill(&hill);
     let file = hill.to_str().expect("a UTF-8 path");
     let mut session = Session::start(&[file]);
-    let state = session.state();
-    session.click(&state, "heightmap_section");
-    session.viewer.wait_for("the Heightmap section", |s| {
-        s["widgets"]["decode_mapbox"].is_array()
-    });
-    std::thread::sleep(Duration::from_millis(600));
+    session.open_section("heightmap_section", "decode_mapbox");
 
     // The colour encoding changes nothing in a grey image.
     session.click(&session.state(), "decode_mapbox");

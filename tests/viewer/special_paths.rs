@@ -24,17 +24,8 @@ fn assert_refused(session: &mut Session, shown: &Value, name: &str, what: &str) 
 #[test]
 fn a_device_a_fifo_and_a_directory_are_refused_and_the_terrain_stays() {
     let mut session = Session::start(&[]);
-    let closed = session.state();
     // The path field is in the Heightmap section, which starts closed.
-    session.click(&closed, "heightmap_section");
-    session
-        .viewer
-        .wait_for("the Heightmap section to open", |s| {
-            s["widgets"]["open_path"].is_array()
-        });
-    // Let the section finish opening: what it holds is not clickable until then.
-    std::thread::sleep(std::time::Duration::from_millis(600));
-    let shown = session.state();
+    let shown = session.open_section("heightmap_section", "open_path");
 
     // A device typed into the path field: reading it would never end.
     session.click(&shown, "open_path");
