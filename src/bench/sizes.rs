@@ -39,6 +39,7 @@ pub fn sized_scene(samples: usize, image: u32) -> Result<Scene, SizedSceneError>
     let effects = EffectsSection {
         shadows: true,
         fog: 0.0,
+        ..EffectsSection::default()
     };
     Ok(Scene {
         field,

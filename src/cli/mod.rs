@@ -206,6 +206,12 @@ pub struct RenderArgs {
     /// Write the frame's statistics as JSON.
     #[arg(long)]
     pub stats: Option<PathBuf>,
+    /// Camera rays per pixel (1 to 1024), overriding the scene's `[render] samples`.
+    #[arg(long)]
+    pub samples: Option<u32>,
+    /// Let each pixel stop taking samples once they agree, as `[render] adaptive = true`.
+    #[arg(long)]
+    pub adaptive: bool,
 }
 
 /// How to read a height map.

@@ -2,6 +2,7 @@
 
 use super::{loading, RenderArgs};
 use anyhow::Context;
+use heightray::render::effects::MOST_RAYS;
 use heightray::render::{Culling, Frame, Renderer, Scene, Shader};
 use heightray::traverse::prepare;
 use heightray::Terrain;
@@ -28,10 +29,19 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
 
     let terrain = loading::stage("building acceleration data", || Terrain::new(scene.field));
     loading::summary(&args.scene, &terrain, read_time);
+    let mut lighting = scene.lighting;
+    if let Some(samples) = args.samples {
+        anyhow::ensure!(
+            (1..=MOST_RAYS).contains(&samples),
+            "--samples must be from 1 to {MOST_RAYS}, got {samples}"
+        );
+        lighting.effects.samples = samples;
+    }
+    lighting.effects.adaptive |= args.adaptive;
     let renderer = Renderer {
         shader: Shader {
             terrain: &terrain,
-            lighting: scene.lighting,
+            lighting,
             method,
             culling: Culling::default(),
         },
@@ -47,7 +57,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let render_ms = start.elapsed().as_secs_f64() * 1e3;
 
     save_png(&frame, &args.output)?;
-    let rays = frame.totals.primary_rays + frame.totals.shadow_rays;
+    let effects = &frame.totals.effects;
+    let rays =
+        frame.totals.primary_rays + frame.totals.shadow_rays + effects.soft.rays + effects.sky.rays;
     // (Before the table: a reader of the table that stops early loses none of the files.)
     if let Some(path) = &args.stats {
         let mut stats = json!({

@@ -126,8 +126,14 @@ impl Camera {
 
     /// The primary ray through the centre of pixel `(px, py)`.
     pub fn ray(&self, px: u32, py: u32) -> Ray {
-        let sx = 2.0 * (f64::from(px) + 0.5) / f64::from(self.width) - 1.0;
-        let sy = 1.0 - 2.0 * (f64::from(py) + 0.5) / f64::from(self.height);
+        self.ray_at(f64::from(px) + 0.5, f64::from(py) + 0.5)
+    }
+
+    /// The ray through the point `(x, y)` of the image, in pixels from its top-left corner
+    /// (a pixel's centre is at `+0.5`), for several samples per pixel.
+    pub fn ray_at(&self, x: f64, y: f64) -> Ray {
+        let sx = 2.0 * x / f64::from(self.width) - 1.0;
+        let sy = 1.0 - 2.0 * y / f64::from(self.height);
         let dir = self.forward + sx * self.right + sy * self.up;
         // `forward` is a unit vector orthogonal to `right` and `up`, so `dir` is never zero,
         // and every input was checked finite.

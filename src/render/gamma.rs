@@ -65,6 +65,14 @@ pub fn byte(v: f64) -> u8 {
     start + u8::from(next.is_some_and(|&threshold| v >= threshold))
 }
 
+/// The linear value whose display byte is `b` by the formula (`(b / 255)^2.2`).
+pub fn linear(b: u8) -> f64 {
+    LINEAR[usize::from(b)]
+}
+
+static LINEAR: LazyLock<[f64; 256]> =
+    LazyLock::new(|| std::array::from_fn(|b| (b as f64 / 255.0).powf(2.2)));
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -86,5 +94,12 @@ mod tests {
             assert_eq!(byte(v), byte_by_formula(v), "v = {v:e}");
         }
         assert_eq!(byte(f64::NAN), 0);
+    }
+
+    #[test]
+    fn every_byte_comes_back_from_its_linear_value() {
+        for b in 0..=255u8 {
+            assert_eq!(byte(linear(b)), b);
+        }
     }
 }

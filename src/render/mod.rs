@@ -1,4 +1,5 @@
 mod camera;
+pub mod effects;
 mod gamma;
 mod normals;
 mod passes;

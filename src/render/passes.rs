@@ -3,6 +3,7 @@
 //! threads. A caller-supplied check lets a newer camera cancel the work between bands.
 
 use super::camera::Camera;
+use super::effects::pixel;
 use super::shade::Sample;
 use super::shade::Shader;
 use super::stats::{FrameStats, PixelStats};
@@ -193,7 +194,7 @@ impl Renderer<'_> {
                 if cancelled() {
                     return None;
                 }
-                let beam = (hierarchical && *block <= BEAM_BLOCK)
+                let beam = (hierarchical && *block <= BEAM_BLOCK && !tiles.sub_pixel())
                     .then(|| *tile_beam.get_or_insert_with(|| tiles.beam(corners)));
                 let columns: Vec<u32> = (x0..x_end).step_by(*block as usize).collect();
                 tiles.trace(*pass, *block, &columns, rows, beam);
@@ -212,6 +213,28 @@ struct Tiles<'r, 'o, 'b, F> {
 }
 
 impl<F: Fn(&Ray, Option<Clearance>) -> Sample> Tiles<'_, '_, '_, F> {
+    /// Whether pixels take several samples: their rays then reach past the pixels' centres,
+    /// outside the tile's beam, which is not used.
+    fn sub_pixel(&self) -> bool {
+        self.renderer.shader.lighting.effects.samples > 1
+    }
+
+    /// Traces pixel `(x, y)` with several samples (see [`pixel::shade`]) and paints it.
+    fn trace_samples(&mut self, x: u32, y: u32, block: u32) {
+        let mut stats = PixelStats::default();
+        let (renderer, sample, totals) = (self.renderer, &self.sample, &mut self.totals);
+        let effects = &renderer.shader.lighting.effects;
+        let (rgb, taken) = pixel::shade(&renderer.camera, (x, y), effects, |ray| {
+            let traced = sample(ray, None);
+            totals.add(&traced);
+            stats += PixelStats::of(&traced);
+            traced
+        });
+        totals.effects.add_pixel(taken);
+        stats.samples = taken;
+        self.out.paint(x, y, block, rgb, stats);
+    }
+
     /// Clears the beam of the pixels from `first` to `last` (corners of a rectangle).
     fn beam(&mut self, (first, last): ((u32, u32), (u32, u32))) -> Clearance {
         let beam = self.renderer.camera.beam(first, last);
@@ -236,8 +259,13 @@ impl<F: Fn(&Ray, Option<Clearance>) -> Sample> Tiles<'_, '_, '_, F> {
                 if traced_before {
                     continue;
                 }
+                if self.sub_pixel() {
+                    self.trace_samples(x, y, block);
+                    continue;
+                }
                 let sample = (self.sample)(&self.renderer.camera.ray(x, y), beam);
                 self.totals.add(&sample);
+                self.totals.effects.add_pixel(1);
                 self.out
                     .paint(x, y, block, sample.rgb, PixelStats::of(&sample));
             }

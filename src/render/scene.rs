@@ -2,6 +2,7 @@
 //! name.
 
 use super::camera::{Camera, CameraError};
+use super::effects::{Effects, DEFAULT_RAYS};
 use super::ramp::Ramp;
 use crate::heightfield::{self, Builtin, Heightfield, LoadError, LoadOptions, NoDataValue};
 use crate::regular_file::{self, OpenError};
@@ -242,6 +243,12 @@ pub struct SunSection {
     /// Light everywhere, facing the sun or not (default 0.25).
     #[serde(default = "default_ambient")]
     pub ambient: f64,
+    /// The sun's angular diameter in degrees (default 0: hard shadows).
+    #[serde(default)]
+    pub angle_deg: f64,
+    /// Directions towards the sun's disc per point, for soft shadows (default 16).
+    #[serde(default)]
+    pub rays: Option<u32>,
 }
 
 /// A scene file's `[effects]` section.
@@ -254,6 +261,12 @@ pub struct EffectsSection {
     /// Fog density per unit of distance; 0 is off.
     #[serde(default)]
     pub fog: f64,
+    /// Light from the sky dome instead of the constant ambient term (default off).
+    #[serde(default)]
+    pub sky_light: bool,
+    /// Sky-light rays per point (default 16).
+    #[serde(default)]
+    pub sky_rays: Option<u32>,
 }
 
 /// A scene file's `[shading]` section.
@@ -290,6 +303,12 @@ pub struct RenderSection {
     /// Arithmetic, as `--arith` takes it (default `f64`).
     #[serde(default = "default_arith")]
     pub arith: String,
+    /// Camera rays per pixel (default 1).
+    #[serde(default = "one_sample")]
+    pub samples: u32,
+    /// Stop a pixel's samples once they agree (default off).
+    #[serde(default)]
+    pub adaptive: bool,
 }
 
 impl Default for SunSection {
@@ -298,6 +317,8 @@ impl Default for SunSection {
             direction: [0.4, 0.3, 0.8],
             intensity: 1.0,
             ambient: default_ambient(),
+            angle_deg: 0.0,
+            rays: None,
         }
     }
 }
@@ -307,6 +328,8 @@ impl Default for RenderSection {
         RenderSection {
             method: default_method(),
             arith: default_arith(),
+            samples: 1,
+            adaptive: false,
         }
     }
 }
@@ -319,6 +342,9 @@ fn default_fov() -> f64 {
 }
 fn one() -> f64 {
     1.0
+}
+fn one_sample() -> u32 {
+    1
 }
 fn default_ambient() -> f64 {
     0.25
@@ -347,6 +373,8 @@ pub struct Lighting {
     pub normals: Normals,
     /// The colour ramp by elevation.
     pub ramp: Ramp,
+    /// Soft shadows, sky light and samples per pixel.
+    pub effects: Effects,
 }
 
 impl Lighting {
@@ -372,6 +400,13 @@ impl Lighting {
             fog: effects.fog,
             normals: shading.normals,
             ramp: shading.ramp,
+            effects: Effects {
+                sun_angle_deg: sun.angle_deg,
+                sun_rays: sun.rays.unwrap_or(DEFAULT_RAYS),
+                sky_light: effects.sky_light,
+                sky_rays: effects.sky_rays.unwrap_or(DEFAULT_RAYS),
+                ..Effects::default()
+            },
         }
     }
 }
@@ -462,10 +497,13 @@ impl Scene {
             .arith
             .parse()
             .map_err(|e| invalid(format!("[render] arith: {e}")))?;
+        let mut lighting = Lighting::from_sections(sun, &file.effects, &file.shading);
+        lighting.effects =
+            Effects::from_sections(sun, &file.effects, &file.render).map_err(invalid)?;
         Ok(Scene {
             field,
             camera,
-            lighting: Lighting::from_sections(sun, &file.effects, &file.shading),
+            lighting,
             method,
             arith,
         })

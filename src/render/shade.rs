@@ -1,6 +1,7 @@
 //! From a ray to a colour: the primary ray, the shadow ray only where it can change the pixel,
 //! Lambert shading with an elevation ramp, sky and fog.
 
+use super::effects::{SkyRays, SoftShadow};
 use super::gamma;
 use super::normals;
 use super::ramp::HeightSpan;
@@ -9,7 +10,7 @@ use crate::geometry::{gradient, plane_height, triangle_corners};
 use crate::heightfield::Terrain;
 use crate::traverse::{
     crosses_plane, plane_t_exact, settled, trace_scalar, Clearance, Counters, Exact, Found,
-    Interval, Method, PlanePoint, Query, Scalar, WalkOptions,
+    Interval, Method, PlanePoint, Query, Scalar, ScalarTrace, WalkOptions,
 };
 use crate::Ray;
 use glam::DVec3;
@@ -24,6 +25,9 @@ pub enum ShadowSkip {
     NoShadowPossible,
     /// The shadow ray starts above the highest terrain and rises.
     AboveTerrain,
+    /// Soft shadows: every direction towards the sun's disc climbs more steeply than the
+    /// terrain can rise around the point (see [`crate::render::effects`]).
+    HorizonClear,
 }
 
 /// What became of a pixel's shadow.
@@ -38,11 +42,13 @@ pub enum Shadow {
         /// The shadow ray found the surface: the pixel is in shadow.
         shadowed: bool,
     },
+    /// Soft shadows: directions towards the sun's disc, some cast, the others provably clear.
+    Soft(SoftShadow),
 }
 
 /// A pixel's shadow as cast: what became of it, the shadow ray's queries, and whether a
 /// decision on it was made exactly after intervals left it unsettled (see [`Sample::redone`]).
-type Cast = (Shadow, Counters, bool);
+pub(super) type Cast = (Shadow, Counters, bool);
 
 /// One traced pixel.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -55,8 +61,10 @@ pub struct Sample {
     pub shadow: Shadow,
     /// The primary ray's queries.
     pub primary: Counters,
-    /// The shadow ray's queries.
+    /// The shadow rays' queries (towards the sun, or its disc).
     pub secondary: Counters,
+    /// The sky-light rays.
+    pub sky: SkyRays,
     /// Intervals left a decision unsettled, and exact mode made it again exactly: it traced
     /// the pixel again in rationals, or cast only its shadow ray again, or decided one of the
     /// shadow ray's triangle tests on its own.
@@ -75,6 +83,9 @@ pub struct Culling {
     /// Leave out shadow rays that start above the terrain and rise
     /// ([`ShadowSkip::AboveTerrain`]).
     pub above_terrain: bool,
+    /// Leave out soft-shadow and sky-light rays that climb more steeply than the terrain can
+    /// rise around their start ([`ShadowSkip::HorizonClear`], [`SkyRays::culled`]).
+    pub horizon_clear: bool,
 }
 
 impl Default for Culling {
@@ -83,6 +94,7 @@ impl Default for Culling {
             facing_away: true,
             no_shadow_possible: true,
             above_terrain: true,
+            horizon_clear: true,
         }
     }
 }
@@ -174,6 +186,7 @@ impl Shader<'_> {
                 shadow: Shadow::NotAsked,
                 primary: primary.counters,
                 secondary: Counters::default(),
+                sky: SkyRays::default(),
                 redone: false,
             });
         };
@@ -188,13 +201,21 @@ impl Shader<'_> {
         };
         let facing = self.facing(found.cell, found.triangle, p);
         let (shadow, secondary, redone) = cast(&found, p, facing)?;
+        let (rgb, sky) = if self.lighting.effects.sky_light {
+            let (light, sky) = self.sky_light(&found, ray, p);
+            (self.lit_rgb(ray, p, t, facing, shadow, light), sky)
+        } else {
+            let rgb = self.surface_rgb(ray, p, t, facing, shadow);
+            (rgb, SkyRays::default())
+        };
         Ok(Sample {
-            rgb: self.surface_rgb(ray, p, t, facing, shadow),
+            rgb,
             hit: true,
             shadow,
             primary: primary.counters,
             secondary,
-            redone,
+            sky,
+            redone: redone || sky.redone,
         })
     }
 
@@ -217,7 +238,34 @@ impl Shader<'_> {
             _ => facing.max(0.0),
         };
         let light = self.lighting.ambient + self.lighting.intensity * lit;
-        let mut colour = self.lighting.ramp.colour(p.z, HeightSpan::of(self.terrain)) * light;
+        let colour = self.lighting.ramp.colour(p.z, HeightSpan::of(self.terrain)) * light;
+        self.fogged_rgb(ray, t, colour)
+    }
+
+    /// [`Shader::surface_rgb`] with soft shadows and sky light: `ambient` (a colour) instead of
+    /// the scene's constant ambient term.
+    fn lit_rgb(
+        &self,
+        ray: &Ray,
+        p: DVec3,
+        t: f64,
+        facing: f64,
+        shadow: Shadow,
+        ambient: DVec3,
+    ) -> u32 {
+        let lit = match shadow {
+            Shadow::Cast { shadowed: true } => 0.0,
+            Shadow::Soft(soft) => facing.max(0.0) * soft.visible(),
+            _ => facing.max(0.0),
+        };
+        let light = ambient + DVec3::splat(self.lighting.intensity * lit);
+        let colour = self.lighting.ramp.colour(p.z, HeightSpan::of(self.terrain)) * light;
+        self.fogged_rgb(ray, t, colour)
+    }
+
+    /// A surface's linear `colour` seen along `ray` at `t`, through the fog, packed.
+    #[inline(always)]
+    fn fogged_rgb(&self, ray: &Ray, t: f64, mut colour: DVec3) -> u32 {
         if self.lighting.fog > 0.0 {
             let distance = t * DVec3::from(ray.dir()).length();
             let clear = (-self.lighting.fog * distance).exp();
@@ -241,6 +289,9 @@ impl Shader<'_> {
         if self.culling.facing_away && facing <= 0.0 {
             return skip(ShadowSkip::FacingAway);
         }
+        if self.lighting.effects.sun_angle_deg > 0.0 {
+            return self.soft_shadow(found, ray, p);
+        }
         let sun = self.lighting.sun;
         // The sun climbs strictly steeper than any triangle (with room for the rounding of
         // max_slope), compared squared: no square root per shadow ray.
@@ -250,6 +301,24 @@ impl Shader<'_> {
         if self.culling.no_shadow_possible && climbs_steeper {
             return skip(ShadowSkip::NoShadowPossible);
         }
+        let origin = self.ray_start(found, ray, p);
+        let (_, z_max) = self.terrain.z_range();
+        if self.culling.above_terrain && sun[2] > 0.0 && origin[2] > S::from_f64(z_max) {
+            return skip(ShadowSkip::AboveTerrain);
+        }
+        let answer = self.occluded(found, ray, &origin, sun);
+        (
+            Shadow::Cast {
+                shadowed: answer.hit.is_some(),
+            },
+            answer.counters,
+            answer.decided_exactly,
+        )
+    }
+
+    /// Where a ray from the hit `found` (shaded at `p`) towards the sky starts, in arithmetic
+    /// `S`: a shadow ray, a ray towards the sun's disc or a sky-light ray.
+    pub(super) fn ray_start<S: Scalar>(&self, found: &Found<S>, ray: &Ray, p: DVec3) -> [S; 3] {
         // Lift the start above the surface by what rounding may have moved it below (zero in
         // exact arithmetic): the surface is a height field, so up is always outside. The point
         // is `o + t*d`, each component within a few roundings of `|o| + |t*d|`; off by that
@@ -258,8 +327,7 @@ impl Shader<'_> {
         let (ray_o, ray_d) = (ray.origin(), ray.dir());
         let largest = (0..3).fold(0.0f64, |m, k| m.max(ray_o[k].abs() + t * ray_d[k].abs()));
         let lift = 64.0 * S::rounding_error(largest) * (1.0 + self.terrain.max_slope());
-        let smooth = self.lighting.normals == Normals::Smooth;
-        let origin = if smooth {
+        if self.lighting.normals == Normals::Smooth {
             // Smooth shading: from the curved surface the shading describes, which its own
             // flat triangle may cross (see `normals`); the ray is then an ordinary one from
             // that point, traced exactly in exact arithmetics.
@@ -268,15 +336,23 @@ impl Shader<'_> {
         } else {
             let [x, y, z] = self.plane_point(found, ray);
             [x, y, z + S::from_f64(lift)]
-        };
-        let (_, z_max) = self.terrain.z_range();
-        if self.culling.above_terrain && sun[2] > 0.0 && origin[2] > S::from_f64(z_max) {
-            return skip(ShadowSkip::AboveTerrain);
         }
+    }
+
+    /// Traces a ray from `origin` (as [`Shader::ray_start`] gives it for the hit `found` of
+    /// `ray`) towards `dir` for any hit: the query of shadow rays.
+    pub(super) fn occluded<S: Scalar>(
+        &self,
+        found: &Found<S>,
+        ray: &Ray,
+        origin: &[S; 3],
+        dir: [f64; 3],
+    ) -> ScalarTrace<S> {
+        let smooth = self.lighting.normals == Normals::Smooth;
         // A smoothly shaded ray skips its own triangle, which stands for the curved surface it
         // starts on.
         let walk = WalkOptions {
-            start_triangle: (smooth || self.leaves_at_once(found))
+            start_triangle: (smooth || self.leaves_at_once(found, dir))
                 .then_some((found.cell, found.triangle)),
             exact_start: (S::EXACT && !smooth).then_some(PlanePoint {
                 ray: *ray,
@@ -285,14 +361,7 @@ impl Shader<'_> {
             }),
             ..WalkOptions::new(self.method, Query::Shadow)
         };
-        let answer = trace_scalar(self.terrain, &origin, &sun.map(S::from_f64), sun, walk);
-        (
-            Shadow::Cast {
-                shadowed: answer.hit.is_some(),
-            },
-            answer.counters,
-            answer.decided_exactly,
-        )
+        trace_scalar(self.terrain, origin, &dir.map(S::from_f64), dir, walk)
     }
 
     /// The hit point as a shadow ray from the flat triangle starts at, in arithmetic `S`.
@@ -320,12 +389,12 @@ impl Shader<'_> {
         [x, y, z]
     }
 
-    /// Whether a ray towards the sun leaves the hit triangle's plane at once, so that it
+    /// Whether a ray towards `dir` leaves the hit triangle's plane at once, so that it
     /// touches the triangle it starts on only at its start (in floats decided with room to
     /// spare for rounding: when in doubt the triangle is tested like any other).
-    fn leaves_at_once<S: Scalar>(&self, found: &Found<S>) -> bool {
+    fn leaves_at_once<S: Scalar>(&self, found: &Found<S>, dir: [f64; 3]) -> bool {
         let n = self.geometric_normal(found.cell, found.triangle);
-        let s = DVec3::from(self.lighting.sun);
+        let s = DVec3::from(dir);
         let terms = [n.x * s.x, n.y * s.y, n.z * s.z];
         let sum: f64 = terms.iter().sum();
         if sum.abs() > 1e-9 * terms.iter().map(|t| t.abs()).sum::<f64>() {
@@ -333,7 +402,7 @@ impl Shader<'_> {
         }
         // Without rounding the ray starts on the plane itself, and leaves it at once unless it
         // runs in it: asked exactly (intervals cannot tell the two apart in the tests).
-        S::EXACT && crosses_plane(self.terrain, found.cell, found.triangle, self.lighting.sun)
+        S::EXACT && crosses_plane(self.terrain, found.cell, found.triangle, dir)
     }
 
     /// The height of the hit triangle if it is flat (its three corners at one height).
@@ -352,7 +421,7 @@ impl Shader<'_> {
 
     /// The shading normal at `p` on triangle `triangle` of cell `(i, j)`.
     #[inline(always)]
-    fn normal(&self, cell: (usize, usize), triangle: u8, p: DVec3) -> DVec3 {
+    pub(super) fn normal(&self, cell: (usize, usize), triangle: u8, p: DVec3) -> DVec3 {
         match self.lighting.normals {
             Normals::Flat => self.geometric_normal(cell, triangle).normalize_or(DVec3::Z),
             Normals::Smooth => normals::smooth_normal(self.terrain, cell, triangle, p),
@@ -361,13 +430,25 @@ impl Shader<'_> {
 
     /// Sky gradient for rays that miss.
     fn sky(&self, dir: [f64; 3]) -> DVec3 {
-        let d = DVec3::from(dir).normalize_or(DVec3::Z);
-        horizon().lerp(DVec3::new(0.28, 0.46, 0.82), d.z.clamp(0.0, 1.0).sqrt())
+        sky_colour(DVec3::from(dir))
     }
 }
 
-fn horizon() -> DVec3 {
+/// The sky's colour towards `dir`: from the horizon's up to the zenith's, by the square root
+/// of the sine of the elevation.
+pub(super) fn sky_colour(dir: DVec3) -> DVec3 {
+    let d = dir.normalize_or(DVec3::Z);
+    horizon().lerp(zenith(), d.z.clamp(0.0, 1.0).sqrt())
+}
+
+/// The sky's colour at the horizon.
+pub(super) fn horizon() -> DVec3 {
     DVec3::new(0.78, 0.85, 0.93)
+}
+
+/// The sky's colour at the zenith.
+pub(super) fn zenith() -> DVec3 {
+    DVec3::new(0.28, 0.46, 0.82)
 }
 
 /// Linear colour to 0x00RRGGBB with a display gamma of 2.2.

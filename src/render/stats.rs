@@ -1,6 +1,7 @@
 //! Statistics of a frame: the query counters ([`crate::traverse::Counters`]) summed, per
 //! primary ray and as hit/miss ratios, and a compact per-pixel record for heat maps.
 
+use super::effects::EffectStats;
 use super::shade::{Sample, Shadow, ShadowSkip};
 use crate::traverse::{Counters, HitMiss};
 use serde_json::{json, Value};
@@ -17,21 +18,36 @@ pub struct PixelStats {
     pub cells: u32,
     /// Triangle tests.
     pub triangles: u32,
+    /// Camera rays (samples) the pixel took.
+    pub samples: u32,
 }
 
 impl PixelStats {
     /// The queries of a traced pixel's rays, saturating at `u32::MAX`.
     pub fn of(sample: &Sample) -> PixelStats {
         let total = |f: fn(&Counters) -> HitMiss| {
-            (f(&sample.primary).total() + f(&sample.secondary).total()).min(u64::from(u32::MAX))
-                as u32
+            (f(&sample.primary).total()
+                + f(&sample.secondary).total()
+                + f(&sample.sky.counters).total())
+            .min(u64::from(u32::MAX)) as u32
         };
         PixelStats {
             blocks: total(|c| c.block),
             runs: total(|c| c.run),
             cells: total(|c| c.cell),
             triangles: total(|c| c.triangle),
+            samples: 1,
         }
+    }
+}
+
+impl AddAssign for PixelStats {
+    fn add_assign(&mut self, rhs: PixelStats) {
+        self.blocks = self.blocks.saturating_add(rhs.blocks);
+        self.runs = self.runs.saturating_add(rhs.runs);
+        self.cells = self.cells.saturating_add(rhs.cells);
+        self.triangles = self.triangles.saturating_add(rhs.triangles);
+        self.samples = self.samples.saturating_add(rhs.samples);
     }
 }
 
@@ -44,6 +60,8 @@ pub struct Skipped {
     pub no_shadow_possible: u64,
     /// The shadow ray started above the terrain and rose.
     pub above_terrain: u64,
+    /// Soft shadows: the whole cone towards the sun climbed above the terrain's bound.
+    pub horizon_clear: u64,
 }
 
 /// Totals of a frame (or of any set of pixels).
@@ -63,6 +81,8 @@ pub struct FrameStats {
     pub primary: Counters,
     /// The shadow rays' queries.
     pub shadow: Counters,
+    /// Soft shadows, sky light and samples per pixel.
+    pub effects: EffectStats,
     /// Pixels with a decision exact mode made again exactly after intervals left it unsettled
     /// (see [`Sample::redone`]).
     pub redone: u64,
@@ -85,7 +105,10 @@ impl FrameStats {
             Shadow::Skipped(ShadowSkip::FacingAway) => self.skipped.facing_away += 1,
             Shadow::Skipped(ShadowSkip::NoShadowPossible) => self.skipped.no_shadow_possible += 1,
             Shadow::Skipped(ShadowSkip::AboveTerrain) => self.skipped.above_terrain += 1,
+            Shadow::Skipped(ShadowSkip::HorizonClear) => self.skipped.horizon_clear += 1,
+            Shadow::Soft(soft) => self.effects.add_soft(&soft),
         }
+        self.effects.add_sky(&sample.sky);
     }
 
     /// Primary and shadow queries together.
@@ -108,7 +131,9 @@ impl FrameStats {
                 "facing_away": self.skipped.facing_away,
                 "no_shadow_possible": self.skipped.no_shadow_possible,
                 "above_terrain": self.skipped.above_terrain,
+                "horizon_clear": self.skipped.horizon_clear,
             },
+            "effects": self.effects.to_json(self.primary_rays),
             "queries": {"bbox": q.bbox, "block": q.block, "run": q.run, "cell": q.cell, "triangle": q.triangle, "beam": q.beam},
             "primary_queries": self.primary,
             "shadow_queries": self.shadow,
@@ -175,6 +200,8 @@ impl AddAssign for FrameStats {
         self.skipped.facing_away += rhs.skipped.facing_away;
         self.skipped.no_shadow_possible += rhs.skipped.no_shadow_possible;
         self.skipped.above_terrain += rhs.skipped.above_terrain;
+        self.skipped.horizon_clear += rhs.skipped.horizon_clear;
+        self.effects += rhs.effects;
         self.primary += rhs.primary;
         self.shadow += rhs.shadow;
         self.redone += rhs.redone;

@@ -1,5 +1,6 @@
 //! What the panels edit besides the camera: light, shading, effects, traversal, display.
 
+use crate::render::effects::Effects;
 use crate::render::{Lighting, Normals, Ramp};
 use crate::traverse::DEFAULT_BOUND;
 use crate::{Arith, Method};
@@ -203,6 +204,7 @@ impl Settings {
             fog: self.fog,
             normals: self.normals,
             ramp: self.ramp,
+            effects: Effects::default(),
         }
     }
 

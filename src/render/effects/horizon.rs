@@ -1,0 +1,180 @@
+//! How steeply the terrain can rise as seen from a point, from the min-max mipmap: a ray from
+//! the point that climbs more steeply than the bound clears the whole map, so it needs no
+//! walk. Soft shadows settle a whole cone towards the sun with it, sky light each ray.
+
+use crate::geometry::gradient;
+use crate::heightfield::Terrain;
+use glam::DVec3;
+
+/// A block of level `k` is looked at through its children while the point is closer to it
+/// than this many times its size: nearer blocks bound the slope too loosely.
+const REFINE: f64 = 2.0;
+
+/// Relative room for the rounding of the bound's own arithmetic.
+const ROOM: f64 = 1e-9;
+
+/// An upper bound of `(z(q) - o.z) / |q - o|` (horizontal distance) over every point `q` of
+/// the surface, and at least 0; infinite where `o` lies below the surface (a start no bound
+/// describes). `o` is a point on or above the surface inside the map, as a shadow ray's start.
+pub fn slope_bound(terrain: &Terrain, o: DVec3) -> f64 {
+    let field = terrain.field();
+    let (w, h) = (field.width(), field.height());
+    let (cells_x, cells_y) = (w - 1, h - 1);
+    let cell = (
+        (o.x.max(0.0) as usize).min(cells_x - 1),
+        (o.y.max(0.0) as usize).min(cells_y - 1),
+    );
+    let surface = surface_height(terrain, cell, o);
+    if o.z < surface - ROOM * (1.0 + surface.abs()) {
+        return f64::INFINITY;
+    }
+    // Within the 3x3 cells around the point's cell (a convex region), the surface rises from
+    // the point no faster than the steepest of their triangles.
+    let near = near_slope(terrain, cell, (cells_x, cells_y));
+    let mut search = Search {
+        terrain,
+        o,
+        cell,
+        near,
+        cells: (cells_x, cells_y),
+        best: 0.0,
+    };
+    let top = terrain.mipmap().top();
+    search.block(top, 0, 0);
+    let bound = search.best.min(terrain.max_slope());
+    bound * (1.0 + ROOM) + ROOM
+}
+
+/// Whether direction `d` climbs strictly more steeply than `slope` (a [`slope_bound`]).
+pub fn climbs_above(d: DVec3, slope: f64) -> bool {
+    d.z > 0.0 && d.z > slope * d.x.hypot(d.y)
+}
+
+/// The height of the surface at `o`'s horizontal position, on cell `(i, j)`.
+fn surface_height(terrain: &Terrain, (i, j): (usize, usize), o: DVec3) -> f64 {
+    let [z00, z10, z01, z11] = terrain.corner_heights(i, j);
+    let (u, w) = (
+        (o.x - i as f64).clamp(0.0, 1.0),
+        (o.y - j as f64).clamp(0.0, 1.0),
+    );
+    if u >= w {
+        z00 * (1.0 - u) + z10 * (u - w) + z11 * w
+    } else {
+        z00 * (1.0 - w) + z11 * u + z01 * (w - u)
+    }
+}
+
+/// The steepest triangle of the (up to) 3x3 cells around `cell`.
+fn near_slope(terrain: &Terrain, (i, j): (usize, usize), (nx, ny): (usize, usize)) -> f64 {
+    let mut steepest = 0.0f64;
+    for cj in j.saturating_sub(1)..(j + 2).min(ny) {
+        for ci in i.saturating_sub(1)..(i + 2).min(nx) {
+            let heights = terrain.corner_heights(ci, cj);
+            for triangle in 0..2 {
+                let (gx, gy) = gradient(triangle, heights);
+                steepest = steepest.max(gx.hypot(gy));
+            }
+        }
+    }
+    steepest
+}
+
+/// The search over the mipmap's blocks.
+struct Search<'a> {
+    terrain: &'a Terrain,
+    o: DVec3,
+    cell: (usize, usize),
+    near: f64,
+    cells: (usize, usize),
+    best: f64,
+}
+
+impl Search<'_> {
+    /// Raises `best` to the bound of block `(bi, bj)` of level `k`, looking through it at its
+    /// children where the point is too close for its own bound to be useful.
+    fn block(&mut self, k: u32, bi: usize, bj: usize) {
+        let (x0, y0) = (bi << k, bj << k);
+        if x0 >= self.cells.0 || y0 >= self.cells.1 {
+            return;
+        }
+        let x1 = ((bi + 1) << k).min(self.cells.0);
+        let y1 = ((bj + 1) << k).min(self.cells.1);
+        let highest = self
+            .terrain
+            .field()
+            .height_of(self.terrain.block_max_sample(k, bi, bj));
+        let rise = highest - self.o.z;
+        if rise <= 0.0 {
+            return;
+        }
+        let dx = (x0 as f64 - self.o.x).max(self.o.x - x1 as f64).max(0.0);
+        let dy = (y0 as f64 - self.o.y).max(self.o.y - y1 as f64).max(0.0);
+        let distance = dx.hypot(dy);
+        // Refining only lowers a block's bound: one already below the best needs no look.
+        if distance > 0.0 && rise / distance <= self.best {
+            return;
+        }
+        if k == 0 {
+            let (ci, cj) = self.cell;
+            let neighbour = bi.abs_diff(ci) <= 1 && bj.abs_diff(cj) <= 1;
+            // Cells outside the 3x3 around the point lie at least a cell's width away.
+            let bound = if neighbour {
+                self.near
+            } else {
+                rise / distance
+            };
+            self.best = self.best.max(bound);
+            return;
+        }
+        if distance >= REFINE * f64::from(1u32 << k) {
+            self.best = self.best.max(rise / distance);
+            return;
+        }
+        for (ci, cj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            self.block(k - 1, 2 * bi + ci, 2 * bj + cj);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::heightfield::Heightfield;
+
+    /// A random field and random points on it: no sample rises above the bound's slope from
+    /// the point (the bound against brute force over every sample).
+    #[test]
+    fn bound_holds_over_every_sample() {
+        let (w, h) = (40usize, 33usize);
+        let mut state = 12345u64;
+        let mut next = || {
+            state = super::super::sampling::mix(state);
+            state
+        };
+        let samples: Vec<u16> = (0..w * h).map(|_| (next() % 200) as u16).collect();
+        let field = Heightfield::from_fn(w, h, 255, 127.5, |x, y| samples[y * w + x]).unwrap();
+        let terrain = Terrain::new(field);
+        for _ in 0..200 {
+            let (x, y) = (
+                (next() % 10_000) as f64 / 10_000.0 * (w - 1) as f64,
+                (next() % 10_000) as f64 / 10_000.0 * (h - 1) as f64,
+            );
+            let cell = ((x as usize).min(w - 2), (y as usize).min(h - 2));
+            let o = DVec3::new(x, y, surface_height(&terrain, cell, DVec3::new(x, y, 0.0)));
+            let bound = slope_bound(&terrain, o);
+            let field = terrain.field();
+            for j in 0..h {
+                for i in 0..w {
+                    let r = (i as f64 - x).hypot(j as f64 - y);
+                    if r > 0.0 {
+                        let slope = (field.z(i, j) - o.z) / r;
+                        assert!(
+                            slope <= bound,
+                            "({x}, {y}) to ({i}, {j}): {slope} > {bound}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}

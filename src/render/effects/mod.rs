@@ -1,0 +1,92 @@
+//! Effects beyond one ray per pixel, each only where it can change a pixel: several samples
+//! per pixel ([`pixel`]), soft shadows from the sun's disc ([`soft_shadow`]) and light from
+//! the sky ([`sky`]). A ray that climbs more steeply than the terrain can rise around its
+//! start ([`horizon`]) is clear without a walk; the others are ordinary shadow rays, traced
+//! in the frame's arithmetic (exactly from the exact surface point in exact mode).
+
+mod horizon;
+pub mod pixel;
+mod sampling;
+mod sky;
+mod soft_shadow;
+mod stats;
+
+pub use horizon::{climbs_above, slope_bound};
+pub use sky::{open_sky_mean, SkyRays};
+pub use soft_shadow::SoftShadow;
+pub use stats::{EffectStats, SampleStats, SkyStats, SoftStats};
+
+use super::scene::{EffectsSection, RenderSection, SunSection};
+
+/// The most rays towards the sun's disc, or the sky, and samples per pixel a scene may ask.
+pub const MOST_RAYS: u32 = 1024;
+
+/// The widest sun a scene may ask, in degrees (the real one is about 0.53).
+pub const WIDEST_SUN_DEG: f64 = 20.0;
+
+/// The effects a scene calls for, validated (all off by default).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Effects {
+    /// The sun's angular diameter in degrees: 0 casts today's hard shadows.
+    pub sun_angle_deg: f64,
+    /// Directions towards the sun's disc per shaded point (soft shadows only).
+    pub sun_rays: u32,
+    /// Light from the sky dome instead of the constant ambient term.
+    pub sky_light: bool,
+    /// Sky-light rays per shaded point.
+    pub sky_rays: u32,
+    /// Camera rays per pixel (at most; see `adaptive`).
+    pub samples: u32,
+    /// A pixel stops taking samples once they agree (see [`pixel`]).
+    pub adaptive: bool,
+}
+
+impl Default for Effects {
+    fn default() -> Self {
+        Effects {
+            sun_angle_deg: 0.0,
+            sun_rays: DEFAULT_RAYS,
+            sky_light: false,
+            sky_rays: DEFAULT_RAYS,
+            samples: 1,
+            adaptive: false,
+        }
+    }
+}
+
+/// Rays towards the sun's disc or the sky when the scene does not say.
+pub const DEFAULT_RAYS: u32 = 16;
+
+impl Effects {
+    /// The effects of a scene file's sections, or which key is out of range.
+    pub fn from_sections(
+        sun: &SunSection,
+        effects: &EffectsSection,
+        render: &RenderSection,
+    ) -> Result<Effects, String> {
+        let angle = sun.angle_deg;
+        if !(angle.is_finite() && (0.0..=WIDEST_SUN_DEG).contains(&angle)) {
+            return Err(format!(
+                "[sun] angle_deg must be a number from 0 to {WIDEST_SUN_DEG} (degrees; the \
+                 real sun is 0.53), got {angle}"
+            ));
+        }
+        let count = |key: &str, value: Option<u32>| match value.unwrap_or(DEFAULT_RAYS) {
+            n @ 1..=MOST_RAYS => Ok(n),
+            n => Err(format!("{key} must be from 1 to {MOST_RAYS}, got {n}")),
+        };
+        Ok(Effects {
+            sun_angle_deg: angle,
+            sun_rays: count("[sun] rays", sun.rays)?,
+            sky_light: effects.sky_light,
+            sky_rays: count("[effects] sky_rays", effects.sky_rays)?,
+            samples: count("[render] samples", Some(render.samples))?,
+            adaptive: render.adaptive,
+        })
+    }
+
+    /// Whether any effect beyond today's frame is asked for.
+    pub fn any(&self) -> bool {
+        self.sun_angle_deg > 0.0 || self.sky_light || self.samples > 1
+    }
+}

@@ -1,0 +1,106 @@
+//! Several camera rays per pixel: stratified positions over the pixel (the sequence of
+//! [`super::sampling`], rotated per pixel by a hash of its position, so a pixel's samples are
+//! the same on every thread and in every pass), box-filtered in linear light. Adaptive
+//! sampling takes a first batch, then more batches only while the samples' mean is not yet
+//! known to within a display byte.
+
+use super::sampling::{mix, point};
+use super::Effects;
+use crate::render::camera::Camera;
+use crate::render::gamma;
+use crate::render::shade::Sample;
+use crate::Ray;
+
+/// Samples every adaptive pixel takes before it may stop; also the batch it adds at a time.
+pub const FIRST_BATCH: u32 = 4;
+
+/// Half-width of the confidence interval allowed on each channel's mean, in display bytes.
+const TOLERANCE: f64 = 1.0;
+
+/// Student's t at 95% two-sided for the degrees of freedom of a pixel's samples (n - 1,
+/// looked up from 3 on; 2.0 from 30 on).
+fn student_t(dof: u32) -> f64 {
+    const T: [f64; 8] = [3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228];
+    match dof {
+        0..=2 => 4.303,
+        3..=10 => T[dof as usize - 3],
+        11..=29 => 2.1,
+        _ => 2.0,
+    }
+}
+
+/// The purpose a pixel's positions are seeded with.
+const PURPOSE: u64 = 0x5a3b_1e5;
+
+/// The sub-pixel position of sample `index` of pixel `(x, y)`, in pixel units from its corner.
+pub fn position(x: u32, y: u32, index: u32) -> (f64, f64) {
+    let seed = mix(mix(PURPOSE ^ u64::from(x)) ^ (u64::from(y) << 32));
+    let (u, v) = point(index, seed);
+    (f64::from(x) + u, f64::from(y) + v)
+}
+
+/// Shades pixel `(x, y)` with the samples `effects` asks for, each traced by `trace`;
+/// returns the pixel's colour (0x00RRGGBB) and the samples taken.
+pub fn shade(
+    camera: &Camera,
+    (x, y): (u32, u32),
+    effects: &Effects,
+    mut trace: impl FnMut(&Ray) -> Sample,
+) -> (u32, u32) {
+    let most = effects.samples.max(1);
+    let mut sum = [0.0f64; 3];
+    let mut bytes = Moments::default();
+    let mut taken = 0;
+    while taken < most {
+        let batch = if effects.adaptive {
+            FIRST_BATCH.min(most - taken)
+        } else {
+            most
+        };
+        for index in taken..taken + batch {
+            let (px, py) = position(x, y, index);
+            let rgb = trace(&camera.ray_at(px, py)).rgb;
+            let channels = [(rgb >> 16) as u8, (rgb >> 8) as u8, rgb as u8];
+            for (s, c) in sum.iter_mut().zip(channels) {
+                *s += gamma::linear(c);
+            }
+            bytes.add(channels);
+        }
+        taken += batch;
+        if effects.adaptive && bytes.agree(taken) {
+            break;
+        }
+    }
+    let n = f64::from(taken);
+    let channel = |s: f64| u32::from(gamma::byte(s / n));
+    let rgb = (channel(sum[0]) << 16) | (channel(sum[1]) << 8) | channel(sum[2]);
+    (rgb, taken)
+}
+
+/// Running sums of a pixel's display bytes, per channel.
+#[derive(Default)]
+struct Moments {
+    sum: [f64; 3],
+    squares: [f64; 3],
+}
+
+impl Moments {
+    fn add(&mut self, channels: [u8; 3]) {
+        for k in 0..3 {
+            let c = f64::from(channels[k]);
+            self.sum[k] += c;
+            self.squares[k] += c * c;
+        }
+    }
+
+    /// Whether `n` samples pin every channel's mean to within [`TOLERANCE`] bytes at 95%
+    /// confidence (Student's t on the samples' own spread).
+    fn agree(&self, n: u32) -> bool {
+        let count = f64::from(n);
+        (0..3).all(|k| {
+            let mean = self.sum[k] / count;
+            let variance = ((self.squares[k] - count * mean * mean) / (count - 1.0)).max(0.0);
+            student_t(n - 1) * (variance / count).sqrt() <= TOLERANCE
+        })
+    }
+}

@@ -1,0 +1,97 @@
+//! Sky light: the sky dome in the scene's sky colours lights a point through the directions
+//! its hemisphere leaves open, drawn with the cosine's density (a stratified set per point),
+//! in place of the constant ambient term. A direction that climbs more steeply than the
+//! terrain can rise around the point is open without a walk.
+
+use super::horizon::{climbs_above, slope_bound};
+use super::sampling::{cosine_hemisphere, point, seed_of};
+use crate::render::shade::{horizon, sky_colour, zenith, Shader};
+use crate::traverse::{Counters, Found, Scalar};
+use crate::Ray;
+use glam::DVec3;
+
+/// The purpose a point's sky samples are seeded with (see [`seed_of`]).
+const PURPOSE: u64 = 0x0051_7a11;
+
+/// A point's sky-light rays.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SkyRays {
+    /// Directions asked.
+    pub of: u16,
+    /// Directions that reach the sky.
+    pub open: u16,
+    /// Directions traced (the others climbed above the terrain's bound).
+    pub cast: u16,
+    /// The traced rays' queries.
+    pub counters: Counters,
+    /// A triangle test intervals could not settle was decided exactly.
+    pub redone: bool,
+}
+
+impl SkyRays {
+    /// The cosine-weighted share of the hemisphere open to the sky (the sky-view factor).
+    pub fn open_share(&self) -> f64 {
+        f64::from(self.open) / f64::from(self.of.max(1))
+    }
+
+    /// Directions left out because they provably reach the sky.
+    pub fn culled(&self) -> u16 {
+        self.of - self.cast
+    }
+}
+
+/// The mean sky colour a horizontal point sees under an open sky, cosine-weighted: the
+/// gradient goes by `sqrt(sin(elevation))`, and under the cosine's density `sin(elevation)^2`
+/// is uniform on `[0, 1]`, so the mean of its fourth root is 4/5.
+pub fn open_sky_mean() -> DVec3 {
+    horizon().lerp(zenith(), 0.8)
+}
+
+impl Shader<'_> {
+    /// The sky's light at the hit `found` of `ray`, shaded at `p`: the scene's ambient term
+    /// times the mean colour of the open directions over the open sky's mean brightness (an
+    /// open plane gets the ambient term in the sky's tint), and the rays.
+    pub(in crate::render) fn sky_light<S: Scalar>(
+        &self,
+        found: &Found<S>,
+        ray: &Ray,
+        p: DVec3,
+    ) -> (DVec3, SkyRays) {
+        let normal = self.normal(found.cell, found.triangle, p);
+        let origin = self.ray_start(found, ray, p);
+        let bound = if self.culling.horizon_clear {
+            slope_bound(
+                self.terrain,
+                DVec3::from(origin.clone().map(|c| c.to_f64())),
+            )
+        } else {
+            f64::INFINITY
+        };
+        let rays = self.lighting.effects.sky_rays;
+        let seed = seed_of(ray.origin(), ray.dir(), PURPOSE);
+        let mut sky = SkyRays {
+            of: rays as u16,
+            ..SkyRays::default()
+        };
+        let mut light = DVec3::ZERO;
+        for index in 0..rays {
+            let (u, v) = point(index, seed);
+            let dir = cosine_hemisphere(normal, u, v);
+            let open = climbs_above(dir, bound) || {
+                let answer = self.occluded(found, ray, &origin, dir.into());
+                sky.cast += 1;
+                sky.counters += answer.counters;
+                sky.redone |= answer.decided_exactly;
+                answer.hit.is_none()
+            };
+            if open {
+                sky.open += 1;
+                light += sky_colour(dir);
+            }
+        }
+        let open_mean = open_sky_mean();
+        let brightness = (open_mean.x + open_mean.y + open_mean.z) / 3.0;
+        let ambient = light * (self.lighting.ambient / (f64::from(rays) * brightness));
+        (ambient, sky)
+    }
+}

@@ -1,0 +1,92 @@
+//! Soft shadows: the sun as a disc of the scene's angular diameter. A point whose whole cone
+//! towards the disc provably clears the terrain is settled by the rules hard shadows use
+//! (generalised to the cone's lowest direction) or by the mipmap's bound of how steeply the
+//! terrain rises around it; elsewhere each direction of a stratified set over the disc is a
+//! shadow ray, unless it alone climbs above that bound.
+
+use super::horizon::{climbs_above, slope_bound};
+use super::sampling::{cone, point, seed_of};
+use crate::render::shade::{Cast, Shader, Shadow, ShadowSkip};
+use crate::traverse::{Counters, Found, Scalar};
+use crate::Ray;
+use glam::DVec3;
+
+/// The purpose a soft shadow's samples are seeded with (see [`seed_of`]).
+const PURPOSE: u64 = 0x5011_d15c;
+
+/// A soft shadow: how many of the directions towards the sun's disc are clear.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SoftShadow {
+    /// Directions that reach the sun.
+    pub clear: u16,
+    /// Directions asked.
+    pub of: u16,
+    /// Directions traced (the others climbed above the terrain's bound).
+    pub cast: u16,
+}
+
+impl SoftShadow {
+    /// The share of the sun's disc seen.
+    pub fn visible(&self) -> f64 {
+        f64::from(self.clear) / f64::from(self.of.max(1))
+    }
+}
+
+impl Shader<'_> {
+    /// The soft shadow of the hit `found` of `ray`, shaded at `p`, facing the sun.
+    pub(in crate::render) fn soft_shadow<S: Scalar>(
+        &self,
+        found: &Found<S>,
+        ray: &Ray,
+        p: DVec3,
+    ) -> Cast {
+        let skip = |why| (Shadow::Skipped(why), Counters::default(), false);
+        let axis = DVec3::from(self.lighting.sun);
+        // (Room for rounding: the lowest direction drawn is never lower than this.)
+        let half = (self.lighting.effects.sun_angle_deg / 2.0).to_radians();
+        let lowest = axis.z.clamp(-1.0, 1.0).asin() - half * (1.0 + 1e-9);
+        let rises = lowest > 0.0;
+        let steepest = self.terrain.max_slope() * (1.0 + 1e-9);
+        if self.culling.no_shadow_possible && rises && lowest.tan() > steepest {
+            return skip(ShadowSkip::NoShadowPossible);
+        }
+        let origin = self.ray_start(found, ray, p);
+        let (_, z_max) = self.terrain.z_range();
+        if self.culling.above_terrain && rises && origin[2] > S::from_f64(z_max) {
+            return skip(ShadowSkip::AboveTerrain);
+        }
+        let bound = if self.culling.horizon_clear {
+            slope_bound(
+                self.terrain,
+                DVec3::from(origin.clone().map(|c| c.to_f64())),
+            )
+        } else {
+            f64::INFINITY
+        };
+        if rises && lowest.tan() > bound {
+            return skip(ShadowSkip::HorizonClear);
+        }
+        let rays = self.lighting.effects.sun_rays;
+        let seed = seed_of(ray.origin(), ray.dir(), PURPOSE);
+        let mut soft = SoftShadow {
+            clear: 0,
+            of: rays as u16,
+            cast: 0,
+        };
+        let (mut counters, mut exactly) = (Counters::default(), false);
+        for index in 0..rays {
+            let (u, v) = point(index, seed);
+            let dir = cone(axis, half, u, v);
+            if climbs_above(dir, bound) {
+                soft.clear += 1;
+                continue;
+            }
+            let answer = self.occluded(found, ray, &origin, dir.into());
+            soft.cast += 1;
+            soft.clear += u16::from(answer.hit.is_none());
+            counters += answer.counters;
+            exactly |= answer.decided_exactly;
+        }
+        (Shadow::Soft(soft), counters, exactly)
+    }
+}

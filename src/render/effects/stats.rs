@@ -1,0 +1,130 @@
+//! What the effects cost in a frame: rays cast and left out, per effect and reason, and the
+//! samples each pixel took.
+
+use super::sky::SkyRays;
+use super::soft_shadow::SoftShadow;
+use crate::traverse::Counters;
+use serde_json::{json, Value};
+use std::ops::AddAssign;
+
+/// Soft shadows of a frame (points the shadow rules settled whole are counted with the hard
+/// shadows' skips, [`crate::render::FrameStats::skipped`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SoftStats {
+    /// Points that needed directions towards the sun's disc (a penumbra or not proven).
+    pub points: u64,
+    /// Directions asked at those points.
+    pub directions: u64,
+    /// Directions traced as shadow rays.
+    pub rays: u64,
+    /// Directions that reached the sun.
+    pub clear: u64,
+}
+
+/// Sky light of a frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SkyStats {
+    /// Points lit by the sky.
+    pub points: u64,
+    /// Directions asked.
+    pub directions: u64,
+    /// Directions traced.
+    pub rays: u64,
+    /// Directions that reached the sky.
+    pub open: u64,
+    /// Points whose every direction climbed above the terrain's bound: no ray at all.
+    pub points_clear: u64,
+    /// The traced rays' queries.
+    pub queries: Counters,
+}
+
+/// Samples per pixel: how many pixels took how many camera rays.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SampleStats {
+    /// Pixels finished.
+    pub pixels: u64,
+    /// Pixels by samples taken: entry `k` counts those that took `2^k` to `2^(k+1) - 1`.
+    pub histogram: [u64; 11],
+}
+
+/// The effects' rays of a frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct EffectStats {
+    /// Soft shadows.
+    pub soft: SoftStats,
+    /// Sky light.
+    pub sky: SkyStats,
+    /// Samples per pixel.
+    pub samples: SampleStats,
+}
+
+impl EffectStats {
+    /// Counts one shaded point's soft shadow.
+    pub fn add_soft(&mut self, soft: &SoftShadow) {
+        self.soft.points += 1;
+        self.soft.directions += u64::from(soft.of);
+        self.soft.rays += u64::from(soft.cast);
+        self.soft.clear += u64::from(soft.clear);
+    }
+
+    /// Counts one shaded point's sky light.
+    pub fn add_sky(&mut self, sky: &SkyRays) {
+        if sky.of == 0 {
+            return;
+        }
+        self.sky.points += 1;
+        self.sky.directions += u64::from(sky.of);
+        self.sky.rays += u64::from(sky.cast);
+        self.sky.open += u64::from(sky.open);
+        self.sky.points_clear += u64::from(sky.cast == 0);
+        self.sky.queries += sky.counters;
+    }
+
+    /// Counts one finished pixel that took `samples` camera rays.
+    pub fn add_pixel(&mut self, samples: u32) {
+        self.samples.pixels += 1;
+        let bucket = (31 - samples.max(1).leading_zeros()) as usize;
+        self.samples.histogram[bucket.min(10)] += 1;
+    }
+
+    /// The effects as JSON; `camera_rays` is the frame's primary rays (for samples per pixel).
+    pub fn to_json(&self, camera_rays: u64) -> Value {
+        let (soft, sky, samples) = (&self.soft, &self.sky, &self.samples);
+        json!({
+            "soft_shadow": {
+                "points": soft.points, "directions": soft.directions, "rays": soft.rays,
+                "culled_horizon_clear": soft.directions - soft.rays, "clear": soft.clear,
+            },
+            "sky_light": {
+                "points": sky.points, "directions": sky.directions, "rays": sky.rays,
+                "culled_horizon_clear": sky.directions - sky.rays, "open": sky.open,
+                "points_without_rays": sky.points_clear, "queries": sky.queries,
+            },
+            "samples_per_pixel": {
+                "mean": camera_rays as f64 / samples.pixels.max(1) as f64,
+                "pixels_by_power_of_two": samples.histogram,
+            },
+        })
+    }
+}
+
+impl AddAssign for EffectStats {
+    fn add_assign(&mut self, rhs: EffectStats) {
+        let (a, b) = (&mut self.soft, rhs.soft);
+        a.points += b.points;
+        a.directions += b.directions;
+        a.rays += b.rays;
+        a.clear += b.clear;
+        let (a, b) = (&mut self.sky, rhs.sky);
+        a.points += b.points;
+        a.directions += b.directions;
+        a.rays += b.rays;
+        a.open += b.open;
+        a.points_clear += b.points_clear;
+        a.queries += b.queries;
+        self.samples.pixels += rhs.samples.pixels;
+        for (a, b) in self.samples.histogram.iter_mut().zip(rhs.samples.histogram) {
+            *a += b;
+        }
+    }
+}
