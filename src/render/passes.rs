@@ -5,6 +5,7 @@
 use super::camera::Camera;
 use super::effects::pixel;
 use super::shade::Sample;
+use super::scene::Lighting;
 use super::shade::Shader;
 use super::stats::{FrameStats, PixelStats};
 use crate::arith::{with_bound, Arith, Rational};
@@ -102,6 +103,13 @@ impl Renderer<'_> {
     ) -> bool {
         let width = frame.width as usize;
         let rows = BAND as usize * width;
+        let per_sample = Shader {
+            lighting: Lighting {
+                effects: pixel::per_sample(&self.shader.lighting.effects),
+                ..self.shader.lighting
+            },
+            ..self.shader
+        };
         let bands: Vec<Option<FrameStats>> = frame
             .pixels
             .par_chunks_mut(rows)
@@ -121,7 +129,7 @@ impl Renderer<'_> {
                     height: frame.height,
                     paint,
                 };
-                let shader = &self.shader;
+                let shader = &per_sample;
                 let (o, passes) = (&mut out, passes.clone());
                 match self.arith {
                     Arith::F32 => {

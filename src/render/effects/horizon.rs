@@ -1,10 +1,55 @@
-//! How steeply the terrain can rise as seen from a point, from the min-max mipmap: a ray from
-//! the point that climbs more steeply than the bound clears the whole map, so it needs no
-//! walk. Soft shadows settle a whole cone towards the sun with it, sky light each ray.
+//! How steeply the terrain can rise as seen from a point, from the min-max mipmap, over all
+//! directions or over a sector of azimuths: a ray from the point that climbs more steeply
+//! than the bound clears the whole map, so it needs no walk. Soft shadows settle a whole cone
+//! towards the sun with it, sky light each ray.
 
 use crate::geometry::gradient;
 use crate::heightfield::Terrain;
-use glam::DVec3;
+use glam::{DVec2, DVec3};
+use std::f64::consts::PI;
+
+/// Azimuths from `lo` counter-clockwise to `hi` (less than a half turn apart), as unit
+/// vectors, with the one halfway.
+#[derive(Clone, Copy, Debug)]
+pub struct Sector {
+    lo: DVec2,
+    hi: DVec2,
+    mid: DVec2,
+}
+
+impl Sector {
+    /// The azimuths within `half` (radians, under a quarter turn) of `mid`'s.
+    pub fn around(mid: DVec2, half: f64) -> Sector {
+        let mid = mid.normalize();
+        Sector {
+            lo: DVec2::from_angle(-half).rotate(mid),
+            hi: DVec2::from_angle(half).rotate(mid),
+            mid,
+        }
+    }
+
+    /// Sector `k` of `n` equal sectors from azimuth 0 (`n` at least 3).
+    pub fn nth(k: usize, n: usize) -> Sector {
+        let width = 2.0 * PI / n as f64;
+        let mid = DVec2::from_angle((k as f64 + 0.5) * width);
+        Sector::around(mid, width / 2.0)
+    }
+
+    /// Whether a rectangle whose corners are seen from the apex in horizontal directions
+    /// `corners` may reach into the sector (false only where it provably does not).
+    fn may_hold_all(&self, corners: &[DVec2; 4]) -> bool {
+        let right_of_lo = corners.iter().all(|c| self.lo.perp_dot(*c) < 0.0);
+        let left_of_hi = corners.iter().all(|c| self.hi.perp_dot(*c) > 0.0);
+        let behind = corners.iter().all(|c| self.mid.dot(*c) < 0.0);
+        !(right_of_lo || left_of_hi || behind)
+    }
+}
+
+/// The sector of `n` equal ones from azimuth 0 that holds the horizontal direction `d`.
+pub fn sector_of(d: DVec3, n: usize) -> usize {
+    let angle = d.y.atan2(d.x).rem_euclid(2.0 * PI);
+    ((angle / (2.0 * PI / n as f64)) as usize).min(n - 1)
+}
 
 /// A block of level `k` is looked at through its children while the point is closer to it
 /// than this many times its size: nearer blocks bound the slope too loosely.
@@ -14,9 +59,10 @@ const REFINE: f64 = 2.0;
 const ROOM: f64 = 1e-9;
 
 /// An upper bound of `(z(q) - o.z) / |q - o|` (horizontal distance) over every point `q` of
-/// the surface, and at least 0; infinite where `o` lies below the surface (a start no bound
-/// describes). `o` is a point on or above the surface inside the map, as a shadow ray's start.
-pub fn slope_bound(terrain: &Terrain, o: DVec3) -> f64 {
+/// the surface (in `sector` as seen from `o`, if given), and at least 0; infinite where `o`
+/// lies below the surface (a start no bound describes). `o` is a point on or above the
+/// surface inside the map, as a shadow ray's start.
+pub fn slope_bound(terrain: &Terrain, o: DVec3, sector: Option<Sector>) -> f64 {
     let field = terrain.field();
     let (w, h) = (field.width(), field.height());
     let (cells_x, cells_y) = (w - 1, h - 1);
@@ -37,6 +83,7 @@ pub fn slope_bound(terrain: &Terrain, o: DVec3) -> f64 {
         cell,
         near,
         cells: (cells_x, cells_y),
+        sector,
         best: 0.0,
     };
     let top = terrain.mipmap().top();
@@ -86,6 +133,7 @@ struct Search<'a> {
     cell: (usize, usize),
     near: f64,
     cells: (usize, usize),
+    sector: Option<Sector>,
     best: f64,
 }
 
@@ -110,6 +158,14 @@ impl Search<'_> {
         let dx = (x0 as f64 - self.o.x).max(self.o.x - x1 as f64).max(0.0);
         let dy = (y0 as f64 - self.o.y).max(self.o.y - y1 as f64).max(0.0);
         let distance = dx.hypot(dy);
+        if let Some(sector) = self.sector.filter(|_| distance > 0.0) {
+            let (x0, y0, x1, y1) = (x0 as f64, y0 as f64, x1 as f64, y1 as f64);
+            let o = DVec2::new(self.o.x, self.o.y);
+            let corners = [(x0, y0), (x1, y0), (x0, y1), (x1, y1)].map(|(x, y)| DVec2::new(x, y) - o);
+            if !sector.may_hold_all(&corners) {
+                return;
+            }
+        }
         // Refining only lowers a block's bound: one already below the best needs no look.
         if distance > 0.0 && rise / distance <= self.best {
             return;
@@ -161,7 +217,7 @@ mod tests {
             );
             let cell = ((x as usize).min(w - 2), (y as usize).min(h - 2));
             let o = DVec3::new(x, y, surface_height(&terrain, cell, DVec3::new(x, y, 0.0)));
-            let bound = slope_bound(&terrain, o);
+            let bound = slope_bound(&terrain, o, None);
             let field = terrain.field();
             for j in 0..h {
                 for i in 0..w {

@@ -39,6 +39,24 @@ pub fn position(x: u32, y: u32, index: u32) -> (f64, f64) {
     (f64::from(x) + u, f64::from(y) + v)
 }
 
+/// The effects each sample of a pixel is shaded with: the rays towards the sun's disc and
+/// the sky shared out among the pixel's samples (each takes `ceil(rays / samples)`), so the
+/// pixel as a whole still takes at least the rays the scene asks for; adaptive pixels share
+/// them out among the first batch, which must not agree only for lack of rays.
+pub fn per_sample(effects: &Effects) -> Effects {
+    let least = if effects.adaptive {
+        effects.samples.min(FIRST_BATCH)
+    } else {
+        effects.samples
+    };
+    let share = |rays: u32| rays.div_ceil(least.max(1));
+    Effects {
+        sun_rays: share(effects.sun_rays),
+        sky_rays: share(effects.sky_rays),
+        ..*effects
+    }
+}
+
 /// Shades pixel `(x, y)` with the samples `effects` asks for, each traced by `trace`;
 /// returns the pixel's colour (0x00RRGGBB) and the samples taken.
 pub fn shade(

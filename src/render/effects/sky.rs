@@ -3,12 +3,15 @@
 //! in place of the constant ambient term. A direction that climbs more steeply than the
 //! terrain can rise around the point is open without a walk.
 
-use super::horizon::{climbs_above, slope_bound};
+use super::horizon::{climbs_above, sector_of, slope_bound, Sector};
 use super::sampling::{cosine_hemisphere, point, seed_of};
 use crate::render::shade::{horizon, sky_colour, zenith, Shader};
 use crate::traverse::{Counters, Found, Scalar};
 use crate::Ray;
 use glam::DVec3;
+
+/// Sectors of azimuth the terrain's rise around a point is bounded in.
+const SECTORS: usize = 8;
 
 /// The purpose a point's sky samples are seeded with (see [`seed_of`]).
 const PURPOSE: u64 = 0x0051_7a11;
@@ -59,13 +62,14 @@ impl Shader<'_> {
     ) -> (DVec3, SkyRays) {
         let normal = self.normal(found.cell, found.triangle, p);
         let origin = self.ray_start(found, ray, p);
-        let bound = if self.culling.horizon_clear {
-            slope_bound(
-                self.terrain,
-                DVec3::from(origin.clone().map(|c| c.to_f64())),
-            )
-        } else {
-            f64::INFINITY
+        let start = DVec3::from(origin.clone().map(|c| c.to_f64()));
+        // Each sector's bound, found when a direction in it first asks.
+        let mut bounds = [None; SECTORS];
+        let mut bound = |dir: DVec3| {
+            let k = sector_of(dir, SECTORS);
+            *bounds[k].get_or_insert_with(|| {
+                slope_bound(self.terrain, start, Some(Sector::nth(k, SECTORS)))
+            })
         };
         let rays = self.lighting.effects.sky_rays;
         let seed = seed_of(ray.origin(), ray.dir(), PURPOSE);
@@ -77,7 +81,8 @@ impl Shader<'_> {
         for index in 0..rays {
             let (u, v) = point(index, seed);
             let dir = cosine_hemisphere(normal, u, v);
-            let open = climbs_above(dir, bound) || {
+            let culled = self.culling.horizon_clear && dir.z > 0.0 && climbs_above(dir, bound(dir));
+            let open = culled || {
                 let answer = self.occluded(found, ray, &origin, dir.into());
                 sky.cast += 1;
                 sky.counters += answer.counters;

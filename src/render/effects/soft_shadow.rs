@@ -4,12 +4,12 @@
 //! terrain rises around it; elsewhere each direction of a stratified set over the disc is a
 //! shadow ray, unless it alone climbs above that bound.
 
-use super::horizon::{climbs_above, slope_bound};
+use super::horizon::{climbs_above, slope_bound, Sector};
 use super::sampling::{cone, point, seed_of};
 use crate::render::shade::{Cast, Shader, Shadow, ShadowSkip};
 use crate::traverse::{Counters, Found, Scalar};
 use crate::Ray;
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 /// The purpose a soft shadow's samples are seeded with (see [`seed_of`]).
 const PURPOSE: u64 = 0x5011_d15c;
@@ -56,10 +56,8 @@ impl Shader<'_> {
             return skip(ShadowSkip::AboveTerrain);
         }
         let bound = if self.culling.horizon_clear {
-            slope_bound(
-                self.terrain,
-                DVec3::from(origin.clone().map(|c| c.to_f64())),
-            )
+            let start = DVec3::from(origin.clone().map(|c| c.to_f64()));
+            slope_bound(self.terrain, start, sun_sector(axis, half))
         } else {
             f64::INFINITY
         };
@@ -89,4 +87,12 @@ impl Shader<'_> {
         }
         (Shadow::Soft(soft), counters, exactly)
     }
+}
+
+/// The azimuths of the directions within `half` (radians) of `axis`, with room for rounding;
+/// `None` where they span a half turn or more (the cone holds the zenith, or nearly).
+fn sun_sector(axis: DVec3, half: f64) -> Option<Sector> {
+    let horizontal = DVec2::new(axis.x, axis.y);
+    let across = half.sin() / horizontal.length();
+    (across < 0.9).then(|| Sector::around(horizontal, across.asin() * (1.0 + 1e-6) + 1e-9))
 }
