@@ -4,8 +4,8 @@
 
 use super::camera::Camera;
 use super::effects::pixel;
-use super::shade::Sample;
 use super::scene::Lighting;
+use super::shade::Sample;
 use super::shade::Shader;
 use super::stats::{FrameStats, PixelStats};
 use crate::arith::{with_bound, Arith, Rational};

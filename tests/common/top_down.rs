@@ -1,6 +1,7 @@
 //! A render looking straight down with the light from straight above, no ambient and no
 //! shadows: every pixel over the terrain shows its height's ramp colour at full light.
 
+use heightray::render::effects::Effects;
 use heightray::render::{Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Shader};
 use heightray::{Arith, Method, Terrain};
 
@@ -15,6 +16,7 @@ pub fn render_top_down(terrain: &Terrain, ramp: Ramp, eye_height: f64, fov_y_deg
         fog: 0.0,
         normals: Normals::Flat,
         ramp,
+        effects: Effects::default(),
     };
     let camera = Camera::look_at(
         [4.0, 4.0, eye_height],

@@ -1,6 +1,7 @@
 //! Smooth normals and shadows agree: a convex bump lit at a grazing angle has no shadowed
 //! triangles on the side its smooth shading lights.
 
+use heightray::render::effects::Effects;
 use heightray::render::{Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Shader};
 use heightray::{trace, Arith, Heightfield, Method, Terrain, TraceOptions};
 
@@ -47,6 +48,7 @@ fn render(terrain: &Terrain, camera: Camera, arith: Arith, shadows: bool) -> Fra
                 fog: 0.0,
                 normals: Normals::Smooth,
                 ramp: Ramp::Gray,
+                effects: Effects::default(),
             },
             method: Method::Mipmap,
             culling: Culling::default(),

@@ -161,7 +161,8 @@ impl Search<'_> {
         if let Some(sector) = self.sector.filter(|_| distance > 0.0) {
             let (x0, y0, x1, y1) = (x0 as f64, y0 as f64, x1 as f64, y1 as f64);
             let o = DVec2::new(self.o.x, self.o.y);
-            let corners = [(x0, y0), (x1, y0), (x0, y1), (x1, y1)].map(|(x, y)| DVec2::new(x, y) - o);
+            let corners =
+                [(x0, y0), (x1, y0), (x0, y1), (x1, y1)].map(|(x, y)| DVec2::new(x, y) - o);
             if !sector.may_hold_all(&corners) {
                 return;
             }

@@ -6,7 +6,7 @@
 use super::horizon::{climbs_above, sector_of, slope_bound, Sector};
 use super::sampling::{cosine_hemisphere, point, seed_of};
 use crate::render::shade::{horizon, sky_colour, zenith, Shader};
-use crate::traverse::{Counters, Found, Scalar};
+use crate::traverse::{trace_scalar, Counters, Found, Query, Scalar, WalkOptions};
 use crate::Ray;
 use glam::DVec3;
 
@@ -51,6 +51,16 @@ pub fn open_sky_mean() -> DVec3 {
 }
 
 impl Shader<'_> {
+    /// The sky light (a colour, before the surface's own) where `ray` first meets the
+    /// terrain, traced in `f64`, and its rays; `None` where the ray misses.
+    pub fn sky_light_at(&self, ray: &Ray) -> Option<(DVec3, SkyRays)> {
+        let walk = WalkOptions::new(self.method, Query::FirstHit);
+        let (o, d) = (ray.origin(), ray.dir());
+        let found = trace_scalar::<f64>(self.terrain, &o, &d, d, walk).hit?;
+        let p = DVec3::from(found.point(&o, &d));
+        Some(self.sky_light(&found, ray, p))
+    }
+
     /// The sky's light at the hit `found` of `ray`, shaded at `p`: the scene's ambient term
     /// times the mean colour of the open directions over the open sky's mean brightness (an
     /// open plane gets the ambient term in the sky's tint), and the rays.

@@ -4,6 +4,7 @@
 //! Golden images are regenerated with `HEIGHTRAY_BLESS=1 cargo test --profile release-tests --test suite render::`.
 
 use crate::common::scenes::{load_scene_text, SMALL_SCENE};
+use heightray::render::effects::Effects;
 use heightray::render::{
     Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Scene, SceneFile, Shader,
 };
@@ -11,6 +12,7 @@ use heightray::traverse::Exact;
 use heightray::{Arith, Heightfield, Method, Terrain};
 use std::path::{Path, PathBuf};
 
+mod effects;
 mod shadows;
 
 const ARITHS: [Arith; 4] = [
@@ -213,6 +215,7 @@ fn lighting(sun: [f64; 3], shadows: bool) -> Lighting {
         fog: 0.0,
         normals: Normals::Flat,
         ramp: Ramp::Gray,
+        effects: Effects::default(),
     }
 }
 

@@ -45,6 +45,7 @@ fn no_shadow_rays_where_no_shadow_is_possible() {
         facing_away: false,
         no_shadow_possible: false,
         above_terrain: false,
+        horizon_clear: false,
     };
     let brute = render_by(
         Method::Runs,
@@ -95,6 +96,7 @@ fn each_culling_rule_on_or_off_gives_the_same_image() {
             facing_away: false,
             no_shadow_possible: false,
             above_terrain: false,
+            horizon_clear: false,
         },
     ];
     for culling in rules {
