@@ -2,6 +2,7 @@
 
 mod accuracy;
 mod bench;
+mod bench_effects;
 mod generate;
 mod loading;
 mod render;
@@ -95,6 +96,32 @@ pub enum BenchCommand {
     /// watertight triangle test that make heightray exact: what those cost (one thread), and
     /// what they buy (answers on the hard-case sets that differ from exact).
     Textbook(TextbookArgs),
+    /// What soft shadows, sky light and samples per pixel cost on the built-in scenes, each
+    /// alone and all together in one run, as ratios to the plain frame; and how samples per
+    /// pixel converge to a supersampled reference.
+    Effects(EffectsArgs),
+}
+
+#[derive(clap::Args, Debug)]
+pub struct EffectsArgs {
+    /// Scene files (default: the built-in scenes).
+    #[arg(long, value_delimiter = ',')]
+    pub scenes: Vec<PathBuf>,
+    /// Image width and height.
+    #[arg(long, default_value_t = 256)]
+    pub size: u32,
+    /// Samples per pixel of the sampled frames.
+    #[arg(long, default_value_t = 16)]
+    pub samples: u32,
+    /// The sun's angular diameter of the soft-shadow frames, in degrees.
+    #[arg(long, default_value_t = 0.53)]
+    pub sun_angle_deg: f64,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Also write every figure as JSON here.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
 }
 
 #[derive(clap::Args, Debug)]
@@ -268,6 +295,7 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Bench(BenchCommand::Speed(args)) => bench::speed(&args),
         Command::Bench(BenchCommand::Accuracy(args)) => accuracy::run(&args),
         Command::Bench(BenchCommand::Textbook(args)) => bench::textbook(&args),
+        Command::Bench(BenchCommand::Effects(args)) => bench_effects::run(&args),
     }
 }
 

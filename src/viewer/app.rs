@@ -343,7 +343,7 @@ impl App {
         let submitted = self.submitted.as_ref()?;
         let current = latest.job.view_id == self.quality.view_id()
             && (latest.frame.width, latest.frame.height) == submitted.size
-            && latest.frame.complete();
+            && latest.finished();
         current.then(|| Arc::clone(latest))
     }
 

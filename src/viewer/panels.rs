@@ -8,6 +8,7 @@ use super::orbit::{MIN_PITCH_DEG, PITCH_LIMIT_DEG};
 use super::settings::{fog, ArithKind};
 use super::stats_ui::statistics_ui;
 use crate::heightfield::BUILTINS;
+use crate::render::effects::WIDEST_SUN_DEG;
 use crate::render::{Normals, Ramp};
 use crate::Method;
 use egui::{CollapsingHeader, DragValue, RichText, Slider, Ui};
@@ -353,6 +354,7 @@ fn traversal_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
 /// The effects (shadows are with the light). The fog slider is a visibility distance on a
 /// log scale over the useful range for this map; the renderer and scene files keep a density.
 fn effects_ui(ui: &mut Ui, model: &mut Model) {
+    sampling_ui(ui, model);
     let field = model.shown.terrain.field();
     let size = (field.width().max(field.height()) as f64 - 1.0).max(1.0);
     let range = fog::range(size, model.orbit.distance);
@@ -387,3 +389,38 @@ fn effects_ui(ui: &mut Ui, model: &mut Model) {
         ));
     }
 }
+
+/// Soft shadows, sky light and samples per pixel: each costs rays only where it is ticked.
+fn sampling_ui(ui: &mut Ui, model: &mut Model) {
+    let effects = &mut model.settings.effects;
+    let mut soft = effects.sun_angle_deg > 0.0;
+    let toggle = ui.checkbox(&mut soft, "soft shadows").on_hover_text(
+        "the sun as a disc: penumbrae as wide as the sun seen from the shadowed point",
+    );
+    if named(model, "soft_shadows", toggle).changed() {
+        model.settings.effects.sun_angle_deg = if soft { REAL_SUN_DEG } else { 0.0 };
+    }
+    let effects = &mut model.settings.effects;
+    if effects.sun_angle_deg > 0.0 {
+        let slider = Slider::new(&mut effects.sun_angle_deg, 0.1..=WIDEST_SUN_DEG)
+            .logarithmic(true)
+            .text("sun's diameter (deg)");
+        let slider = ui.add(slider);
+        named(model, "sun_angle", slider);
+    }
+    let effects = &mut model.settings.effects;
+    let sky = ui
+        .checkbox(&mut effects.sky_light, "sky light")
+        .on_hover_text("light from the open sky instead of a constant ambient term");
+    named(model, "sky_light", sky);
+    let effects = &mut model.settings.effects;
+    let samples = ui.add(
+        Slider::new(&mut effects.samples, 1..=64)
+            .logarithmic(true)
+            .text("samples per pixel"),
+    );
+    named(model, "samples", samples);
+}
+
+/// The real sun's angular diameter, in degrees.
+const REAL_SUN_DEG: f64 = 0.53;

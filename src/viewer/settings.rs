@@ -134,6 +134,8 @@ pub struct Settings {
     /// Rendered pixels per physical window pixel along each axis (1 = full resolution).
     pub render_scale: f32,
     pub heat: HeatMode,
+    /// Soft shadows, sky light and samples per pixel.
+    pub effects: Effects,
 }
 
 impl Default for Settings {
@@ -152,6 +154,7 @@ impl Default for Settings {
             rational_bound: DEFAULT_BOUND,
             render_scale: 1.0,
             heat: HeatMode::Off,
+            effects: Effects::default(),
         };
         // The scene files' default sun.
         settings.set_sun([0.4, 0.3, 0.8]);
@@ -169,6 +172,7 @@ impl Settings {
         self.fog = lighting.fog;
         self.normals = lighting.normals;
         self.ramp = lighting.ramp;
+        self.effects = lighting.effects;
         self.method = method;
         self.arith = match arith {
             Arith::F32 => ArithKind::F32,
@@ -207,7 +211,7 @@ impl Settings {
             fog: self.fog,
             normals: self.normals,
             ramp: self.ramp,
-            effects: Effects::default(),
+            effects: self.effects,
         }
     }
 

@@ -39,6 +39,12 @@ pub fn statistics_ui(ui: &mut Ui, model: &mut Model) {
         )
     };
     ui.add(egui::ProgressBar::new(passes as f32 / PASS_BLOCKS.len() as f32).text(label));
+    let (done, asked) = latest.samples;
+    if asked > 0 {
+        let bar = egui::ProgressBar::new(done as f32 / asked as f32);
+        ui.add(bar.text(format!("{done} / {asked} samples")));
+    }
+    effect_shares(ui, &frame.totals);
     let pass_ms: Vec<String> = latest
         .pass_times
         .iter()
@@ -192,4 +198,31 @@ fn latency_ui(ui: &mut Ui, model: &Model) {
             ui.weak("input to first frame: drag the view to measure");
         }
     }
+}
+
+/// Each kind of ray's share of the frame's rays, where effects cast any.
+fn effect_shares(ui: &mut egui::Ui, totals: &crate::render::FrameStats) {
+    let effects = &totals.effects;
+    let kinds = [
+        ("camera", totals.primary_rays),
+        ("shadow", totals.shadow_rays),
+        ("soft shadow", effects.soft.rays),
+        ("sky", effects.sky.rays),
+    ];
+    let all: u64 = kinds.iter().map(|(_, n)| n).sum();
+    if effects.soft.rays + effects.sky.rays == 0 || all == 0 {
+        return;
+    }
+    let shares: Vec<String> = kinds
+        .iter()
+        .map(|(kind, n)| format!("{kind} {:.0}%", 100.0 * *n as f64 / all as f64))
+        .collect();
+    ui.label(format!("rays: {}", shares.join(", ")));
+    let culled = |asked: u64, cast: u64| 100.0 * (1.0 - cast as f64 / asked.max(1) as f64);
+    ui.weak(format!(
+        "left out as provably clear: {:.0}% of sky rays, {:.0}% of soft-shadow directions at penumbra points, {} whole sun cones",
+        culled(effects.sky.directions, effects.sky.rays),
+        culled(effects.soft.directions, effects.soft.rays),
+        totals.skipped.horizon_clear,
+    ));
 }

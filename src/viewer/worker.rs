@@ -7,6 +7,7 @@
 
 use super::mailbox::Mailbox;
 use super::orbit::Orbit;
+use crate::render::effects::Accumulation;
 use crate::render::{Camera, Culling, Frame, Lighting, Renderer, Shader};
 use crate::{Arith, Method, Terrain};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -52,12 +53,20 @@ pub struct RenderedFrame {
     pub job: RenderJob,
     /// Time from the job's start to the end of each pass done so far.
     pub pass_times: Vec<Duration>,
+    /// Samples per pixel added after the passes, and asked (0 of 0 with one sample).
+    pub samples: (u32, u32),
 }
 
 impl RenderedFrame {
     /// Time from the job's start to its latest pass.
     pub fn elapsed(&self) -> Duration {
         self.pass_times.last().copied().unwrap_or_default()
+    }
+
+    /// Whether nothing more will be rendered for this job: every pass, and every round of
+    /// samples per pixel.
+    pub fn finished(&self) -> bool {
+        self.frame.complete() && self.samples.0 >= self.samples.1
     }
 }
 
@@ -154,7 +163,13 @@ fn wait_until_presented(shared: &Shared, generation: u64) {
 fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJob) {
     let (width, height) = job.camera.size();
     let mut frame = Frame::new(width, height);
-    let renderer = job.renderer(job.arith);
+    // The passes trace one ray per pixel; samples per pixel follow in rounds, one sample of
+    // every pixel each, while the camera rests.
+    let mut renderer = job.renderer(job.arith);
+    let samples = job.lighting.effects.samples;
+    renderer.shader.lighting.effects.samples = 1;
+    let rounds = job.renderer(job.arith);
+    let mut sums = Accumulation::new(width, height, if samples > 1 { samples } else { 0 });
     let quitting = || shared.jobs.is_closed();
     let superseded = || shared.jobs.newest() != generation || quitting();
     let start = Instant::now();
@@ -167,7 +182,12 @@ fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJo
         } else {
             &superseded
         };
-        if !renderer.render_pass(&mut frame, cancelled) {
+        let rendered = if frame.complete() {
+            rounds.accumulate(&mut sums, &mut frame, cancelled)
+        } else {
+            renderer.render_pass(&mut frame, cancelled)
+        };
+        if !rendered {
             return;
         }
         pass_times.push(start.elapsed());
@@ -178,9 +198,10 @@ fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJo
             generation,
             job: job.clone(),
             pass_times: pass_times.clone(),
+            samples: (sums.done, sums.total),
         });
         *shared.latest.lock().unwrap_or_else(PoisonError::into_inner) = Some(Arc::clone(&rendered));
-        let complete = rendered.frame.complete();
+        let complete = rendered.finished();
         if complete {
             // Done before the window hears of it: the window reports whether the worker is
             // busy when it shows the frame, and may draw nothing more after it (a report that

@@ -4,6 +4,7 @@
 //! start ([`horizon`]) is clear without a walk; the others are ordinary shadow rays, traced
 //! in the frame's arithmetic (exactly from the exact surface point in exact mode).
 
+mod accumulate;
 mod horizon;
 pub mod pixel;
 mod sampling;
@@ -11,6 +12,7 @@ mod sky;
 mod soft_shadow;
 mod stats;
 
+pub use accumulate::Accumulation;
 pub use horizon::{climbs_above, slope_bound};
 pub use sky::{open_sky_mean, SkyRays};
 pub use soft_shadow::SoftShadow;

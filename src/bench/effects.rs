@@ -1,0 +1,149 @@
+//! What each effect costs, and how several samples per pixel converge: frames of one scene
+//! with each effect alone and all together, and images against a supersampled reference.
+
+use crate::render::effects::{pixel, Effects};
+use crate::render::{Culling, Frame, FrameStats, Renderer, Scene, Shader};
+use crate::traverse::Method;
+use crate::Terrain;
+use std::time::{Duration, Instant};
+
+/// One configuration's frame: its time and statistics.
+#[derive(Clone, Debug)]
+pub struct EffectRow {
+    /// What the frame had ("plain", "soft shadows", ...).
+    pub label: String,
+    /// The effects it had.
+    pub effects: Effects,
+    /// Time of the frame.
+    pub time: Duration,
+    /// Its statistics.
+    pub totals: FrameStats,
+    /// Its pixels.
+    pub pixels: Vec<u32>,
+}
+
+impl EffectRow {
+    /// Pixels of the frame.
+    pub fn pixel_count(&self) -> f64 {
+        self.totals.effects.samples.pixels.max(1) as f64
+    }
+
+    /// The share of the soft shadow's possible rays left out: a cone settled whole would
+    /// have taken a ray per direction (`None` without soft shadows).
+    pub fn soft_culled(&self) -> Option<f64> {
+        let e = &self.totals.effects;
+        let per_point = u64::from(pixel::per_sample(&self.effects).sun_rays);
+        let s = &self.totals.skipped;
+        let settled = s.horizon_clear + s.no_shadow_possible + s.above_terrain;
+        let possible = settled * per_point + e.soft.directions;
+        (self.effects.sun_angle_deg > 0.0 && self.totals.shadow_rays == 0 && possible > 0)
+            .then(|| 1.0 - e.soft.rays as f64 / possible as f64)
+    }
+
+    /// The share of sky rays left out (`None` without sky light).
+    pub fn sky_culled(&self) -> Option<f64> {
+        let sky = &self.totals.effects.sky;
+        (sky.directions > 0).then(|| 1.0 - sky.rays as f64 / sky.directions as f64)
+    }
+}
+
+/// Renders `scene` with `effects` (the scene's shadows, fog and shading), timed.
+pub fn frame_with(scene: &Scene, terrain: &Terrain, effects: Effects, label: &str) -> EffectRow {
+    let mut lighting = scene.lighting;
+    lighting.effects = effects;
+    let renderer = Renderer {
+        shader: Shader {
+            terrain,
+            lighting,
+            method: Method::Mipmap,
+            culling: Culling::default(),
+        },
+        camera: scene.camera,
+        arith: scene.arith,
+    };
+    let (w, h) = scene.camera.size();
+    let mut frame = Frame::new(w, h);
+    let start = Instant::now();
+    renderer.render(&mut frame);
+    EffectRow {
+        label: label.into(),
+        effects,
+        time: start.elapsed(),
+        totals: frame.totals,
+        pixels: frame.pixels,
+    }
+}
+
+/// Each effect alone and all together, after the plain frame: soft shadows of a sun
+/// `sun_angle_deg` wide, sky light, `samples` per pixel uniform and adaptive.
+pub fn configurations(base: Effects, sun_angle_deg: f64, samples: u32) -> Vec<(String, Effects)> {
+    let plain = Effects {
+        sun_angle_deg: 0.0,
+        sky_light: false,
+        samples: 1,
+        adaptive: false,
+        ..base
+    };
+    let soft = Effects {
+        sun_angle_deg,
+        ..plain
+    };
+    let sky = Effects {
+        sky_light: true,
+        ..plain
+    };
+    let uniform = Effects { samples, ..plain };
+    let adaptive = Effects {
+        adaptive: true,
+        ..uniform
+    };
+    let all = Effects {
+        sun_angle_deg,
+        sky_light: true,
+        ..adaptive
+    };
+    vec![
+        ("plain".into(), plain),
+        (format!("soft shadows {sun_angle_deg} deg"), soft),
+        ("sky light".into(), sky),
+        (format!("{samples} samples"), uniform),
+        (format!("{samples} samples adaptive"), adaptive),
+        ("all (adaptive)".into(), all),
+    ]
+}
+
+/// Linear light of 0x00RRGGBB pixels, by the display formula (`(byte / 255)^2.2`).
+fn linear(rgb: u32) -> [f64; 3] {
+    [16, 8, 0].map(|shift| (f64::from((rgb >> shift) as u8) / 255.0).powf(2.2))
+}
+
+/// A `factor` times larger frame's pixels averaged over blocks of `factor x factor`, in
+/// linear light: the reference of a box filter.
+pub fn block_average(pixels: &[u32], width: u32, factor: u32) -> Vec<[f64; 3]> {
+    let (w, f) = (width as usize, factor as usize);
+    let small_w = w / f;
+    let small_h = pixels.len() / w / f;
+    let mut out = vec![[0.0; 3]; small_w * small_h];
+    for (k, &rgb) in pixels.iter().enumerate() {
+        let (x, y) = (k % w / f, k / w / f);
+        let l = linear(rgb);
+        for c in 0..3 {
+            out[y * small_w + x][c] += l[c] / (f * f) as f64;
+        }
+    }
+    out
+}
+
+/// The root mean square difference of `pixels` from `reference` in linear light, over every
+/// channel.
+pub fn rms_error(pixels: &[u32], reference: &[[f64; 3]]) -> f64 {
+    let sum: f64 = pixels
+        .iter()
+        .zip(reference)
+        .map(|(&rgb, r)| {
+            let l = linear(rgb);
+            (0..3).map(|c| (l[c] - r[c]).powi(2)).sum::<f64>()
+        })
+        .sum();
+    (sum / (3 * pixels.len()) as f64).sqrt()
+}

@@ -1,0 +1,157 @@
+//! `heightray bench effects`: what each effect costs on the built-in scenes, as ratios to
+//! the plain frame in one run, and how samples per pixel converge.
+
+use super::bench::{scene_at_size, scenes_or_builtins};
+use super::EffectsArgs;
+use anyhow::Context;
+use heightray::bench::{block_average, configurations, frame_with, rms_error, EffectRow};
+use heightray::render::effects::{Effects, MOST_RAYS};
+use heightray::Terrain;
+use serde_json::json;
+use std::io::Write;
+use std::process::ExitCode;
+
+/// The reference of the samples' convergence is rendered this many times larger.
+const SUPERSAMPLING: u32 = 4;
+
+pub fn run(args: &EffectsArgs) -> anyhow::Result<ExitCode> {
+    anyhow::ensure!(
+        (1..=MOST_RAYS).contains(&args.samples),
+        "--samples must be from 1 to {MOST_RAYS}"
+    );
+    anyhow::ensure!(
+        args.sun_angle_deg > 0.0 && args.sun_angle_deg <= 20.0,
+        "--sun-angle-deg must be above 0 and at most 20"
+    );
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(threads) = args.threads {
+        anyhow::ensure!(threads > 0, "--threads must be at least 1");
+        pool = pool.num_threads(threads);
+    }
+    let pool = pool.build().context("cannot start worker threads")?;
+    let out = &mut std::io::stdout().lock();
+    let mut report = Vec::new();
+    for source in scenes_or_builtins(&args.scenes)? {
+        let name = source.path.display().to_string();
+        let scene = scene_at_size(&source, args.size)?;
+        let terrain = Terrain::new(scene.field.clone());
+        let base = scene.lighting.effects;
+        let rows: Vec<EffectRow> = configurations(base, args.sun_angle_deg, args.samples)
+            .into_iter()
+            .map(|(label, effects)| pool.install(|| frame_with(&scene, &terrain, effects, &label)))
+            .collect();
+        writeln!(
+            out,
+            "\n{name} at {0}x{0}, {1} threads (shadows {2}):\n",
+            args.size,
+            pool.current_num_threads(),
+            if scene.lighting.shadows { "on" } else { "off" }
+        )?;
+        print_costs(out, &rows)?;
+        let samples = convergence(out, &pool, &source, &rows, args)?;
+        report.push(json!({"scene": name, "frames": rows.iter().map(row_json).collect::<Vec<_>>(), "samples": samples}));
+    }
+    if let Some(path) = &args.out {
+        let text = serde_json::to_string_pretty(&json!({
+            "command": std::env::args().collect::<Vec<_>>().join(" "),
+            "size": args.size, "threads": pool.current_num_threads(), "scenes": report,
+        }))?;
+        std::fs::write(path, text + "\n")
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The costs table: time and rays per pixel by kind, as ratios to the first (plain) row.
+fn print_costs(out: &mut impl Write, rows: &[EffectRow]) -> anyhow::Result<()> {
+    writeln!(out, "| frame | ms | x plain | camera rays/px | shadow rays/px | soft rays/px | sky rays/px | soft culled | sky culled |")?;
+    writeln!(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|")?;
+    let plain = rows.first().map_or(1.0, |r| r.time.as_secs_f64());
+    let percent = |share: Option<f64>| share.map_or("-".into(), |s| format!("{:.0}%", 100.0 * s));
+    for row in rows {
+        let (t, px) = (&row.totals, row.pixel_count());
+        let per = |n: u64| n as f64 / px;
+        writeln!(
+            out,
+            "| {} | {:.0} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} |",
+            row.label,
+            row.time.as_secs_f64() * 1e3,
+            row.time.as_secs_f64() / plain,
+            per(t.primary_rays),
+            per(t.shadow_rays),
+            per(t.effects.soft.rays),
+            per(t.effects.sky.rays),
+            percent(row.soft_culled()),
+            percent(row.sky_culled()),
+        )?;
+    }
+    Ok(())
+}
+
+fn row_json(row: &EffectRow) -> serde_json::Value {
+    json!({
+        "frame": row.label, "ms": row.time.as_secs_f64() * 1e3,
+        "soft_culled": row.soft_culled(), "sky_culled": row.sky_culled(),
+        "stats": row.totals.to_json(),
+    })
+}
+
+/// Uniform and adaptive samples against the scene rendered `SUPERSAMPLING` times larger
+/// with one sample per pixel and averaged over blocks: their errors and camera rays.
+fn convergence(
+    out: &mut impl Write,
+    pool: &rayon::ThreadPool,
+    source: &super::bench::SceneSource,
+    rows: &[EffectRow],
+    args: &EffectsArgs,
+) -> anyhow::Result<serde_json::Value> {
+    let large = scene_at_size(source, args.size * SUPERSAMPLING)?;
+    let terrain = Terrain::new(large.field.clone());
+    let plain = rows.first().map_or(Effects::default(), |row| row.effects);
+    let reference = pool.install(|| frame_with(&large, &terrain, plain, "reference"));
+    let reference = block_average(&reference.pixels, args.size * SUPERSAMPLING, SUPERSAMPLING);
+    let scene = scene_at_size(source, args.size)?;
+    let mut measured: Vec<EffectRow> = [1, 4]
+        .into_iter()
+        .filter(|&n| n < args.samples)
+        .map(|samples| {
+            let effects = Effects { samples, ..plain };
+            let label = format!("{samples} samples");
+            pool.install(|| frame_with(&scene, &terrain, effects, &label))
+        })
+        .collect();
+    measured.extend(
+        rows.iter()
+            .filter(|r| {
+                r.effects.samples > 1 && r.effects.sun_angle_deg == 0.0 && !r.effects.sky_light
+            })
+            .cloned(),
+    );
+    writeln!(out, "\nsamples against the image rendered {SUPERSAMPLING}x larger and averaged over {SUPERSAMPLING}x{SUPERSAMPLING} blocks (linear light):\n")?;
+    writeln!(
+        out,
+        "| frame | rms error | camera rays/px | rays x uniform |"
+    )?;
+    writeln!(out, "|---|---:|---:|---:|")?;
+    let uniform = measured
+        .iter()
+        .find(|r| r.effects.samples == args.samples && !r.effects.adaptive)
+        .map_or(1.0, |r| r.totals.primary_rays as f64);
+    let mut json_rows = Vec::new();
+    for row in &measured {
+        let error = rms_error(&row.pixels, &reference);
+        let rays = row.totals.primary_rays as f64;
+        writeln!(
+            out,
+            "| {} | {:.5} | {:.2} | {:.2} |",
+            row.label,
+            error,
+            rays / row.pixel_count(),
+            rays / uniform
+        )?;
+        json_rows.push(
+            json!({"frame": row.label, "rms_error": error, "camera_rays": row.totals.primary_rays}),
+        );
+    }
+    Ok(json!(json_rows))
+}
