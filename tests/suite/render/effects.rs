@@ -330,3 +330,79 @@ fn effects_off_cast_no_effect_rays_and_change_nothing() {
     );
     assert_eq!(adaptive.pixels, frame.pixels);
 }
+
+/// Linear light of a 0x00RRGGBB pixel by the display formula.
+fn linear(rgb: u32) -> [f64; 3] {
+    [16, 8, 0].map(|shift| (f64::from((rgb >> shift) as u8) / 255.0).powf(2.2))
+}
+
+/// The root mean square difference, in linear light, of `frame` from `reference` rendered 4
+/// times larger and averaged over 4x4 blocks.
+fn error_against(frame: &Frame, reference: &Frame) -> f64 {
+    let (w, h) = (frame.width as usize, frame.height as usize);
+    let mut sum = 0.0;
+    for y in 0..h {
+        for x in 0..w {
+            let mut mean = [0.0; 3];
+            for (dx, dy) in (0..16).map(|k| (k % 4, k / 4)) {
+                let big = reference.pixels[(4 * y + dy) * 4 * w + 4 * x + dx];
+                for (m, l) in mean.iter_mut().zip(linear(big)) {
+                    *m += l / 16.0;
+                }
+            }
+            let l = linear(frame.pixels[y * w + x]);
+            sum += (0..3).map(|c| (l[c] - mean[c]).powi(2)).sum::<f64>();
+        }
+    }
+    (sum / (3 * w * h) as f64).sqrt()
+}
+
+#[test]
+fn samples_converge_to_the_supersampled_image() {
+    let size = 24;
+    let render_at = |size: u32, samples: u32, adaptive: bool| {
+        let mut scene = builtin_scene("small49", size);
+        scene.lighting.effects.samples = samples;
+        scene.lighting.effects.adaptive = adaptive;
+        render_scene_by(Method::Mipmap, &scene, 2)
+    };
+    let reference = render_at(4 * size, 1, false);
+    let errors: Vec<f64> = [1, 4, 16]
+        .map(|n| error_against(&render_at(size, n, false), &reference))
+        .to_vec();
+    assert!(errors[0] > errors[1] && errors[1] > errors[2], "{errors:?}");
+    // Adaptive: fewer camera rays than 16 everywhere, and better than 4 everywhere.
+    let adaptive = render_at(size, 16, true);
+    let rays = adaptive.totals.primary_rays;
+    assert!(rays < u64::from(16 * size * size), "{rays}");
+    let error = error_against(&adaptive, &reference);
+    assert!(error < errors[1], "{error} against {errors:?}");
+}
+
+#[test]
+fn samples_added_in_rounds_give_the_rendered_image() {
+    let scene = effects_scene(5, false);
+    let terrain = Terrain::new(scene.field.clone());
+    let rendered = render_by(
+        Method::Mipmap,
+        &terrain,
+        scene.camera,
+        scene.lighting,
+        Arith::F64,
+        Culling::default(),
+        2,
+    );
+    let renderer = Renderer {
+        shader: shader(&terrain, scene.lighting),
+        camera: scene.camera,
+        arith: Arith::F64,
+    };
+    let (w, h) = scene.camera.size();
+    let mut frame = Frame::new(w, h);
+    let mut sums = heightray::render::effects::Accumulation::new(w, h, 5);
+    while !sums.complete() {
+        assert!(renderer.accumulate(&mut sums, &mut frame, &|| false));
+    }
+    assert_eq!(sums.done, 5);
+    assert_eq!(frame.pixels, rendered.pixels);
+}
