@@ -1,7 +1,7 @@
 //! Effects beyond one ray per pixel, each only where it can change a pixel: several samples
-//! per pixel ([`pixel`]), soft shadows from the sun's disc ([`soft_shadow`]) and light from
-//! the sky ([`sky`]). A ray that climbs more steeply than the terrain can rise around its
-//! start ([`horizon`]) is clear without a walk; the others are ordinary shadow rays, traced
+//! per pixel ([`pixel`]), soft shadows from the sun's disc ([`SoftShadow`]) and light from
+//! the sky ([`SkyRays`]). A ray that climbs more steeply than the terrain can rise around its
+//! start ([`slope_bound`]) is clear without a walk; the others are ordinary shadow rays, traced
 //! in the frame's arithmetic (exactly from the exact surface point in exact mode).
 
 mod accumulate;

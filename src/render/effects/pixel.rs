@@ -1,8 +1,8 @@
-//! Several camera rays per pixel: stratified positions over the pixel (the sequence of
-//! [`super::sampling`], rotated per pixel by a hash of its position, so a pixel's samples are
-//! the same on every thread and in every pass), box-filtered in linear light. Adaptive
-//! sampling takes a first batch, then more batches only while the samples' mean is not yet
-//! known to within a display byte.
+//! Several camera rays per pixel: stratified positions over the pixel (a low-discrepancy
+//! sequence rotated per pixel by a hash of its position, so a pixel's samples are the same on
+//! every thread and in every pass), box-filtered in linear light. Adaptive sampling takes a
+//! first batch, then more batches only while the samples' mean is not yet known to within a
+//! display byte.
 
 use super::sampling::{mix, point};
 use super::Effects;
@@ -30,7 +30,7 @@ fn student_t(dof: u32) -> f64 {
 }
 
 /// The purpose a pixel's positions are seeded with.
-const PURPOSE: u64 = 0x5a3b_1e5;
+const PURPOSE: u64 = 0x05a3_b1e5;
 
 /// The sub-pixel position of sample `index` of pixel `(x, y)`, in pixel units from its corner.
 pub fn position(x: u32, y: u32, index: u32) -> (f64, f64) {
@@ -104,10 +104,10 @@ struct Moments {
 
 impl Moments {
     fn add(&mut self, channels: [u8; 3]) {
-        for k in 0..3 {
-            let c = f64::from(channels[k]);
-            self.sum[k] += c;
-            self.squares[k] += c * c;
+        for ((sum, squares), c) in self.sum.iter_mut().zip(&mut self.squares).zip(channels) {
+            let c = f64::from(c);
+            *sum += c;
+            *squares += c * c;
         }
     }
 

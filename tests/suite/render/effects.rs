@@ -131,7 +131,7 @@ fn a_v_valley_floor_sees_the_sky_fraction_of_its_horizon() {
     let reference = xs.iter().map(|&x| valley_sky_fraction(x)).sum::<f64>() / xs.len() as f64;
     // An infinitely long valley of infinite 45-degree walls would give cos(45) = 0.7071; the
     // finite walls let more sky in.
-    assert!(reference > 0.7071 && reference < 0.9, "{reference}");
+    assert!(reference > std::f64::consts::FRAC_1_SQRT_2 && reference < 0.9, "{reference}");
     // Open or not per ray: the standard error of N independent rays is sqrt(v (1 - v) / N).
     let n = f64::from(rays) * xs.len() as f64;
     let bound = 4.0 * (reference * (1.0 - reference) / n).sqrt();
