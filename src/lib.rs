@@ -1,7 +1,8 @@
 //! heightray: exact, fast ray tracing of terrain height fields on the CPU.
 //!
 //! Data flows one way: a file becomes a [`Heightfield`], acceleration data makes it a
-//! [`Terrain`], and [`traverse::trace`] answers rays against it.
+//! [`Terrain`], and [`traverse::trace`] (the first hit) and [`traverse::occluded`] (any hit
+//! after the start) answer rays against it.
 
 #![warn(missing_docs)]
 
@@ -23,7 +24,7 @@ pub mod viewer;
 
 pub use geometry::{Ray, RayError};
 pub use heightfield::{Heightfield, HeightfieldError, LoadError, Terrain};
-pub use traverse::{trace, Arith, Counters, Hit, Method, Query, Trace, TraceOptions};
+pub use traverse::{occluded, trace, Arith, Counters, Hit, Method, Trace, TraceOptions};
 
 // The README's Rust example runs as a doctest.
 #[cfg(doctest)]

@@ -9,9 +9,9 @@ use crate::common::random::{field_and_ray, field_and_ray_up_to};
 use crate::common::reference::{self, q, Q};
 use crate::common::{assert_family, check_exact, describe, options};
 use heightray::traverse::{
-    covered_cells, settled, trace_scalar, Exact, HitMiss, Interval, Scalar, WalkOptions,
+    covered_cells, occluded, settled, Exact, HitMiss, Interval, Scalar, Start, Tracer,
 };
-use heightray::{trace, Arith, Counters, Heightfield, Method, Query, Ray, Terrain, TraceOptions};
+use heightray::{trace, Arith, Counters, Heightfield, Method, Ray, Terrain, TraceOptions};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 use proptest::test_runner::TestCaseError;
@@ -422,11 +422,10 @@ proptest! {
 /// Whether a shadow query of `method` in `arith` finds the surface.
 fn in_shadow(terrain: &Terrain, ray: &Ray, method: Method, arith: Arith) -> bool {
     let options = TraceOptions {
-        query: Query::Shadow,
         record_cells: false,
         ..options(method, arith)
     };
-    trace(terrain, ray, &options).hit.is_some()
+    occluded(terrain, ray, &options).hit.is_some()
 }
 
 proptest! {
@@ -480,10 +479,8 @@ fn in_shadow_from<S: Scalar>(
     sun: [f64; 3],
     method: Method,
 ) -> bool {
-    let walk = WalkOptions::new(method, Query::Shadow);
-    trace_scalar(terrain, origin, &sun.map(S::from_f64), sun, walk)
-        .hit
-        .is_some()
+    let tracer = Tracer::new(terrain, method);
+    tracer.occluded(&Start::Point(origin), sun, false).occluded == Some(true)
 }
 
 proptest! {
@@ -518,12 +515,12 @@ proptest! {
         }
         // The renderer's way: the hit point in intervals.
         let ((mipmap, runs), settled) = settled(|| {
-            let (o, d) = (o.map(Interval::from_f64), d.map(Interval::from_f64));
-            let walk = WalkOptions::new(Method::Runs, Query::FirstHit);
+            let tracer = Tracer::new(&terrain, Method::Runs);
             // (Unsettled, it may find none.)
-            let Some(found) = trace_scalar(&terrain, &o, &d, ray.dir(), walk).hit else {
+            let Some(found) = tracer.trace::<Interval>(&ray, None).hit else {
                 return (false, false);
             };
+            let (o, d) = (o.map(Interval::from_f64), d.map(Interval::from_f64));
             let point = found.point(&o, &d);
             (
                 in_shadow_from(&terrain, &point, sun, Method::Mipmap),

@@ -19,5 +19,6 @@ mod hard_cases;
 mod holes;
 mod loader_fuzz;
 mod ramps;
+mod recorded_cells;
 mod render;
 mod terminator;

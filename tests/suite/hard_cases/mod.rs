@@ -28,7 +28,8 @@
 use crate::common::families::{self, hash, ray, terrain, Family};
 use crate::common::reference::{self, q, qi, Answer, Q};
 use crate::common::{check_exact_against, describe, options, try_trace, METHODS};
-use heightray::traverse::{covered_cells, with_bound, Rational, Scalar};
+use heightray::arith::with_bound;
+use heightray::traverse::{covered_cells, Rational, Scalar};
 use heightray::{Arith, Hit, Method, Ray, Terrain};
 use num_rational::Ratio;
 use num_traits::ToPrimitive;
