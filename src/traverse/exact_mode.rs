@@ -1,7 +1,9 @@
 //! Exact arithmetic's strategy beyond intervals first and rationals where they cannot settle
-//! (see [`run`](crate::arith::run)): an `f64` walk that answers exact rays alone where it can certify them
-//! ([`certified`](super::certified)), or clears the way for the exact walk; and the hit's `t`
-//! solved exactly from its triangle's plane.
+//! (see [`Settling`](crate::arith::Settling)): an `f64` walk that answers exact rays alone
+//! where it can certify them ([`certified`](super::certified)), or clears the way for the
+//! exact walk; the hit's `t` solved exactly from its triangle's plane; and a shadow ray from a
+//! hit cast again in rationals from the exact hit point when intervals cannot settle it (its
+//! single unsettled triangle tests are decided in [`exact_start`](super::exact_start)).
 
 use super::*;
 use crate::arith::dyadic::Dyadic;

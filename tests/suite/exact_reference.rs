@@ -16,152 +16,23 @@ use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 use proptest::test_runner::TestCaseError;
 
+/// Every deterministic ray family against the reference, one table (`families::all`): octant
+/// entries and rays along grid lines and cell diagonals on non-dyadic and integer heights,
+/// lattice-point slopes, vertical rays in a cell, on an edge, a corner and the grid's
+/// boundary, rays starting inside the grid, below the surface and on a vertex or edge, level
+/// rays at a plateau's height, near-vertical rays, a shallow ray along a 4000-cell strip,
+/// negative-zero components, single-point segments at the box's corner, and oblique rays that
+/// touch a flat field at one point.
 #[test]
-fn octant_entries_on_non_dyadic_heights() {
-    assert_family(&families::octant_entries(
-        "octant entries (hilly)",
-        families::hilly(),
-    ));
-}
-
-#[test]
-fn octant_entries_on_integer_heights() {
-    assert_family(&families::octant_entries(
-        "octant entries (integer)",
-        families::integer_hills(6, 5, 6, 3),
-    ));
-}
-
-#[test]
-fn lattice_point_slope_0() {
-    assert_family(&families::lattice_slope(0, 1));
-}
-
-#[test]
-fn lattice_point_slope_1() {
-    assert_family(&families::lattice_slope(1, 1));
-}
-
-#[test]
-fn lattice_point_slope_1_2() {
-    assert_family(&families::lattice_slope(1, 2));
-}
-
-#[test]
-fn lattice_point_slope_2_3() {
-    assert_family(&families::lattice_slope(2, 3));
-}
-
-#[test]
-fn lattice_point_slope_17_41() {
-    assert_family(&families::lattice_slope(17, 41));
-}
-
-#[test]
-fn lattice_point_slope_41_17() {
-    assert_family(&families::lattice_slope(41, 17));
-}
-
-#[test]
-fn rays_along_grid_lines_on_non_dyadic_heights() {
-    assert_family(&families::grid_lines(
-        "grid lines (hilly)",
-        families::hilly(),
-    ));
-}
-
-#[test]
-fn rays_along_grid_lines_on_integer_heights() {
-    assert_family(&families::grid_lines(
-        "grid lines (integer)",
-        families::integer_hills(6, 5, 6, 3),
-    ));
-}
-
-#[test]
-fn rays_along_cell_diagonals_on_integer_heights() {
-    assert_family(&families::cell_diagonals(
-        "cell diagonals (integer)",
-        families::integer_hills(6, 5, 6, 3),
-    ));
-}
-
-#[test]
-fn rays_along_cell_diagonals_on_non_dyadic_heights() {
-    assert_family(&families::cell_diagonals(
-        "cell diagonals (hilly)",
-        families::hilly(),
-    ));
-}
-
-#[test]
-fn vertical_ray_in_cell() {
-    assert_family(&families::vertical_in_cell());
-}
-
-#[test]
-fn vertical_ray_on_edge() {
-    assert_family(&families::vertical_on_edge());
-}
-
-#[test]
-fn vertical_ray_on_corner() {
-    assert_family(&families::vertical_on_corner());
-}
-
-#[test]
-fn vertical_ray_on_grid_boundary() {
-    assert_family(&families::vertical_on_grid_boundary());
-}
-
-#[test]
-fn rays_starting_inside_the_grid() {
-    assert_family(&families::starts_inside_above_surface(
-        "starts inside",
-        families::hilly(),
-    ));
-}
-
-#[test]
-fn rays_starting_below_the_surface() {
-    assert_family(&families::starts_below_surface(
-        "starts below the surface",
-        families::hilly(),
-    ));
-}
-
-#[test]
-fn rays_starting_on_a_vertex_or_edge() {
-    assert_family(&families::starts_on_vertex(
-        "starts on a vertex",
-        families::integer_hills(6, 6, 6, 5),
-    ));
-}
-
-#[test]
-fn level_rays_at_plateau_height() {
-    assert_family(&families::plateau_level());
-}
-
-#[test]
-fn near_vertical_rays() {
-    assert_family(&families::near_vertical());
-}
-
-#[test]
-fn negative_zero_components() {
-    assert_family(&families::negative_zero());
-}
-
-#[test]
-fn single_point_segments_at_the_box_corner() {
-    assert_family(&families::single_point_segments());
+fn every_ray_family_matches_the_reference() {
+    for family in families::all() {
+        assert_family(&family);
+    }
 }
 
 #[test]
 fn oblique_rays_touch_a_flat_field_at_one_point() {
     let family = families::flat_field_single_point();
-    assert_family(&family);
     // Every one of them hits, at t = 1 (the aimed point).
     for ray in &family.rays {
         let answer = reference::solve(family.terrain.field(), ray);
