@@ -21,4 +21,5 @@ mod loader_fuzz;
 mod ramps;
 mod recorded_cells;
 mod render;
+mod snapshots;
 mod terminator;
