@@ -29,7 +29,7 @@ use exact_mode::{exact_t, f64_ray, point_over, trace_certified, walk_cleared, F6
 pub use exact_start::PlanePoint;
 pub use options::{Hit, Method, Trace, TraceOptions};
 use options::{Query, WalkOptions};
-pub use tracer::{Occlusion, Start, Tracer};
+pub use tracer::{occluded_from_hit, Occlusion, Start, Tracer};
 // The number layer, re-exported: every traversal is generic over these.
 pub use crate::arith::{
     scalar, settled, Arith, Exact, Interval, Rational, RationalEvents, Scalar, DEFAULT_BOUND,
@@ -55,7 +55,7 @@ pub fn trace(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
 /// Whether `ray` touches the surface at some `t > 0` (its start does not count), in the
 /// options' method and arithmetic: a shadow or any later effect ray. For a ray that starts
 /// on the surface where another hit it, exactly there in exact arithmetic, see
-/// [`Tracer::occluded`].
+/// [`occluded_from_hit`].
 pub fn occluded(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
     ask(terrain, ray, options, Query::Shadow)
 }

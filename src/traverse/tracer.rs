@@ -4,7 +4,8 @@
 
 use super::exact_mode::{crosses_plane, occluded_settling};
 use super::{trace_scalar, Clearance, Counters, Found, Method, PlanePoint, Query, ScalarTrace};
-use super::{Scalar, WalkOptions};
+use super::{Scalar, TraceOptions, WalkOptions};
+use crate::arith::{run, Generic};
 use crate::geometry::{gradient, plane_height, triangle_corners};
 use crate::heightfield::Terrain;
 use crate::Ray;
@@ -231,5 +232,46 @@ impl<'a> Tracer<'a> {
         let heights = self.terrain.corner_heights(found.cell.0, found.cell.1);
         let [a, b, c] = triangle_corners(found.triangle).map(|k| heights[k]);
         (a == b && b == c).then_some(a)
+    }
+}
+
+/// Whether anything lies in the way from where `ray` first hits the surface towards `dir`, in
+/// the options' method and arithmetic: the shadow ray a renderer casts from a hit (see
+/// [`Start::Hit`]), starting on the surface, exactly there in exact arithmetic. `None` where
+/// `ray` misses. The answer's counters are the occlusion ray's.
+pub fn occluded_from_hit(
+    terrain: &Terrain,
+    ray: &Ray,
+    dir: [f64; 3],
+    options: &TraceOptions,
+) -> Option<Occlusion> {
+    let mut tracer = Tracer::new(terrain, options.method);
+    if options.record_cells {
+        tracer = tracer.recording_cells();
+    }
+    let (ran, rational) = run(options.arith, &FromHit { tracer, ray, dir });
+    let mut occlusion = ran.output?;
+    occlusion.counters.rational_rounded = rational.rounded;
+    occlusion.counters.rational_saturated = rational.saturated;
+    occlusion.exactly |= ran.redone;
+    Some(occlusion)
+}
+
+/// [`occluded_from_hit`] in whichever arithmetic [`run`] picks.
+struct FromHit<'a> {
+    tracer: Tracer<'a>,
+    ray: &'a Ray,
+    dir: [f64; 3],
+}
+
+impl Generic for FromHit<'_> {
+    type Output = Option<Occlusion>;
+    fn run<S: Scalar>(&self) -> Self::Output {
+        let hit = self.tracer.trace::<S>(self.ray, None).hit?;
+        let from = Start::Hit {
+            ray: self.ray,
+            hit: &hit,
+        };
+        Some(self.tracer.occluded(&from, self.dir, false))
     }
 }

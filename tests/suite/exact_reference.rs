@@ -9,7 +9,8 @@ use crate::common::random::{field_and_ray, field_and_ray_up_to};
 use crate::common::reference::{self, q, Q};
 use crate::common::{assert_family, check_exact, describe, options};
 use heightray::traverse::{
-    covered_cells, occluded, settled, Exact, HitMiss, Interval, Scalar, Start, Tracer,
+    covered_cells, occluded, occluded_from_hit, settled, Exact, HitMiss, Interval, Scalar, Start,
+    Tracer,
 };
 use heightray::{trace, Arith, Counters, Heightfield, Method, Ray, Terrain, TraceOptions};
 use proptest::prelude::*;
@@ -400,6 +401,41 @@ proptest! {
         });
         if settled {
             prop_assert_eq!(mipmap, runs, "intervals: {} sun {:?}", describe(&ray), sun);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(config(500, 0x5348_4854))]
+
+    /// A shadow ray from where a camera ray hits, in exact arithmetic (`occluded_from_hit`:
+    /// intervals from the hit, a test they cannot settle decided from the exact start, the
+    /// ray cast again in rationals if still unsettled), answers as the same ray does traced
+    /// in rationals alone from the exact hit point `o + t_exact d`, for every method.
+    #[test]
+    fn shadow_rays_from_hits_answer_as_rationals_from_the_exact_point(
+        ray in common::random::ray_on(&large_field()),
+        (sx, sy, sz) in (-1.0f64..1.0, -1.0f64..1.0, 0.05f64..1.0),
+    ) {
+        let terrain = Terrain::new(large_field());
+        let sun = [sx, sy, sz];
+        let Some(hit) = trace(&terrain, &ray, &options(Method::Runs, Arith::Exact)).hit else {
+            return Ok(());
+        };
+        let t = hit.t_exact.expect("exact t");
+        let (o, d) = (ray.origin(), ray.dir());
+        let point = [0, 1, 2].map(|k| Exact(q(o[k]) + q(d[k]) * t.clone()));
+        let expected = in_shadow_from(&terrain, &point, sun, Method::Runs);
+        for method in Method::ALL {
+            let options = TraceOptions {
+                record_cells: false,
+                ..options(method, Arith::Exact)
+            };
+            let got = occluded_from_hit(&terrain, &ray, sun, &options).expect("a hit");
+            prop_assert_eq!(
+                got.occluded, Some(expected),
+                "{} {} sun {:?}", method, describe(&ray), sun
+            );
         }
     }
 }
