@@ -6,7 +6,8 @@
 
 #![warn(missing_docs)]
 
-/// Numbers: the scalar trait, intervals, bounded and exact rationals, the `Arith` a user picks.
+/// Numbers: the scalar trait, intervals, bounded and exact rationals, the `Arith` a user picks
+/// and the one way from it to generic code.
 pub mod arith;
 /// Benchmarks: methods, arithmetics and thread counts measured side by side in one run.
 pub mod bench;
@@ -17,7 +18,8 @@ pub mod heightfield;
 mod regular_file;
 /// Turning rays into pixels: cameras, scene files, shading, progressive passes, statistics.
 pub mod render;
-/// Walking a ray across the grid: the methods, their arithmetics and query counters.
+/// Answering rays (first hit, occlusion) by walking the grid: the methods, exact mode's
+/// strategy, query counters.
 pub mod traverse;
 /// The interactive viewer: winit, softbuffer and egui, drawn on the CPU.
 pub mod viewer;

@@ -6,6 +6,12 @@
 //! implementation, generic over the arithmetics of [`Scalar`](crate::arith::Scalar)
 //! ([`Arith`](crate::arith::Arith)), and counts its queries
 //! ([`Counters`](crate::traverse::Counters)).
+//!
+//! Two questions, one way in each: [`trace`](crate::traverse::trace) (the first hit) and
+//! [`occluded`](crate::traverse::occluded) (any hit after the start; from a hit on the surface,
+//! [`occluded_from_hit`](crate::traverse::occluded_from_hit)). Both pick the arithmetic once,
+//! through [`run`](crate::arith::run), and answer with a
+//! [`Tracer`](crate::traverse::Tracer), the same generic inside the renderer runs per pixel.
 
 mod approximation;
 mod beam;
