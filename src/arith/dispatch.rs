@@ -99,3 +99,62 @@ pub fn run<G: Generic>(arith: Arith, code: &G) -> (Ran<G::Output>, RationalEvent
     }
     with_numbers(arith, Once(code))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::arith::unsettled;
+
+    /// One third in the arithmetic run, and whether it encloses; in intervals it declares
+    /// itself unsettled.
+    struct Third {
+        give_up_in_intervals: bool,
+    }
+
+    impl Generic for Third {
+        type Output = (f64, bool);
+        fn run<S: Scalar>(&self) -> (f64, bool) {
+            if S::ENCLOSES && self.give_up_in_intervals {
+                unsettled();
+            }
+            let third = S::from_i64(1) / S::from_i64(3);
+            (third.to_f64(), S::ENCLOSES)
+        }
+    }
+
+    #[test]
+    fn each_arith_runs_its_own_numbers() {
+        let code = Third {
+            give_up_in_intervals: false,
+        };
+        let (f32_third, _) = run(Arith::F32, &code).0.output;
+        assert_eq!(f32_third, f64::from(1.0f32 / 3.0));
+        assert_eq!(run(Arith::F64, &code).0.output, (1.0 / 3.0, false));
+        // Settled in intervals: answered there, not run again.
+        let (exact, _) = run(Arith::Exact, &code);
+        assert_eq!((exact.output.1, exact.redone), (true, false));
+    }
+
+    #[test]
+    fn bounded_rationals_run_under_their_bound_and_count_its_roundings() {
+        // 1/3 is within every bound from 3: no rounding; under bound 2 it becomes 1/2 (the
+        // nearest fraction with a denominator of at most 2), one rounding.
+        let code = Third {
+            give_up_in_intervals: false,
+        };
+        let (within, events) = run(Arith::Rational { bound: 3 }, &code);
+        assert_eq!((within.output.0, events.rounded), (1.0 / 3.0, 0));
+        let (rounded, events) = run(Arith::Rational { bound: 2 }, &code);
+        assert_eq!((rounded.output.0, events.rounded), (0.5, 1));
+    }
+
+    #[test]
+    fn exact_runs_again_in_rationals_where_intervals_leave_a_decision_unsettled() {
+        let code = Third {
+            give_up_in_intervals: true,
+        };
+        let (ran, _) = run(Arith::Exact, &code);
+        assert_eq!(ran.output, (1.0 / 3.0, false));
+        assert!(ran.redone);
+    }
+}
