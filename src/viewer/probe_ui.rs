@@ -20,9 +20,9 @@ pub fn probe_ui(ui: &mut Ui, probe: &Probe, rendered: Option<&PixelStats>) {
             ui.strong("ray hit / miss");
             ui.strong("shadow");
             ui.end_row();
-            let shadow = probe.shadow.as_ref().map(|s| s.counters);
+            let shadow = probe.shadowed().map(|_| probe.sample.secondary);
             for (name, pick) in QUERY_KINDS {
-                let own = pick(&probe.primary.counters);
+                let own = pick(&probe.sample.primary);
                 let other = shadow.map(|c| pick(&c));
                 if own.total() + other.map_or(0, |h| h.total()) == 0 {
                     continue;
@@ -50,7 +50,7 @@ pub fn probe_ui(ui: &mut Ui, probe: &Probe, rendered: Option<&PixelStats>) {
 /// Where the ray hit, and what its shadow query found.
 fn hit_ui(ui: &mut Ui, probe: &Probe) {
     let (px, py) = probe.pixel;
-    let Some(hit) = &probe.primary.hit else {
+    let Some(hit) = &probe.hit else {
         ui.strong(format!(
             "pixel ({px}, {py}): miss, the ray leaves the terrain"
         ));

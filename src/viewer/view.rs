@@ -5,7 +5,7 @@
 use super::compose::{self, HeatScale};
 use super::model::Model;
 use super::navigation;
-use super::probe::{Probe, ProbeSetup};
+use super::probe::Probe;
 use super::settings::HeatMode;
 use crate::render::PASS_BLOCKS;
 use crate::TraceOptions;
@@ -196,13 +196,10 @@ fn hover_probe(ui: &Ui, model: &mut Model, rect: Rect, pos: Pos2) {
         .is_some_and(|p| p.pixel == pixel && p.generation == latest.generation);
     if !fresh {
         let job = &latest.job;
-        let setup = ProbeSetup {
-            terrain: &job.terrain,
-            options: TraceOptions::new(job.method, job.arith),
-            sun: job.lighting.sun,
-        };
+        let renderer = job.renderer(job.arith);
         let ray = job.camera.ray(pixel.0, pixel.1);
-        model.probe = Some(Probe::trace(&setup, ray, pixel, latest.generation));
+        let probe = Probe::trace(&renderer.shader, job.arith, ray, pixel, latest.generation);
+        model.probe = Some(probe);
     }
     if let Some(probe) = &model.probe {
         // Open towards the middle of the view so the box stays inside it.

@@ -19,5 +19,7 @@ mod hard_cases;
 mod holes;
 mod loader_fuzz;
 mod ramps;
+mod recorded_cells;
 mod render;
+mod snapshots;
 mod terminator;

@@ -4,13 +4,11 @@
 //! with uniform samples, bit for bit.
 
 use super::pixel::{self, position};
-use crate::arith::{with_bound, Arith, Rational};
 use crate::render::gamma;
 use crate::render::passes::{Frame, Renderer};
 use crate::render::scene::Lighting;
-use crate::render::shade::{Sample, Shader};
+use crate::render::shade::Shader;
 use crate::render::stats::PixelStats;
-use crate::Ray;
 use rayon::prelude::*;
 
 /// The running sums of a frame's samples, in linear light.
@@ -72,7 +70,7 @@ impl Renderer<'_> {
                 for (x, ((pixel, stat), sum)) in pixels.iter_mut().zip(stats).zip(sums).enumerate()
                 {
                     let (px, py) = position(x as u32, y as u32, index);
-                    let sample = sample_in(&shader, self.arith, &self.camera.ray_at(px, py));
+                    let (sample, _) = shader.traced(&self.camera.ray_at(px, py), self.arith);
                     totals.add(&sample);
                     let channels = [16, 8, 0].map(|shift| (sample.rgb >> shift) as u8);
                     for (s, c) in sum.iter_mut().zip(channels) {
@@ -99,15 +97,5 @@ impl Renderer<'_> {
         frame.totals += totals;
         sums.done += 1;
         true
-    }
-}
-
-/// One sample of `ray` in `arith`, with no beam (a sample's ray is off the pixel's centre).
-fn sample_in(shader: &Shader, arith: Arith, ray: &Ray) -> Sample {
-    match arith {
-        Arith::F32 => shader.sample::<f32>(ray, None),
-        Arith::F64 => shader.sample::<f64>(ray, None),
-        Arith::Exact => shader.sample_exact(ray, None),
-        Arith::Rational { bound } => with_bound(bound, || shader.sample::<Rational>(ray, None)).0,
     }
 }

@@ -6,7 +6,7 @@
 use super::horizon::{climbs_above, sector_of, slope_bound, Sector};
 use super::sampling::{cosine_hemisphere, point, seed_of};
 use crate::render::shade::{horizon, sky_colour, zenith, Shader};
-use crate::traverse::{trace_scalar, Counters, Found, Query, Scalar, WalkOptions};
+use crate::traverse::{Counters, Found, Scalar, Tracer};
 use crate::Ray;
 use glam::DVec3;
 
@@ -54,9 +54,10 @@ impl Shader<'_> {
     /// The sky light (a colour, before the surface's own) where `ray` first meets the
     /// terrain, traced in `f64`, and its rays; `None` where the ray misses.
     pub fn sky_light_at(&self, ray: &Ray) -> Option<(DVec3, SkyRays)> {
-        let walk = WalkOptions::new(self.method, Query::FirstHit);
+        let found = Tracer::new(self.terrain, self.method)
+            .trace::<f64>(ray, None)
+            .hit?;
         let (o, d) = (ray.origin(), ray.dir());
-        let found = trace_scalar::<f64>(self.terrain, &o, &d, d, walk).hit?;
         let p = DVec3::from(found.point(&o, &d));
         Some(self.sky_light(&found, ray, p))
     }
@@ -71,8 +72,7 @@ impl Shader<'_> {
         p: DVec3,
     ) -> (DVec3, SkyRays) {
         let normal = self.normal(found.cell, found.triangle, p);
-        let origin = self.ray_start(found, ray, p);
-        let start = DVec3::from(origin.clone().map(|c| c.to_f64()));
+        let start = self.occlusion_start(found.cell, found.triangle, p);
         // Each sector's bound, found when a direction in it first asks.
         let mut bounds = [None; SECTORS];
         let mut bound = |dir: DVec3| {
@@ -93,11 +93,13 @@ impl Shader<'_> {
             let dir = cosine_hemisphere(normal, u, v);
             let culled = self.culling.horizon_clear && dir.z > 0.0 && climbs_above(dir, bound(dir));
             let open = culled || {
-                let answer = self.occluded(found, ray, &origin, dir.into());
-                sky.cast += 1;
-                sky.counters += answer.counters;
-                sky.redone |= answer.decided_exactly;
-                answer.hit.is_none()
+                let answer = self.occluded(found, ray, p, dir.into());
+                if answer.occluded.is_some() {
+                    sky.cast += 1;
+                    sky.counters += answer.counters;
+                    sky.redone |= answer.exactly;
+                }
+                answer.occluded != Some(true)
             };
             if open {
                 sky.open += 1;

@@ -50,13 +50,12 @@ impl Shader<'_> {
         if self.culling.no_shadow_possible && rises && lowest.tan() > steepest {
             return skip(ShadowSkip::NoShadowPossible);
         }
-        let origin = self.ray_start(found, ray, p);
+        let start = self.occlusion_start(found.cell, found.triangle, p);
         let (_, z_max) = self.terrain.z_range();
-        if self.culling.above_terrain && rises && origin[2] > S::from_f64(z_max) {
+        if self.culling.above_terrain && rises && start.z > z_max {
             return skip(ShadowSkip::AboveTerrain);
         }
         let bound = if self.culling.horizon_clear {
-            let start = DVec3::from(origin.clone().map(|c| c.to_f64()));
             slope_bound(self.terrain, start, sun_sector(axis, half))
         } else {
             f64::INFINITY
@@ -79,11 +78,16 @@ impl Shader<'_> {
                 soft.clear += 1;
                 continue;
             }
-            let answer = self.occluded(found, ray, &origin, dir.into());
+            let answer = self.occluded(found, ray, p, dir.into());
+            // (Not traced: it starts above the terrain and rises.)
+            let Some(occluded) = answer.occluded else {
+                soft.clear += 1;
+                continue;
+            };
             soft.cast += 1;
-            soft.clear += u16::from(answer.hit.is_none());
+            soft.clear += u16::from(!occluded);
             counters += answer.counters;
-            exactly |= answer.decided_exactly;
+            exactly |= answer.exactly;
         }
         (Shadow::Soft(soft), counters, exactly)
     }

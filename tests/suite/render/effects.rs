@@ -4,6 +4,7 @@
 //! same image, and effects left off cost nothing.
 
 use super::*;
+use heightray::arith::Plain;
 use heightray::render::effects::Effects;
 use heightray::render::Shadow;
 use heightray::Ray;
@@ -131,7 +132,10 @@ fn a_v_valley_floor_sees_the_sky_fraction_of_its_horizon() {
     let reference = xs.iter().map(|&x| valley_sky_fraction(x)).sum::<f64>() / xs.len() as f64;
     // An infinitely long valley of infinite 45-degree walls would give cos(45) = 0.7071; the
     // finite walls let more sky in.
-    assert!(reference > std::f64::consts::FRAC_1_SQRT_2 && reference < 0.9, "{reference}");
+    assert!(
+        reference > std::f64::consts::FRAC_1_SQRT_2 && reference < 0.9,
+        "{reference}"
+    );
     // Open or not per ray: the standard error of N independent rays is sqrt(v (1 - v) / N).
     let n = f64::from(rays) * xs.len() as f64;
     let bound = 4.0 * (reference * (1.0 - reference) / n).sqrt();
@@ -158,7 +162,7 @@ fn sun_seen(terrain: &Terrain, elevation_deg: f64, angle_deg: f64, xs: &[f64]) -
     let shader = shader(terrain, lighting);
     xs.iter()
         .map(
-            |&x| match shader.sample::<f64>(&down_at(x, 16.3), None).shadow {
+            |&x| match shader.sample::<Plain<f64>>(&down_at(x, 16.3), None).shadow {
                 Shadow::Soft(soft) => soft.visible(),
                 Shadow::Cast { shadowed } => f64::from(u8::from(!shadowed)),
                 Shadow::Skipped(_) | Shadow::NotAsked => 1.0,
