@@ -66,6 +66,7 @@ impl Probe {
 mod tests {
     use super::*;
     use crate::heightfield::Builtin;
+    use crate::render::effects::Effects;
     use crate::render::{Camera, Culling, Frame, Lighting, Normals, PixelStats, Ramp, Renderer};
     use crate::{Method, Terrain};
 
@@ -80,6 +81,7 @@ mod tests {
             fog: 0.0,
             normals,
             ramp: Ramp::Gray,
+            effects: Effects::default(),
         }
     }
 
@@ -156,6 +158,7 @@ mod tests {
                 fog: 0.0,
                 normals: Normals::Flat,
                 ramp: Ramp::Gray,
+                effects: Effects::default(),
             },
             method: Method::Runs,
             culling: Culling {
