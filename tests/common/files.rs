@@ -16,14 +16,44 @@ pub fn tiff<C: ColorType>(
 where
     [C::Inner]: TiffValue,
 {
+    let tags: Vec<(Tag, TagData)> = nodata
+        .map(|text| (Tag::GdalNodata, TagData::Ascii(text)))
+        .into_iter()
+        .collect();
+    tagged_tiff::<C>(width, height, data, &tags)
+}
+
+/// The value of a tag written by [`tagged_tiff`].
+pub enum TagData<'a> {
+    /// Text (GDAL_NODATA).
+    Ascii(&'a str),
+    /// Doubles (ModelPixelScale, ModelTiepoint, ModelTransformation).
+    Doubles(&'a [f64]),
+    /// Shorts (GeoKeyDirectory).
+    Shorts(&'a [u16]),
+}
+
+/// A single-band TIFF of `width` x `height` samples in image order with these tags.
+pub fn tagged_tiff<C: ColorType>(
+    width: u32,
+    height: u32,
+    data: &[C::Inner],
+    tags: &[(Tag, TagData)],
+) -> Vec<u8>
+where
+    [C::Inner]: TiffValue,
+{
     let mut bytes = std::io::Cursor::new(Vec::new());
     let mut encoder = TiffEncoder::new(&mut bytes).expect("TIFF encoder");
     let mut image = encoder.new_image::<C>(width, height).expect("TIFF image");
-    if let Some(text) = nodata {
-        image
-            .encoder()
-            .write_tag(Tag::GdalNodata, text)
-            .expect("GDAL_NODATA tag");
+    for (tag, value) in tags {
+        let directory = image.encoder();
+        match value {
+            TagData::Ascii(text) => directory.write_tag(*tag, *text),
+            TagData::Doubles(values) => directory.write_tag(*tag, *values),
+            TagData::Shorts(values) => directory.write_tag(*tag, *values),
+        }
+        .expect("TIFF tag");
     }
     image.write_data(data).expect("TIFF data");
     bytes.into_inner()

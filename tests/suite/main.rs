@@ -15,6 +15,7 @@ mod exact_paths;
 mod exact_reference;
 mod float_modes;
 mod formats;
+mod georeferencing;
 mod hard_cases;
 mod holes;
 mod loader_fuzz;
