@@ -35,7 +35,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
             method,
             culling: Culling::default(),
         },
-        camera: scene.camera,
+        camera: scene.camera.in_grid(terrain.world_from_grid()),
         arith,
     };
     let (width, height) = scene.camera.size();

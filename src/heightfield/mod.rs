@@ -15,6 +15,8 @@ mod load;
 mod maxima;
 mod mipmap;
 mod nodata;
+pub mod place;
+pub mod relief;
 mod summary;
 mod terrain;
 

@@ -1,4 +1,5 @@
 mod camera;
+pub mod framing;
 mod gamma;
 mod normals;
 mod passes;
@@ -13,7 +14,8 @@ pub use camera::{Camera, CameraError};
 pub use passes::{Frame, Renderer, PASS_BLOCKS};
 pub use ramp::{HeightSpan, Ramp};
 pub use scene::{
-    EffectsSection, Lighting, Normals, Scene, SceneError, SceneFile, ShadingSection, SunSection,
+    EffectsSection, HeightmapSection, Lighting, NoDataKey, Normals, Scene, SceneError, SceneFile,
+    ShadingSection, SunSection,
 };
 pub use shade::{Culling, Sample, Shader, Shadow, ShadowSkip};
 pub use stats::{FrameStats, PixelStats};

@@ -3,14 +3,18 @@
 
 use super::camera::{Camera, CameraError};
 use super::ramp::Ramp;
-use crate::heightfield::{self, Builtin, Heightfield, LoadError, LoadOptions, NoDataValue};
+use crate::heightfield::{Heightfield, LoadError};
 use crate::regular_file::{self, OpenError};
 use crate::traverse::{Arith, Method};
 use serde::Deserialize;
 use std::io::Read;
-use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
+
+mod heightmap;
+
+use heightmap::HeightmapError;
+pub use heightmap::{HeightmapSection, NoDataKey};
 
 /// Why a scene could not be used.
 #[derive(Debug, Error)]
@@ -165,33 +169,6 @@ impl SceneFile {
             message: e.to_string().trim_end().replace('\n', " "),
         })
     }
-}
-
-/// A scene file's `[heightmap]` section.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct HeightmapSection {
-    /// A file, relative to the scene file; or `builtin:NAME` for a built-in terrain.
-    pub path: String,
-    /// Height of the largest sample value (maxval); for float and signed rasters, the factor
-    /// applied to their values.
-    pub z_scale: f64,
-    /// How RGB images become heights: `luminance` (the default), `mapbox` or `terrarium`.
-    #[serde(default)]
-    pub rgb: Option<String>,
-    /// Which raster value means no data: `"auto"` (the default), `"none"` or a number.
-    #[serde(default)]
-    pub nodata: Option<NoDataKey>,
-}
-
-/// `nodata` as written: a number, or a word.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(untagged)]
-pub enum NoDataKey {
-    /// This raster value means no data.
-    Value(f64),
-    /// `auto` or `none`.
-    Word(String),
 }
 
 /// A scene file's `[camera]` section: `eye` and `target`, or `orbit`.
@@ -408,30 +385,12 @@ impl Scene {
             path: path.to_owned(),
             message,
         };
-        let map = &file.heightmap;
-        let mut options = LoadOptions::new(map.z_scale);
-        if let Some(rgb) = &map.rgb {
-            options.colour = rgb
-                .parse()
-                .map_err(|e| invalid(format!("[heightmap] rgb: {e}")))?;
-        }
-        options.nodata = match &map.nodata {
-            None => NoDataValue::Auto,
-            Some(NoDataKey::Value(v)) => NoDataValue::Value(*v),
-            Some(NoDataKey::Word(w)) => w
-                .parse()
-                .map_err(|e| invalid(format!("[heightmap] nodata: {e}")))?,
-        };
-        let keep_going = |_| ControlFlow::Continue(());
-        let field = match map.path.strip_prefix("builtin:") {
-            Some(name) => Builtin::named(name)
-                .ok_or_else(|| invalid(format!("[heightmap] path: no built-in terrain '{name}'")))?
-                .load_scaled(map.z_scale),
-            None => heightfield::load_with(&base.join(&map.path), &options, &keep_going),
-        }
-        .map_err(|source| SceneError::Heightmap {
-            path: path.to_owned(),
-            source,
+        let field = file.heightmap.load(base).map_err(|error| match error {
+            HeightmapError::Invalid(message) => invalid(message),
+            HeightmapError::Load(source) => SceneError::Heightmap {
+                path: path.to_owned(),
+                source,
+            },
         })?;
         let camera = camera(&file.camera, path)?;
         let sun = &file.sun;

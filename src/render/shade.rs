@@ -219,7 +219,7 @@ impl Shader<'_> {
         let light = self.lighting.ambient + self.lighting.intensity * lit;
         let mut colour = self.lighting.ramp.colour(p.z, HeightSpan::of(self.terrain)) * light;
         if self.lighting.fog > 0.0 {
-            let distance = t * DVec3::from(ray.dir()).length();
+            let distance = t * self.world_dir(ray.dir()).length();
             let clear = (-self.lighting.fog * distance).exp();
             colour = colour * clear + horizon() * (1.0 - clear);
         }
@@ -228,7 +228,7 @@ impl Shader<'_> {
 
     /// The colour of a ray that misses the terrain.
     pub fn sky_rgb(&self, ray: &Ray) -> u32 {
-        pack(self.sky(ray.dir()))
+        pack(self.sky(self.world_dir(ray.dir()).into()))
     }
 
     /// Decides whether a shadow ray of the hit `found`, shaded at `p`, can change the pixel,
@@ -241,7 +241,7 @@ impl Shader<'_> {
         if self.culling.facing_away && facing <= 0.0 {
             return skip(ShadowSkip::FacingAway);
         }
-        let sun = self.lighting.sun;
+        let sun = self.grid_sun();
         // The sun climbs strictly steeper than any triangle (with room for the rounding of
         // max_slope), compared squared: no square root per shadow ray.
         let steepest = self.terrain.max_slope() * (1.0 + 1e-9);
@@ -325,7 +325,7 @@ impl Shader<'_> {
     /// spare for rounding: when in doubt the triangle is tested like any other).
     fn leaves_at_once<S: Scalar>(&self, found: &Found<S>) -> bool {
         let n = self.geometric_normal(found.cell, found.triangle);
-        let s = DVec3::from(self.lighting.sun);
+        let s = DVec3::from(self.grid_sun());
         let terms = [n.x * s.x, n.y * s.y, n.z * s.z];
         let sum: f64 = terms.iter().sum();
         if sum.abs() > 1e-9 * terms.iter().map(|t| t.abs()).sum::<f64>() {
@@ -333,7 +333,7 @@ impl Shader<'_> {
         }
         // Without rounding the ray starts on the plane itself, and leaves it at once unless it
         // runs in it: asked exactly (intervals cannot tell the two apart in the tests).
-        S::EXACT && crosses_plane(self.terrain, found.cell, found.triangle, self.lighting.sun)
+        S::EXACT && crosses_plane(self.terrain, found.cell, found.triangle, self.grid_sun())
     }
 
     /// The height of the hit triangle if it is flat (its three corners at one height).
@@ -350,12 +350,35 @@ impl Shader<'_> {
         DVec3::new(-gx, -gy, 1.0)
     }
 
-    /// The shading normal at `p` on triangle `triangle` of cell `(i, j)`.
+    /// The shading normal at `p` on triangle `triangle` of cell `(i, j)`, in world
+    /// coordinates (where cells may be non-square).
     #[inline(always)]
     fn normal(&self, cell: (usize, usize), triangle: u8, p: DVec3) -> DVec3 {
-        match self.lighting.normals {
+        let normal = match self.lighting.normals {
             Normals::Flat => self.geometric_normal(cell, triangle).normalize_or(DVec3::Z),
             Normals::Smooth => normals::smooth_normal(self.terrain, cell, triangle, p),
+        };
+        // A normal maps by the inverse transpose of the points' map: divided per axis.
+        match self.terrain.world_from_grid() {
+            Some(scale) => (normal / DVec3::from(scale)).normalize_or(DVec3::Z),
+            None => normal,
+        }
+    }
+
+    /// The direction towards the sun in grid coordinates, where shadow rays are traced.
+    fn grid_sun(&self) -> [f64; 3] {
+        let sun = self.lighting.sun;
+        match self.terrain.world_from_grid() {
+            Some(scale) => std::array::from_fn(|k| sun[k] / scale[k]),
+            None => sun,
+        }
+    }
+
+    /// A ray direction in grid coordinates as a direction in the world.
+    fn world_dir(&self, dir: [f64; 3]) -> DVec3 {
+        match self.terrain.world_from_grid() {
+            Some(scale) => DVec3::from(dir) * DVec3::from(scale),
+            None => DVec3::from(dir),
         }
     }
 

@@ -25,6 +25,7 @@ mod panels;
 mod probe;
 mod probe_ui;
 mod quality;
+mod relief_ui;
 mod settings;
 mod sources;
 mod stats_ui;

@@ -5,6 +5,7 @@ use super::decoding::{decoding_ui, Decoding};
 use super::loader::{LoadRequest, Source};
 use super::model::{Action, Model};
 use super::orbit::{MIN_PITCH_DEG, PITCH_LIMIT_DEG};
+use super::relief_ui::{exaggeration_ui, georeferencing_ui};
 use super::settings::{fog, ArithKind};
 use super::stats_ui::statistics_ui;
 use crate::heightfield::BUILTINS;
@@ -220,6 +221,7 @@ fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         field.step(),
         field.nodata_count()
     ));
+    georeferencing_ui(ui, model);
     ui.label(format!(
         "read {:.1} ms, build {:.1} ms ({:.1} MB of acceleration data)",
         model.shown.decode_time.as_secs_f64() * 1e3,
@@ -287,7 +289,8 @@ fn z_scale_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             .speed(speed)
             .prefix("z scale "),
     );
-    if z.changed() && model.z_scale != model.shown.terrain.field().z_scale() {
+    let exaggerated = exaggeration_ui(ui, model);
+    if (z.changed() || exaggerated) && model.z_scale != model.shown.terrain.field().z_scale() {
         actions.push(Action::Load(LoadRequest {
             source: model.shown.source.clone(),
             z_scale: Some(model.z_scale),

@@ -121,10 +121,14 @@ fn terrain_under(ui: &Ui, model: &Model, rect: Rect, pos: Pos2) -> Option<[f64; 
         (((pos.x - rect.min.x) * ppp).max(0.0) as u32).min(size.0 - 1),
         (((pos.y - rect.min.y) * ppp).max(0.0) as u32).min(size.1 - 1),
     );
-    let ray = model.orbit.camera(size).ok()?.ray(pixel.0, pixel.1);
+    let terrain = &model.shown.terrain;
+    let camera = model.orbit.camera(size).ok()?;
+    let ray = camera
+        .in_grid(terrain.world_from_grid())
+        .ray(pixel.0, pixel.1);
     let options = TraceOptions::new(model.settings.method, crate::Arith::F64);
-    let hit = crate::trace(&model.shown.terrain, &ray, &options).hit?;
-    Some(hit.point)
+    let hit = crate::trace(terrain, &ray, &options).hit?;
+    Some(terrain.world_point(hit.point))
 }
 
 /// The rendered pixel under a point of the view, in the frame on screen.
@@ -199,9 +203,10 @@ fn hover_probe(ui: &Ui, model: &mut Model, rect: Rect, pos: Pos2) {
         let setup = ProbeSetup {
             terrain: &job.terrain,
             options: TraceOptions::new(job.method, job.arith),
-            sun: job.lighting.sun,
+            sun: job.terrain.grid_point(job.lighting.sun),
         };
-        let ray = job.camera.ray(pixel.0, pixel.1);
+        let camera = job.camera.in_grid(job.terrain.world_from_grid());
+        let ray = camera.ray(pixel.0, pixel.1);
         model.probe = Some(Probe::trace(&setup, ray, pixel, latest.generation));
     }
     if let Some(probe) = &model.probe {
@@ -234,6 +239,7 @@ fn hover_probe(ui: &Ui, model: &mut Model, rect: Rect, pos: Pos2) {
                     super::probe_ui::probe_ui(
                         ui,
                         probe,
+                        model.shown.terrain.field(),
                         latest
                             .frame
                             .stats

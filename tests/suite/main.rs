@@ -22,3 +22,4 @@ mod loader_fuzz;
 mod ramps;
 mod render;
 mod terminator;
+mod true_scale;
