@@ -38,6 +38,15 @@ pub struct Exported {
 }
 
 impl Exports {
+    /// What the Export section's header says: the size an export is made at.
+    pub fn summary(&self) -> String {
+        if self.custom {
+            format!("{} x {}", self.size.0, self.size.1)
+        } else {
+            "view size".into()
+        }
+    }
+
     /// The export folder in full.
     pub fn folder(&self) -> PathBuf {
         let typed = self.dir.trim();

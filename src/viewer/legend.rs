@@ -6,8 +6,10 @@ use super::settings::HeatMode;
 use crate::render::{HeightSpan, Ramp};
 use egui::{Align2, Color32, FontId, Rect, Ui, Vec2};
 
-/// Bar size in points.
+/// Bar width, and the longest the bar grows, in points.
 const BAR: Vec2 = Vec2::new(14.0, 150.0);
+/// Share of the view's height the bar takes when that is less than its longest.
+const BAR_SHARE: f32 = 0.25;
 /// Bands the bar is painted in.
 const BANDS: usize = 75;
 /// Closest two labels may come, in points, before the inner one is left out.
@@ -25,12 +27,14 @@ pub fn height_legend_ui(ui: &Ui, rect: Rect, model: &Model) {
     let ramp = latest.job.lighting.ramp;
     let span = HeightSpan::of(&latest.job.terrain);
     let painter = ui.painter_at(rect);
+    // Small views get a shorter bar, so the legend never hides much of the terrain.
+    let size = Vec2::new(BAR.x, (rect.height() * BAR_SHARE).clamp(40.0, BAR.y));
     let bar = Rect::from_min_size(
-        rect.right_bottom() - Vec2::new(16.0 + BAR.x, 24.0 + BAR.y),
-        BAR,
+        rect.right_bottom() - Vec2::new(16.0 + size.x, 24.0 + size.y),
+        size,
     );
     let font = FontId::proportional(12.0);
-    let marks = marks(ramp, span, BAR.y);
+    let marks = marks(ramp, span, size.y);
     let label_width = marks
         .iter()
         .map(|(_, text)| {
@@ -58,8 +62,8 @@ pub fn height_legend_ui(ui: &Ui, rect: Rect, model: &Model) {
         // Band `k` counts from the bottom; its colour is the height at its middle.
         let z = lo + (hi - lo) * (k as f64 + 0.5) / BANDS as f64;
         let [r, g, b] = ramp.display_rgb(z, span);
-        let y1 = bar.bottom() - BAR.y * k as f32 / BANDS as f32;
-        let y0 = bar.bottom() - BAR.y * (k + 1) as f32 / BANDS as f32;
+        let y1 = bar.bottom() - size.y * k as f32 / BANDS as f32;
+        let y0 = bar.bottom() - size.y * (k + 1) as f32 / BANDS as f32;
         painter.rect_filled(
             Rect::from_x_y_ranges(bar.x_range(), y0 - 0.5..=y1),
             0.0,

@@ -149,8 +149,8 @@ pub fn keys_ui(ui: &egui::Ui, model: &mut Model, actions: &mut Vec<Action>) {
     }
 }
 
-/// The camera section's extras: framing the map, and where and how large exports are.
-pub fn tools_ui(ui: &mut egui::Ui, model: &mut Model, actions: &mut Vec<Action>) {
+/// The camera section's extra: framing the whole map.
+pub fn tools_ui(ui: &mut egui::Ui, actions: &mut Vec<Action>) {
     if ui
         .button("Frame map (F)")
         .on_hover_text("fit the whole map in the view, from the current direction")
@@ -158,6 +158,4 @@ pub fn tools_ui(ui: &mut egui::Ui, model: &mut Model, actions: &mut Vec<Action>)
     {
         actions.push(Action::FrameMap);
     }
-    let shown = model.latest.as_ref().map(|l| l.job.camera.size());
-    super::export::settings_ui(ui, &mut model.export, shown);
 }

@@ -74,6 +74,12 @@ fn sections_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         camera_ui(ui, model, actions)
     });
     section(ui, "Light", "Light", true, |ui| light_ui(ui, model));
+    let title = format!("Export: {}", shortened(&model.export.summary(), 24));
+    let export = section(ui, "Export", &title, false, |ui| {
+        let shown = model.latest.as_ref().map(|l| l.job.camera.size());
+        super::export::settings_ui(ui, &mut model.export, shown);
+    });
+    named(model, "export_section", export);
     let title = format!("Heightmap: {}", shortened(&model.shown.source.label(), 22));
     let heightmap = section(ui, "Heightmap", &title, false, |ui| {
         heightmap_ui(ui, model, actions)
@@ -159,7 +165,7 @@ fn camera_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             actions.push(Action::Screenshot);
         }
     });
-    super::navigation::tools_ui(ui, model, actions);
+    super::navigation::tools_ui(ui, actions);
     let settings = &mut model.settings;
     ui.add(
         Slider::new(&mut settings.render_scale, 0.25..=2.0)
@@ -352,7 +358,7 @@ fn traversal_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
 fn effects_ui(ui: &mut Ui, model: &mut Model) {
     let field = model.shown.terrain.field();
     let size = (field.width().max(field.height()) as f64 - 1.0).max(1.0);
-    let range = fog::range(size);
+    let range = fog::range(size, model.orbit.distance);
     let mut on = model.settings.fog > 0.0;
     let toggle = ui.checkbox(&mut on, "fog");
     if named(model, "fog_toggle", toggle).changed() {
@@ -372,9 +378,12 @@ fn effects_ui(ui: &mut Ui, model: &mut Model) {
             .max_decimals(0)
             .clamping(egui::SliderClamping::Edits)
             .text("visibility");
-        if ui.add(slider).changed() {
-            s.fog = fog::density(distance);
+        let slider = ui.add(slider);
+        if slider.changed() {
+            model.settings.fog = fog::density(distance);
         }
+        named(model, "fog_visibility", slider);
+        let s = &model.settings;
         ui.weak(format!(
             "contrast falls to 5% at {:.0} map units; the map is {size:.0} across",
             fog::distance(s.fog)

@@ -103,11 +103,14 @@ pub mod fog {
         }
     }
 
-    /// The slider's range for a map `size` across: from a tenth of it, where the far side is
-    /// gone, to twenty times it, where fog only tints the horizon.
-    pub fn range(size: f64) -> std::ops::RangeInclusive<f64> {
+    /// The slider's range for a map `size` across seen from `eye_distance` away: from twice
+    /// the distance to the point looked at, where that point keeps a fifth of its contrast
+    /// and the far side is nearly gone, to twenty times the far side's distance, where fog
+    /// only tints the horizon. A shorter visibility would wash out the whole view.
+    pub fn range(size: f64, eye_distance: f64) -> std::ops::RangeInclusive<f64> {
         let size = size.max(1.0);
-        size * 0.1..=size * 20.0
+        let near = eye_distance.max(0.01 * size);
+        2.0 * near..=20.0 * (near + size)
     }
 }
 

@@ -9,6 +9,7 @@ mod accuracy;
 mod app;
 mod decoding;
 mod export;
+mod fog;
 mod navigation;
 mod panel;
 mod special_paths;

@@ -63,6 +63,12 @@ fn a_small_window_gets_a_narrower_panel_and_a_tiny_one_none_with_a_hint() {
         "the panel {panel:?} (content {content:?}) in an 800 px window"
     );
     assert!(num(&state, "/view_rect/2") >= 0.68 * 800.0);
+    assert!(
+        content[1] >= panel[1] && content[3] <= 500.0 - 4.0,
+        "the panel's sections reach from {} to {} px in a 500 px window: they need scrolling",
+        content[1],
+        content[3]
+    );
     drop(session);
 
     let session = Session::start(&["--size", "560x400"]);
