@@ -189,8 +189,11 @@ pub struct GenerateArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct RenderArgs {
-    /// Scene file (TOML).
+    /// Scene file (TOML), or a height map to render whole, framed as the viewer frames it.
     pub scene: PathBuf,
+    /// Image size, replacing the scene's (default for a map alone: 1280x720).
+    #[arg(long, value_parser = parse_size, value_name = "WIDTHxHEIGHT")]
+    pub size: Option<(u32, u32)>,
     /// Output PNG.
     #[arg(short, long)]
     pub output: PathBuf,

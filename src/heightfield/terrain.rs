@@ -49,6 +49,11 @@ impl Terrain {
         &self.field
     }
 
+    /// The height field, without the acceleration data.
+    pub fn into_field(self) -> Heightfield {
+        self.field
+    }
+
     /// How grid coordinates scale into the world's, per axis, on a georeferenced field whose
     /// cells are not square: one world unit is a cell's height along y, so x is scaled by a
     /// cell's width over its height. `None` where world and grid coordinates are the same.

@@ -14,8 +14,8 @@ pub use camera::{Camera, CameraError};
 pub use passes::{Frame, Renderer, PASS_BLOCKS};
 pub use ramp::{HeightSpan, Ramp};
 pub use scene::{
-    EffectsSection, HeightmapSection, Lighting, NoDataKey, Normals, Scene, SceneError, SceneFile,
-    ShadingSection, SunSection,
+    CameraSection, EffectsSection, HeightmapSection, Lighting, NoDataKey, Normals, Orbit, Scene,
+    SceneError, SceneFile, ShadingSection, SunSection, DEFAULT_SIZE,
 };
 pub use shade::{Culling, Sample, Shader, Shadow, ShadowSkip};
 pub use stats::{FrameStats, PixelStats};

@@ -12,9 +12,11 @@ use std::path::{Path, PathBuf};
 use thiserror::Error;
 
 mod heightmap;
+mod view;
 
 use heightmap::HeightmapError;
 pub use heightmap::{HeightmapSection, NoDataKey};
+pub use view::{CameraSection, Orbit, DEFAULT_SIZE};
 
 /// Why a scene could not be used.
 #[derive(Debug, Error)]
@@ -96,8 +98,10 @@ const MOST_SCENE_BYTES: u64 = 1 << 20;
 pub struct SceneFile {
     /// `[heightmap]`: the map and how to read it.
     pub heightmap: HeightmapSection,
-    /// `[camera]`: where the view is from and its image size.
-    pub camera: CameraSection,
+    /// `[camera]`: where the view is from and its image size; left out, the whole map is
+    /// framed as the viewer first shows it.
+    #[serde(default)]
+    pub camera: Option<CameraSection>,
     /// `[sun]`: the light.
     #[serde(default)]
     pub sun: SunSection,
@@ -110,6 +114,9 @@ pub struct SceneFile {
     /// `[render]`: traversal method and arithmetic.
     #[serde(default)]
     pub render: RenderSection,
+    /// An image size replacing the scene's (`render --size`); not a key of the file.
+    #[serde(skip)]
+    pub size: Option<(u32, u32)>,
 }
 
 /// The scene files of the built-in terrains (`assets/NAME.toml`), embedded like their maps, so
@@ -169,42 +176,6 @@ impl SceneFile {
             message: e.to_string().trim_end().replace('\n', " "),
         })
     }
-}
-
-/// A scene file's `[camera]` section: `eye` and `target`, or `orbit`.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct CameraSection {
-    /// Where the camera is (with `target`).
-    pub eye: Option<[f64; 3]>,
-    /// What it looks at (with `eye`).
-    pub target: Option<[f64; 3]>,
-    /// An orbit around a target instead of `eye` and `target`.
-    pub orbit: Option<Orbit>,
-    /// The direction that is up in the image (default +z).
-    #[serde(default = "default_up")]
-    pub up: [f64; 3],
-    /// Vertical field of view in degrees (default 45).
-    #[serde(default = "default_fov")]
-    pub fov_y_deg: f64,
-    /// Image width in pixels.
-    pub width: u32,
-    /// Image height in pixels.
-    pub height: u32,
-}
-
-/// A camera given as an orbit around a target (see [`Camera::orbit`]).
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct Orbit {
-    /// The point looked at.
-    pub target: [f64; 3],
-    /// Degrees from +x towards +y.
-    pub yaw_deg: f64,
-    /// Degrees above the horizon.
-    pub pitch_deg: f64,
-    /// From the target to the eye.
-    pub distance: f64,
 }
 
 /// A scene file's `[sun]` section.
@@ -288,12 +259,6 @@ impl Default for RenderSection {
     }
 }
 
-fn default_up() -> [f64; 3] {
-    [0.0, 0.0, 1.0]
-}
-fn default_fov() -> f64 {
-    45.0
-}
 fn one() -> f64 {
     1.0
 }
@@ -392,7 +357,7 @@ impl Scene {
                 source,
             },
         })?;
-        let camera = camera(&file.camera, path)?;
+        let (field, camera) = view::camera(file.camera.as_ref(), file.size, field, path)?;
         let sun = &file.sun;
         let length = sun.direction.iter().map(|c| c * c).sum::<f64>().sqrt();
         if !(length.is_finite() && length > 0.0) {
@@ -429,36 +394,6 @@ impl Scene {
             arith,
         })
     }
-}
-
-/// The camera of a `[camera]` section; `path` names the scene in errors.
-fn camera(section: &CameraSection, path: &Path) -> Result<Camera, SceneError> {
-    let size = (section.width, section.height);
-    let built = match (section.eye, section.target, section.orbit) {
-        (Some(eye), Some(target), None) => {
-            Camera::look_at(eye, target, section.up, section.fov_y_deg, size)
-        }
-        (None, None, Some(o)) => Camera::orbit(
-            o.target,
-            o.yaw_deg,
-            o.pitch_deg,
-            o.distance,
-            section.fov_y_deg,
-            size,
-        ),
-        _ => {
-            return Err(SceneError::Invalid {
-                path: path.to_owned(),
-                message: "[camera] needs either both eye and target, or \
-                          orbit = {target, yaw_deg, pitch_deg, distance}"
-                    .into(),
-            })
-        }
-    };
-    built.map_err(|source| SceneError::Camera {
-        path: path.to_owned(),
-        source,
-    })
 }
 
 #[cfg(test)]

@@ -94,21 +94,24 @@ fn load_scene(path: &Path) -> Result<(Heightfield, Option<SceneParts>), String> 
 /// The viewer's orbit, lighting and traversal from a scene.
 fn scene_setup(parts: &SceneParts, terrain: &Terrain) -> SceneSetup {
     let framing = Orbit::framing(terrain);
-    let camera = &parts.file.camera;
-    let orbit = match (camera.eye, camera.target, &camera.orbit) {
-        (Some(eye), Some(target), _) => {
-            Orbit::from_eye(eye, target, camera.fov_y_deg, framing.scale)
-        }
-        (_, _, Some(o)) => Orbit {
-            target: o.target,
-            yaw_deg: o.yaw_deg,
-            pitch_deg: o.pitch_deg.clamp(-89.0, 89.0),
-            distance: o.distance,
-            fov_y_deg: camera.fov_y_deg,
-            scale: framing.scale,
+    let orbit = match &parts.file.camera {
+        // A scene without a camera is framed as a map is.
+        None => framing,
+        Some(camera) => match (camera.eye, camera.target, &camera.orbit) {
+            (Some(eye), Some(target), _) => {
+                Orbit::from_eye(eye, target, camera.fov_y_deg, framing.scale)
+            }
+            (_, _, Some(o)) => Orbit {
+                target: o.target,
+                yaw_deg: o.yaw_deg,
+                pitch_deg: o.pitch_deg.clamp(-89.0, 89.0),
+                distance: o.distance,
+                fov_y_deg: camera.fov_y_deg,
+                scale: framing.scale,
+            },
+            // Scene::load refused any other form.
+            _ => framing,
         },
-        // Scene::load refused any other form.
-        _ => framing,
     };
     SceneSetup {
         orbit,

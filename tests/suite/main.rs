@@ -10,6 +10,7 @@ mod bad_input;
 mod beams;
 mod cli_bench;
 mod cli_paths;
+mod cli_render;
 mod cli_trace;
 mod exact_paths;
 mod exact_reference;

@@ -1,6 +1,7 @@
 //! A scene file's `[heightmap]` section: the map, how to read it, and how high to show its
 //! relief (a z scale, or an exaggeration of a georeferenced map's true scale).
 
+use super::SceneFile;
 use crate::heightfield::{self, relief, Builtin, Heightfield, LoadError, LoadOptions, NoDataValue};
 use serde::Deserialize;
 use std::ops::ControlFlow;
@@ -45,6 +46,36 @@ pub enum HeightmapError {
     Invalid(String),
     /// The map could not be loaded.
     Load(LoadError),
+}
+
+impl SceneFile {
+    /// Whether `path` names a scene file (`.toml`) rather than a height map.
+    pub fn is_scene_path(path: &Path) -> bool {
+        path.extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
+    }
+
+    /// The scene of a height map on its own: the whole map framed as the viewer first shows
+    /// it, at its default relief, with every other section's defaults. Its path is relative
+    /// to the map's folder ([`Scene::base`](super::Scene::base)).
+    pub fn for_map(path: &Path) -> SceneFile {
+        let name = path.file_name().unwrap_or(path.as_os_str());
+        SceneFile {
+            heightmap: HeightmapSection {
+                path: name.to_string_lossy().into_owned(),
+                z_scale: None,
+                exaggeration: None,
+                rgb: None,
+                nodata: None,
+            },
+            camera: None,
+            sun: Default::default(),
+            effects: Default::default(),
+            shading: Default::default(),
+            render: Default::default(),
+            size: None,
+        }
+    }
 }
 
 impl HeightmapSection {

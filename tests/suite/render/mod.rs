@@ -55,8 +55,7 @@ fn builtin_scene(name: &str, size: u32) -> Scene {
         .join("assets")
         .join(format!("{name}.toml"));
     let mut file: SceneFile = toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
-    file.camera.width = size;
-    file.camera.height = size;
+    file.size = Some((size, size));
     Scene::from_file(&file, path.parent().unwrap(), &path).unwrap()
 }
 
