@@ -83,6 +83,7 @@ fn report(model: &Model, counts: &Counts) -> Value {
         "export": {
             "folder": model.export.folder(), "running": model.export.running,
             "saved": model.export.saved, "last": model.export.last,
+            "scene": model.export.last_scene,
         },
         "shadows": model.settings.shadows,
         "arith": model.settings.arith().to_string(),

@@ -26,6 +26,7 @@ mod probe;
 mod probe_ui;
 mod quality;
 mod relief_ui;
+mod save_scene;
 mod settings;
 mod sources;
 mod stats_ui;

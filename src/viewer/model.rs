@@ -35,6 +35,8 @@ pub enum Action {
     FrameMap,
     /// Save the rendered image, without the window's panels and overlays.
     Screenshot,
+    /// Save the view as a scene file.
+    SaveScene,
     /// Measure every arithmetic on the view, or cancel the measurement under way.
     MeasureArithmetics,
 }

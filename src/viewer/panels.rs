@@ -78,6 +78,12 @@ fn sections_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let export = section(ui, "Export", &title, false, |ui| {
         let shown = model.latest.as_ref().map(|l| l.job.camera.size());
         super::export::settings_ui(ui, &mut model.export, shown);
+        let save = ui
+            .button("Save scene")
+            .on_hover_text("a scene file of this view at the export size, for heightray render");
+        if named(model, "save_scene", save).clicked() {
+            actions.push(Action::SaveScene);
+        }
     });
     named(model, "export_section", export);
     let title = format!("Heightmap: {}", shortened(&model.shown.source.label(), 22));
