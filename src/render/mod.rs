@@ -7,6 +7,7 @@ mod ramp;
 mod scene;
 mod shade;
 mod stats;
+pub mod sun_position;
 pub mod timing;
 mod versus_exact;
 

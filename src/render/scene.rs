@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 use thiserror::Error;
 
 mod heightmap;
+mod sun;
 mod view;
 
 use heightmap::HeightmapError;
@@ -183,7 +184,18 @@ impl SceneFile {
 #[serde(deny_unknown_fields)]
 pub struct SunSection {
     /// Towards the sun; normalised on load.
+    #[serde(default = "default_sun")]
     pub direction: [f64; 3],
+    /// Instead of `direction`: where the sun stands at this time (RFC 3339, e.g.
+    /// `2026-12-21T08:00:00Z`) over the map's centre, or over `lat` and `lon`.
+    #[serde(default)]
+    pub time: Option<String>,
+    /// Latitude in degrees for `time`.
+    #[serde(default)]
+    pub lat: Option<f64>,
+    /// Longitude in degrees for `time`.
+    #[serde(default)]
+    pub lon: Option<f64>,
     /// Direct light at full facing (default 1).
     #[serde(default = "one")]
     pub intensity: f64,
@@ -243,7 +255,10 @@ pub struct RenderSection {
 impl Default for SunSection {
     fn default() -> Self {
         SunSection {
-            direction: [0.4, 0.3, 0.8],
+            direction: default_sun(),
+            time: None,
+            lat: None,
+            lon: None,
             intensity: 1.0,
             ambient: default_ambient(),
         }
@@ -259,6 +274,9 @@ impl Default for RenderSection {
     }
 }
 
+fn default_sun() -> [f64; 3] {
+    [0.4, 0.3, 0.8]
+}
 fn one() -> f64 {
     1.0
 }
@@ -386,10 +404,12 @@ impl Scene {
             .arith
             .parse()
             .map_err(|e| invalid(format!("[render] arith: {e}")))?;
+        let lighting = Lighting::from_sections(sun, &file.effects, &file.shading);
+        let lighting = sun::place_sun(sun, &field, lighting).map_err(invalid)?;
         Ok(Scene {
             field,
             camera,
-            lighting: Lighting::from_sections(sun, &file.effects, &file.shading),
+            lighting,
             method,
             arith,
         })

@@ -1,7 +1,7 @@
 //! Height map files written by the tests, byte by byte where a library would refuse to write
 //! them (headers that promise more than any file holds).
 
-use tiff::encoder::colortype::ColorType;
+use tiff::encoder::colortype::{ColorType, Gray32Float};
 use tiff::encoder::{TiffEncoder, TiffValue};
 use tiff::tags::Tag;
 
@@ -57,6 +57,30 @@ where
     }
     image.write_data(data).expect("TIFF data");
     bytes.into_inner()
+}
+
+/// Samples along each side of [`dem_bytes`]' DEM.
+pub const SIDE: u32 = 17;
+
+/// A flat 17x17 float DEM 100 m high (a 3 m bump in one corner, so that it has relief) with
+/// the given pixel scale, its top-left corner at `corner`, in a projected (`model` 1) or
+/// geographic (2) CRS.
+pub fn dem_bytes(scale: f64, corner: [f64; 2], model: u16) -> Vec<u8> {
+    let mut heights = vec![100.0f32; (SIDE * SIDE) as usize];
+    heights[0] = 103.0;
+    let keys = [1, 1, 0, 1, 1024, 0, 1, model];
+    let tags = [
+        (Tag::GeoKeyDirectoryTag, TagData::Shorts(&keys)),
+        (
+            Tag::ModelPixelScaleTag,
+            TagData::Doubles(&[scale, scale, 0.0]),
+        ),
+        (
+            Tag::ModelTiepointTag,
+            TagData::Doubles(&[0.0, 0.0, 0.0, corner[0], corner[1], 0.0]),
+        ),
+    ];
+    tagged_tiff::<Gray32Float>(SIDE, SIDE, &heights, &tags)
 }
 
 /// A PNG whose header declares `width` x `height` pixels of the given PNG colour type and bit

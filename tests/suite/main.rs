@@ -22,5 +22,6 @@ mod holes;
 mod loader_fuzz;
 mod ramps;
 mod render;
+mod sun_time;
 mod terminator;
 mod true_scale;

@@ -3,36 +3,11 @@
 //! half as wide in x as in y, checked against the footprint worked out from the camera's
 //! geometry by hand. Plain images keep their automatic relief.
 
-use crate::common::files::{tagged_tiff, TagData};
+use crate::common::files::dem_bytes;
 use crate::common::scenes::load_scene_text;
 use heightray::heightfield::{load_bytes, relief};
 use heightray::render::{Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Shader};
 use heightray::{Arith, Heightfield, Method, Terrain};
-use tiff::encoder::colortype::Gray32Float;
-use tiff::tags::Tag;
-
-const SIDE: u32 = 17;
-
-/// A flat 17x17 float DEM 100 m high (a 3 m bump in one corner, so that it has relief) with
-/// the given pixel scale, its top-left corner at `corner`, in a projected (`model` 1) or
-/// geographic (2) CRS.
-fn dem_bytes(scale: f64, corner: [f64; 2], model: u16) -> Vec<u8> {
-    let mut heights = vec![100.0f32; (SIDE * SIDE) as usize];
-    heights[0] = 103.0;
-    let keys = [1, 1, 0, 1, 1024, 0, 1, model];
-    let tags = [
-        (Tag::GeoKeyDirectoryTag, TagData::Shorts(&keys)),
-        (
-            Tag::ModelPixelScaleTag,
-            TagData::Doubles(&[scale, scale, 0.0]),
-        ),
-        (
-            Tag::ModelTiepointTag,
-            TagData::Doubles(&[0.0, 0.0, 0.0, corner[0], corner[1], 0.0]),
-        ),
-    ];
-    tagged_tiff::<Gray32Float>(SIDE, SIDE, &heights, &tags)
-}
 
 /// A tile of 1-second cells whose middle row lies at 60 N.
 fn tile_at_60_north() -> Heightfield {
