@@ -30,6 +30,14 @@ pub fn describe_georeferencing(field: &Heightfield) -> Option<String> {
     ))
 }
 
+/// Latitude and longitude in degrees of the centre of a map in longitude and latitude.
+pub fn centre_degrees(field: &Heightfield) -> Option<(f64, f64)> {
+    let georef = field.georef().filter(|g| g.units == MapUnits::Degrees)?;
+    let (w, h) = (field.width() - 1, field.height() - 1);
+    let [lon, lat] = georef.map_point(0.5 * w as f64, 0.5 * h as f64);
+    Some((lat, lon))
+}
+
 /// The elevation in metres of grid height `z` on a georeferenced field.
 pub fn elevation_metres(field: &Heightfield, z: f64) -> Option<f64> {
     field.georef()?;

@@ -30,6 +30,7 @@ mod save_scene;
 mod settings;
 mod sources;
 mod stats_ui;
+mod sun_clock;
 mod view;
 mod worker;
 

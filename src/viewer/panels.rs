@@ -197,6 +197,8 @@ fn light_ui(ui: &mut Ui, model: &mut Model) {
     named(model, "sun_azimuth", azimuth);
     let s = &mut model.settings;
     ui.add(Slider::new(&mut s.sun_elevation_deg, 1.0..=90.0).text("elevation °"));
+    super::sun_clock::sun_clock_ui(ui, model);
+    let s = &mut model.settings;
     ui.add(Slider::new(&mut s.intensity, 0.0..=3.0).text("intensity"));
     ui.add(Slider::new(&mut s.ambient, 0.0..=1.0).text("ambient"));
     ui.checkbox(&mut s.shadows, "shadows");

@@ -3,7 +3,7 @@
 //! nothing and casts no shadow rays.
 
 use super::{Lighting, SunSection};
-use crate::heightfield::{Heightfield, MapUnits};
+use crate::heightfield::{place, Heightfield};
 use crate::render::sun_position::SunPosition;
 
 /// `lighting` with its sun placed by the section's time, if it gives one.
@@ -17,7 +17,7 @@ pub fn place_sun(
     };
     let (latitude, longitude) = match (section.lat, section.lon) {
         (Some(lat), Some(lon)) => (lat, lon),
-        (None, None) => map_centre(field)
+        (None, None) => place::centre_degrees(field)
             .ok_or("[sun] time needs lat and lon keys: the map is not in longitude and latitude")?,
         _ => return Err("[sun] lat and lon go together: give both or neither".into()),
     };
@@ -35,12 +35,4 @@ pub fn place_sun(
             ..placed
         }
     })
-}
-
-/// Latitude and longitude of the centre of a map in degrees.
-fn map_centre(field: &Heightfield) -> Option<(f64, f64)> {
-    let georef = field.georef().filter(|g| g.units == MapUnits::Degrees)?;
-    let (w, h) = (field.width() - 1, field.height() - 1);
-    let [lon, lat] = georef.map_point(0.5 * w as f64, 0.5 * h as f64);
-    Some((lat, lon))
 }
