@@ -273,11 +273,15 @@ fn scene_errors_name_the_key_and_the_file() {
         unknown.contains("fov") && unknown.contains("bad.toml"),
         "{unknown}"
     );
-    let missing = scene_error(&SMALL_SCENE.replace("z_scale = 12.0\n", ""));
+    // Only the map's path is required; a built-in without z_scale keeps its own.
+    let missing = scene_error(&SMALL_SCENE.replace("path = \"builtin:small49\"\n", ""));
     assert!(
-        missing.contains("z_scale") && missing.contains("bad.toml"),
+        missing.contains("path") && missing.contains("bad.toml"),
         "{missing}"
     );
+    let own_scale = load_scene_text("good.toml", &SMALL_SCENE.replace("z_scale = 12.0\n", ""));
+    let builtin = heightray::heightfield::Builtin::named("small49").unwrap();
+    assert_eq!(own_scale.unwrap().field.z_scale(), builtin.z_scale);
     let unknown_section = scene_error(&format!("{SMALL_SCENE}\n[lights]\nsun = 1\n"));
     assert!(unknown_section.contains("lights"), "{unknown_section}");
     let bad_method = scene_error(&format!("{SMALL_SCENE}\n[render]\nmethod = \"bvh\"\n"));
