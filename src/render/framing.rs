@@ -121,8 +121,9 @@ pub fn axes(yaw_deg: f64, pitch_deg: f64) -> (DVec3, DVec3, DVec3) {
 /// For a target `T`, eye direction `o` and distance `d`, a point at `q = c - T` from the
 /// target lies at depth `d + q.f` (`f = -o`) and at `q.r`, `q.u` across: it is inside the view
 /// when `|q.r| <= m h a (d + q.f)` and `|q.u| <= m h (d + q.f)`, with `h = tan(fov/2)`. So the
-/// smallest `d` is a maximum over the points of [`block_corners`]. The target then moves to
-/// centre the points' extent on screen, and the distance is found again for the new target.
+/// smallest `d` is a maximum over the corners of the mipmap's blocks (`block_corners`). The
+/// target then moves to centre the points' extent on screen, and the distance is found again
+/// for the new target.
 pub fn fit(terrain: &Terrain, yaw_deg: f64, pitch_deg: f64, fov_y_deg: f64, aspect: f64) -> Fit {
     let corners = box_corners(terrain);
     let points = block_corners(terrain);
