@@ -49,7 +49,7 @@ pub enum Command {
 
 #[derive(clap::Args, Debug)]
 pub struct ViewArgs {
-    /// Height map (PNG, PGM or TIFF, see `trace --help`) or scene file (.toml); default:
+    /// Height map (PNG, PGM, TIFF, .hgt or .asc, see `trace --help`) or scene file (.toml); default:
     /// the built-in terrain.
     #[arg(value_name = "FILE_OR_SCENE")]
     pub source: Option<PathBuf>,
@@ -225,7 +225,9 @@ pub struct MapArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct TraceArgs {
-    /// Height map: PNG (grayscale, or RGB), PGM (P2/P5) or TIFF (integer or float samples).
+    /// Height map: PNG (grayscale, or RGB), PGM (P2/P5), TIFF (integer or float samples; a
+    /// GeoTIFF's georeferencing is not used here: rays are in grid coordinates), SRTM .hgt or
+    /// ESRI ASCII .asc.
     pub map: PathBuf,
     /// Height of the largest sample value (maxval); for float and signed rasters, the factor
     /// applied to their values.

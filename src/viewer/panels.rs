@@ -278,7 +278,7 @@ fn source_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     ui.horizontal(|ui| {
         let field = ui.add(
             egui::TextEdit::singleline(&mut model.path_text)
-                .hint_text("path to a PNG, PGM, TIFF or .toml")
+                .hint_text("path to a PNG, PGM, TIFF, .hgt, .asc or .toml")
                 .desired_width(ui.available_width() - 50.0),
         );
         let field = named(model, "open_path", field);

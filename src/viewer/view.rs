@@ -426,7 +426,7 @@ fn drop_hint_ui(ui: &Ui, rect: Rect) {
         egui::StrokeKind::Inside,
     );
     let lines = [
-        "Drop a height map (PNG, PGM or TIFF)",
+        "Drop a height map (PNG, PGM, TIFF, .hgt, .asc)",
         "or a scene (.toml) to open it",
     ];
     for (k, line) in lines.into_iter().enumerate() {
@@ -499,7 +499,7 @@ const HELP: &[(&str, &str)] = &[
     ),
     (
         "Drop a file",
-        "open a height map (PNG, PGM, TIFF) or a scene (.toml)",
+        "open a height map (PNG, PGM, TIFF, .hgt, .asc) or a scene (.toml)",
     ),
     ("R", "reset the view (the whole map)"),
     ("S", "export the rendered image (PNG, no panels)"),

@@ -39,7 +39,7 @@ pub enum LoadError {
         reason: std::io::Error,
     },
     /// The path names a directory, a device, a FIFO or a socket.
-    #[error("{path} is {what}, not a file; choose a height map file (PNG, PGM or TIFF) instead")]
+    #[error("{path} is {what}, not a file; choose a height map file (PNG, PGM, TIFF, .hgt or .asc) instead")]
     NotAFile {
         /// The path.
         path: PathBuf,
