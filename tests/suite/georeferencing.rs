@@ -263,6 +263,14 @@ fn a_broken_ascii_grid_is_explained() {
         ("ncols 3\nnrows x\n", "'x' is not a number"),
         ("ncols 2\nnrows 2\n1 2 abc 4\n", "'abc' is not a number"),
         ("ncols 1\nnrows 2\n1 2\n", "at least 2x2"),
+        (
+            &format!("ncols 2\nnrows 2\n1 2{}", " ".repeat(1 << 21)),
+            "blank space",
+        ),
+        (
+            &format!("ncols 2\nnrows 2\n1 2 {}", "9".repeat(300)),
+            "longer than 256 bytes",
+        ),
     ] {
         let error = load_bytes(text.as_bytes(), 1.0, "grid.asc")
             .unwrap_err()

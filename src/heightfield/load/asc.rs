@@ -16,6 +16,9 @@ use std::io::BufRead;
 /// refused instead of read through.
 const MOST_PER_TOKEN: usize = 256;
 
+/// The most whitespace read before a token: a file of endless spaces is refused too.
+const MOST_SPACE: usize = 1 << 20;
+
 /// Whether a file's first bytes start an ESRI ASCII grid header.
 pub fn starts_asc(bytes: &[u8]) -> bool {
     bytes.len() >= 5 && bytes[..5].eq_ignore_ascii_case(b"ncols")
@@ -138,6 +141,7 @@ impl<R: BufRead> Tokens<R> {
     /// The next token, or `None` at the end of the stream.
     fn next(&mut self) -> Result<Option<String>, String> {
         let mut token = Vec::new();
+        let mut space = 0;
         loop {
             let buffer = self.input.fill_buf().map_err(|e| e.to_string())?;
             let Some(&byte) = buffer.first() else {
@@ -145,10 +149,14 @@ impl<R: BufRead> Tokens<R> {
             };
             self.input.consume(1);
             if byte.is_ascii_whitespace() {
-                if token.is_empty() {
-                    continue;
+                if !token.is_empty() {
+                    break;
                 }
-                break;
+                space += 1;
+                if space > MOST_SPACE {
+                    return Err(format!("more than {MOST_SPACE} bytes of blank space"));
+                }
+                continue;
             }
             if token.len() == MOST_PER_TOKEN {
                 return Err(format!("a value longer than {MOST_PER_TOKEN} bytes"));
