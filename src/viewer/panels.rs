@@ -196,7 +196,12 @@ fn light_ui(ui: &mut Ui, model: &mut Model) {
     let azimuth = ui.add(Slider::new(&mut s.sun_azimuth_deg, -180.0..=180.0).text("azimuth °"));
     named(model, "sun_azimuth", azimuth);
     let s = &mut model.settings;
-    ui.add(Slider::new(&mut s.sun_elevation_deg, 1.0..=90.0).text("elevation °"));
+    // (Not clamped when shown: a date and time may put the sun below the horizon.)
+    ui.add(
+        Slider::new(&mut s.sun_elevation_deg, 1.0..=90.0)
+            .clamping(egui::SliderClamping::Edits)
+            .text("elevation °"),
+    );
     super::sun_clock::sun_clock_ui(ui, model);
     let s = &mut model.settings;
     ui.add(Slider::new(&mut s.intensity, 0.0..=3.0).text("intensity"));
