@@ -1,11 +1,13 @@
 //! heightray: exact, fast ray tracing of terrain height fields on the CPU.
 //!
 //! Data flows one way: a file becomes a [`Heightfield`], acceleration data makes it a
-//! [`Terrain`], and [`traverse::trace`] answers rays against it.
+//! [`Terrain`], and [`traverse::trace`] (the first hit) and [`traverse::occluded`] (any hit
+//! after the start) answer rays against it.
 
 #![warn(missing_docs)]
 
-/// Numbers: the scalar trait, intervals, bounded and exact rationals, the `Arith` a user picks.
+/// Numbers: the scalar trait, intervals, bounded and exact rationals, the `Arith` a user picks
+/// and the one way from it to generic code.
 pub mod arith;
 /// Benchmarks: methods, arithmetics and thread counts measured side by side in one run.
 pub mod bench;
@@ -16,14 +18,15 @@ pub mod heightfield;
 mod regular_file;
 /// Turning rays into pixels: cameras, scene files, shading, progressive passes, statistics.
 pub mod render;
-/// Walking a ray across the grid: the methods, their arithmetics and query counters.
+/// Answering rays (first hit, occlusion) by walking the grid: the methods, exact mode's
+/// strategy, query counters.
 pub mod traverse;
 /// The interactive viewer: winit, softbuffer and egui, drawn on the CPU.
 pub mod viewer;
 
 pub use geometry::{Ray, RayError};
 pub use heightfield::{Heightfield, HeightfieldError, LoadError, Terrain};
-pub use traverse::{trace, Arith, Counters, Hit, Method, Query, Trace, TraceOptions};
+pub use traverse::{occluded, trace, Arith, Counters, Hit, Method, Trace, TraceOptions};
 
 // The README's Rust example runs as a doctest.
 #[cfg(doctest)]

@@ -28,7 +28,9 @@ pub fn settled<R>(f: impl FnOnce() -> R) -> (R, bool) {
     (result, !unsettled)
 }
 
-fn unsettled() {
+/// Marks the code running under [`settled`] as unsettled: a decision it had to make, intervals
+/// could not.
+pub fn unsettled() {
     if std::env::var_os("HR_DEBUG").is_some() && !UNSETTLED.with(|u| u.get()) {
         eprintln!("{}", std::backtrace::Backtrace::force_capture());
     }
@@ -185,6 +187,7 @@ impl PartialOrd for Interval {
 
 impl Scalar for Interval {
     const EXACT: bool = true;
+    const ENCLOSES: bool = true;
     fn from_f64(x: f64) -> Self {
         Interval::point(x)
     }

@@ -7,6 +7,7 @@
 //! builds on, and the [`Arith`](crate::arith::Arith) a user picks. Nothing here knows about
 //! rays or terrain: geometry and the traversals are generic over these numbers.
 
+mod dispatch;
 pub(crate) mod dyadic;
 mod exact;
 mod interval;
@@ -14,8 +15,9 @@ mod rational;
 mod rounding;
 pub mod scalar;
 
+pub use dispatch::{run, with_numbers, Generic, Numbers, Plain, Ran, Settling, WithNumbers};
 pub use exact::Exact;
-pub use interval::{settled, Interval};
+pub use interval::{settled, unsettled, Interval};
 pub use rational::{with_bound, Rational, RationalEvents, DEFAULT_BOUND};
 pub use scalar::Scalar;
 

@@ -28,6 +28,10 @@ pub trait Scalar:
     /// others.
     const EXACT: bool = false;
 
+    /// Whether this arithmetic encloses exact values (intervals) and may leave a decision
+    /// unsettled ([`settled`](super::settled)), for exact arithmetic to make again.
+    const ENCLOSES: bool = false;
+
     /// Converts an input (a ray component or a height), rounding as this arithmetic must.
     fn from_f64(x: f64) -> Self;
     /// Converts a grid coordinate (exact in every arithmetic for the sizes we accept).

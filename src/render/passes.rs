@@ -6,7 +6,7 @@ use super::camera::Camera;
 use super::shade::Sample;
 use super::shade::Shader;
 use super::stats::{FrameStats, PixelStats};
-use crate::arith::{with_bound, Arith, Rational};
+use crate::arith::{with_numbers, Arith, Numbers, WithNumbers};
 use crate::traverse::Clearance;
 use crate::Ray;
 use rayon::prelude::*;
@@ -120,23 +120,13 @@ impl Renderer<'_> {
                     height: frame.height,
                     paint,
                 };
-                let shader = &self.shader;
-                let (o, passes) = (&mut out, passes.clone());
-                match self.arith {
-                    Arith::F32 => {
-                        self.band(o, passes, |r, c| shader.sample::<f32>(r, c), cancelled)
-                    }
-                    Arith::F64 => {
-                        self.band(o, passes, |r, c| shader.sample::<f64>(r, c), cancelled)
-                    }
-                    Arith::Exact => {
-                        self.band(o, passes, |r, c| shader.sample_exact(r, c), cancelled)
-                    }
-                    Arith::Rational { bound } => {
-                        let sample = |r: &Ray, c| shader.sample::<Rational>(r, c);
-                        with_bound(bound, || self.band(o, passes, sample, cancelled)).0
-                    }
-                }
+                let band = Band {
+                    renderer: self,
+                    out: &mut out,
+                    passes: passes.clone(),
+                    cancelled,
+                };
+                with_numbers(self.arith, band).0
             })
             .collect();
         if bands.iter().any(Option::is_none) {
@@ -200,6 +190,24 @@ impl Renderer<'_> {
             }
         }
         Some(tiles.totals)
+    }
+}
+
+/// One band's passes, traced with the numbers of the renderer's arithmetic.
+struct Band<'r, 'o, 'b, 'c> {
+    renderer: &'r Renderer<'r>,
+    out: &'o mut BandOut<'b>,
+    passes: Range<usize>,
+    cancelled: &'c (dyn Fn() -> bool + Sync),
+}
+
+impl WithNumbers for Band<'_, '_, '_, '_> {
+    type Output = Option<FrameStats>;
+    fn with<N: Numbers>(self) -> Self::Output {
+        let shader = &self.renderer.shader;
+        let sample = |r: &Ray, c| shader.sample::<N>(r, c);
+        self.renderer
+            .band(self.out, self.passes, sample, self.cancelled)
     }
 }
 

@@ -5,15 +5,13 @@ use super::gamma;
 use super::normals;
 use super::ramp::HeightSpan;
 use super::scene::{Lighting, Normals};
-use crate::geometry::{gradient, plane_height, triangle_corners};
+use crate::arith::{run, Arith, Generic, Numbers};
+use crate::geometry::gradient;
 use crate::heightfield::Terrain;
-use crate::traverse::{
-    crosses_plane, plane_t_exact, settled, trace_scalar, Clearance, Counters, Exact, Found,
-    Interval, Method, PlanePoint, Query, Scalar, WalkOptions,
-};
+use crate::traverse::{Clearance, Counters, Found, Hit, Method, Scalar, Start, Tracer};
 use crate::Ray;
 use glam::DVec3;
-use std::convert::Infallible as Never;
+use std::cell::Cell;
 
 /// Why a shadow ray was not cast although the scene has shadows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -100,82 +98,61 @@ pub struct Shader<'a> {
 }
 
 impl Shader<'_> {
-    /// Traces and shades one primary ray exactly: in intervals, and again in rationals if
-    /// they left a decision unsettled. A shadow ray's triangle test they cannot settle is
-    /// decided exactly on its own, from the exact hit point (the primary ray's settled answer
-    /// is the exact one, and its exact `t` is one plane solve); a shadow ray that still has a
-    /// decision unsettled (one running in a triangle's plane) is cast again alone in
-    /// rationals: a whole pixel in rationals costs about a millisecond.
-    /// `beam`: see [`WalkOptions::beam`].
-    pub fn sample_exact(&self, ray: &Ray, beam: Option<Clearance>) -> Sample {
-        let cast = |found: &Found<Interval>, p, facing| match settled(|| {
-            self.shadow::<Interval>(found, ray, p, facing)
-        }) {
-            (cast, true) => Ok(cast),
-            (_, false) => self.shadow_in_rationals(found, ray, p, facing),
+    /// Traces and shades one primary ray with the numbers `N` of an arithmetic (see
+    /// [`with_numbers`](crate::arith::with_numbers)), behind a beam that cleared the way to
+    /// its [`Clearance`] if given.
+    #[inline(always)]
+    pub fn sample<N: Numbers>(&self, ray: &Ray, beam: Option<Clearance>) -> Sample {
+        let pixel = Pixel {
+            shader: self,
+            ray,
+            beam,
+            hit: None,
         };
-        match settled(|| self.sample_with::<Interval, ()>(ray, beam, cast)) {
-            (Ok(sample), true) => sample,
-            _ => Sample {
-                redone: true,
-                ..self.sample::<Exact>(ray, beam)
-            },
+        let ran = N::run(&pixel);
+        Sample {
+            redone: ran.output.redone || ran.redone,
+            ..ran.output
         }
     }
 
-    /// The shadow ray of a hit found in intervals, cast again in rationals from the exact hit
-    /// point (`p` is the point shaded). `Err` where the primary ray runs in the hit triangle's
-    /// plane, whose exact hit only the walk tells.
-    fn shadow_in_rationals(
-        &self,
-        found: &Found<Interval>,
-        ray: &Ray,
-        p: DVec3,
-        facing: f64,
-    ) -> Result<Cast, ()> {
-        let t = plane_t_exact(self.terrain, ray, found.cell, found.triangle).ok_or(())?;
-        let exact = Found {
-            t: Exact(t),
-            cell: found.cell,
-            triangle: found.triangle,
+    /// [`Shader::sample`] in arithmetic `arith`, with the primary ray's hit (its `t` to the
+    /// nearest `f64` of the traversal's, the point shaded, the cell and triangle; no exact
+    /// `t`): what the viewer's probe shows of the very rays the renderer traces for a pixel.
+    pub fn traced(&self, ray: &Ray, arith: Arith) -> (Sample, Option<Hit>) {
+        let hit = Cell::new(None);
+        let pixel = Pixel {
+            shader: self,
+            ray,
+            beam: None,
+            hit: Some(&hit),
         };
-        let (shadow, counters, _) = self.shadow::<Exact>(&exact, ray, p, facing);
-        Ok((shadow, counters, true))
+        let (ran, _) = run(arith, &pixel);
+        let sample = Sample {
+            redone: ran.output.redone || ran.redone,
+            ..ran.output
+        };
+        (sample, hit.take())
     }
 
-    /// Traces and shades one primary ray in arithmetic `S`, behind a beam that cleared the
-    /// way if given (see [`WalkOptions::beam`]).
-    pub fn sample<S: Scalar>(&self, ray: &Ray, beam: Option<Clearance>) -> Sample {
-        let cast =
-            |found: &Found<S>, p, facing| Ok::<_, Never>(self.shadow::<S>(found, ray, p, facing));
-        let Ok(sample) = self.sample_with(ray, beam, cast);
-        sample
-    }
-
-    /// [`Shader::sample`], with the shadow ray of a hit cast by `cast` (given the hit, the point
-    /// shaded and how the surface faces the sun there), which also tells whether it was cast
-    /// again in rationals, or fails.
-    fn sample_with<S: Scalar, E>(
+    /// One pixel's rays in arithmetic `S` alone, its hit kept in `keep` if given.
+    #[inline(always)]
+    fn traced_in<S: Scalar>(
         &self,
         ray: &Ray,
         beam: Option<Clearance>,
-        cast: impl FnOnce(&Found<S>, DVec3, f64) -> Result<Cast, E>,
-    ) -> Result<Sample, E> {
-        let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
-        let walk = WalkOptions {
-            beam,
-            ..WalkOptions::new(self.method, Query::FirstHit)
-        };
-        let primary = trace_scalar(self.terrain, &o, &d, ray.dir(), walk);
+        keep: Option<&Cell<Option<Hit>>>,
+    ) -> Sample {
+        let primary = Tracer::new(self.terrain, self.method).trace::<S>(ray, beam);
         let Some(found) = primary.hit else {
-            return Ok(Sample {
+            return Sample {
                 rgb: self.sky_rgb(ray),
                 hit: false,
                 shadow: Shadow::NotAsked,
                 primary: primary.counters,
                 secondary: Counters::default(),
                 redone: false,
-            });
+            };
         };
         // Shading needs the point only in `f64`. Arithmetics that round shade the point they
         // computed; for the others, `t` to the nearest `f64` is as good and much cheaper than
@@ -184,18 +161,28 @@ impl Shader<'_> {
         let p = if S::EXACT {
             DVec3::from(ray.origin()) + DVec3::from(ray.dir()) * t
         } else {
+            let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
             DVec3::from(found.point(&o, &d).map(|c| c.to_f64()))
         };
         let facing = self.facing(found.cell, found.triangle, p);
-        let (shadow, secondary, redone) = cast(&found, p, facing)?;
-        Ok(Sample {
+        let (shadow, secondary, redone) = self.shadow::<S>(&found, ray, p, facing);
+        if let Some(keep) = keep {
+            keep.set(Some(Hit {
+                t,
+                t_exact: None,
+                point: p.to_array(),
+                cell: [found.cell.0, found.cell.1],
+                triangle: found.triangle,
+            }));
+        }
+        Sample {
             rgb: self.surface_rgb(ray, p, t, facing, shadow),
             hit: true,
             shadow,
             primary: primary.counters,
             secondary,
             redone,
-        })
+        }
     }
 
     /// How the surface at `p` on triangle `triangle` of `cell` faces the sun: the cosine of
@@ -250,97 +237,34 @@ impl Shader<'_> {
         if self.culling.no_shadow_possible && climbs_steeper {
             return skip(ShadowSkip::NoShadowPossible);
         }
-        // Lift the start above the surface by what rounding may have moved it below (zero in
-        // exact arithmetic): the surface is a height field, so up is always outside. The point
-        // is `o + t*d`, each component within a few roundings of `|o| + |t*d|`; off by that
-        // across an edge, the surface may be higher by the steepest slope times it.
-        let t = found.t.to_f64().abs();
-        let (ray_o, ray_d) = (ray.origin(), ray.dir());
-        let largest = (0..3).fold(0.0f64, |m, k| m.max(ray_o[k].abs() + t * ray_d[k].abs()));
-        let lift = 64.0 * S::rounding_error(largest) * (1.0 + self.terrain.max_slope());
-        let smooth = self.lighting.normals == Normals::Smooth;
-        let origin = if smooth {
-            // Smooth shading: from the curved surface the shading describes, which its own
-            // flat triangle may cross (see `normals`); the ray is then an ordinary one from
-            // that point, traced exactly in exact arithmetics.
-            let start = normals::shadow_origin(self.terrain, found.cell, found.triangle, p);
-            [start.x, start.y, start.z + lift].map(S::from_f64)
-        } else {
-            let [x, y, z] = self.plane_point(found, ray);
-            [x, y, z + S::from_f64(lift)]
-        };
-        let (_, z_max) = self.terrain.z_range();
-        if self.culling.above_terrain && sun[2] > 0.0 && origin[2] > S::from_f64(z_max) {
-            return skip(ShadowSkip::AboveTerrain);
-        }
-        // A smoothly shaded ray skips its own triangle, which stands for the curved surface it
-        // starts on.
-        let walk = WalkOptions {
-            start_triangle: (smooth || self.leaves_at_once(found))
-                .then_some((found.cell, found.triangle)),
-            exact_start: (S::EXACT && !smooth).then_some(PlanePoint {
-                ray: *ray,
-                cell: found.cell,
-                triangle: found.triangle,
-            }),
-            ..WalkOptions::new(self.method, Query::Shadow)
-        };
-        let answer = trace_scalar(self.terrain, &origin, &sun.map(S::from_f64), sun, walk);
-        (
-            Shadow::Cast {
-                shadowed: answer.hit.is_some(),
-            },
-            answer.counters,
-            answer.decided_exactly,
-        )
-    }
-
-    /// The hit point as a shadow ray from the flat triangle starts at, in arithmetic `S`.
-    fn plane_point<S: Scalar>(&self, found: &Found<S>, ray: &Ray) -> [S; 3] {
-        let (ray_o, ray_d) = (ray.origin(), ray.dir());
-        let [x, y] = [0, 1].map(|k| S::along(ray_o[k], ray_d[k], &found.t));
-        // Rounding arithmetics take the height on the hit triangle's plane: exact on flat
-        // ground. Without rounding the ray's own point is on the plane, and enclosing it takes
-        // a fifth of the work of enclosing the plane's height over the enclosures of x and y;
-        // on a flat triangle the point's height is the triangle's, exactly: intervals must
-        // know it then, or the run and cell tests of a ray from a terrace's top, the highest
-        // sample of the runs and cells around it, cannot be settled where intervals walk (a
-        // path along a grid row, which the `f64` walk leaves to them), and each such ray is
-        // cast again in rationals, at a millisecond a ray.
-        let z = if S::EXACT {
-            match self.flat_height(found) {
-                Some(height) => S::from_f64(height),
-                None => S::along(ray_o[2], ray_d[2], &found.t),
+        let tracer = Tracer::new(self.terrain, self.method);
+        let skip_above = self.culling.above_terrain;
+        let occlusion = match self.lighting.normals {
+            // Smooth shading: from the curved surface the shading describes, which its own flat
+            // triangle may cross (see `normals`), skipping that triangle.
+            Normals::Smooth => {
+                let start = normals::shadow_origin(self.terrain, found.cell, found.triangle, p);
+                let from = Start::Near {
+                    ray,
+                    hit: found,
+                    point: start.to_array(),
+                };
+                tracer.occluded(&from, sun, skip_above)
             }
-        } else {
-            let (i, j) = found.cell;
-            let heights = self.terrain.corner_heights(i, j).map(S::from_f64);
-            plane_height(found.triangle, found.cell, heights, x.clone(), y.clone())
+            Normals::Flat => tracer.occluded(&Start::Hit { ray, hit: found }, sun, skip_above),
         };
-        [x, y, z]
-    }
-
-    /// Whether a ray towards the sun leaves the hit triangle's plane at once, so that it
-    /// touches the triangle it starts on only at its start (in floats decided with room to
-    /// spare for rounding: when in doubt the triangle is tested like any other).
-    fn leaves_at_once<S: Scalar>(&self, found: &Found<S>) -> bool {
-        let n = self.geometric_normal(found.cell, found.triangle);
-        let s = DVec3::from(self.grid_sun());
-        let terms = [n.x * s.x, n.y * s.y, n.z * s.z];
-        let sum: f64 = terms.iter().sum();
-        if sum.abs() > 1e-9 * terms.iter().map(|t| t.abs()).sum::<f64>() {
-            return true;
+        match occlusion.occluded {
+            Some(shadowed) => (
+                Shadow::Cast { shadowed },
+                occlusion.counters,
+                occlusion.exactly,
+            ),
+            None => (
+                Shadow::Skipped(ShadowSkip::AboveTerrain),
+                Counters::default(),
+                occlusion.exactly,
+            ),
         }
-        // Without rounding the ray starts on the plane itself, and leaves it at once unless it
-        // runs in it: asked exactly (intervals cannot tell the two apart in the tests).
-        S::EXACT && crosses_plane(self.terrain, found.cell, found.triangle, self.grid_sun())
-    }
-
-    /// The height of the hit triangle if it is flat (its three corners at one height).
-    fn flat_height<S: Scalar>(&self, found: &Found<S>) -> Option<f64> {
-        let heights = self.terrain.corner_heights(found.cell.0, found.cell.1);
-        let [a, b, c] = triangle_corners(found.triangle).map(|k| heights[k]);
-        (a == b && b == c).then_some(a)
     }
 
     /// The (unnormalised) normal of the hit triangle's plane: `(-gx, -gy, 1)`.
@@ -386,6 +310,23 @@ impl Shader<'_> {
     fn sky(&self, dir: [f64; 3]) -> DVec3 {
         let d = DVec3::from(dir).normalize_or(DVec3::Z);
         horizon().lerp(DVec3::new(0.28, 0.46, 0.82), d.z.clamp(0.0, 1.0).sqrt())
+    }
+}
+
+/// One pixel's rays, in whichever arithmetic [`run`] picks.
+struct Pixel<'s, 'a> {
+    shader: &'s Shader<'a>,
+    ray: &'s Ray,
+    beam: Option<Clearance>,
+    /// Where to keep the primary ray's hit, if anywhere.
+    hit: Option<&'s Cell<Option<Hit>>>,
+}
+
+impl Generic for Pixel<'_, '_> {
+    type Output = Sample;
+    #[inline(always)]
+    fn run<S: Scalar>(&self) -> Sample {
+        self.shader.traced_in::<S>(self.ray, self.beam, self.hit)
     }
 }
 

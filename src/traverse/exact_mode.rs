@@ -1,36 +1,58 @@
-//! Exact arithmetic's strategy: intervals first, with the rays they cannot settle traced
-//! again in rationals; an `f64` walk that answers exact rays alone where it can certify them
-//! ([`certified`](super::certified)), or clears the way for the exact walk; and the hit's `t`
-//! solved exactly from its triangle's plane.
+//! Exact arithmetic's strategy beyond intervals first and rationals where they cannot settle
+//! (see [`Settling`](crate::arith::Settling)): an `f64` walk that answers exact rays alone
+//! where it can certify them ([`certified`](super::certified)), or clears the way for the
+//! exact walk; the hit's `t` solved exactly from its triangle's plane; and a shadow ray from a
+//! hit cast again in rationals from the exact hit point when intervals cannot settle it (its
+//! single unsettled triangle tests are decided in [`exact_start`](super::exact_start)).
 
 use super::*;
 use crate::arith::dyadic::Dyadic;
+use crate::arith::settled;
 
-/// Exact arithmetic: intervals first; only a ray with a decision they cannot settle is traced
-/// again in rationals. Settled decisions are the exact ones, so only the hit's `t` remains to
-/// be computed exactly, on the one triangle hit.
-pub(super) fn trace_exact(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
-    let (mut fast, is_settled) = settled(|| trace_in::<Interval>(terrain, ray, options));
-    if !is_settled {
-        return trace_in::<Exact>(terrain, ray, options);
+/// [`Tracer::occluded`] in intervals: a ray with a decision they cannot settle is cast again
+/// in rationals from the exact hit point (where the start is a hit), and its answer marked
+/// as made exactly; otherwise the intervals are left unsettled for the caller to run again.
+pub(super) fn occluded_settling<S: Scalar>(
+    tracer: &Tracer<'_>,
+    from: &Start<'_, S>,
+    dir: [f64; 3],
+    skip_above: bool,
+) -> Occlusion {
+    let (answer, is_settled) = settled(|| tracer.occluded_in(from, dir, skip_above));
+    if is_settled {
+        return answer;
     }
-    let Some(hit) = fast.hit.take() else {
-        return fast;
+    let exact = |ray: &Ray, hit: &Found<S>| {
+        let t = plane_t_exact(tracer.terrain, ray, hit.cell, hit.triangle)?;
+        Some(Found {
+            t: Exact(t),
+            cell: hit.cell,
+            triangle: hit.triangle,
+        })
     };
-    match exact_t(terrain, ray, hit.cell, hit.triangle) {
-        Some((above, closing)) => {
-            let point = point_over(ray, &above, &closing).map(|n| n.over_to_f64(&closing));
-            let t = above.over(&closing);
-            fast.hit = Some(Hit {
-                t: num_traits::ToPrimitive::to_f64(&t).unwrap_or(f64::NAN),
+    let again = match *from {
+        // (The caller runs the whole ray again in rationals, see `run`.)
+        Start::Point(_) => None,
+        Start::Hit { ray, hit } => exact(ray, hit)
+            .map(|hit| tracer.occluded_in(&Start::Hit { ray, hit: &hit }, dir, skip_above)),
+        Start::Near { ray, hit, point } => exact(ray, hit).map(|hit| {
+            let from = Start::Near {
+                ray,
+                hit: &hit,
                 point,
-                t_exact: Some(t),
-                ..hit
-            });
-            fast
+            };
+            tracer.occluded_in(&from, dir, skip_above)
+        }),
+    };
+    match again {
+        Some(answer) => Occlusion {
+            exactly: true,
+            ..answer
+        },
+        None => {
+            unsettled();
+            answer
         }
-        // The ray lies in the triangle's plane (or, impossibly, misses it): rationals decide.
-        None => trace_in::<Exact>(terrain, ray, options),
     }
 }
 

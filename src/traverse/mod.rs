@@ -6,6 +6,12 @@
 //! implementation, generic over the arithmetics of [`Scalar`](crate::arith::Scalar)
 //! ([`Arith`](crate::arith::Arith)), and counts its queries
 //! ([`Counters`](crate::traverse::Counters)).
+//!
+//! Two questions, one way in each: [`trace`](crate::traverse::trace) (the first hit) and
+//! [`occluded`](crate::traverse::occluded) (any hit after the start; from a hit on the surface,
+//! [`occluded_from_hit`](crate::traverse::occluded_from_hit)). Both pick the arithmetic once,
+//! through [`run`](crate::arith::run), and answer with a
+//! [`Tracer`](crate::traverse::Tracer), the same generic inside the renderer runs per pixel.
 
 mod approximation;
 mod beam;
@@ -20,18 +26,21 @@ mod mipmap;
 mod options;
 mod runs;
 mod search;
+mod tracer;
 
 pub use beam::{Beam, Clearance};
 pub use counters::{Counters, HitMiss};
 pub use exact_mode::{crosses_plane, plane_t_exact};
-use exact_mode::{f64_ray, trace_certified, trace_exact, walk_cleared, F64Ray};
+use exact_mode::{exact_t, f64_ray, point_over, trace_certified, walk_cleared, F64Ray};
 pub use exact_start::PlanePoint;
-pub use options::{Hit, Method, Query, Trace, TraceOptions, WalkOptions};
+pub use options::{Hit, Method, Trace, TraceOptions};
+use options::{Query, WalkOptions};
+pub use tracer::{occluded_from_hit, Occlusion, Start, Tracer};
 // The number layer, re-exported: every traversal is generic over these.
 pub use crate::arith::{
-    scalar, settled, with_bound, Arith, Exact, Interval, Rational, RationalEvents, Scalar,
-    DEFAULT_BOUND,
+    scalar, settled, Arith, Exact, Interval, Rational, RationalEvents, Scalar, DEFAULT_BOUND,
 };
+use crate::arith::{unsettled, Generic};
 
 use crate::geometry::{clip_to_box, plane_crossing, times_power_of_two, CertainMiss, Ray};
 use crate::heightfield::Terrain;
@@ -43,10 +52,38 @@ use search::{span_cells, LazyRaySpace, Search};
 use std::ops::ControlFlow;
 use std::time::Duration;
 
-/// Traces one ray.
+/// The first hit of `ray` (the least `t >= 0` at which it touches the surface), in the
+/// options' method and arithmetic.
 pub fn trace(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
+    ask(terrain, ray, options, Query::FirstHit)
+}
+
+/// Whether `ray` touches the surface at some `t > 0` (its start does not count), in the
+/// options' method and arithmetic: a shadow or any later effect ray. For a ray that starts
+/// on the surface where another hit it, exactly there in exact arithmetic, see
+/// [`occluded_from_hit`].
+pub fn occluded(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
+    ask(terrain, ray, options, Query::Shadow)
+}
+
+/// Answers `query` for `ray`, its direction scaled to near unit length by a power of two (the
+/// same ray, with `t` scaled back).
+fn ask(terrain: &Terrain, ray: &Ray, options: &TraceOptions, query: Query) -> Trace {
     let (scaled, k) = ray.at_unit_scale();
-    let mut trace = trace_as_given(terrain, &scaled, options);
+    let mut tracer = Tracer::new(terrain, options.method);
+    if options.record_cells {
+        tracer = tracer.recording_cells();
+    }
+    let ask = Ask {
+        terrain,
+        tracer,
+        ray: &scaled,
+        query,
+    };
+    let (ran, rational) = crate::arith::run(options.arith, &ask);
+    let mut trace = ran.output;
+    trace.counters.rational_rounded = rational.rounded;
+    trace.counters.rational_saturated = rational.saturated;
     if let Some(hit) = trace.hit.as_mut().filter(|_| k != 0) {
         // (The point is the same: only `t` depends on the direction's length.)
         hit.t = times_power_of_two(hit.t, -k);
@@ -60,18 +97,49 @@ pub fn trace(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
     trace
 }
 
-/// Traces one ray with its direction as given.
-fn trace_as_given(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
-    match options.arith {
-        Arith::F32 => trace_in::<f32>(terrain, ray, options),
-        Arith::F64 => trace_in::<f64>(terrain, ray, options),
-        Arith::Exact => trace_exact(terrain, ray, options),
-        Arith::Rational { bound } => {
-            let (mut trace, events) =
-                with_bound(bound, || trace_in::<Rational>(terrain, ray, options));
-            trace.counters.rational_rounded = events.rounded;
-            trace.counters.rational_saturated = events.saturated;
-            trace
+/// One ray's query, in whichever arithmetic [`run`](crate::arith::run) picks.
+struct Ask<'a> {
+    terrain: &'a Terrain,
+    tracer: Tracer<'a>,
+    ray: &'a Ray,
+    query: Query,
+}
+
+impl Generic for Ask<'_> {
+    type Output = Trace;
+    fn run<S: Scalar>(&self) -> Trace {
+        let ray = self.ray;
+        let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
+        let answer = self.tracer.ask(&o, &d, ray.dir(), self.query);
+        let hit = answer.hit.and_then(|found| {
+            let cell = [found.cell.0, found.cell.1];
+            let hit = |t: f64, t_exact, point| Hit {
+                t,
+                t_exact,
+                point,
+                cell,
+                triangle: found.triangle,
+            };
+            if !S::ENCLOSES {
+                let point = found.point(&o, &d).map(|c| c.to_f64());
+                return Some(hit(found.t.to_f64(), found.t.to_exact(), point));
+            }
+            // Settled decisions are the exact ones: only the hit's `t` remains to be solved
+            // exactly, on the one triangle hit; a ray in the triangle's plane is left to
+            // rationals.
+            let Some((above, closing)) = exact_t(self.terrain, ray, cell, found.triangle) else {
+                unsettled();
+                return None;
+            };
+            let point = point_over(ray, &above, &closing).map(|n| n.over_to_f64(&closing));
+            let t = above.over(&closing);
+            let t_f64 = num_traits::ToPrimitive::to_f64(&t).unwrap_or(f64::NAN);
+            Some(hit(t_f64, Some(t), point))
+        });
+        Trace {
+            hit,
+            counters: answer.counters,
+            cells: answer.cells,
         }
     }
 }
@@ -84,28 +152,35 @@ pub fn covered_cells(
     method: Method,
     arith: Arith,
 ) -> Vec<[usize; 2]> {
-    fn cover<S: Scalar>(terrain: &Terrain, ray: &Ray, method: Method) -> Vec<[usize; 2]> {
+    let cover = Cover {
+        terrain,
+        ray,
+        method,
+    };
+    crate::arith::run(arith, &cover).0.output
+}
+
+/// The cells a walk covers, in whichever arithmetic [`run`](crate::arith::run) picks.
+struct Cover<'a> {
+    terrain: &'a Terrain,
+    ray: &'a Ray,
+    method: Method,
+}
+
+impl Generic for Cover<'_> {
+    type Output = Vec<[usize; 2]>;
+    fn run<S: Scalar>(&self) -> Self::Output {
+        let ray = self.ray;
         let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
-        let Some(frame) = clip(terrain, &o, &d, ray.dir()) else {
+        let Some(frame) = clip(self.terrain, &o, &d, ray.dir()) else {
             return Vec::new();
         };
         let mut cells = Vec::new();
-        walk(&frame, method, &mut |span: Span<S>| {
+        walk(&frame, self.method, &mut |span: Span<S>| {
             cells.extend(span_cells(&frame, &span).map(|(i, j)| [i, j]));
             ControlFlow::Continue(())
         });
         cells
-    }
-    match arith {
-        Arith::F32 => cover::<f32>(terrain, ray, method),
-        Arith::F64 => cover::<f64>(terrain, ray, method),
-        Arith::Exact => match settled(|| cover::<Interval>(terrain, ray, method)) {
-            (cells, true) => cells,
-            (_, false) => cover::<Exact>(terrain, ray, method),
-        },
-        Arith::Rational { bound } => {
-            with_bound(bound, || cover::<Rational>(terrain, ray, method)).0
-        }
     }
 }
 
@@ -170,26 +245,6 @@ fn walk<S: Scalar>(
     };
 }
 
-fn trace_in<S: Scalar>(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
-    let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
-    let answer = trace_scalar(terrain, &o, &d, ray.dir(), options.walk());
-    let hit = answer.hit.map(|found| {
-        let point = found.point(&o, &d).map(|c| c.to_f64());
-        Hit {
-            t: found.t.to_f64(),
-            t_exact: found.t.to_exact(),
-            point,
-            cell: [found.cell.0, found.cell.1],
-            triangle: found.triangle,
-        }
-    });
-    Trace {
-        hit,
-        counters: answer.counters,
-        cells: answer.cells,
-    }
-}
-
 /// The answer for one ray, in the arithmetic it was traced in.
 #[derive(Clone, Debug)]
 pub struct ScalarTrace<S> {
@@ -199,8 +254,8 @@ pub struct ScalarTrace<S> {
     pub counters: Counters,
     /// Cells covered, in order (when asked for).
     pub cells: Vec<[usize; 2]>,
-    /// A triangle test intervals could not settle was decided exactly (see
-    /// [`WalkOptions::exact_start`]).
+    /// A triangle test intervals could not settle was decided exactly, from a start on the
+    /// surface given exactly (see [`Start::Hit`]).
     pub decided_exactly: bool,
 }
 
@@ -219,8 +274,8 @@ impl<S> ScalarTrace<S> {
 /// Traces a ray given in the traversal's own arithmetic (for rays that start where another
 /// ray hit: exact mode keeps the exact point). `dir_f64` is the direction as given, which
 /// picks the octant and axes identically in every arithmetic. For [`Rational`] the caller
-/// sets the bound, see [`with_bound`].
-pub fn trace_scalar<S: Scalar>(
+/// sets the bound (see [`run`](crate::arith::run)).
+fn trace_scalar<S: Scalar>(
     terrain: &Terrain,
     o: &[S; 3],
     d: &[S; 3],

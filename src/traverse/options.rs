@@ -31,7 +31,7 @@ impl Method {
     ];
 
     /// Whether the method walks the mipmap's levels (and so starts behind a beam, see
-    /// [`WalkOptions::beam`]).
+    /// [`Tracer::trace`](super::Tracer::trace)).
     pub fn is_hierarchical(self) -> bool {
         matches!(self, Method::Mipmap | Method::HierarchicalRuns)
     }
@@ -39,7 +39,7 @@ impl Method {
 
 /// What a ray asks.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Query {
+pub(crate) enum Query {
     /// The least `t >= 0` at which the ray touches the surface.
     FirstHit,
     /// Whether the ray touches the surface at some `t > 0` (the start point does not count).
@@ -48,7 +48,7 @@ pub enum Query {
 
 /// How to walk, whatever the arithmetic.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct WalkOptions {
+pub(crate) struct WalkOptions {
     /// How the grid is walked.
     pub method: Method,
     /// What the ray asks.
@@ -68,7 +68,7 @@ pub struct WalkOptions {
 
 impl WalkOptions {
     /// A query of the given kind without cell recording.
-    pub fn new(method: Method, query: Query) -> Self {
+    pub(crate) fn new(method: Method, query: Query) -> Self {
         WalkOptions {
             method,
             query,
@@ -80,36 +80,23 @@ impl WalkOptions {
     }
 }
 
-/// How to trace.
+/// How to trace ([`trace`](super::trace), [`occluded`](super::occluded)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TraceOptions {
     /// How the grid is walked.
     pub method: Method,
     /// The arithmetic traced in.
     pub arith: Arith,
-    /// What the ray asks.
-    pub query: Query,
     /// List the cells the walk covered, in order.
     pub record_cells: bool,
 }
 
 impl TraceOptions {
-    /// The walk part of the options.
-    pub fn walk(&self) -> WalkOptions {
-        WalkOptions {
-            method: self.method,
-            query: self.query,
-            record_cells: self.record_cells,
-            ..WalkOptions::new(self.method, self.query)
-        }
-    }
-
-    /// A first-hit query without cell recording.
+    /// Options without cell recording.
     pub fn new(method: Method, arith: Arith) -> Self {
         TraceOptions {
             method,
             arith,
-            query: Query::FirstHit,
             record_cells: false,
         }
     }

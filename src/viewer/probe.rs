@@ -1,109 +1,174 @@
-//! The hovered pixel's ray, traced again on demand with `heightray::trace` (one primary ray
-//! and, if it hits, one shadow query towards the sun) so every query it made can be shown.
+//! The hovered pixel's rays, traced again on demand by the renderer's own code for a pixel
+//! ([`Shader::traced`]): the same primary ray and the same shadow ray from the same start,
+//! so every query they made can be shown.
 
-use crate::geometry::plane_height;
-use crate::traverse::Scalar;
-use crate::{trace, Arith, Hit, Query, Ray, Terrain, Trace, TraceOptions};
+use crate::render::{Sample, Shader, Shadow};
+use crate::traverse::plane_t_exact;
+use crate::{Arith, Hit, Ray};
 use std::time::{Duration, Instant};
 
-/// One pixel's ray and what it asked.
+/// One pixel's rays and what they asked.
 #[derive(Clone, Debug)]
 pub struct Probe {
     /// The pixel in the rendered frame.
     pub pixel: (u32, u32),
     /// The frame generation the pixel belonged to.
     pub generation: u64,
-    pub primary: Trace,
-    /// The shadow query from the hit point towards the sun (when the primary ray hit).
-    pub shadow: Option<Trace>,
-    /// Time both traces took.
+    /// Where the primary ray hit (with its exact `t` in exact arithmetic).
+    pub hit: Option<Hit>,
+    /// The pixel as the renderer traces it: its shadow and both rays' queries.
+    pub sample: Sample,
+    /// Time both rays took.
     pub elapsed: Duration,
 }
 
-/// What the probe needs to know of the view.
-pub struct ProbeSetup<'a> {
-    pub terrain: &'a Terrain,
-    pub options: TraceOptions,
-    pub sun: [f64; 3],
-}
-
 impl Probe {
-    /// Traces `ray` (pixel `pixel` of frame `generation`) and its shadow query.
-    pub fn trace(setup: &ProbeSetup<'_>, ray: Ray, pixel: (u32, u32), generation: u64) -> Probe {
+    /// Traces `ray` (pixel `pixel` of frame `generation`) as `shader` renders it in `arith`.
+    pub fn trace(
+        shader: &Shader<'_>,
+        arith: Arith,
+        ray: Ray,
+        pixel: (u32, u32),
+        generation: u64,
+    ) -> Probe {
         let start = Instant::now();
-        let primary = trace(setup.terrain, &ray, &setup.options);
-        let shadow = primary.hit.as_ref().and_then(|hit| {
-            let origin = shadow_origin(setup, &ray, hit);
-            let ray = Ray::new(origin, setup.sun).ok()?;
-            let options = TraceOptions {
-                query: Query::Shadow,
-                ..setup.options
-            };
-            Some(trace(setup.terrain, &ray, &options))
+        let (sample, hit) = shader.traced(&ray, arith);
+        let elapsed = start.elapsed();
+        let hit = hit.map(|hit| Hit {
+            t_exact: (arith == Arith::Exact)
+                .then(|| {
+                    let cell = (hit.cell[0], hit.cell[1]);
+                    plane_t_exact(shader.terrain, &ray, cell, hit.triangle)
+                })
+                .flatten(),
+            ..hit
         });
         Probe {
             pixel,
             generation,
-            primary,
-            shadow,
-            elapsed: start.elapsed(),
+            hit,
+            sample,
+            elapsed,
         }
     }
 
-    /// Whether the hit point is in shadow (None without a hit).
+    /// Whether the hit point is in shadow (None without a hit, or where no shadow ray was
+    /// cast).
     pub fn shadowed(&self) -> Option<bool> {
-        self.shadow.as_ref().map(|s| s.hit.is_some())
-    }
-}
-
-/// Where the shadow query starts, as the renderer does it: on the hit triangle's plane (exact
-/// on flat ground) and raised by what rounding may have moved it below the surface. `trace`
-/// reports the point in `f64` even in exact mode, so exact mode is lifted by one `f64`
-/// rounding too (the renderer keeps its exact point: a grazing shadow may then differ).
-fn shadow_origin(setup: &ProbeSetup<'_>, ray: &Ray, hit: &Hit) -> [f64; 3] {
-    let largest = ray
-        .origin()
-        .iter()
-        .chain(&ray.dir())
-        .fold(0.0f64, |m, c| m.max(c.abs()));
-    let magnitude = largest * (1.0 + hit.t.abs());
-    let rounding = match setup.options.arith {
-        Arith::F32 => <f32 as Scalar>::rounding_error(magnitude),
-        Arith::F64 | Arith::Exact => <f64 as Scalar>::rounding_error(magnitude),
-        Arith::Rational { bound } => {
-            <f64 as Scalar>::rounding_error(magnitude).max(1.0 / f64::from(bound.max(1)))
+        match self.sample.shadow {
+            Shadow::Cast { shadowed } => Some(shadowed),
+            _ => None,
         }
-    };
-    let lift = 64.0 * rounding * (1.0 + setup.terrain.max_slope());
-    let [x, y, _] = hit.point;
-    let cell = (hit.cell[0], hit.cell[1]);
-    let heights = setup.terrain.corner_heights(cell.0, cell.1);
-    [x, y, plane_height(hit.triangle, cell, heights, x, y) + lift]
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::heightfield::Builtin;
-    use crate::Method;
+    use crate::render::{Camera, Culling, Frame, Lighting, Normals, PixelStats, Ramp, Renderer};
+    use crate::{Method, Terrain};
+
+    /// A low afternoon sun over the valley, so that many pixels lie in shadow and many shadow
+    /// rays graze the slopes they start on.
+    fn low_sun(normals: Normals) -> Lighting {
+        Lighting {
+            sun: Lighting::unit([0.8, 0.3, 0.25]),
+            intensity: 1.0,
+            ambient: 0.25,
+            shadows: true,
+            fog: 0.0,
+            normals,
+            ramp: Ramp::Gray,
+        }
+    }
+
+    /// The probe of every pixel is the renderer's pixel: the frame rendered in passes (its
+    /// finer passes behind beams) has the probe's colour at every pixel, so the same hit and
+    /// the same shadow (a shadow ray from another start would light or darken some grazing
+    /// pixels); and where the frame traced a pixel without a beam (the two coarsest passes,
+    /// every fourth row and column) the same queries, primary and shadow ray's together.
+    #[test]
+    fn the_probe_traces_the_renderers_rays_for_each_pixel() {
+        let field = Builtin::named("valley513")
+            .and_then(|b| b.load().ok())
+            .expect("decodes");
+        let terrain = Terrain::new(field);
+        let size = 48;
+        let camera = Camera::look_at(
+            [-40.0, -60.0, 180.0],
+            [256.0, 256.0, 40.0],
+            [0.0, 0.0, 1.0],
+            45.0,
+            (size, size),
+        )
+        .expect("a camera");
+        for normals in [Normals::Flat, Normals::Smooth] {
+            for arith in [Arith::F64, Arith::Exact] {
+                let renderer = Renderer {
+                    shader: Shader {
+                        terrain: &terrain,
+                        lighting: low_sun(normals),
+                        method: Method::Mipmap,
+                        culling: Culling::default(),
+                    },
+                    camera,
+                    arith,
+                };
+                let mut frame = Frame::new(size, size);
+                renderer.render(&mut frame);
+                let mut shadowed = [0, 0];
+                for y in 0..size {
+                    for x in 0..size {
+                        let ray = camera.ray(x, y);
+                        let probe = Probe::trace(&renderer.shader, arith, ray, (x, y), 0);
+                        let at = (y * size + x) as usize;
+                        let pixel = format!("({x}, {y}) {arith} {normals:?}");
+                        assert_eq!(probe.sample.rgb, frame.pixels[at], "colour of {pixel}");
+                        if x % 4 == 0 && y % 4 == 0 {
+                            let stats = PixelStats::of(&probe.sample);
+                            assert_eq!(stats, frame.stats[at], "queries of {pixel}");
+                        }
+                        if let Some(dark) = probe.shadowed() {
+                            shadowed[usize::from(dark)] += 1;
+                        }
+                    }
+                }
+                // Both answers asked of many shadow rays: the comparison saw shadows.
+                assert!(shadowed.iter().all(|&n| n > 100), "{shadowed:?}");
+            }
+        }
+    }
 
     #[test]
-    fn a_ray_down_onto_the_terrain_hits_and_asks_a_shadow_query() {
+    fn a_ray_down_onto_the_terrain_hits_and_casts_a_shadow_ray() {
         let field = Builtin::named("small49")
             .and_then(|b| b.load().ok())
             .expect("decodes");
         let terrain = Terrain::new(field);
-        let setup = ProbeSetup {
+        let shader = Shader {
             terrain: &terrain,
-            options: TraceOptions::new(Method::Runs, Arith::F64),
-            sun: [0.0, 0.0, 1.0],
+            lighting: Lighting {
+                sun: [0.0, 0.0, 1.0],
+                intensity: 1.0,
+                ambient: 0.25,
+                shadows: true,
+                fog: 0.0,
+                normals: Normals::Flat,
+                ramp: Ramp::Gray,
+            },
+            method: Method::Runs,
+            culling: Culling {
+                no_shadow_possible: false,
+                ..Culling::default()
+            },
         };
         let ray = Ray::new([20.5, 20.25, 100.0], [0.0, 0.0, -1.0]).expect("valid ray");
-        let probe = Probe::trace(&setup, ray, (3, 4), 7);
-        let hit = probe.primary.hit.as_ref().expect("hits the terrain");
+        let probe = Probe::trace(&shader, Arith::F64, ray, (3, 4), 7);
+        let hit = probe.hit.as_ref().expect("hits the terrain");
         assert_eq!(hit.cell, [20, 20]);
         // Straight up from a height field nothing is in the way.
         assert_eq!(probe.shadowed(), Some(false));
-        assert!(probe.primary.counters.triangle.total() > 0);
+        assert!(probe.sample.primary.triangle.total() > 0);
     }
 }

@@ -22,9 +22,9 @@ pub fn probe_ui(ui: &mut Ui, probe: &Probe, field: &Heightfield, rendered: Optio
             ui.strong("ray hit / miss");
             ui.strong("shadow");
             ui.end_row();
-            let shadow = probe.shadow.as_ref().map(|s| s.counters);
+            let shadow = probe.shadowed().map(|_| probe.sample.secondary);
             for (name, pick) in QUERY_KINDS {
-                let own = pick(&probe.primary.counters);
+                let own = pick(&probe.sample.primary);
                 let other = shadow.map(|c| pick(&c));
                 if own.total() + other.map_or(0, |h| h.total()) == 0 {
                     continue;
@@ -53,7 +53,7 @@ pub fn probe_ui(ui: &mut Ui, probe: &Probe, field: &Heightfield, rendered: Optio
 /// query found.
 fn hit_ui(ui: &mut Ui, probe: &Probe, field: &Heightfield) {
     let (px, py) = probe.pixel;
-    let Some(hit) = &probe.primary.hit else {
+    let Some(hit) = &probe.hit else {
         ui.strong(format!(
             "pixel ({px}, {py}): miss, the ray leaves the terrain"
         ));

@@ -5,7 +5,7 @@
 use super::compose::{self, HeatScale};
 use super::model::Model;
 use super::navigation;
-use super::probe::{Probe, ProbeSetup};
+use super::probe::Probe;
 use super::settings::HeatMode;
 use crate::render::PASS_BLOCKS;
 use crate::TraceOptions;
@@ -154,14 +154,15 @@ fn retarget(ui: &Ui, model: &mut Model, rect: Rect, pos: Pos2) {
         return;
     };
     let job = &latest.job;
-    let ray = job.camera.ray(pixel.0, pixel.1);
+    let camera = job.camera.in_grid(job.terrain.world_from_grid());
+    let ray = camera.ray(pixel.0, pixel.1);
     let answer = crate::trace(
         &job.terrain,
         &ray,
         &TraceOptions::new(job.method, job.arith),
     );
     match answer.hit {
-        Some(hit) => model.orbit.retarget(hit.point),
+        Some(hit) => model.orbit.retarget(job.terrain.world_point(hit.point)),
         None => model.notify("Double-click on the terrain to orbit around that point"),
     }
 }
@@ -200,14 +201,10 @@ fn hover_probe(ui: &Ui, model: &mut Model, rect: Rect, pos: Pos2) {
         .is_some_and(|p| p.pixel == pixel && p.generation == latest.generation);
     if !fresh {
         let job = &latest.job;
-        let setup = ProbeSetup {
-            terrain: &job.terrain,
-            options: TraceOptions::new(job.method, job.arith),
-            sun: job.terrain.grid_point(job.lighting.sun),
-        };
-        let camera = job.camera.in_grid(job.terrain.world_from_grid());
-        let ray = camera.ray(pixel.0, pixel.1);
-        model.probe = Some(Probe::trace(&setup, ray, pixel, latest.generation));
+        let renderer = job.renderer(job.arith);
+        let ray = renderer.camera.ray(pixel.0, pixel.1);
+        let probe = Probe::trace(&renderer.shader, job.arith, ray, pixel, latest.generation);
+        model.probe = Some(probe);
     }
     if let Some(probe) = &model.probe {
         // Open towards the middle of the view so the box stays inside it.

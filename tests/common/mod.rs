@@ -10,7 +10,7 @@ pub mod scenes;
 pub mod top_down;
 
 use heightray::traverse::covered_cells;
-use heightray::{trace, Arith, Hit, Method, Query, Ray, Terrain, Trace, TraceOptions};
+use heightray::{trace, Arith, Hit, Method, Ray, Terrain, Trace, TraceOptions};
 use num_traits::ToPrimitive;
 use reference::{Answer, ExactHit};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -21,7 +21,6 @@ pub fn options(method: Method, arith: Arith) -> TraceOptions {
     TraceOptions {
         method,
         arith,
-        query: Query::FirstHit,
         record_cells: true,
     }
 }

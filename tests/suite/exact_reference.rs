@@ -9,159 +9,31 @@ use crate::common::random::{field_and_ray, field_and_ray_up_to};
 use crate::common::reference::{self, q, Q};
 use crate::common::{assert_family, check_exact, describe, options};
 use heightray::traverse::{
-    covered_cells, settled, trace_scalar, Exact, HitMiss, Interval, Scalar, WalkOptions,
+    covered_cells, occluded, occluded_from_hit, settled, Exact, HitMiss, Interval, Scalar, Start,
+    Tracer,
 };
-use heightray::{trace, Arith, Counters, Heightfield, Method, Query, Ray, Terrain, TraceOptions};
+use heightray::{trace, Arith, Counters, Heightfield, Method, Ray, Terrain, TraceOptions};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 use proptest::test_runner::TestCaseError;
 
+/// Every deterministic ray family against the reference, one table (`families::all`): octant
+/// entries and rays along grid lines and cell diagonals on non-dyadic and integer heights,
+/// lattice-point slopes, vertical rays in a cell, on an edge, a corner and the grid's
+/// boundary, rays starting inside the grid, below the surface and on a vertex or edge, level
+/// rays at a plateau's height, near-vertical rays, a shallow ray along a 4000-cell strip,
+/// negative-zero components, single-point segments at the box's corner, and oblique rays that
+/// touch a flat field at one point.
 #[test]
-fn octant_entries_on_non_dyadic_heights() {
-    assert_family(&families::octant_entries(
-        "octant entries (hilly)",
-        families::hilly(),
-    ));
-}
-
-#[test]
-fn octant_entries_on_integer_heights() {
-    assert_family(&families::octant_entries(
-        "octant entries (integer)",
-        families::integer_hills(6, 5, 6, 3),
-    ));
-}
-
-#[test]
-fn lattice_point_slope_0() {
-    assert_family(&families::lattice_slope(0, 1));
-}
-
-#[test]
-fn lattice_point_slope_1() {
-    assert_family(&families::lattice_slope(1, 1));
-}
-
-#[test]
-fn lattice_point_slope_1_2() {
-    assert_family(&families::lattice_slope(1, 2));
-}
-
-#[test]
-fn lattice_point_slope_2_3() {
-    assert_family(&families::lattice_slope(2, 3));
-}
-
-#[test]
-fn lattice_point_slope_17_41() {
-    assert_family(&families::lattice_slope(17, 41));
-}
-
-#[test]
-fn lattice_point_slope_41_17() {
-    assert_family(&families::lattice_slope(41, 17));
-}
-
-#[test]
-fn rays_along_grid_lines_on_non_dyadic_heights() {
-    assert_family(&families::grid_lines(
-        "grid lines (hilly)",
-        families::hilly(),
-    ));
-}
-
-#[test]
-fn rays_along_grid_lines_on_integer_heights() {
-    assert_family(&families::grid_lines(
-        "grid lines (integer)",
-        families::integer_hills(6, 5, 6, 3),
-    ));
-}
-
-#[test]
-fn rays_along_cell_diagonals_on_integer_heights() {
-    assert_family(&families::cell_diagonals(
-        "cell diagonals (integer)",
-        families::integer_hills(6, 5, 6, 3),
-    ));
-}
-
-#[test]
-fn rays_along_cell_diagonals_on_non_dyadic_heights() {
-    assert_family(&families::cell_diagonals(
-        "cell diagonals (hilly)",
-        families::hilly(),
-    ));
-}
-
-#[test]
-fn vertical_ray_in_cell() {
-    assert_family(&families::vertical_in_cell());
-}
-
-#[test]
-fn vertical_ray_on_edge() {
-    assert_family(&families::vertical_on_edge());
-}
-
-#[test]
-fn vertical_ray_on_corner() {
-    assert_family(&families::vertical_on_corner());
-}
-
-#[test]
-fn vertical_ray_on_grid_boundary() {
-    assert_family(&families::vertical_on_grid_boundary());
-}
-
-#[test]
-fn rays_starting_inside_the_grid() {
-    assert_family(&families::starts_inside_above_surface(
-        "starts inside",
-        families::hilly(),
-    ));
-}
-
-#[test]
-fn rays_starting_below_the_surface() {
-    assert_family(&families::starts_below_surface(
-        "starts below the surface",
-        families::hilly(),
-    ));
-}
-
-#[test]
-fn rays_starting_on_a_vertex_or_edge() {
-    assert_family(&families::starts_on_vertex(
-        "starts on a vertex",
-        families::integer_hills(6, 6, 6, 5),
-    ));
-}
-
-#[test]
-fn level_rays_at_plateau_height() {
-    assert_family(&families::plateau_level());
-}
-
-#[test]
-fn near_vertical_rays() {
-    assert_family(&families::near_vertical());
-}
-
-#[test]
-fn negative_zero_components() {
-    assert_family(&families::negative_zero());
-}
-
-#[test]
-fn single_point_segments_at_the_box_corner() {
-    assert_family(&families::single_point_segments());
+fn every_ray_family_matches_the_reference() {
+    for family in families::all() {
+        assert_family(&family);
+    }
 }
 
 #[test]
 fn oblique_rays_touch_a_flat_field_at_one_point() {
     let family = families::flat_field_single_point();
-    assert_family(&family);
     // Every one of them hits, at t = 1 (the aimed point).
     for ray in &family.rays {
         let answer = reference::solve(family.terrain.field(), ray);
@@ -422,11 +294,10 @@ proptest! {
 /// Whether a shadow query of `method` in `arith` finds the surface.
 fn in_shadow(terrain: &Terrain, ray: &Ray, method: Method, arith: Arith) -> bool {
     let options = TraceOptions {
-        query: Query::Shadow,
         record_cells: false,
         ..options(method, arith)
     };
-    trace(terrain, ray, &options).hit.is_some()
+    occluded(terrain, ray, &options).hit.is_some()
 }
 
 proptest! {
@@ -480,10 +351,8 @@ fn in_shadow_from<S: Scalar>(
     sun: [f64; 3],
     method: Method,
 ) -> bool {
-    let walk = WalkOptions::new(method, Query::Shadow);
-    trace_scalar(terrain, origin, &sun.map(S::from_f64), sun, walk)
-        .hit
-        .is_some()
+    let tracer = Tracer::new(terrain, method);
+    tracer.occluded(&Start::Point(origin), sun, false).occluded == Some(true)
 }
 
 proptest! {
@@ -518,12 +387,12 @@ proptest! {
         }
         // The renderer's way: the hit point in intervals.
         let ((mipmap, runs), settled) = settled(|| {
-            let (o, d) = (o.map(Interval::from_f64), d.map(Interval::from_f64));
-            let walk = WalkOptions::new(Method::Runs, Query::FirstHit);
+            let tracer = Tracer::new(&terrain, Method::Runs);
             // (Unsettled, it may find none.)
-            let Some(found) = trace_scalar(&terrain, &o, &d, ray.dir(), walk).hit else {
+            let Some(found) = tracer.trace::<Interval>(&ray, None).hit else {
                 return (false, false);
             };
+            let (o, d) = (o.map(Interval::from_f64), d.map(Interval::from_f64));
             let point = found.point(&o, &d);
             (
                 in_shadow_from(&terrain, &point, sun, Method::Mipmap),
@@ -532,6 +401,41 @@ proptest! {
         });
         if settled {
             prop_assert_eq!(mipmap, runs, "intervals: {} sun {:?}", describe(&ray), sun);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(config(500, 0x5348_4854))]
+
+    /// A shadow ray from where a camera ray hits, in exact arithmetic (`occluded_from_hit`:
+    /// intervals from the hit, a test they cannot settle decided from the exact start, the
+    /// ray cast again in rationals if still unsettled), answers as the same ray does traced
+    /// in rationals alone from the exact hit point `o + t_exact d`, for every method.
+    #[test]
+    fn shadow_rays_from_hits_answer_as_rationals_from_the_exact_point(
+        ray in common::random::ray_on(&large_field()),
+        (sx, sy, sz) in (-1.0f64..1.0, -1.0f64..1.0, 0.05f64..1.0),
+    ) {
+        let terrain = Terrain::new(large_field());
+        let sun = [sx, sy, sz];
+        let Some(hit) = trace(&terrain, &ray, &options(Method::Runs, Arith::Exact)).hit else {
+            return Ok(());
+        };
+        let t = hit.t_exact.expect("exact t");
+        let (o, d) = (ray.origin(), ray.dir());
+        let point = [0, 1, 2].map(|k| Exact(q(o[k]) + q(d[k]) * t.clone()));
+        let expected = in_shadow_from(&terrain, &point, sun, Method::Runs);
+        for method in Method::ALL {
+            let options = TraceOptions {
+                record_cells: false,
+                ..options(method, Arith::Exact)
+            };
+            let got = occluded_from_hit(&terrain, &ray, sun, &options).expect("a hit");
+            prop_assert_eq!(
+                got.occluded, Some(expected),
+                "{} {} sun {:?}", method, describe(&ray), sun
+            );
         }
     }
 }
