@@ -297,8 +297,7 @@ pub(super) fn progress_bar(len: usize) -> ProgressBar {
 /// A scene with its image size replaced.
 pub(super) fn scene_at_size(source: &SceneSource, size: u32) -> anyhow::Result<Scene> {
     let mut file = source.file.clone();
-    file.camera.width = size;
-    file.camera.height = size;
+    file.size = Some((size, size));
     let path = &source.path;
     Ok(Scene::from_file(&file, Scene::base(path), path)?)
 }

@@ -50,7 +50,7 @@ pub enum Command {
 
 #[derive(clap::Args, Debug)]
 pub struct ViewArgs {
-    /// Height map (PNG, PGM or TIFF, see `trace --help`) or scene file (.toml); default:
+    /// Height map (PNG, PGM, TIFF, .hgt or .asc, see `trace --help`) or scene file (.toml); default:
     /// the built-in terrain.
     #[arg(value_name = "FILE_OR_SCENE")]
     pub source: Option<PathBuf>,
@@ -216,8 +216,11 @@ pub struct GenerateArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct RenderArgs {
-    /// Scene file (TOML).
+    /// Scene file (TOML), or a height map to render whole, framed as the viewer frames it.
     pub scene: PathBuf,
+    /// Image size, replacing the scene's (default for a map alone: 1280x720).
+    #[arg(long, value_parser = parse_size, value_name = "WIDTHxHEIGHT")]
+    pub size: Option<(u32, u32)>,
     /// Output PNG.
     #[arg(short, long)]
     pub output: PathBuf,
@@ -255,7 +258,9 @@ pub struct MapArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct TraceArgs {
-    /// Height map: PNG (grayscale, or RGB), PGM (P2/P5) or TIFF (integer or float samples).
+    /// Height map: PNG (grayscale, or RGB), PGM (P2/P5), TIFF (integer or float samples; a
+    /// GeoTIFF's georeferencing is not used here: rays are in grid coordinates), SRTM .hgt or
+    /// ESRI ASCII .asc.
     pub map: PathBuf,
     /// Height of the largest sample value (maxval); for float and signed rasters, the factor
     /// applied to their values.

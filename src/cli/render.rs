@@ -1,9 +1,10 @@
-//! `heightray render`: a scene to a PNG and statistics in the paper's shape.
+//! `heightray render`: a scene (or a height map alone) to a PNG and statistics in the paper's
+//! shape.
 
 use super::{loading, RenderArgs};
 use anyhow::Context;
 use heightray::render::effects::MOST_RAYS;
-use heightray::render::{Culling, Frame, Renderer, Scene, Shader};
+use heightray::render::{Culling, Frame, Renderer, Scene, SceneError, SceneFile, Shader};
 use heightray::traverse::prepare;
 use heightray::Terrain;
 use image::{ImageBuffer, Rgb};
@@ -15,7 +16,7 @@ use std::time::Instant;
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let start = Instant::now();
     let scene = loading::stage(&format!("loading {}", args.scene.display()), || {
-        Scene::load(&args.scene)
+        load_scene(args)
     })?;
     let read_time = start.elapsed();
     let method = args.method.unwrap_or(scene.method);
@@ -45,7 +46,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
             method,
             culling: Culling::default(),
         },
-        camera: scene.camera,
+        camera: scene.camera.in_grid(terrain.world_from_grid()),
         arith,
     };
     let (width, height) = scene.camera.size();
@@ -86,6 +87,18 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         pool.current_num_threads()
     )?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// The scene file named, or the scene of a height map alone; at `--size` if given.
+fn load_scene(args: &RenderArgs) -> Result<Scene, SceneError> {
+    let path = &args.scene;
+    let mut file = if SceneFile::is_scene_path(path) {
+        SceneFile::read(path)?
+    } else {
+        SceneFile::for_map(path)
+    };
+    file.size = args.size;
+    Scene::from_file(&file, Scene::base(path), path)
 }
 
 fn save_png(frame: &Frame, path: &std::path::Path) -> anyhow::Result<()> {

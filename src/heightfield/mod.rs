@@ -9,17 +9,21 @@
 mod builtin;
 mod fetch;
 mod generate;
+mod georef;
 mod limits;
 mod load;
 mod maxima;
 mod mipmap;
 mod nodata;
+pub mod place;
+pub mod relief;
 mod summary;
 mod terrain;
 
 pub use builtin::{Builtin, BUILTINS};
 pub use fetch::Window;
 pub use generate::landscape;
+pub use georef::{Georef, Georeferencing, MapUnits, METRES_PER_DEGREE};
 pub use limits::{MAX_DECODED_BYTES, MAX_SAMPLES};
 pub use load::{
     load, load_bytes, load_bytes_with, load_with, ColourEncoding, LoadError, LoadOptions,
@@ -128,6 +132,8 @@ pub struct Heightfield {
     unit: f64,
     /// No-data samples; `None` when there are none.
     nodata: Option<NoDataMask>,
+    /// Where the samples lie on the Earth, if the file said.
+    georef: Georeferencing,
 }
 
 impl Heightfield {
@@ -228,7 +234,29 @@ impl Heightfield {
             base,
             unit,
             nodata,
+            georef: Georeferencing::None,
         })
+    }
+
+    /// The same field, placed on the Earth.
+    pub fn with_georeferencing(self, georef: Georeferencing) -> Self {
+        Heightfield { georef, ..self }
+    }
+
+    /// What the file said about where the samples lie.
+    pub fn georeferencing(&self) -> &Georeferencing {
+        &self.georef
+    }
+
+    /// Where the samples lie, if the file said so usably.
+    pub fn georef(&self) -> Option<&Georef> {
+        self.georef.georef()
+    }
+
+    /// The size of a cell in metres along x and y, for a georeferenced field.
+    pub fn cell_metres(&self) -> Option<[f64; 2]> {
+        self.georef()
+            .map(|g| g.cell_metres(self.width, self.height))
     }
 
     /// The same samples and holes with another z scale.

@@ -17,6 +17,8 @@ pub struct Terrain {
     max_slope: f64,
     /// Whether walks fetch ahead (the map is larger than the caches).
     fetch_ahead: bool,
+    /// World coordinates per grid coordinate, where cells are not square.
+    world_from_grid: Option<[f64; 3]>,
     build_time: Duration,
 }
 
@@ -31,6 +33,7 @@ impl Terrain {
         let max_slope = max_slope(&field);
         Terrain {
             max_slope,
+            world_from_grid: world_from_grid(&field),
             fetch_ahead: field.samples().len() * 2 >= FETCH_AHEAD_BYTES,
             field,
             mipmap,
@@ -44,6 +47,34 @@ impl Terrain {
     /// The height field.
     pub fn field(&self) -> &Heightfield {
         &self.field
+    }
+
+    /// The height field, without the acceleration data.
+    pub fn into_field(self) -> Heightfield {
+        self.field
+    }
+
+    /// How grid coordinates scale into the world's, per axis, on a georeferenced field whose
+    /// cells are not square: one world unit is a cell's height along y, so x is scaled by a
+    /// cell's width over its height. `None` where world and grid coordinates are the same.
+    pub fn world_from_grid(&self) -> Option<[f64; 3]> {
+        self.world_from_grid
+    }
+
+    /// A point of the world in grid coordinates.
+    pub fn grid_point(&self, point: [f64; 3]) -> [f64; 3] {
+        match self.world_from_grid {
+            Some(scale) => std::array::from_fn(|k| point[k] / scale[k]),
+            None => point,
+        }
+    }
+
+    /// A point in grid coordinates in the world.
+    pub fn world_point(&self, point: [f64; 3]) -> [f64; 3] {
+        match self.world_from_grid {
+            Some(scale) => std::array::from_fn(|k| point[k] * scale[k]),
+            None => point,
+        }
     }
     /// A walk goes down into block `(bi, bj)` of level `k`: on a map larger than the caches,
     /// asks the processor to fetch what it will read two levels below: the samples of a block
@@ -207,4 +238,12 @@ fn larger(a: f64, b: f64) -> f64 {
     } else {
         b
     }
+}
+
+/// World coordinates per grid coordinate of a field with non-square cells (see
+/// [`Terrain::world_from_grid`]).
+fn world_from_grid(field: &Heightfield) -> Option<[f64; 3]> {
+    let [x, y] = field.cell_metres()?;
+    let stretch = x / y;
+    (stretch.is_finite() && stretch > 0.0 && stretch != 1.0).then_some([stretch, 1.0, 1.0])
 }

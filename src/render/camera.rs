@@ -98,14 +98,26 @@ impl Camera {
         fov_y_deg: f64,
         size: (u32, u32),
     ) -> Result<Camera, CameraError> {
-        let (yaw, pitch) = (yaw_deg.to_radians(), pitch_deg.to_radians());
-        let offset = DVec3::new(
-            yaw.cos() * pitch.cos(),
-            yaw.sin() * pitch.cos(),
-            pitch.sin(),
-        );
+        let offset = super::framing::eye_direction(yaw_deg, pitch_deg);
         let eye = DVec3::from(target) + offset * distance;
         Camera::look_at(eye.into(), target, [0.0, 0.0, 1.0], fov_y_deg, size)
+    }
+
+    /// The same camera in grid coordinates, for a terrain whose world coordinates are its
+    /// grid coordinates scaled per axis by `world_from_grid` (see
+    /// [`Terrain::world_from_grid`](crate::Terrain::world_from_grid)): each pixel's ray becomes
+    /// the grid ray through the same points at the same `t`.
+    pub fn in_grid(self, world_from_grid: Option<[f64; 3]>) -> Camera {
+        let Some(scale) = world_from_grid.map(DVec3::from) else {
+            return self;
+        };
+        Camera {
+            eye: self.eye / scale,
+            forward: self.forward / scale,
+            right: self.right / scale,
+            up: self.up / scale,
+            ..self
+        }
     }
 
     /// Image width and height in pixels.

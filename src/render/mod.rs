@@ -1,5 +1,6 @@
 mod camera;
 pub mod effects;
+pub mod framing;
 mod gamma;
 mod normals;
 mod passes;
@@ -7,6 +8,7 @@ mod ramp;
 mod scene;
 mod shade;
 mod stats;
+pub mod sun_position;
 pub mod timing;
 mod versus_exact;
 
@@ -14,7 +16,8 @@ pub use camera::{Camera, CameraError};
 pub use passes::{Frame, Renderer, PASS_BLOCKS};
 pub use ramp::{HeightSpan, Ramp};
 pub use scene::{
-    EffectsSection, Lighting, Normals, Scene, SceneError, SceneFile, ShadingSection, SunSection,
+    CameraSection, EffectsSection, HeightmapSection, Lighting, NoDataKey, Normals, Orbit, Scene,
+    SceneError, SceneFile, ShadingSection, SunSection, DEFAULT_SIZE,
 };
 pub use shade::{Culling, Sample, Shader, Shadow, ShadowSkip};
 pub use stats::{FrameStats, PixelStats};

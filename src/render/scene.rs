@@ -4,14 +4,21 @@
 use super::camera::{Camera, CameraError};
 use super::effects::{Effects, DEFAULT_RAYS};
 use super::ramp::Ramp;
-use crate::heightfield::{self, Builtin, Heightfield, LoadError, LoadOptions, NoDataValue};
+use crate::heightfield::{Heightfield, LoadError};
 use crate::regular_file::{self, OpenError};
 use crate::traverse::{Arith, Method};
 use serde::Deserialize;
 use std::io::Read;
-use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
+
+mod heightmap;
+mod sun;
+mod view;
+
+use heightmap::HeightmapError;
+pub use heightmap::{HeightmapSection, NoDataKey};
+pub use view::{CameraSection, Orbit, DEFAULT_SIZE};
 
 /// Why a scene could not be used.
 #[derive(Debug, Error)]
@@ -93,8 +100,10 @@ const MOST_SCENE_BYTES: u64 = 1 << 20;
 pub struct SceneFile {
     /// `[heightmap]`: the map and how to read it.
     pub heightmap: HeightmapSection,
-    /// `[camera]`: where the view is from and its image size.
-    pub camera: CameraSection,
+    /// `[camera]`: where the view is from and its image size; left out, the whole map is
+    /// framed as the viewer first shows it.
+    #[serde(default)]
+    pub camera: Option<CameraSection>,
     /// `[sun]`: the light.
     #[serde(default)]
     pub sun: SunSection,
@@ -107,6 +116,9 @@ pub struct SceneFile {
     /// `[render]`: traversal method and arithmetic.
     #[serde(default)]
     pub render: RenderSection,
+    /// An image size replacing the scene's (`render --size`); not a key of the file.
+    #[serde(skip)]
+    pub size: Option<(u32, u32)>,
 }
 
 /// The scene files of the built-in terrains (`assets/NAME.toml`), embedded like their maps, so
@@ -168,75 +180,23 @@ impl SceneFile {
     }
 }
 
-/// A scene file's `[heightmap]` section.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct HeightmapSection {
-    /// A file, relative to the scene file; or `builtin:NAME` for a built-in terrain.
-    pub path: String,
-    /// Height of the largest sample value (maxval); for float and signed rasters, the factor
-    /// applied to their values.
-    pub z_scale: f64,
-    /// How RGB images become heights: `luminance` (the default), `mapbox` or `terrarium`.
-    #[serde(default)]
-    pub rgb: Option<String>,
-    /// Which raster value means no data: `"auto"` (the default), `"none"` or a number.
-    #[serde(default)]
-    pub nodata: Option<NoDataKey>,
-}
-
-/// `nodata` as written: a number, or a word.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(untagged)]
-pub enum NoDataKey {
-    /// This raster value means no data.
-    Value(f64),
-    /// `auto` or `none`.
-    Word(String),
-}
-
-/// A scene file's `[camera]` section: `eye` and `target`, or `orbit`.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct CameraSection {
-    /// Where the camera is (with `target`).
-    pub eye: Option<[f64; 3]>,
-    /// What it looks at (with `eye`).
-    pub target: Option<[f64; 3]>,
-    /// An orbit around a target instead of `eye` and `target`.
-    pub orbit: Option<Orbit>,
-    /// The direction that is up in the image (default +z).
-    #[serde(default = "default_up")]
-    pub up: [f64; 3],
-    /// Vertical field of view in degrees (default 45).
-    #[serde(default = "default_fov")]
-    pub fov_y_deg: f64,
-    /// Image width in pixels.
-    pub width: u32,
-    /// Image height in pixels.
-    pub height: u32,
-}
-
-/// A camera given as an orbit around a target (see [`Camera::orbit`]).
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct Orbit {
-    /// The point looked at.
-    pub target: [f64; 3],
-    /// Degrees from +x towards +y.
-    pub yaw_deg: f64,
-    /// Degrees above the horizon.
-    pub pitch_deg: f64,
-    /// From the target to the eye.
-    pub distance: f64,
-}
-
 /// A scene file's `[sun]` section.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct SunSection {
     /// Towards the sun; normalised on load.
+    #[serde(default = "default_sun")]
     pub direction: [f64; 3],
+    /// Instead of `direction`: where the sun stands at this time (RFC 3339, e.g.
+    /// `2026-12-21T08:00:00Z`) over the map's centre, or over `lat` and `lon`.
+    #[serde(default)]
+    pub time: Option<String>,
+    /// Latitude in degrees for `time`.
+    #[serde(default)]
+    pub lat: Option<f64>,
+    /// Longitude in degrees for `time`.
+    #[serde(default)]
+    pub lon: Option<f64>,
     /// Direct light at full facing (default 1).
     #[serde(default = "one")]
     pub intensity: f64,
@@ -314,7 +274,10 @@ pub struct RenderSection {
 impl Default for SunSection {
     fn default() -> Self {
         SunSection {
-            direction: [0.4, 0.3, 0.8],
+            direction: default_sun(),
+            time: None,
+            lat: None,
+            lon: None,
             intensity: 1.0,
             ambient: default_ambient(),
             angle_deg: 0.0,
@@ -334,11 +297,8 @@ impl Default for RenderSection {
     }
 }
 
-fn default_up() -> [f64; 3] {
-    [0.0, 0.0, 1.0]
-}
-fn default_fov() -> f64 {
-    45.0
+fn default_sun() -> [f64; 3] {
+    [0.4, 0.3, 0.8]
 }
 fn one() -> f64 {
     1.0
@@ -443,32 +403,14 @@ impl Scene {
             path: path.to_owned(),
             message,
         };
-        let map = &file.heightmap;
-        let mut options = LoadOptions::new(map.z_scale);
-        if let Some(rgb) = &map.rgb {
-            options.colour = rgb
-                .parse()
-                .map_err(|e| invalid(format!("[heightmap] rgb: {e}")))?;
-        }
-        options.nodata = match &map.nodata {
-            None => NoDataValue::Auto,
-            Some(NoDataKey::Value(v)) => NoDataValue::Value(*v),
-            Some(NoDataKey::Word(w)) => w
-                .parse()
-                .map_err(|e| invalid(format!("[heightmap] nodata: {e}")))?,
-        };
-        let keep_going = |_| ControlFlow::Continue(());
-        let field = match map.path.strip_prefix("builtin:") {
-            Some(name) => Builtin::named(name)
-                .ok_or_else(|| invalid(format!("[heightmap] path: no built-in terrain '{name}'")))?
-                .load_scaled(map.z_scale),
-            None => heightfield::load_with(&base.join(&map.path), &options, &keep_going),
-        }
-        .map_err(|source| SceneError::Heightmap {
-            path: path.to_owned(),
-            source,
+        let field = file.heightmap.load(base).map_err(|error| match error {
+            HeightmapError::Invalid(message) => invalid(message),
+            HeightmapError::Load(source) => SceneError::Heightmap {
+                path: path.to_owned(),
+                source,
+            },
         })?;
-        let camera = camera(&file.camera, path)?;
+        let (field, camera) = view::camera(file.camera.as_ref(), file.size, field, path)?;
         let sun = &file.sun;
         let length = sun.direction.iter().map(|c| c * c).sum::<f64>().sqrt();
         if !(length.is_finite() && length > 0.0) {
@@ -497,7 +439,8 @@ impl Scene {
             .arith
             .parse()
             .map_err(|e| invalid(format!("[render] arith: {e}")))?;
-        let mut lighting = Lighting::from_sections(sun, &file.effects, &file.shading);
+        let lighting = Lighting::from_sections(sun, &file.effects, &file.shading);
+        let mut lighting = sun::place_sun(sun, &field, lighting).map_err(invalid)?;
         lighting.effects =
             Effects::from_sections(sun, &file.effects, &file.render).map_err(invalid)?;
         Ok(Scene {
@@ -508,36 +451,6 @@ impl Scene {
             arith,
         })
     }
-}
-
-/// The camera of a `[camera]` section; `path` names the scene in errors.
-fn camera(section: &CameraSection, path: &Path) -> Result<Camera, SceneError> {
-    let size = (section.width, section.height);
-    let built = match (section.eye, section.target, section.orbit) {
-        (Some(eye), Some(target), None) => {
-            Camera::look_at(eye, target, section.up, section.fov_y_deg, size)
-        }
-        (None, None, Some(o)) => Camera::orbit(
-            o.target,
-            o.yaw_deg,
-            o.pitch_deg,
-            o.distance,
-            section.fov_y_deg,
-            size,
-        ),
-        _ => {
-            return Err(SceneError::Invalid {
-                path: path.to_owned(),
-                message: "[camera] needs either both eye and target, or \
-                          orbit = {target, yaw_deg, pitch_deg, distance}"
-                    .into(),
-            })
-        }
-    };
-    built.map_err(|source| SceneError::Camera {
-        path: path.to_owned(),
-        source,
-    })
 }
 
 #[cfg(test)]

@@ -254,7 +254,7 @@ impl Shader<'_> {
     #[inline(always)]
     fn fogged_rgb(&self, ray: &Ray, t: f64, mut colour: DVec3) -> u32 {
         if self.lighting.fog > 0.0 {
-            let distance = t * DVec3::from(ray.dir()).length();
+            let distance = t * self.world_dir(ray.dir()).length();
             let clear = (-self.lighting.fog * distance).exp();
             colour = colour * clear + horizon() * (1.0 - clear);
         }
@@ -263,7 +263,7 @@ impl Shader<'_> {
 
     /// The colour of a ray that misses the terrain.
     pub fn sky_rgb(&self, ray: &Ray) -> u32 {
-        pack(self.sky(ray.dir()))
+        pack(self.sky(self.world_dir(ray.dir()).into()))
     }
 
     /// Decides whether a shadow ray of the hit `found`, shaded at `p`, can change the pixel,
@@ -279,7 +279,7 @@ impl Shader<'_> {
         if self.lighting.effects.sun_angle_deg > 0.0 {
             return self.soft_shadow(found, ray, p);
         }
-        let sun = self.lighting.sun;
+        let sun = self.grid_sun();
         // The sun climbs strictly steeper than any triangle (with room for the rounding of
         // max_slope), compared squared: no square root per shadow ray.
         let steepest = self.terrain.max_slope() * (1.0 + 1e-9);
@@ -352,12 +352,40 @@ impl Shader<'_> {
         DVec3::new(-gx, -gy, 1.0)
     }
 
-    /// The shading normal at `p` on triangle `triangle` of cell `(i, j)`.
+    /// The shading normal at `p` on triangle `triangle` of cell `(i, j)`, in world
+    /// coordinates (where cells may be non-square).
     #[inline(always)]
     pub(super) fn normal(&self, cell: (usize, usize), triangle: u8, p: DVec3) -> DVec3 {
-        match self.lighting.normals {
+        let normal = match self.lighting.normals {
             Normals::Flat => self.geometric_normal(cell, triangle).normalize_or(DVec3::Z),
             Normals::Smooth => normals::smooth_normal(self.terrain, cell, triangle, p),
+        };
+        // A normal maps by the inverse transpose of the points' map: divided per axis.
+        match self.terrain.world_from_grid() {
+            Some(scale) => (normal / DVec3::from(scale)).normalize_or(DVec3::Z),
+            None => normal,
+        }
+    }
+
+    /// The direction towards the sun in grid coordinates, where shadow rays are traced.
+    fn grid_sun(&self) -> [f64; 3] {
+        self.grid_dir(DVec3::from(self.lighting.sun)).into()
+    }
+
+    /// A unit direction in the world as a unit direction in grid coordinates, where rays are
+    /// traced (the same vector where cells are square).
+    pub(super) fn grid_dir(&self, dir: DVec3) -> DVec3 {
+        match self.terrain.world_from_grid() {
+            Some(scale) => (dir / DVec3::from(scale)).normalize_or(dir),
+            None => dir,
+        }
+    }
+
+    /// A ray direction in grid coordinates as a direction in the world.
+    fn world_dir(&self, dir: [f64; 3]) -> DVec3 {
+        match self.terrain.world_from_grid() {
+            Some(scale) => DVec3::from(dir) * DVec3::from(scale),
+            None => DVec3::from(dir),
         }
     }
 

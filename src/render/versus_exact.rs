@@ -55,7 +55,7 @@ pub fn view_pixel_differences(
                 method: view.method,
                 culling: Culling::default(),
             },
-            camera: view.camera,
+            camera: view.camera.in_grid(view.terrain.world_from_grid()),
             arith,
         };
         let (w, h) = view.camera.size();

@@ -236,6 +236,7 @@ impl App {
             Action::ResetView => navigation::reset(&mut self.model),
             Action::FrameMap => navigation::frame_from_here(&mut self.model),
             Action::Screenshot => self.export(),
+            Action::SaveScene => self.save_scene(),
             Action::MeasureArithmetics => self.accuracy.toggle_measure(&mut self.model.accuracy),
         }
     }
@@ -407,19 +408,33 @@ impl App {
         })
     }
 
-    /// Exports the view at its render size (the converged frame, if it is on screen) or at
-    /// the size the panel asks for.
-    fn export(&mut self) {
+    /// The size the view is exported at: its render size, or the one the panel asks for.
+    fn export_size(&mut self) -> Option<(u32, u32)> {
         let Some(submitted) = &self.submitted else {
             self.model
                 .notify("Nothing to export yet: the view is not rendered");
-            return;
+            return None;
         };
         let exports = &self.model.export;
-        let size = if exports.custom {
+        Some(if exports.custom {
             exports.size
         } else {
             submitted.view.full_size()
+        })
+    }
+
+    /// Saves the view as a scene file at the export size.
+    fn save_scene(&mut self) {
+        if let Some(size) = self.export_size() {
+            super::save_scene::save(&mut self.model, size);
+        }
+    }
+
+    /// Exports the view at its render size (the converged frame, if it is on screen) or at
+    /// the size the panel asks for.
+    fn export(&mut self) {
+        let Some(size) = self.export_size() else {
+            return;
         };
         let job = match self.job(size) {
             Ok(job) => job,

@@ -1,12 +1,13 @@
 //! Exporting the rendered image: the view's converged frame, or a new render at a chosen size
 //! with the same camera, light and effects, saved as a PNG under a name no other file has, in
-//! the export folder. Never the window's pixels: no panels, overlays or messages.
+//! the export folder. Never the window's pixels: no panels, overlays or messages. Scene files
+//! of the view are saved there too (see `save_scene`).
 
 use super::model::Model;
 use super::worker::{RenderJob, RenderedFrame};
 use super::UserEvent;
 use crate::render::Frame;
-use std::fs::OpenOptions;
+use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, ErrorKind};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -28,6 +29,8 @@ pub struct Exports {
     /// Images written so far, and the last one.
     pub saved: u64,
     pub last: Option<PathBuf>,
+    /// The last scene file saved.
+    pub last_scene: Option<PathBuf>,
 }
 
 /// An image written.
@@ -84,7 +87,7 @@ pub fn start(
 ) {
     let size = job.camera.size();
     let folder = model.export.folder();
-    let stem = format!("heightray-{}", file_stem(&model.shown.source.label()));
+    let stem = stem(model);
     let fresh = ready.is_none();
     let spawned = std::thread::Builder::new()
         .name("heightray-export".into())
@@ -124,6 +127,11 @@ pub fn shows(frame: &RenderedFrame, job: &RenderJob) -> bool {
         && (done.method, done.arith) == (job.method, job.arith)
 }
 
+/// The name of the exports of the map on screen, before their number.
+pub fn stem(model: &Model) -> String {
+    format!("heightray-{}", file_stem(&model.shown.source.label()))
+}
+
 /// A file name part from a map's label: its first word (a built-in's name, or a file name
 /// without its extension), with anything but letters, digits, `-` and `_` replaced.
 pub fn file_stem(label: &str) -> String {
@@ -156,31 +164,41 @@ pub fn save_numbered(
     pixels: &[u32],
     (width, height): (u32, u32),
 ) -> Result<PathBuf, String> {
+    let (file, path) = create_numbered(folder, stem, "png")?;
+    let image = image::RgbImage::from_fn(width, height, |x, y| {
+        let rgb = pixels[(y * width + x) as usize];
+        image::Rgb([(rgb >> 16) as u8, (rgb >> 8) as u8, rgb as u8])
+    });
+    let written = image.write_to(&mut BufWriter::new(file), image::ImageFormat::Png);
+    match written {
+        Ok(()) => Ok(path),
+        Err(e) => {
+            // A half-written image is worse than none.
+            let _ = std::fs::remove_file(&path);
+            Err(format!("cannot write {}: {e}", path.display()))
+        }
+    }
+}
+
+/// Creates `folder/stem-NNN.extension` with the first number no file has yet (only if it
+/// does not exist, so that nothing saved ever replaces another file).
+pub fn create_numbered(
+    folder: &Path,
+    stem: &str,
+    extension: &str,
+) -> Result<(File, PathBuf), String> {
     std::fs::create_dir_all(folder)
         .map_err(|e| format!("cannot make the export folder {}: {e}", folder.display()))?;
     for number in 1..=LAST_NUMBER {
-        let path = folder.join(format!("{stem}-{number:03}.png"));
-        let file = match OpenOptions::new().write(true).create_new(true).open(&path) {
-            Ok(file) => file,
+        let path = folder.join(format!("{stem}-{number:03}.{extension}"));
+        match OpenOptions::new().write(true).create_new(true).open(&path) {
+            Ok(file) => return Ok((file, path)),
             Err(e) if e.kind() == ErrorKind::AlreadyExists => continue,
             Err(e) => return Err(format!("cannot write {}: {e}", path.display())),
-        };
-        let image = image::RgbImage::from_fn(width, height, |x, y| {
-            let rgb = pixels[(y * width + x) as usize];
-            image::Rgb([(rgb >> 16) as u8, (rgb >> 8) as u8, rgb as u8])
-        });
-        let written = image.write_to(&mut BufWriter::new(file), image::ImageFormat::Png);
-        return match written {
-            Ok(()) => Ok(path),
-            Err(e) => {
-                // A half-written image is worse than none.
-                let _ = std::fs::remove_file(&path);
-                Err(format!("cannot write {}: {e}", path.display()))
-            }
-        };
+        }
     }
     Err(format!(
-        "cannot export: {} already holds {stem}-001.png to {stem}-{LAST_NUMBER}.png",
+        "cannot save: {} already holds {stem}-001.{extension} to {stem}-{LAST_NUMBER}.{extension}",
         folder.display()
     ))
 }

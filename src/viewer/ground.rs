@@ -3,46 +3,11 @@
 //! eye above the surface under it (so the camera never looks at the terrain from below).
 
 use super::orbit::{Orbit, MIN_PITCH_DEG, PITCH_LIMIT_DEG};
+pub use crate::render::framing::{on_map, surface_z};
 use crate::Terrain;
 
 /// How far above the surface the eye stays, as a fraction of the orbit's scale.
 const CLEARANCE: f64 = 5e-4;
-
-/// The surface height at `(x, y)`: the plane of the cell's triangle that holds the point, as
-/// the renderer meshes it (cell `(i, j)` split along the diagonal from `P00` to `P11`). Off the
-/// map it is the map's lowest height, so the eye cannot pass under the map's edge either.
-pub fn surface_z(terrain: &Terrain, x: f64, y: f64) -> f64 {
-    let field = terrain.field();
-    let (w, h) = ((field.width() - 1) as f64, (field.height() - 1) as f64);
-    if !(x >= 0.0 && y >= 0.0 && x <= w && y <= h) {
-        return terrain.z_range().0;
-    }
-    // The last row and column of samples belong to the cells before them.
-    let i = (x.floor() as usize).min(field.width() - 2);
-    let j = (y.floor() as usize).min(field.height() - 2);
-    let (fx, fy) = (x - i as f64, y - j as f64);
-    let [z00, z10, z01, z11] = terrain.corner_heights(i, j);
-    if fx >= fy {
-        // Triangle P00, P10, P11.
-        z00 + fx * (z10 - z00) + fy * (z11 - z10)
-    } else {
-        // Triangle P00, P11, P01.
-        z00 + fy * (z01 - z00) + fx * (z11 - z01)
-    }
-}
-
-/// The nearest point to `point` in the map's box and not below its surface: a target in the
-/// air above the highest peak leaves the view looking at nothing.
-pub fn on_map([x, y, z]: [f64; 3], terrain: &Terrain) -> [f64; 3] {
-    let field = terrain.field();
-    let (w, h) = ((field.width() - 1) as f64, (field.height() - 1) as f64);
-    let (x, y) = (x.clamp(0.0, w), y.clamp(0.0, h));
-    [
-        x,
-        y,
-        z.min(terrain.z_range().1).max(surface_z(terrain, x, y)),
-    ]
-}
 
 /// The height the eye keeps above the surface.
 pub fn clearance(orbit: &Orbit) -> f64 {

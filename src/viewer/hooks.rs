@@ -5,6 +5,7 @@ use super::accuracy::{ns_per_ray, AccuracyState, MeasureState};
 use super::compose::PixelRect;
 use super::decoding::Decoding;
 use super::model::Model;
+use crate::heightfield::relief;
 use image::{ImageBuffer, Rgb};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
@@ -83,6 +84,7 @@ fn report(model: &Model, counts: &Counts) -> Value {
         "export": {
             "folder": model.export.folder(), "running": model.export.running,
             "saved": model.export.saved, "last": model.export.last,
+            "scene": model.export.last_scene,
         },
         "shadows": model.settings.shadows,
         "arith": model.settings.arith().to_string(),
@@ -90,6 +92,7 @@ fn report(model: &Model, counts: &Counts) -> Value {
         "terrain": {
             "name": model.shown.source.label(), "width": field.width(), "height": field.height(),
             "z_scale": field.z_scale(), "nodata_count": field.nodata_count(),
+            "exaggeration": relief::exaggeration(field), "cell_metres": field.cell_metres(),
             "decoded_as": decoding_report(model.shown.decoding),
         },
         "decoding": decoding_report(model.decoding),

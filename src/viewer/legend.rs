@@ -3,6 +3,7 @@
 
 use super::model::Model;
 use super::settings::HeatMode;
+use crate::heightfield::place;
 use crate::render::{HeightSpan, Ramp};
 use egui::{Align2, Color32, FontId, Rect, Ui, Vec2};
 
@@ -34,7 +35,9 @@ pub fn height_legend_ui(ui: &Ui, rect: Rect, model: &Model) {
         size,
     );
     let font = FontId::proportional(12.0);
-    let marks = marks(ramp, span, size.y);
+    // A georeferenced map's heights are labelled in metres.
+    let metres = place::elevation_metres(latest.job.terrain.field(), 1.0);
+    let marks = marks(ramp, span, size.y, metres.unwrap_or(1.0));
     let label_width = marks
         .iter()
         .map(|(_, text)| {
@@ -44,7 +47,11 @@ pub fn height_legend_ui(ui: &Ui, rect: Rect, model: &Model) {
                 .x
         })
         .fold(0.0f32, f32::max);
-    let title = painter.layout_no_wrap("height".to_owned(), font.clone(), Color32::WHITE);
+    let title = match metres {
+        Some(_) => "height (m)",
+        None => "height",
+    };
+    let title = painter.layout_no_wrap(title.to_owned(), font.clone(), Color32::WHITE);
     // Labels on the bar's left; the title ends over the bar's right edge.
     let left = (bar.left() - label_width - 14.0).min(bar.right() - title.size().x - 8.0);
     let backdrop = Rect::from_min_max(
@@ -88,10 +95,11 @@ pub fn height_legend_ui(ui: &Ui, rect: Rect, model: &Model) {
 
 /// The labelled heights, each as its distance up from the bar's bottom (of `length` points)
 /// and its text: the lowest and highest heights, and 0 where the ramp shows a sea, unless it
-/// would crowd one of the ends.
-fn marks(ramp: Ramp, span: HeightSpan, length: f32) -> Vec<(f32, String)> {
+/// would crowd one of the ends. Labels show heights times `unit` (metres per unit of height on
+/// a georeferenced map).
+fn marks(ramp: Ramp, span: HeightSpan, length: f32, unit: f64) -> Vec<(f32, String)> {
     let HeightSpan { lo, hi, .. } = span;
-    let text = |z: f64| height_text(z, hi - lo);
+    let text = |z: f64| height_text(z * unit, (hi - lo) * unit);
     if hi <= lo {
         return vec![(0.0, text(lo))];
     }
@@ -131,7 +139,7 @@ mod tests {
 
     #[test]
     fn sea_level_is_marked_where_it_lies_on_the_bar() {
-        let marks = marks(Ramp::Hypsometric, span(-3000.0, 1000.0), 200.0);
+        let marks = marks(Ramp::Hypsometric, span(-3000.0, 1000.0), 200.0, 1.0);
         assert_eq!(
             marks,
             vec![
@@ -148,7 +156,7 @@ mod tests {
     }
 
     fn marks_len(ramp: Ramp, (lo, hi): (f64, f64)) -> usize {
-        marks(ramp, span(lo, hi), 200.0).len()
+        marks(ramp, span(lo, hi), 200.0, 1.0).len()
     }
 
     fn span(lo: f64, hi: f64) -> HeightSpan {

@@ -7,7 +7,7 @@ use super::mailbox::Mailbox;
 use super::orbit::Orbit;
 use super::sources;
 use crate::heightfield::BUILTINS;
-use crate::render::Lighting;
+use crate::render::{Lighting, SceneFile};
 use crate::{Arith, Method, Terrain};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -40,7 +40,7 @@ impl Source {
     }
 
     pub(super) fn is_scene(&self) -> bool {
-        matches!(self, Source::File(p) if p.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml")))
+        matches!(self, Source::File(p) if SceneFile::is_scene_path(p))
     }
 }
 

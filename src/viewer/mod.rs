@@ -25,9 +25,12 @@ mod panels;
 mod probe;
 mod probe_ui;
 mod quality;
+mod relief_ui;
+mod save_scene;
 mod settings;
 mod sources;
 mod stats_ui;
+mod sun_clock;
 mod view;
 mod worker;
 

@@ -10,6 +10,7 @@ use super::navigation::{Framed, Home};
 use super::orbit::Orbit;
 use super::probe::Probe;
 use super::settings::Settings;
+use super::sun_clock::SunClock;
 use super::worker::RenderedFrame;
 use crate::Terrain;
 use std::collections::{BTreeMap, VecDeque};
@@ -35,6 +36,8 @@ pub enum Action {
     FrameMap,
     /// Save the rendered image, without the window's panels and overlays.
     Screenshot,
+    /// Save the view as a scene file.
+    SaveScene,
     /// Measure every arithmetic on the view, or cancel the measurement under way.
     MeasureArithmetics,
 }
@@ -101,6 +104,8 @@ pub struct Model {
     /// Where and how large images are exported.
     pub export: Exports,
     pub settings: Settings,
+    /// The Light panel's date and time.
+    pub sun_clock: SunClock,
     /// The z scale field of the heightmap panel (applied when editing ends).
     pub z_scale: f64,
     /// The path field of the heightmap panel.
@@ -175,6 +180,7 @@ impl Model {
             view_aspect: 16.0 / 9.0,
             export: Exports::default(),
             settings,
+            sun_clock: SunClock::default(),
             path_text: String::new(),
             path_source: None,
             panels_visible: true,

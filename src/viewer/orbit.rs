@@ -2,7 +2,7 @@
 //! double-clicks, and turned into a [`Camera`] for each render size.
 
 use super::framing;
-use crate::render::{Camera, CameraError};
+use crate::render::{self, Camera, CameraError};
 use crate::Terrain;
 use glam::DVec3;
 
@@ -161,19 +161,12 @@ impl Orbit {
 
     /// The camera's unit axes: forward (eye to target), right and up, as [`Camera`] has them.
     pub fn axes(&self) -> (DVec3, DVec3, DVec3) {
-        let forward = -self.offset_direction();
-        let right = forward.cross(DVec3::Z).normalize_or(DVec3::X);
-        (forward, right, right.cross(forward))
+        render::framing::axes(self.yaw_deg, self.pitch_deg)
     }
 
     /// Unit vector from the target towards the eye.
     fn offset_direction(&self) -> DVec3 {
-        let (yaw, pitch) = (self.yaw_deg.to_radians(), self.pitch_deg.to_radians());
-        DVec3::new(
-            yaw.cos() * pitch.cos(),
-            yaw.sin() * pitch.cos(),
-            pitch.sin(),
-        )
+        render::framing::eye_direction(self.yaw_deg, self.pitch_deg)
     }
 }
 

@@ -5,6 +5,7 @@ use super::decoding::{decoding_ui, Decoding};
 use super::loader::{LoadRequest, Source};
 use super::model::{Action, Model};
 use super::orbit::{MIN_PITCH_DEG, PITCH_LIMIT_DEG};
+use super::relief_ui::{exaggeration_ui, georeferencing_ui};
 use super::settings::{fog, ArithKind};
 use super::stats_ui::statistics_ui;
 use crate::heightfield::BUILTINS;
@@ -78,6 +79,12 @@ fn sections_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let export = section(ui, "Export", &title, false, |ui| {
         let shown = model.latest.as_ref().map(|l| l.job.camera.size());
         super::export::settings_ui(ui, &mut model.export, shown);
+        let save = ui
+            .button("Save scene")
+            .on_hover_text("a scene file of this view at the export size, for heightray render");
+        if named(model, "save_scene", save).clicked() {
+            actions.push(Action::SaveScene);
+        }
     });
     named(model, "export_section", export);
     let title = format!("Heightmap: {}", shortened(&model.shown.source.label(), 22));
@@ -190,7 +197,14 @@ fn light_ui(ui: &mut Ui, model: &mut Model) {
     let azimuth = ui.add(Slider::new(&mut s.sun_azimuth_deg, -180.0..=180.0).text("azimuth °"));
     named(model, "sun_azimuth", azimuth);
     let s = &mut model.settings;
-    ui.add(Slider::new(&mut s.sun_elevation_deg, 1.0..=90.0).text("elevation °"));
+    // (Not clamped when shown: a date and time may put the sun below the horizon.)
+    ui.add(
+        Slider::new(&mut s.sun_elevation_deg, 1.0..=90.0)
+            .clamping(egui::SliderClamping::Edits)
+            .text("elevation °"),
+    );
+    super::sun_clock::sun_clock_ui(ui, model);
+    let s = &mut model.settings;
     ui.add(Slider::new(&mut s.intensity, 0.0..=3.0).text("intensity"));
     ui.add(Slider::new(&mut s.ambient, 0.0..=1.0).text("ambient"));
     ui.checkbox(&mut s.shadows, "shadows");
@@ -227,6 +241,7 @@ fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         field.step(),
         field.nodata_count()
     ));
+    georeferencing_ui(ui, model);
     ui.label(format!(
         "read {:.1} ms, build {:.1} ms ({:.1} MB of acceleration data)",
         model.shown.decode_time.as_secs_f64() * 1e3,
@@ -269,7 +284,7 @@ fn source_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     ui.horizontal(|ui| {
         let field = ui.add(
             egui::TextEdit::singleline(&mut model.path_text)
-                .hint_text("path to a PNG, PGM, TIFF or .toml")
+                .hint_text("path to a PNG, PGM, TIFF, .hgt, .asc or .toml")
                 .desired_width(ui.available_width() - 50.0),
         );
         let field = named(model, "open_path", field);
@@ -294,7 +309,8 @@ fn z_scale_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             .speed(speed)
             .prefix("z scale "),
     );
-    if z.changed() && model.z_scale != model.shown.terrain.field().z_scale() {
+    let exaggerated = exaggeration_ui(ui, model);
+    if (z.changed() || exaggerated) && model.z_scale != model.shown.terrain.field().z_scale() {
         actions.push(Action::Load(LoadRequest {
             source: model.shown.source.clone(),
             z_scale: Some(model.z_scale),

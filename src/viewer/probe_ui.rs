@@ -1,17 +1,19 @@
 //! How one pixel's ray is shown: where it hit and every query it and its shadow ray made.
 
 use super::probe::Probe;
+use crate::heightfield::place;
 use crate::render::PixelStats;
 use crate::traverse::HitMiss;
-use crate::Counters;
+use crate::{Counters, Heightfield};
 use egui::Ui;
 
 /// The hovered ray's details, compact: where it hit, then a table of its queries (rows that
-/// are zero for both rays are left out); `rendered` is what the frame recorded for the pixel.
-pub fn probe_ui(ui: &mut Ui, probe: &Probe, rendered: Option<&PixelStats>) {
+/// are zero for both rays are left out); `rendered` is what the frame recorded for the pixel,
+/// on `field`.
+pub fn probe_ui(ui: &mut Ui, probe: &Probe, field: &Heightfield, rendered: Option<&PixelStats>) {
     ui.set_max_width(260.0);
     ui.spacing_mut().item_spacing.y = 2.0;
-    hit_ui(ui, probe);
+    hit_ui(ui, probe, field);
     egui::Grid::new("probe queries")
         .num_columns(3)
         .striped(true)
@@ -47,8 +49,9 @@ pub fn probe_ui(ui: &mut Ui, probe: &Probe, rendered: Option<&PixelStats>) {
     }
 }
 
-/// Where the ray hit, and what its shadow query found.
-fn hit_ui(ui: &mut Ui, probe: &Probe) {
+/// Where the ray hit (on a georeferenced map also in map coordinates), and what its shadow
+/// query found.
+fn hit_ui(ui: &mut Ui, probe: &Probe, field: &Heightfield) {
     let (px, py) = probe.pixel;
     let Some(hit) = &probe.hit else {
         ui.strong(format!(
@@ -67,6 +70,9 @@ fn hit_ui(ui: &mut Ui, probe: &Probe) {
         hit.cell[0], hit.cell[1], hit.triangle
     ));
     ui.label(format!("at ({x:.2}, {y:.2}, {z:.2}), t = {:.4}", hit.t));
+    if let Some(position) = place::describe_point(field, hit.point) {
+        ui.label(position);
+    }
     if let Some(exact) = &hit.t_exact {
         let text = exact.to_string();
         let shown = if text.chars().count() > 40 {

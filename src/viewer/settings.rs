@@ -201,13 +201,15 @@ impl Settings {
         [az.cos() * el.cos(), az.sin() * el.cos(), el.sin()]
     }
 
-    /// The renderer's lighting.
+    /// The renderer's lighting; a sun below the horizon (set by a date and time) lights
+    /// nothing and casts no shadows.
     pub fn lighting(&self) -> Lighting {
+        let night = self.sun_elevation_deg < 0.0;
         Lighting {
             sun: Lighting::unit(self.sun()),
-            intensity: self.intensity,
+            intensity: if night { 0.0 } else { self.intensity },
             ambient: self.ambient,
-            shadows: self.shadows,
+            shadows: self.shadows && !night,
             fog: self.fog,
             normals: self.normals,
             ramp: self.ramp,

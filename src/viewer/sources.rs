@@ -1,9 +1,10 @@
-//! Where terrains come from: built-ins, height map images (with a z scale that makes their
-//! relief visible) and scene files (with their camera and lighting); and rescaling.
+//! Where terrains come from: built-ins, height map images (georeferenced ones at true scale,
+//! plain ones with a z scale that makes their relief visible) and scene files (with their
+//! camera and lighting); and rescaling.
 
 use super::loader::{LoadRequest, Loaded, SceneSetup, Source, Stage};
 use super::orbit::Orbit;
-use crate::heightfield::{self, Builtin, LoadOptions, Quantisation};
+use crate::heightfield::{self, relief, Builtin, LoadOptions};
 use crate::render::{Lighting, Scene, SceneFile};
 use crate::{Arith, Heightfield, Method, Terrain};
 use std::ops::ControlFlow;
@@ -42,7 +43,7 @@ pub fn load(
             };
             let field =
                 heightfield::load_with(path, &options, &cancel).map_err(|e| e.to_string())?;
-            let sensible = sensible_z_scale(&field);
+            let sensible = relief::default_z_scale(&field);
             (rescale(field, sensible)?, None)
         }
     };
@@ -93,48 +94,30 @@ fn load_scene(path: &Path) -> Result<(Heightfield, Option<SceneParts>), String> 
 /// The viewer's orbit, lighting and traversal from a scene.
 fn scene_setup(parts: &SceneParts, terrain: &Terrain) -> SceneSetup {
     let framing = Orbit::framing(terrain);
-    let camera = &parts.file.camera;
-    let orbit = match (camera.eye, camera.target, &camera.orbit) {
-        (Some(eye), Some(target), _) => {
-            Orbit::from_eye(eye, target, camera.fov_y_deg, framing.scale)
-        }
-        (_, _, Some(o)) => Orbit {
-            target: o.target,
-            yaw_deg: o.yaw_deg,
-            pitch_deg: o.pitch_deg.clamp(-89.0, 89.0),
-            distance: o.distance,
-            fov_y_deg: camera.fov_y_deg,
-            scale: framing.scale,
+    let orbit = match &parts.file.camera {
+        // A scene without a camera is framed as a map is.
+        None => framing,
+        Some(camera) => match (camera.eye, camera.target, &camera.orbit) {
+            (Some(eye), Some(target), _) => {
+                Orbit::from_eye(eye, target, camera.fov_y_deg, framing.scale)
+            }
+            (_, _, Some(o)) => Orbit {
+                target: o.target,
+                yaw_deg: o.yaw_deg,
+                pitch_deg: o.pitch_deg.clamp(-89.0, 89.0),
+                distance: o.distance,
+                fov_y_deg: camera.fov_y_deg,
+                scale: framing.scale,
+            },
+            // Scene::load refused any other form.
+            _ => framing,
         },
-        // Scene::load refused any other form.
-        _ => framing,
     };
     SceneSetup {
         orbit,
         lighting: parts.lighting,
         method: parts.method,
         arith: parts.arith,
-    }
-}
-
-/// A z scale that makes a plain image's relief visible whatever its size: an integer raster's
-/// largest value (its heights have no unit) becomes a quarter of the larger side, and heights
-/// in their own units (floats, signed, decoded terrain-RGB: metres over cells of unknown size)
-/// are scaled so that their range spans as much.
-fn sensible_z_scale(field: &Heightfield) -> f64 {
-    let relief = 0.25 * field.width().max(field.height()) as f64;
-    match field.quantisation() {
-        Quantisation::Maxval(_) => relief,
-        // Loaded at z scale 1, the lowest value is sample 0.
-        Quantisation::Offset { step, .. } => {
-            let top = field.samples().iter().copied().max().unwrap_or(0);
-            let range = step * f64::from(top);
-            if range > 0.0 {
-                relief / range
-            } else {
-                1.0
-            }
-        }
     }
 }
 

@@ -121,10 +121,14 @@ fn terrain_under(ui: &Ui, model: &Model, rect: Rect, pos: Pos2) -> Option<[f64; 
         (((pos.x - rect.min.x) * ppp).max(0.0) as u32).min(size.0 - 1),
         (((pos.y - rect.min.y) * ppp).max(0.0) as u32).min(size.1 - 1),
     );
-    let ray = model.orbit.camera(size).ok()?.ray(pixel.0, pixel.1);
+    let terrain = &model.shown.terrain;
+    let camera = model.orbit.camera(size).ok()?;
+    let ray = camera
+        .in_grid(terrain.world_from_grid())
+        .ray(pixel.0, pixel.1);
     let options = TraceOptions::new(model.settings.method, crate::Arith::F64);
-    let hit = crate::trace(&model.shown.terrain, &ray, &options).hit?;
-    Some(hit.point)
+    let hit = crate::trace(terrain, &ray, &options).hit?;
+    Some(terrain.world_point(hit.point))
 }
 
 /// The rendered pixel under a point of the view, in the frame on screen.
@@ -150,14 +154,15 @@ fn retarget(ui: &Ui, model: &mut Model, rect: Rect, pos: Pos2) {
         return;
     };
     let job = &latest.job;
-    let ray = job.camera.ray(pixel.0, pixel.1);
+    let camera = job.camera.in_grid(job.terrain.world_from_grid());
+    let ray = camera.ray(pixel.0, pixel.1);
     let answer = crate::trace(
         &job.terrain,
         &ray,
         &TraceOptions::new(job.method, job.arith),
     );
     match answer.hit {
-        Some(hit) => model.orbit.retarget(hit.point),
+        Some(hit) => model.orbit.retarget(job.terrain.world_point(hit.point)),
         None => model.notify("Double-click on the terrain to orbit around that point"),
     }
 }
@@ -197,7 +202,7 @@ fn hover_probe(ui: &Ui, model: &mut Model, rect: Rect, pos: Pos2) {
     if !fresh {
         let job = &latest.job;
         let renderer = job.renderer(job.arith);
-        let ray = job.camera.ray(pixel.0, pixel.1);
+        let ray = renderer.camera.ray(pixel.0, pixel.1);
         let probe = Probe::trace(&renderer.shader, job.arith, ray, pixel, latest.generation);
         model.probe = Some(probe);
     }
@@ -231,6 +236,7 @@ fn hover_probe(ui: &Ui, model: &mut Model, rect: Rect, pos: Pos2) {
                     super::probe_ui::probe_ui(
                         ui,
                         probe,
+                        model.shown.terrain.field(),
                         latest
                             .frame
                             .stats
@@ -417,7 +423,7 @@ fn drop_hint_ui(ui: &Ui, rect: Rect) {
         egui::StrokeKind::Inside,
     );
     let lines = [
-        "Drop a height map (PNG, PGM or TIFF)",
+        "Drop a height map (PNG, PGM, TIFF, .hgt, .asc)",
         "or a scene (.toml) to open it",
     ];
     for (k, line) in lines.into_iter().enumerate() {
@@ -490,7 +496,7 @@ const HELP: &[(&str, &str)] = &[
     ),
     (
         "Drop a file",
-        "open a height map (PNG, PGM, TIFF) or a scene (.toml)",
+        "open a height map (PNG, PGM, TIFF, .hgt, .asc) or a scene (.toml)",
     ),
     ("R", "reset the view (the whole map)"),
     ("S", "export the rendered image (PNG, no panels)"),

@@ -39,7 +39,7 @@ impl RenderJob {
                 method: self.method,
                 culling: Culling::default(),
             },
-            camera: self.camera,
+            camera: self.camera.in_grid(self.terrain.world_from_grid()),
             arith,
         }
     }

@@ -1,7 +1,7 @@
 //! Height map files written by the tests, byte by byte where a library would refuse to write
 //! them (headers that promise more than any file holds).
 
-use tiff::encoder::colortype::ColorType;
+use tiff::encoder::colortype::{ColorType, Gray32Float};
 use tiff::encoder::{TiffEncoder, TiffValue};
 use tiff::tags::Tag;
 
@@ -16,17 +16,71 @@ pub fn tiff<C: ColorType>(
 where
     [C::Inner]: TiffValue,
 {
+    let tags: Vec<(Tag, TagData)> = nodata
+        .map(|text| (Tag::GdalNodata, TagData::Ascii(text)))
+        .into_iter()
+        .collect();
+    tagged_tiff::<C>(width, height, data, &tags)
+}
+
+/// The value of a tag written by [`tagged_tiff`].
+pub enum TagData<'a> {
+    /// Text (GDAL_NODATA).
+    Ascii(&'a str),
+    /// Doubles (ModelPixelScale, ModelTiepoint, ModelTransformation).
+    Doubles(&'a [f64]),
+    /// Shorts (GeoKeyDirectory).
+    Shorts(&'a [u16]),
+}
+
+/// A single-band TIFF of `width` x `height` samples in image order with these tags.
+pub fn tagged_tiff<C: ColorType>(
+    width: u32,
+    height: u32,
+    data: &[C::Inner],
+    tags: &[(Tag, TagData)],
+) -> Vec<u8>
+where
+    [C::Inner]: TiffValue,
+{
     let mut bytes = std::io::Cursor::new(Vec::new());
     let mut encoder = TiffEncoder::new(&mut bytes).expect("TIFF encoder");
     let mut image = encoder.new_image::<C>(width, height).expect("TIFF image");
-    if let Some(text) = nodata {
-        image
-            .encoder()
-            .write_tag(Tag::GdalNodata, text)
-            .expect("GDAL_NODATA tag");
+    for (tag, value) in tags {
+        let directory = image.encoder();
+        match value {
+            TagData::Ascii(text) => directory.write_tag(*tag, *text),
+            TagData::Doubles(values) => directory.write_tag(*tag, *values),
+            TagData::Shorts(values) => directory.write_tag(*tag, *values),
+        }
+        .expect("TIFF tag");
     }
     image.write_data(data).expect("TIFF data");
     bytes.into_inner()
+}
+
+/// Samples along each side of [`dem_bytes`]' DEM.
+pub const SIDE: u32 = 17;
+
+/// A flat 17x17 float DEM 100 m high (a 3 m bump in one corner, so that it has relief) with
+/// the given pixel scale, its top-left corner at `corner`, in a projected (`model` 1) or
+/// geographic (2) CRS.
+pub fn dem_bytes(scale: f64, corner: [f64; 2], model: u16) -> Vec<u8> {
+    let mut heights = vec![100.0f32; (SIDE * SIDE) as usize];
+    heights[0] = 103.0;
+    let keys = [1, 1, 0, 1, 1024, 0, 1, model];
+    let tags = [
+        (Tag::GeoKeyDirectoryTag, TagData::Shorts(&keys)),
+        (
+            Tag::ModelPixelScaleTag,
+            TagData::Doubles(&[scale, scale, 0.0]),
+        ),
+        (
+            Tag::ModelTiepointTag,
+            TagData::Doubles(&[0.0, 0.0, 0.0, corner[0], corner[1], 0.0]),
+        ),
+    ];
+    tagged_tiff::<Gray32Float>(SIDE, SIDE, &heights, &tags)
 }
 
 /// A PNG whose header declares `width` x `height` pixels of the given PNG colour type and bit

@@ -163,3 +163,52 @@ fn an_export_at_a_chosen_size_is_rendered_anew_into_the_export_folder() {
     let reference = render(session.viewer.dir.path(), &scene_of(&done, (333, 211)));
     assert_same(&file, &image, &reference);
 }
+
+/// `heightray render` of a scene file, at `size` if given.
+fn render_file(scene: &Path, size: Option<&str>) -> image::RgbImage {
+    let out = scene.with_extension("check.png");
+    let mut command = Command::new(env!("CARGO_BIN_EXE_heightray"));
+    command.arg("render").arg(scene).arg("-o").arg(&out);
+    if let Some(size) = size {
+        command.args(["--size", size]);
+    }
+    let status = command
+        .stdout(std::process::Stdio::null())
+        .status()
+        .expect("run heightray render");
+    assert!(status.success(), "heightray render failed on {scene:?}");
+    image::open(&out).expect("the rendered PNG").to_rgb8()
+}
+
+#[test]
+fn a_saved_scene_renders_the_exported_image_and_renders_at_any_size() {
+    let mut session = Session::start(&["--export-dir", "out"]);
+    let state = session.open_section("export_section", "save_scene");
+    session.click(&state, "save_scene");
+    let saved = session
+        .viewer
+        .wait_for("the scene saved", |s| s["export"]["scene"].is_string());
+    assert_eq!(saved["error"], Value::Null);
+    let scene = PathBuf::from(saved["export"]["scene"].as_str().expect("a scene path"));
+    assert_eq!(
+        scene,
+        session
+            .viewer
+            .path("out")
+            .join("heightray-valley513-001.toml")
+    );
+    session.x.focus(session.window);
+    session.x.key('s' as u32);
+    let done = session.viewer.wait_for("the export", |s| {
+        s["export"]["saved"] == 1 && s["export"]["running"] == 0
+    });
+    assert_eq!(done["error"], Value::Null);
+    assert_eq!(done["camera"], saved["camera"], "the camera moved");
+    let file = PathBuf::from(done["export"]["last"].as_str().expect("an export"));
+    let exported = image::open(&file).expect("an exported PNG").to_rgb8();
+    assert_same(&file, &exported, &render_file(&scene, None));
+    assert_eq!(
+        render_file(&scene, Some("320x180")).dimensions(),
+        (320, 180)
+    );
+}

@@ -10,6 +10,7 @@ mod app;
 mod decoding;
 mod export;
 mod fog;
+mod georeferenced;
 mod navigation;
 mod panel;
 mod special_paths;

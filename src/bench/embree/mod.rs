@@ -429,7 +429,7 @@ mod tests {
     fn embree_hits_what_the_exact_trace_hits() {
         let exact = TraceOptions::new(Method::Mipmap, Arith::Exact);
         for (name, mut file) in SceneFile::builtins().unwrap() {
-            (file.camera.width, file.camera.height) = (64, 64);
+            file.size = Some((64, 64));
             let scene = Scene::from_file(&file, Path::new(""), Path::new(name)).unwrap();
             let terrain = Terrain::new(scene.field.clone());
             let embree = EmbreeScene::build(&terrain, Geometry::Triangles).unwrap();

@@ -1,11 +1,15 @@
 //! Loading height fields from files: PNG (grayscale, or RGB as luminance or terrain-RGB), PGM
-//! (P2, P5) and TIFF (8/16-bit integer and floating-point samples, as DEMs use).
+//! (P2, P5), TIFF (8/16-bit integer and floating-point samples, as DEMs use; GeoTIFF's
+//! georeferencing), SRTM `.hgt` tiles and ESRI ASCII grids (`.asc`).
 //!
 //! Every format's size is checked from its header before decoding (see `limits`); whatever a
 //! file holds, loading returns a [`LoadError`] that names the file, never a panic. A path that
 //! is not a regular file is refused before it is opened, and files are decoded as streams:
 //! memory follows the image's size, never the file's.
 
+mod asc;
+mod geotiff;
+mod hgt;
 mod pgm;
 mod png;
 mod raster;
@@ -35,7 +39,7 @@ pub enum LoadError {
         reason: std::io::Error,
     },
     /// The path names a directory, a device, a FIFO or a socket.
-    #[error("{path} is {what}, not a file; choose a height map file (PNG, PGM or TIFF) instead")]
+    #[error("{path} is {what}, not a file; choose a height map file (PNG, PGM, TIFF, .hgt or .asc) instead")]
     NotAFile {
         /// The path.
         path: PathBuf,
@@ -48,8 +52,8 @@ pub enum LoadError {
         /// The file's name in messages.
         name: String,
     },
-    /// The file does not start as a PNG, PGM or TIFF does.
-    #[error("{name} is not a PNG, PGM or TIFF image (its first bytes are {start}); heightray reads grayscale or RGB PNG, PGM and TIFF height maps")]
+    /// The file does not start as a PNG, PGM, TIFF or ESRI ASCII grid does.
+    #[error("{name} is not a PNG, PGM or TIFF image (its first bytes are {start}); heightray reads grayscale or RGB PNG, PGM and TIFF height maps, SRTM .hgt tiles and ESRI ASCII grids")]
     NotAnImage {
         /// The file's name in messages.
         name: String,
@@ -321,10 +325,12 @@ fn decode<R: Read + Seek>(
         .read_to_end(&mut start)
         .and_then(|count| input.back(count as u64))
         .map_err(|e| decode_error(name, e))?;
-    match Format::of(&start) {
+    match Format::of(&start, name) {
         Some(Format::Pgm) => pgm::decode(input, len, name),
         Some(Format::Png) => png::decode(input, name, colour),
         Some(Format::Tiff) => tiff::decode(input, name),
+        Some(Format::Hgt) => hgt::decode(input, len, name),
+        Some(Format::Asc) => asc::decode(input, name),
         None => Err(LoadError::NotAnImage {
             name: name.into(),
             start: first_bytes(&start),
@@ -332,17 +338,24 @@ fn decode<R: Read + Seek>(
     }
 }
 
-/// The formats read, told apart by their first bytes.
+/// The formats read, told apart by their first bytes (an `.hgt` tile, which has no header, by
+/// its name).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Format {
     Png,
     Pgm,
     Tiff,
+    Hgt,
+    Asc,
 }
 
 impl Format {
-    fn of(bytes: &[u8]) -> Option<Format> {
-        if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+    fn of(bytes: &[u8], name: &str) -> Option<Format> {
+        if hgt::is_hgt(name) {
+            Some(Format::Hgt)
+        } else if asc::starts_asc(bytes) {
+            Some(Format::Asc)
+        } else if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
             Some(Format::Png)
         } else if bytes.starts_with(b"P2") || bytes.starts_with(b"P5") {
             Some(Format::Pgm)

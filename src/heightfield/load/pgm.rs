@@ -5,6 +5,7 @@
 use super::limits::check_header;
 use super::raster::{Raster, Values};
 use super::{decode_error, LoadError};
+use crate::heightfield::georef::Georeferencing;
 use std::io::{self, BufRead};
 
 /// The most whitespace, comments and digits read for one number: a header or a sample never
@@ -35,6 +36,7 @@ pub fn decode(input: impl BufRead, len: u64, name: &str) -> Result<Raster, LoadE
         height: height as usize,
         values: Values::Unsigned { samples, maxval },
         file_nodata: None,
+        georef: Georeferencing::None,
     })
 }
 

@@ -4,6 +4,7 @@
 use super::limits::{check_header, MAX_DECODED_BYTES};
 use super::raster::{Raster, TerrainRgb, Values};
 use super::{decode_error, ColourEncoding, LoadError};
+use crate::heightfield::georef::Georeferencing;
 use image::codecs::png::PngDecoder;
 use image::{DynamicImage, ImageDecoder, Limits};
 use std::io::{BufRead, Seek};
@@ -61,6 +62,7 @@ pub fn decode(
         height: height as usize,
         values,
         file_nodata: None,
+        georef: Georeferencing::None,
     })
 }
 

@@ -3,6 +3,7 @@
 //! their finite range; no-data values marked.
 
 use super::{LoadOptions, NoDataValue};
+use crate::heightfield::georef::Georeferencing;
 use crate::heightfield::{Heightfield, HeightfieldError, NoDataMask, Quantisation};
 
 /// SRTM's no-data value, the default for signed and floating-point rasters.
@@ -15,6 +16,8 @@ pub struct Raster {
     pub values: Values,
     /// The no-data value the file itself declares.
     pub file_nodata: Option<f64>,
+    /// Where the file says its samples lie.
+    pub georef: Georeferencing,
 }
 
 /// The values of a raster, as decoded.
@@ -67,6 +70,12 @@ impl Values {
 impl Raster {
     /// The height field, with the options' z scale and no-data value.
     pub fn into_field(self, options: &LoadOptions) -> Result<Heightfield, HeightfieldError> {
+        let georef = self.georef.clone();
+        Ok(self.into_samples(options)?.with_georeferencing(georef))
+    }
+
+    /// The height field's samples and holes.
+    fn into_samples(self, options: &LoadOptions) -> Result<Heightfield, HeightfieldError> {
         let (width, height) = (self.width, self.height);
         // Decoders promise one value per pixel; a short buffer must not index out of bounds.
         if self.values.len() != width * height {

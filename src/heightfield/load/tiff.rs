@@ -1,7 +1,8 @@
 //! TIFF through the `tiff` crate: one band of 8/16-bit unsigned samples (as grayscale
 //! images), or signed integer or floating-point samples (DEMs, in their own units), with a
-//! GeoTIFF's GDAL_NODATA value.
+//! GeoTIFF's GDAL_NODATA value and georeferencing.
 
+use super::geotiff;
 use super::limits::{check_header, MAX_DECODED_BYTES};
 use super::raster::{Raster, Values};
 use super::{decode_error, LoadError};
@@ -28,6 +29,7 @@ pub fn decode(input: impl Read + Seek, name: &str) -> Result<Raster, LoadError> 
         .get_tag_ascii_string(Tag::GdalNodata)
         .ok()
         .and_then(|text| text.trim_matches(['\0', ' ']).parse::<f64>().ok());
+    let georef = geotiff::georeferencing(&mut decoder, height);
     let buffer_limit = usize::try_from(MAX_DECODED_BYTES).unwrap_or(usize::MAX);
     let mut limits = Limits::default();
     limits.decoding_buffer_size = buffer_limit;
@@ -59,5 +61,6 @@ pub fn decode(input: impl Read + Seek, name: &str) -> Result<Raster, LoadError> 
         height: height as usize,
         values,
         file_nodata,
+        georef,
     })
 }

@@ -91,9 +91,12 @@ impl Shader<'_> {
         for index in 0..rays {
             let (u, v) = point(index, seed);
             let dir = cosine_hemisphere(normal, u, v);
-            let culled = self.culling.horizon_clear && dir.z > 0.0 && climbs_above(dir, bound(dir));
+            // (Traced and bounded in grid coordinates; coloured by the world direction.)
+            let grid = self.grid_dir(dir);
+            let culled =
+                self.culling.horizon_clear && grid.z > 0.0 && climbs_above(grid, bound(grid));
             let open = culled || {
-                let answer = self.occluded(found, ray, p, dir.into());
+                let answer = self.occluded(found, ray, p, grid.into());
                 if answer.occluded.is_some() {
                     sky.cast += 1;
                     sky.counters += answer.counters;

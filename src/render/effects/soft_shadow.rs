@@ -41,7 +41,9 @@ impl Shader<'_> {
         p: DVec3,
     ) -> Cast {
         let skip = |why| (Shadow::Skipped(why), Counters::default(), false);
-        let axis = DVec3::from(self.lighting.sun);
+        // The disc is drawn around the sun's direction in grid coordinates, where the rays and
+        // the bounds are; on non-square cells it is stretched with the cells.
+        let axis = self.grid_dir(DVec3::from(self.lighting.sun));
         // (Room for rounding: the lowest direction drawn is never lower than this.)
         let half = (self.lighting.effects.sun_angle_deg / 2.0).to_radians();
         let lowest = axis.z.clamp(-1.0, 1.0).asin() - half * (1.0 + 1e-9);

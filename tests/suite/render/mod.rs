@@ -57,8 +57,7 @@ fn builtin_scene(name: &str, size: u32) -> Scene {
         .join("assets")
         .join(format!("{name}.toml"));
     let mut file: SceneFile = toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
-    file.camera.width = size;
-    file.camera.height = size;
+    file.size = Some((size, size));
     Scene::from_file(&file, path.parent().unwrap(), &path).unwrap()
 }
 
@@ -277,11 +276,15 @@ fn scene_errors_name_the_key_and_the_file() {
         unknown.contains("fov") && unknown.contains("bad.toml"),
         "{unknown}"
     );
-    let missing = scene_error(&SMALL_SCENE.replace("z_scale = 12.0\n", ""));
+    // Only the map's path is required; a built-in without z_scale keeps its own.
+    let missing = scene_error(&SMALL_SCENE.replace("path = \"builtin:small49\"\n", ""));
     assert!(
-        missing.contains("z_scale") && missing.contains("bad.toml"),
+        missing.contains("path") && missing.contains("bad.toml"),
         "{missing}"
     );
+    let own_scale = load_scene_text("good.toml", &SMALL_SCENE.replace("z_scale = 12.0\n", ""));
+    let builtin = heightray::heightfield::Builtin::named("small49").unwrap();
+    assert_eq!(own_scale.unwrap().field.z_scale(), builtin.z_scale);
     let unknown_section = scene_error(&format!("{SMALL_SCENE}\n[lights]\nsun = 1\n"));
     assert!(unknown_section.contains("lights"), "{unknown_section}");
     let bad_method = scene_error(&format!("{SMALL_SCENE}\n[render]\nmethod = \"bvh\"\n"));

@@ -1,0 +1,189 @@
+//! A GeoTIFF's georeferencing, read through the `tiff` crate's tag API: ModelPixelScale with
+//! ModelTiepoint, or ModelTransformation, and the GeoKeyDirectory's model type, raster type
+//! and units (GeoTIFF 1.1, OGC 19-008r4).
+//!
+//! Only north-up grids are used; a rotated or sheared transform, a geocentric model or a unit
+//! that is not a metre, a foot or a degree leaves the field a plain image, with the reason.
+
+use crate::heightfield::georef::{
+    Georef, Georeferencing, MapUnits, METRES_PER_FOOT, METRES_PER_US_SURVEY_FOOT,
+};
+use std::io::{Read, Seek};
+use tiff::decoder::Decoder;
+use tiff::tags::Tag;
+
+// GeoKey ids and values (GeoTIFF 1.1, section 7).
+const MODEL_TYPE: u16 = 1024;
+const RASTER_TYPE: u16 = 1025;
+const ANGULAR_UNITS: u16 = 2054;
+const LINEAR_UNITS: u16 = 3076;
+const MODEL_PROJECTED: u16 = 1;
+const MODEL_GEOGRAPHIC: u16 = 2;
+const RASTER_PIXEL_IS_POINT: u16 = 2;
+const UNIT_METRE: u16 = 9001;
+const UNIT_FOOT: u16 = 9002;
+const UNIT_US_SURVEY_FOOT: u16 = 9003;
+const UNIT_DEGREE: u16 = 9102;
+
+/// The georeferencing of the current image of `decoder`, `height` rows high.
+pub fn georeferencing<R: Read + Seek>(decoder: &mut Decoder<R>, height: u32) -> Georeferencing {
+    let mut doubles = |tag| {
+        decoder
+            .find_tag(tag)
+            .ok()
+            .flatten()
+            .and_then(|v| v.into_f64_vec().ok())
+    };
+    let scale = doubles(Tag::ModelPixelScaleTag);
+    let tiepoint = doubles(Tag::ModelTiepointTag);
+    let transformation = doubles(Tag::ModelTransformationTag);
+    let keys = decoder
+        .find_tag(Tag::GeoKeyDirectoryTag)
+        .ok()
+        .flatten()
+        .and_then(|v| v.into_u16_vec().ok());
+    if scale.is_none() && tiepoint.is_none() && transformation.is_none() {
+        return Georeferencing::None;
+    }
+    let keys = GeoKeys(keys.unwrap_or_default());
+    Georeferencing::from_result(
+        corner_transform(scale, tiepoint, transformation)
+            .and_then(|corner| georef(&corner, &keys, height)),
+    )
+}
+
+/// The affine map from raster space (column, row; corners of pixel `(0, 0)` at `(0, 0)`) to
+/// the model: `X = x0 + column * sx`, `Y = y0 - row * sy`, north up.
+struct Corner {
+    x0: f64,
+    y0: f64,
+    sx: f64,
+    sy: f64,
+}
+
+/// The north-up affine map the tags describe, or why there is none.
+fn corner_transform(
+    scale: Option<Vec<f64>>,
+    tiepoint: Option<Vec<f64>>,
+    transformation: Option<Vec<f64>>,
+) -> Result<Corner, String> {
+    if let Some(m) = transformation {
+        let [a, b, _, d, e, f, _, h, ..] = m[..] else {
+            return Err(format!(
+                "its ModelTransformation has {} values, not 16",
+                m.len()
+            ));
+        };
+        if b != 0.0 || e != 0.0 {
+            return Err("its ModelTransformation is rotated or sheared".into());
+        }
+        return Ok(Corner {
+            x0: d,
+            y0: h,
+            sx: a,
+            sy: -f,
+        });
+    }
+    let (Some(scale), Some(tie)) = (scale, tiepoint) else {
+        return Err("it has ModelPixelScale or ModelTiepoint without the other".into());
+    };
+    let too_short = || "its ModelPixelScale or ModelTiepoint is too short".to_owned();
+    let [sx, sy, ..] = scale[..] else {
+        return Err(too_short());
+    };
+    let [i, j, _, x, y, ..] = tie[..] else {
+        return Err(too_short());
+    };
+    if tie.len() > 6 {
+        return Err("it has several tiepoints (a warped grid)".into());
+    }
+    Ok(Corner {
+        x0: x - i * sx,
+        y0: y + j * sy,
+        sx,
+        sy,
+    })
+}
+
+/// The sample positions of an image `height` rows high under `corner`, in the keys' units.
+fn georef(corner: &Corner, keys: &GeoKeys, height: u32) -> Result<Georef, String> {
+    let units = match keys.get(MODEL_TYPE) {
+        Some(MODEL_GEOGRAPHIC) => match keys.get(ANGULAR_UNITS) {
+            None | Some(UNIT_DEGREE) => MapUnits::Degrees,
+            Some(unit) => return Err(format!("its angular unit (EPSG {unit}) is not degrees")),
+        },
+        Some(MODEL_PROJECTED) => {
+            let metres = match keys.get(LINEAR_UNITS) {
+                // Most projected CRSs (UTM, national grids) are in metres; GDAL writes the
+                // unit key only where the CRS is not an EPSG code.
+                None | Some(UNIT_METRE) => 1.0,
+                Some(UNIT_FOOT) => METRES_PER_FOOT,
+                Some(UNIT_US_SURVEY_FOOT) => METRES_PER_US_SURVEY_FOOT,
+                Some(unit) => return Err(format!("its linear unit (EPSG {unit}) is unknown")),
+            };
+            MapUnits::Linear { metres }
+        }
+        Some(other) => {
+            return Err(format!(
+                "its model type {other} is neither projected nor geographic"
+            ))
+        }
+        None => return Err("it has no GeoKeyDirectory saying the CRS's units".into()),
+    };
+    // PixelIsArea (the default): the tiepoint is a pixel's corner, samples sit at centres.
+    let half = if keys.get(RASTER_TYPE) == Some(RASTER_PIXEL_IS_POINT) {
+        0.0
+    } else {
+        0.5
+    };
+    // Sample (0, 0) of the field is the image's bottom-left pixel, row height - 1.
+    let bottom = f64::from(height) - 1.0 + half;
+    let origin = [corner.x0 + half * corner.sx, corner.y0 - bottom * corner.sy];
+    Georef::new(origin, [corner.sx, corner.sy], units)
+}
+
+/// A GeoKeyDirectory: a header of four shorts, then (id, location, count, value) per key.
+struct GeoKeys(Vec<u16>);
+
+impl GeoKeys {
+    /// A key's short value stored in the directory itself (location 0).
+    fn get(&self, id: u16) -> Option<u16> {
+        self.0
+            .get(4..)?
+            .chunks_exact(4)
+            .find(|key| key[0] == id && key[1] == 0)
+            .map(|key| key[3])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn keys(pairs: &[(u16, u16)]) -> GeoKeys {
+        let mut v = vec![1, 1, 0, pairs.len() as u16];
+        for &(id, value) in pairs {
+            v.extend([id, 0, 1, value]);
+        }
+        GeoKeys(v)
+    }
+
+    #[test]
+    fn geo_keys_are_found_by_id() {
+        let k = keys(&[(MODEL_TYPE, 1), (LINEAR_UNITS, 9002)]);
+        assert_eq!(k.get(MODEL_TYPE), Some(1));
+        assert_eq!(k.get(LINEAR_UNITS), Some(9002));
+        assert_eq!(k.get(RASTER_TYPE), None);
+        assert_eq!(GeoKeys(vec![1, 1]).get(MODEL_TYPE), None);
+    }
+
+    #[test]
+    fn a_rotated_transformation_is_refused() {
+        let mut m = vec![0.0; 16];
+        m[0] = 1.0;
+        m[1] = 0.5;
+        m[5] = -1.0;
+        let error = corner_transform(None, None, Some(m)).err().unwrap();
+        assert!(error.contains("rotated"), "{error}");
+    }
+}

@@ -1,0 +1,141 @@
+//! A scene file's `[heightmap]` section: the map, how to read it, and how high to show its
+//! relief (a z scale, or an exaggeration of a georeferenced map's true scale).
+
+use super::SceneFile;
+use crate::heightfield::{self, relief, Builtin, Heightfield, LoadError, LoadOptions, NoDataValue};
+use serde::Deserialize;
+use std::ops::ControlFlow;
+use std::path::Path;
+
+/// A scene file's `[heightmap]` section.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct HeightmapSection {
+    /// A file, relative to the scene file; or `builtin:NAME` for a built-in terrain.
+    pub path: String,
+    /// Height of the largest sample value (maxval); for float and signed rasters, the factor
+    /// applied to their values. Left out, a georeferenced map is shown at true scale and a
+    /// plain image with its relief a quarter of its larger side.
+    #[serde(default)]
+    pub z_scale: Option<f64>,
+    /// For a georeferenced map instead of `z_scale`: how many times its true scale its heights
+    /// are shown.
+    #[serde(default)]
+    pub exaggeration: Option<f64>,
+    /// How RGB images become heights: `luminance` (the default), `mapbox` or `terrarium`.
+    #[serde(default)]
+    pub rgb: Option<String>,
+    /// Which raster value means no data: `"auto"` (the default), `"none"` or a number.
+    #[serde(default)]
+    pub nodata: Option<NoDataKey>,
+}
+
+/// `nodata` as written: a number, or a word.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(untagged)]
+pub enum NoDataKey {
+    /// This raster value means no data.
+    Value(f64),
+    /// `auto` or `none`.
+    Word(String),
+}
+
+/// Why a `[heightmap]` section gives no field.
+pub enum HeightmapError {
+    /// A key's value is wrong; the message names it.
+    Invalid(String),
+    /// The map could not be loaded.
+    Load(LoadError),
+}
+
+impl SceneFile {
+    /// Whether `path` names a scene file (`.toml`) rather than a height map.
+    pub fn is_scene_path(path: &Path) -> bool {
+        path.extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
+    }
+
+    /// The scene of a height map on its own: the whole map framed as the viewer first shows
+    /// it, at its default relief, with every other section's defaults. Its path is relative
+    /// to the map's folder ([`Scene::base`](super::Scene::base)).
+    pub fn for_map(path: &Path) -> SceneFile {
+        let name = path.file_name().unwrap_or(path.as_os_str());
+        SceneFile {
+            heightmap: HeightmapSection {
+                path: name.to_string_lossy().into_owned(),
+                z_scale: None,
+                exaggeration: None,
+                rgb: None,
+                nodata: None,
+            },
+            camera: None,
+            sun: Default::default(),
+            effects: Default::default(),
+            shading: Default::default(),
+            render: Default::default(),
+            size: None,
+        }
+    }
+}
+
+impl HeightmapSection {
+    /// Loads the map, relative paths from `base`, at the section's z scale or exaggeration.
+    pub fn load(&self, base: &Path) -> Result<Heightfield, HeightmapError> {
+        let invalid = HeightmapError::Invalid;
+        let z_scale = match (self.z_scale, self.exaggeration) {
+            (Some(_), Some(_)) => {
+                return Err(invalid(
+                    "[heightmap] has both z_scale and exaggeration; give one".into(),
+                ))
+            }
+            (_, Some(e)) if !(e.is_finite() && e >= 0.0) => {
+                return Err(invalid(format!(
+                    "[heightmap] exaggeration must be a finite number >= 0, got {e}"
+                )))
+            }
+            (z, _) => z,
+        };
+        let field = match self.path.strip_prefix("builtin:") {
+            Some(name) => {
+                let builtin = Builtin::named(name).ok_or_else(|| {
+                    invalid(format!("[heightmap] path: no built-in terrain '{name}'"))
+                })?;
+                builtin.load_scaled(z_scale.unwrap_or(builtin.z_scale))
+            }
+            None => {
+                let mut options = LoadOptions::new(z_scale.unwrap_or(1.0));
+                if let Some(rgb) = &self.rgb {
+                    options.colour = rgb
+                        .parse()
+                        .map_err(|e| invalid(format!("[heightmap] rgb: {e}")))?;
+                }
+                options.nodata = match &self.nodata {
+                    None => NoDataValue::Auto,
+                    Some(NoDataKey::Value(v)) => NoDataValue::Value(*v),
+                    Some(NoDataKey::Word(w)) => w
+                        .parse()
+                        .map_err(|e| invalid(format!("[heightmap] nodata: {e}")))?,
+                };
+                let keep_going = |_| ControlFlow::Continue(());
+                heightfield::load_with(&base.join(&self.path), &options, &keep_going)
+            }
+        }
+        .map_err(HeightmapError::Load)?;
+        let z_scale = match (z_scale, self.exaggeration) {
+            (Some(_), _) => return Ok(field),
+            (None, Some(e)) => relief::true_z_scale(&field, e).ok_or_else(|| {
+                invalid(
+                    "[heightmap] exaggeration needs a georeferenced map; give z_scale for a \
+                     plain image"
+                        .into(),
+                )
+            })?,
+            // A built-in is loaded at its own z scale.
+            (None, None) if self.path.starts_with("builtin:") => return Ok(field),
+            (None, None) => relief::default_z_scale(&field),
+        };
+        field
+            .with_z_scale(z_scale)
+            .map_err(|e| invalid(format!("[heightmap] {e}")))
+    }
+}

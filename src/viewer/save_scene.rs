@@ -1,0 +1,104 @@
+//! "Save scene": the current view as a scene file that `heightray render` turns into the same
+//! image: the map and how it was read, its z scale, the orbit at the export size, the light,
+//! effects, traversal and arithmetic. Saved beside the exported images, under a name no other
+//! file has.
+
+use super::export::create_numbered;
+use super::loader::Source;
+use super::model::Model;
+use crate::heightfield::NoDataValue;
+use crate::render::{NoDataKey, Scene, SceneFile};
+use std::io::Write;
+use std::path::Path;
+
+/// Writes the view at `size` pixels as `heightray-MAP-NNN.toml` in the export folder.
+pub fn save(model: &mut Model, size: (u32, u32)) {
+    let saved = scene_text(model, size).and_then(|text| {
+        let stem = super::export::stem(model);
+        let (mut file, path) = create_numbered(&model.export.folder(), &stem, "toml")?;
+        file.write_all(text.as_bytes())
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        Ok(path)
+    });
+    match saved {
+        Ok(path) => {
+            model.notify(format!("Saved the scene as {}", path.display()));
+            model.export.last_scene = Some(path);
+        }
+        Err(message) => model.error = Some(message),
+    }
+}
+
+/// The scene file's text for the view at `size` pixels.
+fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, String> {
+    let orbit = &model.orbit;
+    let lighting = model.settings.lighting();
+    let z_scale = model.shown.terrain.field().z_scale();
+    let heightmap = heightmap_keys(&model.shown.source, model)?;
+    let [tx, ty, tz] = orbit.target;
+    let [sx, sy, sz] = model.settings.sun();
+    Ok(format!(
+        "[heightmap]\n{heightmap}z_scale = {z_scale:?}\n\n\
+         [camera]\norbit = {{ target = [{tx:?}, {ty:?}, {tz:?}], yaw_deg = {:?}, \
+         pitch_deg = {:?}, distance = {:?} }}\nfov_y_deg = {:?}\nwidth = {width}\n\
+         height = {height}\n\n\
+         [sun]\ndirection = [{sx:?}, {sy:?}, {sz:?}]\nintensity = {:?}\nambient = {:?}\n\n\
+         [effects]\nshadows = {}\nfog = {:?}\n\n\
+         [shading]\nnormals = \"{}\"\nramp = \"{}\"\n\n\
+         [render]\nmethod = \"{}\"\narith = \"{}\"\n",
+        orbit.yaw_deg,
+        orbit.pitch_deg,
+        orbit.distance,
+        orbit.fov_y_deg,
+        lighting.intensity,
+        lighting.ambient,
+        lighting.shadows,
+        lighting.fog,
+        format!("{:?}", lighting.normals).to_lowercase(),
+        format!("{:?}", lighting.ramp).to_lowercase(),
+        model.settings.method,
+        model.settings.arith(),
+    ))
+}
+
+/// The `[heightmap]` keys but the z scale: the map's path in full (a scene's own map, when a
+/// scene is shown) and how it was read.
+fn heightmap_keys(source: &Source, model: &Model) -> Result<String, String> {
+    let (path, rgb, nodata) = match source {
+        Source::Builtin(name) => return Ok(format!("path = \"builtin:{name}\"\n")),
+        Source::File(path) if SceneFile::is_scene_path(path) => {
+            let file = SceneFile::read(path).map_err(|e| e.to_string())?;
+            let map = file.heightmap;
+            if map.path.starts_with("builtin:") {
+                return Ok(format!("path = {:?}\n", map.path));
+            }
+            let nodata = match map.nodata {
+                None => NoDataValue::Auto,
+                Some(NoDataKey::Value(v)) => NoDataValue::Value(v),
+                Some(NoDataKey::Word(w)) => w.parse()?,
+            };
+            let rgb = map.rgb.unwrap_or_else(|| "luminance".into());
+            (Scene::base(path).join(map.path), rgb, nodata)
+        }
+        Source::File(path) => {
+            let decoding = model.shown.decoding;
+            (path.clone(), decoding.colour.to_string(), decoding.nodata)
+        }
+    };
+    let nodata = match nodata {
+        NoDataValue::Value(v) => format!("{v:?}"),
+        word => format!("\"{word}\""),
+    };
+    Ok(format!(
+        "path = {:?}\nrgb = \"{rgb}\"\nnodata = {nodata}\n",
+        absolute(&path)
+    ))
+}
+
+/// `path` in full, so the scene works from any folder.
+fn absolute(path: &Path) -> String {
+    std::path::absolute(path)
+        .unwrap_or_else(|_| path.to_owned())
+        .display()
+        .to_string()
+}
