@@ -29,7 +29,7 @@ pub(super) use run_levels::{descend_runs, run_sample, BlockRun};
 pub use stretches::clear_way;
 
 use super::degenerate::is_point;
-use super::frame::Frame;
+use super::frame::{Frame, Span};
 use super::runs;
 use super::search::Search;
 use crate::arith::scalar::{max, Scalar};
@@ -67,6 +67,9 @@ pub(super) trait Follower<S: Scalar> {
     /// `ends_inside`); `alone`: no other cell touches that part where no other part covers
     /// it, so the cell's own triangles are all there is to test.
     fn cell(&mut self, cell: (usize, usize), part: Part<'_, S>) -> ControlFlow<()>;
+    /// A span of cells of frame `f` in visiting order, from the walks that go row by row
+    /// or cell by cell ([`runs`], [`super::dda`]), which the block walks end in.
+    fn span(&mut self, f: &Frame<S>, span: Span<S>) -> ControlFlow<()>;
     /// A cell the walk passed by at level 0 without testing its triangles.
     fn passed(&mut self, cell: (usize, usize));
     /// Whether the ray moves away from the samples its block test compares it with (or keeps
@@ -130,7 +133,7 @@ fn walk_with<'a, S: Scalar>(
     descend: impl FnOnce(&Frame<S>, u32, u32, &mut Search<'a, S>) -> ControlFlow<()>,
 ) -> ControlFlow<()> {
     if !has_blocks(f) {
-        return runs::walk(f, &mut |span| search.span(f, span));
+        return runs::walk(f, search);
     }
     let top = search.terrain.mipmap().top();
     descend(f, top, start_level(top, level), search)
@@ -304,6 +307,17 @@ impl<'a, S: Scalar> Part<'a, S> {
         }
     }
 
+    /// The part as a path of its own, for the run walk across it.
+    pub(super) fn path(&self) -> Frame<S> {
+        let (at, exit) = (self.at, self.exit);
+        let mut frame = self.frame.clone();
+        (frame.t0, frame.us, frame.vs) = (at.t.clone(), at.u.clone(), at.v.clone());
+        if !self.ends_inside {
+            (frame.t1, frame.ue, frame.ve) = (exit.t.clone(), exit.u.clone(), exit.v.clone());
+        }
+        frame
+    }
+
     /// The `t` where the part ends.
     pub(super) fn end_t(&self) -> &S {
         if self.ends_inside {
@@ -343,13 +357,11 @@ impl<S: Scalar> Follower<S> for Search<'_, S> {
             self.reached(i, j);
             return self.triangles(i, j);
         }
-        let (at, exit) = (part.at, part.exit);
-        let mut frame = part.frame.clone();
-        (frame.t0, frame.us, frame.vs) = (at.t.clone(), at.u.clone(), at.v.clone());
-        if !part.ends_inside {
-            (frame.t1, frame.ue, frame.ve) = (exit.t.clone(), exit.u.clone(), exit.v.clone());
-        }
-        runs::walk(&frame, &mut |span| self.span(&frame, span))
+        runs::walk(&part.path(), self)
+    }
+    #[inline(always)]
+    fn span(&mut self, f: &Frame<S>, span: Span<S>) -> ControlFlow<()> {
+        Search::span(self, f, span)
     }
     fn passed(&mut self, (i, j): (usize, usize)) {
         self.reached(i, j);

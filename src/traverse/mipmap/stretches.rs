@@ -5,6 +5,7 @@ use super::{descend, has_blocks, Follower, Part};
 use crate::heightfield::Terrain;
 use crate::traverse::approximation::{Approximation, Bounds};
 use crate::traverse::counters::Counters;
+use crate::traverse::frame::{Frame, Span};
 use crate::traverse::Query;
 use std::ops::ControlFlow;
 
@@ -125,6 +126,9 @@ impl<F: FnMut(Stretch) -> ControlFlow<()>> Follower<f64> for Clearing<'_, F> {
             return self.flush();
         }
         ControlFlow::Continue(())
+    }
+    fn span(&mut self, _f: &Frame<f64>, _span: Span<f64>) -> ControlFlow<()> {
+        unreachable!("the block walk that clears the way hands over cells, never spans")
     }
     fn passed(&mut self, _cell: (usize, usize)) {}
     fn moves_away(&self) -> bool {
