@@ -6,7 +6,7 @@
 
 use super::degenerate::{is_point, walk_level, walk_point};
 use super::frame::{Frame, Span};
-use super::mipmap::Follower;
+use super::search::Follower;
 use crate::arith::scalar::{min, Scalar};
 use std::cmp::Ordering;
 use std::ops::ControlFlow;

@@ -2,7 +2,7 @@
 //! segment clipped to length zero in the plane) and a path parallel to the rows.
 
 use super::frame::{Frame, Span};
-use super::mipmap::Follower;
+use super::search::Follower;
 use crate::arith::scalar::{max, min, Scalar};
 use std::ops::ControlFlow;
 

@@ -139,7 +139,7 @@ pub(super) fn trace_certified<S: Scalar, W: Walk>(
         return Some(ScalarTrace::missed(counters));
     };
     let near_ray = Approximation::along(frame, near, start);
-    let mut search = new_search(terrain, o, d, dir, Some(near), options, counters);
+    let mut search = new_search::<S, W>(terrain, o, d, dir, Some(near), options, counters);
     // Ends by itself or at the answer; both are fine here.
     let _ = certified::certify::<S, W>(&near_ray, &mut search);
     if search.tied && options.query == Query::FirstHit {

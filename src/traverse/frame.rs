@@ -2,7 +2,7 @@
 //! slope `dv/du` in `[0, 1]`, by mirroring axes (negation, exact in every arithmetic) and
 //! exchanging x and y. Cells are named by frame indices `(cu, cv)` until they are reported.
 
-use super::mipmap::Follower;
+use super::search::Follower;
 use crate::arith::scalar::Scalar;
 use crate::geometry::Clipped;
 

@@ -340,7 +340,7 @@ fn trace_walk<S: Scalar, W: Walk>(
     let Some(frame) = after_beam(frame, start) else {
         return ScalarTrace::missed(counters);
     };
-    let mut search = new_search(terrain, o, d, dir_f64, near, &walk_options, counters);
+    let mut search = new_search::<S, W>(terrain, o, d, dir_f64, near, &walk_options, counters);
     search.widen_by(search::slack(&o[2], &d[2], &frame.t1));
     // (A walk asked to list its cells walks them all.)
     let cleared = W::CLEARS_WAY
@@ -365,7 +365,7 @@ fn trace_walk<S: Scalar, W: Walk>(
 // (Inlined by hand: called once per ray, but `Search` is large, and out of line its
 // construction costs every ray.)
 #[inline(always)]
-fn new_search<'a, S: Scalar>(
+fn new_search<'a, S: Scalar, W: Walk>(
     terrain: &'a Terrain,
     o: &'a [S; 3],
     d: &'a [S; 3],
@@ -385,7 +385,7 @@ fn new_search<'a, S: Scalar>(
         under: false,
         moves_away: search::moves_away(&d[2], false),
         query: options.query,
-        run_test: options.method == Method::Runs,
+        run_test: W::TESTS_RUNS,
         counters,
         found: None,
         tied: false,

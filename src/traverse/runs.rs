@@ -15,7 +15,7 @@
 
 use super::degenerate::{is_point, walk_level, walk_point};
 use super::frame::{Frame, Span};
-use super::mipmap::Follower;
+use super::search::Follower;
 use crate::arith::scalar::{min, Scalar};
 use std::ops::ControlFlow;
 

@@ -5,8 +5,8 @@
 use super::approximation::Approximation;
 use super::certified::Certifying;
 use super::frame::{Frame, Span};
-use super::mipmap::{self, Follower, Part};
-use super::search::{span_cells, Search};
+use super::mipmap::{self, Part};
+use super::search::{span_cells, Follower, Search};
 use super::{dda, runs, Method};
 use crate::arith::scalar::Scalar;
 use std::ops::ControlFlow;
@@ -16,6 +16,9 @@ pub(super) trait Walk {
     /// Whether an `f64` walk clears the way for this walk in the arithmetics without rounding
     /// (see [`mipmap::clear_way`]).
     const CLEARS_WAY: bool = false;
+    /// Whether the search tests each span the walk hands over as a whole before its cells
+    /// (the run test, [`Search::span`]).
+    const TESTS_RUNS: bool = false;
     /// Walks the path of `f`, handing what it reaches to `search`, until it breaks; `level`:
     /// where a hierarchical walk starts when the caller knows better (see [`mipmap::walk`]).
     fn walk<S: Scalar>(
@@ -79,6 +82,7 @@ impl Walk for BlockRuns {
 }
 
 impl Walk for Runs {
+    const TESTS_RUNS: bool = true;
     fn walk<S: Scalar>(
         f: &Frame<S>,
         _level: Option<u32>,

@@ -22,10 +22,11 @@
 mod runs;
 
 use super::approximation::{Approximation, Bounds};
-use super::mipmap::{descend, descend_runs, run_sample, BlockRun, Follower, Part};
+use super::mipmap::{descend, descend_runs, run_sample, BlockRun, Part};
 use super::walks::Walk;
 use crate::arith::scalar::Scalar;
 use crate::traverse::frame::{Frame, Span};
+use crate::traverse::search::Follower;
 use crate::traverse::search::{Found, Search};
 use std::ops::ControlFlow;
 

@@ -1,11 +1,12 @@
 //! Clearing the way for an exact walk: an `f64` walk gathers the stretches of the path that
 //! may touch the surface, and the exact walk follows only those.
 
-use super::{descend, has_blocks, Follower, Part};
+use super::{descend, has_blocks, Part};
 use crate::heightfield::Terrain;
 use crate::traverse::approximation::{Approximation, Bounds};
 use crate::traverse::counters::Counters;
 use crate::traverse::frame::{Frame, Span};
+use crate::traverse::search::Follower;
 use crate::traverse::Query;
 use std::ops::ControlFlow;
 
