@@ -6,6 +6,7 @@
 
 use super::degenerate::{is_point, walk_level, walk_point};
 use super::frame::{Frame, Span};
+use super::search::Follower;
 use crate::arith::scalar::{min, Scalar};
 use std::cmp::Ordering;
 use std::ops::ControlFlow;
@@ -20,16 +21,13 @@ fn cell<S: Scalar>(cu: i64, cv: i64, t_lo: S, t_hi: S) -> Span<S> {
     }
 }
 
-/// Walks the clipped path cell by cell, handing each cell to `visit` until it breaks.
-pub fn walk<S: Scalar>(
-    f: &Frame<S>,
-    visit: &mut impl FnMut(Span<S>) -> ControlFlow<()>,
-) -> ControlFlow<()> {
+/// Walks the clipped path cell by cell, handing each cell to `follower` until it breaks.
+pub fn walk<S: Scalar>(f: &Frame<S>, follower: &mut impl Follower<S>) -> ControlFlow<()> {
     if is_point(f) {
-        return walk_point(f, visit);
+        return walk_point(f, follower);
     }
     if f.dv.is_zero() {
-        return walk_level(f, false, visit);
+        return walk_level(f, false, follower);
     }
     let (mut cu, mut cv) = (f.us.floor_i64(), f.vs.floor_i64());
     let t0 = f.t0.clone();
@@ -37,11 +35,11 @@ pub fn walk<S: Scalar>(
     // Cells touched only at the start point: the row below, and the cell behind.
     if f.vs.is_integer() {
         for col in f.us.ceil_i64() - 1..=cu {
-            f.emit(cell(col, cv - 1, t0.clone(), t0.clone()), visit)?;
+            f.emit(cell(col, cv - 1, t0.clone(), t0.clone()), follower)?;
         }
     }
     if f.us.is_integer() {
-        f.emit(cell(cu - 1, cv, t0.clone(), t0.clone()), visit)?;
+        f.emit(cell(cu - 1, cv, t0.clone(), t0.clone()), follower)?;
     }
 
     // Parameters of the next u and v grid line crossings, and their increments.
@@ -50,7 +48,7 @@ pub fn walk<S: Scalar>(
     let mut t_enter = t0;
     while cu <= f.cols.1 && cv <= f.rows.1 {
         let t_exit = min(f.t1.clone(), min(next_u.clone(), next_v.clone()));
-        f.emit(cell(cu, cv, t_enter, t_exit), visit)?;
+        f.emit(cell(cu, cv, t_enter, t_exit), follower)?;
         let order = if next_u.nearly_equal(&next_v) {
             Ordering::Equal
         } else {
@@ -82,8 +80,8 @@ pub fn walk<S: Scalar>(
             }
             Ordering::Equal => {
                 // Through a lattice point: the two cells touching it only there come first.
-                f.emit(cell(cu + 1, cv, t.clone(), t.clone()), visit)?;
-                f.emit(cell(cu, cv + 1, t.clone(), t.clone()), visit)?;
+                f.emit(cell(cu + 1, cv, t.clone(), t.clone()), follower)?;
+                f.emit(cell(cu, cv + 1, t.clone(), t.clone()), follower)?;
                 cu += 1;
                 cv += 1;
                 next_u = next_u + step_u.clone();

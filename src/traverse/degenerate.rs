@@ -2,6 +2,7 @@
 //! segment clipped to length zero in the plane) and a path parallel to the rows.
 
 use super::frame::{Frame, Span};
+use super::search::Follower;
 use crate::arith::scalar::{max, min, Scalar};
 use std::ops::ControlFlow;
 
@@ -12,10 +13,7 @@ pub fn is_point<S: Scalar>(f: &Frame<S>) -> bool {
 }
 
 /// Cells touching the point `(us, vs)`: up to two rows of up to two cells, row by row.
-pub fn walk_point<S: Scalar>(
-    f: &Frame<S>,
-    visit: &mut impl FnMut(Span<S>) -> ControlFlow<()>,
-) -> ControlFlow<()> {
+pub fn walk_point<S: Scalar>(f: &Frame<S>, follower: &mut impl Follower<S>) -> ControlFlow<()> {
     let cols = (f.us.ceil_i64() - 1, f.us.floor_i64());
     for row in f.vs.ceil_i64() - 1..=f.vs.floor_i64() {
         let span = Span {
@@ -25,7 +23,7 @@ pub fn walk_point<S: Scalar>(
             t_lo: f.t0.clone(),
             t_hi: f.t1.clone(),
         };
-        f.emit(span, visit)?;
+        f.emit(span, follower)?;
     }
     ControlFlow::Continue(())
 }
@@ -36,7 +34,7 @@ pub fn walk_point<S: Scalar>(
 pub fn walk_level<S: Scalar>(
     f: &Frame<S>,
     whole_run: bool,
-    visit: &mut impl FnMut(Span<S>) -> ControlFlow<()>,
+    follower: &mut impl Follower<S>,
 ) -> ControlFlow<()> {
     let on_line = f.vs.is_integer();
     let (row, rows) = if on_line {
@@ -53,7 +51,7 @@ pub fn walk_level<S: Scalar>(
             t_lo: f.t0.clone(),
             t_hi: f.t1.clone(),
         };
-        return f.emit(span, visit);
+        return f.emit(span, follower);
     }
     for col in first.max(f.cols.0)..=last.min(f.cols.1) {
         let span = Span {
@@ -63,7 +61,7 @@ pub fn walk_level<S: Scalar>(
             t_lo: max(f.t0.clone(), f.t_at_u(col)),
             t_hi: min(f.t1.clone(), f.t_at_u(col + 1)),
         };
-        f.emit(span, visit)?;
+        f.emit(span, follower)?;
     }
     ControlFlow::Continue(())
 }

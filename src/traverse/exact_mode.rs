@@ -5,6 +5,7 @@
 //! hit cast again in rationals from the exact hit point when intervals cannot settle it (its
 //! single unsettled triangle tests are decided in [`exact_start`](super::exact_start)).
 
+use super::walks::Walk;
 use super::*;
 use crate::arith::dyadic::Dyadic;
 use crate::arith::settled;
@@ -112,7 +113,7 @@ pub(super) fn point_over(ray: &Ray, above: &Dyadic, closing: &Dyadic) -> [Dyadic
 /// [`certified::certify`]): `None` where that cannot answer (the path crosses no blocks, a
 /// walk must list its cells, or two triangles are hit at the same `t`, which the exact walk's
 /// order of cells decides).
-pub(super) fn trace_certified<S: Scalar>(
+pub(super) fn trace_certified<S: Scalar, W: Walk>(
     terrain: &Terrain,
     o: &[S; 3],
     d: &[S; 3],
@@ -138,9 +139,9 @@ pub(super) fn trace_certified<S: Scalar>(
         return Some(ScalarTrace::missed(counters));
     };
     let near_ray = Approximation::along(frame, near, start);
-    let mut search = new_search(terrain, o, d, dir, Some(near), options, counters);
+    let mut search = new_search::<S, W>(terrain, o, d, dir, Some(near), options, counters);
     // Ends by itself or at the answer; both are fine here.
-    let _ = certified::certify(options.method, &near_ray, &mut search);
+    let _ = certified::certify::<S, W>(&near_ray, &mut search);
     if search.tied && options.query == Query::FirstHit {
         return None;
     }

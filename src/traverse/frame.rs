@@ -2,6 +2,7 @@
 //! slope `dv/du` in `[0, 1]`, by mirroring axes (negation, exact in every arithmetic) and
 //! exchanging x and y. Cells are named by frame indices `(cu, cv)` until they are reported.
 
+use super::search::Follower;
 use crate::arith::scalar::Scalar;
 use crate::geometry::Clipped;
 
@@ -180,11 +181,11 @@ impl<S: Scalar> Frame<S> {
         (S::from_i64(k) - self.ov.clone()) * self.inv_dv.clone()
     }
 
-    /// Clamps a span to the grid and hands it on; empty spans are dropped.
+    /// Clamps a span to the grid and hands it to `follower`; empty spans are dropped.
     pub fn emit(
         &self,
         mut span: Span<S>,
-        visit: &mut impl FnMut(Span<S>) -> std::ops::ControlFlow<()>,
+        follower: &mut impl Follower<S>,
     ) -> std::ops::ControlFlow<()> {
         let (lo, hi) = (span.cols.0.max(self.cols.0), span.cols.1.min(self.cols.1));
         let first = span.row.max(self.rows.0);
@@ -195,6 +196,6 @@ impl<S: Scalar> Frame<S> {
         span.cols = (lo, hi);
         span.row = first;
         span.rows = (last - first + 1) as u8;
-        visit(span)
+        follower.span(self, span)
     }
 }

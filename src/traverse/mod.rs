@@ -27,6 +27,7 @@ mod options;
 mod runs;
 mod search;
 mod tracer;
+mod walks;
 
 pub use beam::{Beam, Clearance};
 pub use counters::{Counters, HitMiss};
@@ -45,12 +46,13 @@ use crate::arith::{unsettled, Generic};
 use crate::geometry::{clip_to_box, plane_crossing, times_power_of_two, CertainMiss, Ray};
 use crate::heightfield::Terrain;
 use approximation::Approximation;
-use frame::{Frame, Span};
+use frame::Frame;
 use num_rational::BigRational;
 pub use search::Found;
-use search::{span_cells, LazyRaySpace, Search};
+use search::{LazyRaySpace, Search};
 use std::ops::ControlFlow;
 use std::time::Duration;
+use walks::{choose, Covering, Walk, WithWalk};
 
 /// The first hit of `ray` (the least `t >= 0` at which it touches the surface), in the
 /// options' method and arithmetic.
@@ -175,12 +177,20 @@ impl Generic for Cover<'_> {
         let Some(frame) = clip(self.terrain, &o, &d, ray.dir()) else {
             return Vec::new();
         };
-        let mut cells = Vec::new();
-        walk(&frame, self.method, &mut |span: Span<S>| {
-            cells.extend(span_cells(&frame, &span).map(|(i, j)| [i, j]));
-            ControlFlow::Continue(())
-        });
-        cells
+        choose(self.method, CoverWith(&frame)).cells
+    }
+}
+
+/// Lists the cells of a path in whichever walk [`choose`] picks.
+struct CoverWith<'f, S>(&'f Frame<S>);
+
+impl<S: Scalar> WithWalk for CoverWith<'_, S> {
+    type Output = Covering;
+    fn with<W: Walk>(self) -> Covering {
+        let mut covering = Covering::default();
+        // The walk ends by itself: nothing breaks it.
+        let _ = W::cover(self.0, &mut covering);
+        covering
     }
 }
 
@@ -232,19 +242,6 @@ fn clip_grown<S: Scalar>(
     Some(Frame::new(o, d, dir_f64, clipped, (w, h)))
 }
 
-fn walk<S: Scalar>(
-    frame: &Frame<S>,
-    method: Method,
-    visit: &mut impl FnMut(Span<S>) -> ControlFlow<()>,
-) {
-    // Either walk ends by itself or because `visit` broke; both are fine here.
-    let _ = match method {
-        // Without culling the hierarchies have nothing to skip: their cells are the run walk's.
-        Method::Runs | Method::Mipmap | Method::HierarchicalRuns => runs::walk(frame, visit),
-        Method::Dda => dda::walk(frame, visit),
-    };
-}
-
 /// The answer for one ray, in the arithmetic it was traced in.
 #[derive(Clone, Debug)]
 pub struct ScalarTrace<S> {
@@ -282,9 +279,52 @@ fn trace_scalar<S: Scalar>(
     dir_f64: [f64; 3],
     walk_options: WalkOptions,
 ) -> ScalarTrace<S> {
+    let ray = RayIn {
+        terrain,
+        o,
+        d,
+        dir_f64,
+        walk_options,
+    };
+    choose(walk_options.method, ray)
+}
+
+/// A ray to trace, in the traversal's arithmetic, and how.
+struct RayIn<'a, S> {
+    terrain: &'a Terrain,
+    o: &'a [S; 3],
+    d: &'a [S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+}
+
+impl<S: Scalar> WithWalk for RayIn<'_, S> {
+    type Output = ScalarTrace<S>;
+    #[inline(always)]
+    fn with<W: Walk>(self) -> ScalarTrace<S> {
+        let RayIn {
+            terrain,
+            o,
+            d,
+            dir_f64,
+            walk_options,
+        } = self;
+        trace_walk::<S, W>(terrain, o, d, dir_f64, walk_options)
+    }
+}
+
+/// [`trace_scalar`] along walk `W`.
+fn trace_walk<S: Scalar, W: Walk>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+) -> ScalarTrace<S> {
     // (Once per ray: for rationals each component's enclosure is a fraction's subtraction.)
     let near = f64_ray(o, d);
-    let certified = near.and_then(|near| trace_certified(terrain, o, d, near, &walk_options));
+    let certified =
+        near.and_then(|near| trace_certified::<S, W>(terrain, o, d, near, &walk_options));
     if let Some(answer) = certified {
         return answer;
     }
@@ -300,28 +340,18 @@ fn trace_scalar<S: Scalar>(
     let Some(frame) = after_beam(frame, start) else {
         return ScalarTrace::missed(counters);
     };
-    let mut search = new_search(terrain, o, d, dir_f64, near, &walk_options, counters);
+    let mut search = new_search::<S, W>(terrain, o, d, dir_f64, near, &walk_options, counters);
     search.widen_by(search::slack(&o[2], &d[2], &frame.t1));
-    if walk_options.method == Method::Mipmap {
-        // (A walk asked to list its cells walks them all.)
-        let cleared = S::EXACT
-            && !walk_options.record_cells
-            && near.is_some_and(|near| {
-                walk_cleared(terrain, (near, start), dir_f64, &frame, &mut search)
-            });
-        if !cleared {
-            let level = first_level(&walk_options, start);
-            // Ends by itself or at the answer; both are fine here.
-            let _ = mipmap::walk(&frame, &mut search, level);
-        }
-    } else if walk_options.method == Method::HierarchicalRuns {
+    // (A walk asked to list its cells walks them all.)
+    let cleared = W::CLEARS_WAY
+        && S::EXACT
+        && !walk_options.record_cells
+        && near
+            .is_some_and(|near| walk_cleared(terrain, (near, start), dir_f64, &frame, &mut search));
+    if !cleared {
         let level = first_level(&walk_options, start);
         // Ends by itself or at the answer; both are fine here.
-        let _ = mipmap::walk_runs(&frame, &mut search, level);
-    } else {
-        walk(&frame, walk_options.method, &mut |span| {
-            search.span(&frame, span)
-        });
+        let _ = W::walk(&frame, level, &mut search);
     }
     ScalarTrace {
         hit: search.found,
@@ -335,7 +365,7 @@ fn trace_scalar<S: Scalar>(
 // (Inlined by hand: called once per ray, but `Search` is large, and out of line its
 // construction costs every ray.)
 #[inline(always)]
-fn new_search<'a, S: Scalar>(
+fn new_search<'a, S: Scalar, W: Walk>(
     terrain: &'a Terrain,
     o: &'a [S; 3],
     d: &'a [S; 3],
@@ -355,7 +385,7 @@ fn new_search<'a, S: Scalar>(
         under: false,
         moves_away: search::moves_away(&d[2], false),
         query: options.query,
-        run_test: options.method == Method::Runs,
+        run_test: W::TESTS_RUNS,
         counters,
         found: None,
         tied: false,

@@ -15,20 +15,18 @@
 
 use super::degenerate::{is_point, walk_level, walk_point};
 use super::frame::{Frame, Span};
+use super::search::Follower;
 use crate::arith::scalar::{min, Scalar};
 use std::ops::ControlFlow;
 
-/// Walks the clipped path run by run, handing each run to `visit` until it breaks.
-pub fn walk<S: Scalar>(
-    f: &Frame<S>,
-    visit: &mut impl FnMut(Span<S>) -> ControlFlow<()>,
-) -> ControlFlow<()> {
+/// Walks the clipped path run by run, handing each run to `follower` until it breaks.
+pub fn walk<S: Scalar>(f: &Frame<S>, follower: &mut impl Follower<S>) -> ControlFlow<()> {
     if is_point(f) {
-        return walk_point(f, visit);
+        return walk_point(f, follower);
     }
     let a = f.dv.clone() / f.du.clone();
     if a.is_zero() {
-        return walk_level(f, true, visit);
+        return walk_level(f, true, follower);
     }
     let (end_col, end_row) = (f.ue.floor_i64(), f.ve.floor_i64());
     let mut row = f.vs.floor_i64();
@@ -44,7 +42,7 @@ pub fn walk<S: Scalar>(
             t_lo: f.t0.clone(),
             t_hi: f.t0.clone(),
         };
-        f.emit(below, visit)?;
+        f.emit(below, follower)?;
     }
 
     // Run lengths and the threshold between them.
@@ -92,7 +90,7 @@ pub fn walk<S: Scalar>(
             t_lo,
             t_hi: t_hi.clone(),
         };
-        f.emit(span, visit)?;
+        f.emit(span, follower)?;
         if last_row {
             return ControlFlow::Continue(());
         }

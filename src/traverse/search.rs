@@ -4,7 +4,7 @@
 use super::counters::Counters;
 use super::exact_start::PlanePoint;
 use super::frame::{Frame, Span};
-use super::mipmap::{run_sample, BlockRun};
+use super::mipmap::{run_sample, BlockRun, Part};
 use super::Query;
 use crate::arith::scalar::{max, min, Scalar};
 use crate::arith::settled;
@@ -29,6 +29,42 @@ impl<S: Scalar> Found<S> {
     /// The hit point `o + t*d`, in the ray's arithmetic.
     pub fn point(&self, o: &[S; 3], d: &[S; 3]) -> [S; 3] {
         [0, 1, 2].map(|k| o[k].clone() + d[k].clone() * self.t.clone())
+    }
+}
+
+/// What every walk asks of whoever follows it: the block walks ask for their block, run and
+/// cell tests and hand over the cells they cannot skip; the run walk and the DDA hand over
+/// spans of cells ([`Follower::span`]).
+pub(super) trait Follower<S: Scalar> {
+    /// Breaks when nothing at or after `t` can change the answer.
+    fn stop_before(&mut self, t: &S) -> ControlFlow<()>;
+    /// Whether block `(bi, bj)` of level `k` (a cell when `k` is 0) may be touched by the
+    /// path over `[t_lo, t_hi]`.
+    fn may_hit(&mut self, k: u32, block: (usize, usize), t_lo: &S, t_hi: &S) -> bool;
+    /// Whether a run of blocks of frame `f` may be touched by the path over `[t_lo, t_hi]`
+    /// (the hierarchical run walk, [`descend_runs`](super::mipmap::descend_runs)). By default every run may be (a
+    /// follower of the block walk only, which never asks).
+    fn run_may_hit(&mut self, _f: &Frame<S>, _run: &BlockRun, _t_lo: &S, _t_hi: &S) -> bool {
+        true
+    }
+    /// A cell that may be hit, crossed from `at` to `exit` (to the path's end if
+    /// `ends_inside`); `alone`: no other cell touches that part where no other part covers
+    /// it, so the cell's own triangles are all there is to test.
+    fn cell(&mut self, cell: (usize, usize), part: Part<'_, S>) -> ControlFlow<()>;
+    /// A span of cells of frame `f` in visiting order, from the walks that go row by row
+    /// or cell by cell ([`super::runs`], [`super::dda`]), which the block walks end in.
+    fn span(&mut self, f: &Frame<S>, span: Span<S>) -> ControlFlow<()>;
+    /// A cell the walk passed by at level 0 without testing its triangles.
+    fn passed(&mut self, cell: (usize, usize));
+    /// Whether the ray moves away from the samples its block test compares it with (or keeps
+    /// level): the highest samples when it climbs above the surface, the lowest when it
+    /// descends under it. Then its nearest point to them in a block is where the walk is, and
+    /// moves as the walk moves through the block.
+    fn moves_away(&self) -> bool;
+    /// The path left the grid before its end, at the start of `part` (a path lengthened by
+    /// rounding, or grown to cover an exact ray near it); by default nothing is left to do.
+    fn left_grid(&mut self, _part: Part<'_, S>) -> ControlFlow<()> {
+        ControlFlow::Continue(())
     }
 }
 

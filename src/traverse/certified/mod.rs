@@ -22,43 +22,56 @@
 mod runs;
 
 use super::approximation::{Approximation, Bounds};
-use super::mipmap::{descend, descend_runs, run_sample, BlockRun, Follower, Part};
-use super::Method;
+use super::mipmap::{descend, descend_runs, run_sample, BlockRun, Part};
+use super::walks::Walk;
 use crate::arith::scalar::Scalar;
-use crate::traverse::frame::Frame;
+use crate::traverse::frame::{Frame, Span};
+use crate::traverse::search::Follower;
 use crate::traverse::search::{Found, Search};
 use std::ops::ControlFlow;
 
-/// Searches the exact ray near `ray` for its answer, walking `method` only in `f64`; breaks
-/// when the answer is known. The path must cross blocks ([`super::mipmap::has_blocks`]: a
-/// path along a row or a point is left to the exact walk).
-pub fn certify<S: Scalar>(
-    method: Method,
+/// Searches the exact ray near `ray` for its answer, walking `W` only in `f64`; breaks when
+/// the answer is known. The path must cross blocks ([`super::mipmap::has_blocks`]: a path
+/// along a row or a point is left to the exact walk).
+pub fn certify<S: Scalar, W: Walk>(
     ray: &Approximation,
     search: &mut Search<'_, S>,
 ) -> ControlFlow<()> {
-    let terrain = search.terrain;
-    let query = search.query;
     let mut certifying = Certifying {
-        bounds: Bounds::new(ray, terrain),
+        bounds: Bounds::new(ray, search.terrain),
         search,
         found_before: f64::INFINITY,
         recent: [(i64::MIN, i64::MIN); RECENT],
         oldest: 0,
     };
-    let f = &ray.frame;
-    match method {
-        Method::Mipmap => {
-            let top = terrain.mipmap().top();
-            descend(f, top, ray.first_level(query, top), &mut certifying)
+    W::certify(ray, &mut certifying)
+}
+
+impl<S: Scalar> Certifying<'_, '_, S> {
+    /// The block walk in `f64` (the hierarchical run walk if `runs`), from the ray's first
+    /// level.
+    pub(in crate::traverse) fn blocks(
+        &mut self,
+        ray: &Approximation,
+        runs: bool,
+    ) -> ControlFlow<()> {
+        let top = self.search.terrain.mipmap().top();
+        let level = ray.first_level(self.search.query, top);
+        if runs {
+            descend_runs(&ray.frame, top, level, self)
+        } else {
+            descend(&ray.frame, top, level, self)
         }
-        Method::HierarchicalRuns => {
-            let top = terrain.mipmap().top();
-            descend_runs(f, top, ray.first_level(query, top), &mut certifying)
-        }
-        // Cell by cell: the block walk with no level above the cells.
-        Method::Dda => descend(f, 0, 0, &mut certifying),
-        Method::Runs => runs::walk(f, &mut certifying),
+    }
+
+    /// Cell by cell: the block walk with no level above the cells.
+    pub(in crate::traverse) fn cells(&mut self, ray: &Approximation) -> ControlFlow<()> {
+        descend(&ray.frame, 0, 0, self)
+    }
+
+    /// The run walk in `f64` ([`runs`]).
+    pub(in crate::traverse) fn runs(&mut self, ray: &Approximation) -> ControlFlow<()> {
+        runs::walk(&ray.frame, self)
     }
 }
 
@@ -67,7 +80,7 @@ pub fn certify<S: Scalar>(
 const RECENT: usize = 4;
 
 /// Follows an `f64` walk, testing the triangles of the cells the exact ray may touch.
-struct Certifying<'s, 'a, S> {
+pub(in crate::traverse) struct Certifying<'s, 'a, S> {
     bounds: Bounds,
     search: &'s mut Search<'a, S>,
     /// A `t` the first hit found so far certainly lies before (infinite while none is).
@@ -115,6 +128,9 @@ impl<S: Scalar> Follower<f64> for Certifying<'_, '_, S> {
     }
     fn cell(&mut self, _cell: (usize, usize), part: Part<'_, f64>) -> ControlFlow<()> {
         self.candidates(part.frame, part.uv, (part.at.t, *part.end_t()))
+    }
+    fn span(&mut self, _f: &Frame<f64>, _span: Span<f64>) -> ControlFlow<()> {
+        unreachable!("the certifying walks hand over cells, never spans")
     }
     fn passed(&mut self, _cell: (usize, usize)) {}
     fn moves_away(&self) -> bool {

@@ -29,9 +29,9 @@ pub(super) use run_levels::{descend_runs, run_sample, BlockRun};
 pub use stretches::clear_way;
 
 use super::degenerate::is_point;
-use super::frame::Frame;
+use super::frame::{Frame, Span};
 use super::runs;
-use super::search::Search;
+use super::search::{Follower, Search};
 use crate::arith::scalar::{max, Scalar};
 use std::ops::ControlFlow;
 
@@ -48,37 +48,6 @@ pub(super) struct Point<S> {
     cell: (i64, i64),
     on_u: bool,
     on_v: bool,
-}
-
-/// What the block walk asks of whoever follows it.
-pub(super) trait Follower<S: Scalar> {
-    /// Breaks when nothing at or after `t` can change the answer.
-    fn stop_before(&mut self, t: &S) -> ControlFlow<()>;
-    /// Whether block `(bi, bj)` of level `k` (a cell when `k` is 0) may be touched by the
-    /// path over `[t_lo, t_hi]`.
-    fn may_hit(&mut self, k: u32, block: (usize, usize), t_lo: &S, t_hi: &S) -> bool;
-    /// Whether a run of blocks of frame `f` may be touched by the path over `[t_lo, t_hi]`
-    /// (the hierarchical run walk, [`descend_runs`]). By default every run may be (a
-    /// follower of the block walk only, which never asks).
-    fn run_may_hit(&mut self, _f: &Frame<S>, _run: &BlockRun, _t_lo: &S, _t_hi: &S) -> bool {
-        true
-    }
-    /// A cell that may be hit, crossed from `at` to `exit` (to the path's end if
-    /// `ends_inside`); `alone`: no other cell touches that part where no other part covers
-    /// it, so the cell's own triangles are all there is to test.
-    fn cell(&mut self, cell: (usize, usize), part: Part<'_, S>) -> ControlFlow<()>;
-    /// A cell the walk passed by at level 0 without testing its triangles.
-    fn passed(&mut self, cell: (usize, usize));
-    /// Whether the ray moves away from the samples its block test compares it with (or keeps
-    /// level): the highest samples when it climbs above the surface, the lowest when it
-    /// descends under it. Then its nearest point to them in a block is where the walk is, and
-    /// moves as the walk moves through the block.
-    fn moves_away(&self) -> bool;
-    /// The path left the grid before its end, at the start of `part` (a path lengthened by
-    /// rounding, or grown to cover an exact ray near it); by default nothing is left to do.
-    fn left_grid(&mut self, _part: Part<'_, S>) -> ControlFlow<()> {
-        ControlFlow::Continue(())
-    }
 }
 
 /// A cell's part of the path.
@@ -130,7 +99,7 @@ fn walk_with<'a, S: Scalar>(
     descend: impl FnOnce(&Frame<S>, u32, u32, &mut Search<'a, S>) -> ControlFlow<()>,
 ) -> ControlFlow<()> {
     if !has_blocks(f) {
-        return runs::walk(f, &mut |span| search.span(f, span));
+        return runs::walk(f, search);
     }
     let top = search.terrain.mipmap().top();
     descend(f, top, start_level(top, level), search)
@@ -304,6 +273,17 @@ impl<'a, S: Scalar> Part<'a, S> {
         }
     }
 
+    /// The part as a path of its own, for the run walk across it.
+    pub(super) fn path(&self) -> Frame<S> {
+        let (at, exit) = (self.at, self.exit);
+        let mut frame = self.frame.clone();
+        (frame.t0, frame.us, frame.vs) = (at.t.clone(), at.u.clone(), at.v.clone());
+        if !self.ends_inside {
+            (frame.t1, frame.ue, frame.ve) = (exit.t.clone(), exit.u.clone(), exit.v.clone());
+        }
+        frame
+    }
+
     /// The `t` where the part ends.
     pub(super) fn end_t(&self) -> &S {
         if self.ends_inside {
@@ -343,13 +323,11 @@ impl<S: Scalar> Follower<S> for Search<'_, S> {
             self.reached(i, j);
             return self.triangles(i, j);
         }
-        let (at, exit) = (part.at, part.exit);
-        let mut frame = part.frame.clone();
-        (frame.t0, frame.us, frame.vs) = (at.t.clone(), at.u.clone(), at.v.clone());
-        if !part.ends_inside {
-            (frame.t1, frame.ue, frame.ve) = (exit.t.clone(), exit.u.clone(), exit.v.clone());
-        }
-        runs::walk(&frame, &mut |span| self.span(&frame, span))
+        runs::walk(&part.path(), self)
+    }
+    #[inline(always)]
+    fn span(&mut self, f: &Frame<S>, span: Span<S>) -> ControlFlow<()> {
+        Search::span(self, f, span)
     }
     fn passed(&mut self, (i, j): (usize, usize)) {
         self.reached(i, j);

@@ -19,10 +19,11 @@
 //! the run). Points where the path leaves a row are snapped onto the row's face, as the
 //! mipmap walk snaps its exit points, so rounding never steps back into a row it passed.
 
-use super::{cell_in_grid, ends_inside, exit_point, Follower, Part, Point};
+use super::{cell_in_grid, ends_inside, exit_point, Part, Point};
 use crate::arith::scalar::Scalar;
 use crate::heightfield::Terrain;
 use crate::traverse::frame::Frame;
+use crate::traverse::search::Follower;
 use std::ops::ControlFlow;
 
 /// The run walk from level `k` down to cells and up again (at most to `top`).

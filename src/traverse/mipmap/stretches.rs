@@ -1,10 +1,12 @@
 //! Clearing the way for an exact walk: an `f64` walk gathers the stretches of the path that
 //! may touch the surface, and the exact walk follows only those.
 
-use super::{descend, has_blocks, Follower, Part};
+use super::{descend, has_blocks, Part};
 use crate::heightfield::Terrain;
 use crate::traverse::approximation::{Approximation, Bounds};
 use crate::traverse::counters::Counters;
+use crate::traverse::frame::{Frame, Span};
+use crate::traverse::search::Follower;
 use crate::traverse::Query;
 use std::ops::ControlFlow;
 
@@ -125,6 +127,9 @@ impl<F: FnMut(Stretch) -> ControlFlow<()>> Follower<f64> for Clearing<'_, F> {
             return self.flush();
         }
         ControlFlow::Continue(())
+    }
+    fn span(&mut self, _f: &Frame<f64>, _span: Span<f64>) -> ControlFlow<()> {
+        unreachable!("the block walk that clears the way hands over cells, never spans")
     }
     fn passed(&mut self, _cell: (usize, usize)) {}
     fn moves_away(&self) -> bool {
