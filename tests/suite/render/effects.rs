@@ -410,3 +410,39 @@ fn samples_added_in_rounds_give_the_rendered_image() {
     assert_eq!(sums.done, 5);
     assert_eq!(frame.pixels, rendered.pixels);
 }
+
+#[test]
+fn effect_keys_are_read_and_checked() {
+    let with =
+        |sections: &str| load_scene_text("effects.toml", &format!("{SMALL_SCENE}\n{sections}"));
+    let scene = with(
+        "[sun]\ndirection = [1.0, 0.0, 1.0]\nangle_deg = 0.53\nrays = 32\n\
+         [effects]\nsky_light = true\nsky_rays = 8\n[render]\nsamples = 16\nadaptive = true\n",
+    )
+    .unwrap();
+    let expected = Effects {
+        sun_angle_deg: 0.53,
+        sun_rays: 32,
+        sky_light: true,
+        sky_rays: 8,
+        samples: 16,
+        adaptive: true,
+    };
+    assert_eq!(scene.lighting.effects, expected);
+    for (sections, key) in [
+        (
+            "[sun]\ndirection = [1.0, 0.0, 1.0]\nangle_deg = -1.0\n",
+            "angle_deg",
+        ),
+        (
+            "[sun]\ndirection = [1.0, 0.0, 1.0]\nangle_deg = nan\n",
+            "angle_deg",
+        ),
+        ("[effects]\nsky_rays = 0\n", "sky_rays"),
+        ("[render]\nsamples = 5000\n", "samples"),
+        ("[effects]\nsky_distance = 5\n", "sky_distance"),
+    ] {
+        let error = with(sections).unwrap_err();
+        assert!(error.contains(key), "{error}");
+    }
+}
