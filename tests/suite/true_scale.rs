@@ -6,6 +6,7 @@
 use crate::common::files::dem_bytes;
 use crate::common::scenes::load_scene_text;
 use heightray::heightfield::{load_bytes, relief};
+use heightray::render::effects::Effects;
 use heightray::render::{Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Shader};
 use heightray::{Arith, Heightfield, Method, Terrain};
 
@@ -48,6 +49,7 @@ fn footprint(field: Heightfield) -> (usize, usize) {
         fog: 0.0,
         normals: Normals::Flat,
         ramp: Ramp::Gray,
+        effects: Effects::default(),
     };
     let renderer = Renderer {
         shader: Shader {
