@@ -37,27 +37,35 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
     let heightmap = heightmap_keys(&model.shown.source, model)?;
     let [tx, ty, tz] = orbit.target;
     let [sx, sy, sz] = model.settings.sun();
+    // (No `adaptive`: the viewer accumulates uniform rounds of samples.)
+    let effects = lighting.effects;
     Ok(format!(
         "[heightmap]\n{heightmap}z_scale = {z_scale:?}\n\n\
          [camera]\norbit = {{ target = [{tx:?}, {ty:?}, {tz:?}], yaw_deg = {:?}, \
          pitch_deg = {:?}, distance = {:?} }}\nfov_y_deg = {:?}\nwidth = {width}\n\
          height = {height}\n\n\
-         [sun]\ndirection = [{sx:?}, {sy:?}, {sz:?}]\nintensity = {:?}\nambient = {:?}\n\n\
-         [effects]\nshadows = {}\nfog = {:?}\n\n\
+         [sun]\ndirection = [{sx:?}, {sy:?}, {sz:?}]\nintensity = {:?}\nambient = {:?}\n\
+         angle_deg = {:?}\nrays = {}\n\n\
+         [effects]\nshadows = {}\nfog = {:?}\nsky_light = {}\nsky_rays = {}\n\n\
          [shading]\nnormals = \"{}\"\nramp = \"{}\"\n\n\
-         [render]\nmethod = \"{}\"\narith = \"{}\"\n",
+         [render]\nmethod = \"{}\"\narith = \"{}\"\nsamples = {}\n",
         orbit.yaw_deg,
         orbit.pitch_deg,
         orbit.distance,
         orbit.fov_y_deg,
         lighting.intensity,
         lighting.ambient,
+        effects.sun_angle_deg,
+        effects.sun_rays,
         lighting.shadows,
         lighting.fog,
+        effects.sky_light,
+        effects.sky_rays,
         format!("{:?}", lighting.normals).to_lowercase(),
         format!("{:?}", lighting.ramp).to_lowercase(),
         model.settings.method,
         model.settings.arith(),
+        effects.samples,
     ))
 }
 
