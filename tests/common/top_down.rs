@@ -8,16 +8,7 @@ use heightray::{Arith, Method, Terrain};
 /// A 16x16 frame of `terrain` seen from `(4, 4, eye_height)` with a vertical field of view of
 /// `fov_y_deg`, coloured by `ramp`.
 pub fn render_top_down(terrain: &Terrain, ramp: Ramp, eye_height: f64, fov_y_deg: f64) -> Frame {
-    let lighting = Lighting {
-        sun: [0.0, 0.0, 1.0],
-        intensity: 1.0,
-        ambient: 0.0,
-        shadows: false,
-        fog: 0.0,
-        normals: Normals::Flat,
-        ramp,
-        effects: Effects::default(),
-    };
+    let lighting = overhead_light(ramp);
     let camera = Camera::look_at(
         [4.0, 4.0, eye_height],
         [4.0, 4.0, 0.0],
@@ -39,4 +30,19 @@ pub fn render_top_down(terrain: &Terrain, ramp: Ramp, eye_height: f64, fov_y_deg
     let mut frame = Frame::new(16, 16);
     renderer.render(&mut frame);
     frame
+}
+
+/// The sun straight above, no ambient light, no shadows, flat normals: a flat surface shows its
+/// height's `ramp` colour at full light.
+pub fn overhead_light(ramp: Ramp) -> Lighting {
+    Lighting {
+        sun: [0.0, 0.0, 1.0],
+        intensity: 1.0,
+        ambient: 0.0,
+        shadows: false,
+        fog: 0.0,
+        normals: Normals::Flat,
+        ramp,
+        effects: Effects::default(),
+    }
 }

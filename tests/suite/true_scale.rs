@@ -5,9 +5,9 @@
 
 use crate::common::files::dem_bytes;
 use crate::common::scenes::load_scene_text;
+use crate::common::top_down::overhead_light;
 use heightray::heightfield::{load_bytes, relief};
-use heightray::render::effects::Effects;
-use heightray::render::{Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Shader};
+use heightray::render::{Camera, Culling, Frame, Ramp, Renderer, Shader};
 use heightray::{Arith, Heightfield, Method, Terrain};
 
 /// A tile of 1-second cells whose middle row lies at 60 N.
@@ -41,16 +41,7 @@ fn footprint(field: Heightfield) -> (usize, usize) {
     let centre = terrain.world_point([8.0, 8.0, ground]);
     let eye = [centre[0], centre[1], ground + DISTANCE];
     let camera = Camera::look_at(eye, centre, [0.0, 1.0, 0.0], 90.0, (PIXELS, PIXELS)).unwrap();
-    let lighting = Lighting {
-        sun: [0.0, 0.0, 1.0],
-        intensity: 1.0,
-        ambient: 0.0,
-        shadows: false,
-        fog: 0.0,
-        normals: Normals::Flat,
-        ramp: Ramp::Gray,
-        effects: Effects::default(),
-    };
+    let lighting = overhead_light(Ramp::Gray);
     let renderer = Renderer {
         shader: Shader {
             terrain: &terrain,
