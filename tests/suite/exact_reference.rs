@@ -355,6 +355,18 @@ fn in_shadow_from<S: Scalar>(
     tracer.occluded(&Start::Point(origin), sun, false).occluded == Some(true)
 }
 
+/// The exact `t` of `ray`'s first hit on `terrain`, if it hits.
+fn exact_t(terrain: &Terrain, ray: &Ray) -> Option<Q> {
+    let hit = trace(terrain, ray, &options(Method::Runs, Arith::Exact)).hit?;
+    Some(hit.t_exact.expect("exact t"))
+}
+
+/// The point `o + t d` of `ray`, exactly.
+fn exact_point(ray: &Ray, t: &Q) -> [Exact; 3] {
+    let (o, d) = (ray.origin(), ray.dir());
+    [0, 1, 2].map(|k| Exact(q(o[k]) + q(d[k]) * t.clone()))
+}
+
 proptest! {
     #![proptest_config(config(1_000, 0x5348_5850))]
 
@@ -369,12 +381,11 @@ proptest! {
     ) {
         let terrain = Terrain::new(large_field());
         let sun = [sx, sy, sz];
-        let Some(hit) = trace(&terrain, &ray, &options(Method::Runs, Arith::Exact)).hit else {
+        let Some(t) = exact_t(&terrain, &ray) else {
             return Ok(());
         };
-        let t = hit.t_exact.expect("exact t");
         let (o, d) = (ray.origin(), ray.dir());
-        let at = |t: &Q| [0, 1, 2].map(|k| Exact(q(o[k]) + q(d[k]) * t.clone()));
+        let at = |t: &Q| exact_point(&ray, t);
         // On the surface, and a third of the way there (above it, or below it for rays that
         // start below the surface).
         let third = t.clone() / Q::from_integer(3.into());
@@ -419,12 +430,10 @@ proptest! {
     ) {
         let terrain = Terrain::new(large_field());
         let sun = [sx, sy, sz];
-        let Some(hit) = trace(&terrain, &ray, &options(Method::Runs, Arith::Exact)).hit else {
+        let Some(t) = exact_t(&terrain, &ray) else {
             return Ok(());
         };
-        let t = hit.t_exact.expect("exact t");
-        let (o, d) = (ray.origin(), ray.dir());
-        let point = [0, 1, 2].map(|k| Exact(q(o[k]) + q(d[k]) * t.clone()));
+        let point = exact_point(&ray, &t);
         let expected = in_shadow_from(&terrain, &point, sun, Method::Runs);
         for method in Method::ALL {
             let options = TraceOptions {
