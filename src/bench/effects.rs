@@ -29,7 +29,8 @@ impl EffectRow {
     }
 
     /// The share of the soft shadow's possible rays left out: a cone settled whole would
-    /// have taken a ray per direction (`None` without soft shadows).
+    /// have taken a ray per direction; rays that looked for a blocked cone count as cast
+    /// (`None` without soft shadows).
     pub fn soft_culled(&self) -> Option<f64> {
         let e = &self.totals.effects;
         let per_point = u64::from(pixel::per_sample(&self.effects).sun_rays);
@@ -37,7 +38,7 @@ impl EffectRow {
         let settled = s.horizon_clear + s.no_shadow_possible + s.above_terrain;
         let possible = settled * per_point + e.soft.directions;
         (self.effects.sun_angle_deg > 0.0 && self.totals.shadow_rays == 0 && possible > 0)
-            .then(|| 1.0 - e.soft.rays as f64 / possible as f64)
+            .then(|| 1.0 - (e.soft.rays + e.soft.probes) as f64 / possible as f64)
     }
 
     /// The share of sky rays left out (`None` without sky light).

@@ -84,6 +84,9 @@ pub struct Culling {
     /// Leave out soft-shadow and sky-light rays that climb more steeply than the terrain can
     /// rise around their start ([`ShadowSkip::HorizonClear`], [`SkyRays::cast`]).
     pub horizon_clear: bool,
+    /// Leave out the soft-shadow rays of a cone provably blocked whole
+    /// ([`SoftShadow::blocked`]).
+    pub cone_blocked: bool,
 }
 
 impl Default for Culling {
@@ -93,6 +96,7 @@ impl Default for Culling {
             no_shadow_possible: true,
             above_terrain: true,
             horizon_clear: true,
+            cone_blocked: true,
         }
     }
 }

@@ -83,6 +83,7 @@ pub fn count(stats: &PixelStats, mode: HeatMode) -> u32 {
         HeatMode::Triangles => stats.triangles,
         HeatMode::Blocks => stats.blocks,
         HeatMode::Runs => stats.runs,
+        HeatMode::Samples => stats.samples,
     }
 }
 

@@ -436,6 +436,13 @@ fn sampling_ui(ui: &mut Ui, model: &mut Model) {
             .text("samples per pixel"),
     );
     named(model, "samples", samples);
+    let effects = &mut model.settings.effects;
+    if effects.samples > 1 {
+        let adaptive = ui.checkbox(&mut effects.adaptive, "adaptive").on_hover_text(
+            "a pixel stops taking samples once two halves of them agree: flat ground early, edges late",
+        );
+        named(model, "adaptive", adaptive);
+    }
 }
 
 /// The real sun's angular diameter, in degrees.

@@ -37,7 +37,6 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
     let heightmap = heightmap_keys(&model.shown.source, model)?;
     let [tx, ty, tz] = orbit.target;
     let [sx, sy, sz] = model.settings.sun();
-    // (No `adaptive`: the viewer accumulates uniform rounds of samples.)
     let effects = lighting.effects;
     Ok(format!(
         "[heightmap]\n{heightmap}z_scale = {z_scale:?}\n\n\
@@ -48,7 +47,7 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
          angle_deg = {:?}\nrays = {}\n\n\
          [effects]\nshadows = {}\nfog = {:?}\nsky_light = {}\nsky_rays = {}\n\n\
          [shading]\nnormals = \"{}\"\nramp = \"{}\"\n\n\
-         [render]\nmethod = \"{}\"\narith = \"{}\"\nsamples = {}\n",
+         [render]\nmethod = \"{}\"\narith = \"{}\"\nsamples = {}\nadaptive = {}\n",
         orbit.yaw_deg,
         orbit.pitch_deg,
         orbit.distance,
@@ -66,6 +65,7 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
         model.settings.method,
         model.settings.arith(),
         effects.samples,
+        effects.adaptive,
     ))
 }
 

@@ -40,15 +40,17 @@ pub enum HeatMode {
     Triangles,
     Blocks,
     Runs,
+    Samples,
 }
 
 impl HeatMode {
-    pub const ALL: [HeatMode; 5] = [
+    pub const ALL: [HeatMode; 6] = [
         HeatMode::Off,
         HeatMode::Cells,
         HeatMode::Triangles,
         HeatMode::Blocks,
         HeatMode::Runs,
+        HeatMode::Samples,
     ];
 
     pub fn label(self) -> &'static str {
@@ -58,6 +60,7 @@ impl HeatMode {
             HeatMode::Triangles => "triangle queries",
             HeatMode::Blocks => "block queries (mipmap)",
             HeatMode::Runs => "run queries",
+            HeatMode::Samples => "samples per pixel",
         }
     }
 
@@ -69,6 +72,7 @@ impl HeatMode {
             HeatMode::Triangles => "heat_triangles",
             HeatMode::Blocks => "heat_blocks",
             HeatMode::Runs => "heat_runs",
+            HeatMode::Samples => "heat_samples",
         }
     }
 

@@ -42,7 +42,11 @@ pub fn statistics_ui(ui: &mut Ui, model: &mut Model) {
     let (done, asked) = latest.samples;
     if asked > 0 {
         let bar = egui::ProgressBar::new(done as f32 / asked as f32);
-        ui.add(bar.text(format!("{done} / {asked} samples")));
+        let still = match latest.sampling {
+            0 => String::new(),
+            n => format!(", {n} pixels sampling"),
+        };
+        ui.add(bar.text(format!("{done} / {asked} samples{still}")));
     }
     effect_shares(ui, &frame.totals);
     let pass_ms: Vec<String> = latest
@@ -206,7 +210,7 @@ fn effect_shares(ui: &mut egui::Ui, totals: &crate::render::FrameStats) {
     let kinds = [
         ("camera", totals.primary_rays),
         ("shadow", totals.shadow_rays),
-        ("soft shadow", effects.soft.rays),
+        ("soft shadow", effects.soft.rays + effects.soft.probes),
         ("sky", effects.sky.rays),
     ];
     let all: u64 = kinds.iter().map(|(_, n)| n).sum();
@@ -220,9 +224,10 @@ fn effect_shares(ui: &mut egui::Ui, totals: &crate::render::FrameStats) {
     ui.label(format!("rays: {}", shares.join(", ")));
     let culled = |asked: u64, cast: u64| 100.0 * (1.0 - cast as f64 / asked.max(1) as f64);
     ui.weak(format!(
-        "left out as provably clear: {:.0}% of sky rays, {:.0}% of soft-shadow directions at penumbra points, {} whole sun cones",
+        "left out: {:.0}% of sky rays (provably open), {:.0}% of soft-shadow directions at penumbra points, {} whole sun cones provably clear, {} provably blocked",
         culled(effects.sky.directions, effects.sky.rays),
-        culled(effects.soft.directions, effects.soft.rays),
+        culled(effects.soft.directions, effects.soft.rays + effects.soft.probes),
         totals.skipped.horizon_clear,
+        effects.soft.blocked,
     ));
 }

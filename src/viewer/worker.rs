@@ -55,6 +55,8 @@ pub struct RenderedFrame {
     pub pass_times: Vec<Duration>,
     /// Samples per pixel added after the passes, and asked (0 of 0 with one sample).
     pub samples: (u32, u32),
+    /// Pixels still taking samples (adaptive pixels stop early).
+    pub sampling: usize,
 }
 
 impl RenderedFrame {
@@ -66,7 +68,7 @@ impl RenderedFrame {
     /// Whether nothing more will be rendered for this job: every pass, and every round of
     /// samples per pixel.
     pub fn finished(&self) -> bool {
-        self.frame.complete() && self.samples.0 >= self.samples.1
+        self.frame.complete() && (self.samples.0 >= self.samples.1 || self.sampling == 0)
     }
 }
 
@@ -199,6 +201,7 @@ fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJo
             job: job.clone(),
             pass_times: pass_times.clone(),
             samples: (sums.done, sums.total),
+            sampling: sums.active,
         });
         *shared.latest.lock().unwrap_or_else(PoisonError::into_inner) = Some(Arc::clone(&rendered));
         let complete = rendered.finished();

@@ -1,39 +1,43 @@
 //! Samples per pixel added one round at a time, for a view that refines while its camera
-//! rests: round `k` traces sample `k` of every pixel (the position and effect rays
-//! [`pixel::shade`] gives it), so after the last round the image is the one `render` makes
-//! with uniform samples, bit for bit.
+//! rests: round `k` traces sample `k` of every pixel still taking samples (the position and
+//! effect rays [`pixel::shade`] gives it, and its stopping rule when adaptive), so after the
+//! last round the image is the one `render` makes, bit for bit.
 
-use super::pixel::{self, position};
-use crate::render::gamma;
+use super::pixel::{self, position, Estimate};
 use crate::render::passes::{Frame, Renderer};
 use crate::render::scene::Lighting;
 use crate::render::shade::Shader;
 use crate::render::stats::PixelStats;
 use rayon::prelude::*;
 
-/// The running sums of a frame's samples, in linear light.
+/// The running estimates of a frame's pixels.
 #[derive(Clone, Debug)]
 pub struct Accumulation {
-    sums: Vec<[f64; 3]>,
+    /// Each pixel's samples, and whether it stopped taking more.
+    pixels: Vec<(Estimate, bool)>,
     /// Rounds added.
     pub done: u32,
     /// Rounds asked (the scene's samples per pixel).
     pub total: u32,
+    /// Pixels still taking samples.
+    pub active: usize,
 }
 
 impl Accumulation {
     /// No round yet, for a `width x height` frame taking `total` samples per pixel.
     pub fn new(width: u32, height: u32, total: u32) -> Accumulation {
+        let n = width as usize * height as usize;
         Accumulation {
-            sums: vec![[0.0; 3]; width as usize * height as usize],
+            pixels: vec![(Estimate::default(), false); n],
             done: 0,
             total,
+            active: n,
         }
     }
 
-    /// Whether every round has been added.
+    /// Whether every pixel has taken its samples.
     pub fn complete(&self) -> bool {
-        self.done >= self.total
+        self.done >= self.total || self.active == 0
     }
 }
 
@@ -56,43 +60,51 @@ impl Renderer<'_> {
             },
             ..self.shader
         };
+        let effects = &self.shader.lighting.effects;
+        let last = index + 1 >= effects.samples.max(1);
         let rows = frame
             .pixels
             .par_chunks_mut(width)
             .zip(frame.stats.par_chunks_mut(width))
-            .zip(sums.sums.par_chunks_mut(width))
+            .zip(sums.pixels.par_chunks_mut(width))
             .enumerate()
-            .map(|(y, ((pixels, stats), sums))| {
+            .map(|(y, ((pixels, stats), estimates))| {
                 if cancelled() {
                     return None;
                 }
                 let mut totals = crate::render::FrameStats::default();
-                for (x, ((pixel, stat), sum)) in pixels.iter_mut().zip(stats).zip(sums).enumerate()
-                {
+                let mut stopped = 0;
+                let row = pixels.iter_mut().zip(stats).zip(estimates).enumerate();
+                for (x, ((pixel, stat), (estimate, done))) in row {
+                    if *done {
+                        continue;
+                    }
                     let (px, py) = position(x as u32, y as u32, index);
                     let (sample, _) = shader.traced(&self.camera.ray_at(px, py), self.arith);
                     totals.add(&sample);
-                    let channels = [16, 8, 0].map(|shift| (sample.rgb >> shift) as u8);
-                    for (s, c) in sum.iter_mut().zip(channels) {
-                        *s += gamma::linear(c);
-                    }
-                    let n = f64::from(index + 1);
-                    let byte = |s: f64| u32::from(gamma::byte(s / n));
-                    *pixel = (byte(sum[0]) << 16) | (byte(sum[1]) << 8) | byte(sum[2]);
+                    let may_stop = estimate.add(sample.rgb);
+                    *pixel = estimate.rgb();
                     let mut traced = PixelStats::of(&sample);
                     if index > 0 {
                         traced += *stat;
                         traced.samples = index + 1;
                     }
                     *stat = traced;
+                    if last || (effects.adaptive && may_stop) {
+                        *done = true;
+                        stopped += 1;
+                    }
                 }
-                Some(totals)
+                Some((totals, stopped))
             })
             .collect::<Vec<_>>();
         let mut totals = crate::render::FrameStats::default();
         for row in rows {
-            let Some(row) = row else { return false };
+            let Some((row, stopped)) = row else {
+                return false;
+            };
             totals += row;
+            sums.active -= stopped;
         }
         frame.totals += totals;
         sums.done += 1;

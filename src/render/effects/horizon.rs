@@ -28,11 +28,23 @@ impl Sector {
         }
     }
 
-    /// Sector `k` of `n` equal sectors from azimuth 0 (`n` at least 3).
+    /// Sector `k` of `n` equal sectors from azimuth 0 (`n` at least 3), a hair wider on each
+    /// side: a direction [`sector_of`] puts in it by a rounded angle lies inside.
     pub fn nth(k: usize, n: usize) -> Sector {
         let width = 2.0 * PI / n as f64;
         let mid = DVec2::from_angle((k as f64 + 0.5) * width);
-        Sector::around(mid, width / 2.0)
+        Sector::around(mid, width / 2.0 + 1e-9)
+    }
+
+    /// The most `g . u` over the unit vectors `u` of the sector: how fast a plane of gradient
+    /// `g` rises along the steepest of its azimuths.
+    fn steepest_rise(&self, g: DVec2) -> f64 {
+        let inside = self.lo.perp_dot(g) >= 0.0 && g.perp_dot(self.hi) >= 0.0;
+        if inside {
+            g.length()
+        } else {
+            g.dot(self.lo).max(g.dot(self.hi))
+        }
     }
 
     /// Whether a rectangle whose corners are seen from the apex in horizontal directions
@@ -75,8 +87,8 @@ pub fn slope_bound(terrain: &Terrain, o: DVec3, sector: Option<Sector>) -> f64 {
         return f64::INFINITY;
     }
     // Within the 3x3 cells around the point's cell (a convex region), the surface rises from
-    // the point no faster than the steepest of their triangles.
-    let near = near_slope(terrain, cell, (cells_x, cells_y));
+    // the point no faster than the steepest of their triangles along the sector's azimuths.
+    let near = near_slope(terrain, cell, (cells_x, cells_y), sector.as_ref());
     let mut search = Search {
         terrain,
         o,
@@ -111,15 +123,25 @@ fn surface_height(terrain: &Terrain, (i, j): (usize, usize), o: DVec3) -> f64 {
     }
 }
 
-/// The steepest triangle of the (up to) 3x3 cells around `cell`.
-fn near_slope(terrain: &Terrain, (i, j): (usize, usize), (nx, ny): (usize, usize)) -> f64 {
+/// How fast the steepest triangle of the (up to) 3x3 cells around `cell` rises along the
+/// azimuths of `sector` (any azimuth without one).
+fn near_slope(
+    terrain: &Terrain,
+    (i, j): (usize, usize),
+    (nx, ny): (usize, usize),
+    sector: Option<&Sector>,
+) -> f64 {
     let mut steepest = 0.0f64;
     for cj in j.saturating_sub(1)..(j + 2).min(ny) {
         for ci in i.saturating_sub(1)..(i + 2).min(nx) {
             let heights = terrain.corner_heights(ci, cj);
             for triangle in 0..2 {
-                let (gx, gy) = gradient(triangle, heights);
-                steepest = steepest.max(gx.hypot(gy));
+                let g = DVec2::from(gradient(triangle, heights));
+                let rise = match sector {
+                    Some(sector) => sector.steepest_rise(g),
+                    None => g.length(),
+                };
+                steepest = steepest.max(rise);
             }
         }
     }
@@ -230,6 +252,53 @@ mod tests {
                             "({x}, {y}) to ({i}, {j}): {slope} > {bound}"
                         );
                     }
+                }
+            }
+        }
+    }
+
+    /// The bound of each of 16 sectors against brute force: no sample, and no point on a
+    /// triangle of the 3x3 cells around the start, in the sector rises above its slope.
+    #[test]
+    fn sector_bound_holds_over_every_sample_in_the_sector() {
+        let (w, h) = (30usize, 27usize);
+        let mut state = 777u64;
+        let mut next = || {
+            state = super::super::sampling::mix(state);
+            state
+        };
+        let samples: Vec<u16> = (0..w * h).map(|_| (next() % 200) as u16).collect();
+        let field = Heightfield::from_fn(w, h, 255, 127.5, |x, y| samples[y * w + x]).unwrap();
+        let terrain = Terrain::new(field);
+        let unit = |n: u64| (n % 100_000) as f64 / 100_000.0;
+        for _ in 0..100 {
+            let (x, y) = (unit(next()) * (w - 1) as f64, unit(next()) * (h - 1) as f64);
+            let cell = ((x as usize).min(w - 2), (y as usize).min(h - 2));
+            let o = DVec3::new(x, y, surface_height(&terrain, cell, DVec3::new(x, y, 0.0)));
+            for k in 0..16 {
+                let bound = slope_bound(&terrain, o, Some(Sector::nth(k, 16)));
+                let mut check = |q: DVec3| {
+                    let r = (q.x - x).hypot(q.y - y);
+                    if r > 1e-12 && sector_of(q - o, 16) == k {
+                        let slope = (q.z - o.z) / r;
+                        assert!(
+                            slope <= bound,
+                            "({x}, {y}) to {q} in {k}: {slope} > {bound}"
+                        );
+                    }
+                };
+                let field = terrain.field();
+                for j in 0..h {
+                    for i in 0..w {
+                        check(DVec3::new(i as f64, j as f64, field.z(i, j)));
+                    }
+                }
+                for _ in 0..200 {
+                    let (qx, qy) = (x - 1.0 + 3.0 * unit(next()), y - 1.0 + 3.0 * unit(next()));
+                    let (qx, qy) = (qx.clamp(0.0, (w - 1) as f64), qy.clamp(0.0, (h - 1) as f64));
+                    let c = ((qx as usize).min(w - 2), (qy as usize).min(h - 2));
+                    let z = surface_height(&terrain, c, DVec3::new(qx, qy, 0.0));
+                    check(DVec3::new(qx, qy, z));
                 }
             }
         }

@@ -11,6 +11,7 @@ mod sampling;
 mod sky;
 mod soft_shadow;
 mod stats;
+mod umbra;
 
 pub use accumulate::Accumulation;
 pub use horizon::{climbs_above, slope_bound};

@@ -1,8 +1,15 @@
 //! Several camera rays per pixel: stratified positions over the pixel (a low-discrepancy
 //! sequence rotated per pixel by a hash of its position, so a pixel's samples are the same on
-//! every thread and in every pass), box-filtered in linear light. Adaptive sampling takes a
-//! first batch, then more batches only while the samples' mean is not yet known to within a
-//! display byte.
+//! every thread and in every pass), box-filtered in linear light.
+//!
+//! Adaptive sampling doubles a pixel's samples (4, 8, 16, ...) while their two halves
+//! disagree. Every power-of-two prefix of the sequence is stratified over the pixel, and so is
+//! each of its halves: the two half means are independent estimates of the same kind, and
+//! half their difference estimates the error of the whole prefix's mean, stratification
+//! included (the samples' own spread would overstate it where the pixel holds a smooth
+//! gradient). A pixel stops at a prefix whose estimate is within [`TOLERANCE`] on every
+//! channel, with at least [`FIRST_BATCH`] samples: a stopped pixel has the error of a
+//! stratified set, as if its samples had been fixed in advance.
 
 use super::sampling::{mix, point};
 use super::Effects;
@@ -11,23 +18,11 @@ use crate::render::gamma;
 use crate::render::shade::Sample;
 use crate::Ray;
 
-/// Samples every adaptive pixel takes before it may stop; also the batch it adds at a time.
+/// Samples every adaptive pixel takes before it may stop.
 pub const FIRST_BATCH: u32 = 4;
 
-/// Half-width of the confidence interval allowed on each channel's mean, in display bytes.
-const TOLERANCE: f64 = 1.0;
-
-/// Student's t at 95% two-sided for the degrees of freedom of a pixel's samples (n - 1,
-/// looked up from 3 on; 2.0 from 30 on).
-fn student_t(dof: u32) -> f64 {
-    const T: [f64; 8] = [3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228];
-    match dof {
-        0..=2 => 4.303,
-        3..=10 => T[dof as usize - 3],
-        11..=29 => 2.1,
-        _ => 2.0,
-    }
-}
+/// The error estimate a pixel may stop at, in linear light (0 to 1), on each channel.
+const TOLERANCE: f64 = 0.002;
 
 /// The purpose a pixel's positions are seeded with.
 const PURPOSE: u64 = 0x05a3_b1e5;
@@ -65,60 +60,49 @@ pub fn shade(
     effects: &Effects,
     mut trace: impl FnMut(&Ray) -> Sample,
 ) -> (u32, u32) {
-    let most = effects.samples.max(1);
-    let mut sum = [0.0f64; 3];
-    let mut bytes = Moments::default();
-    let mut taken = 0;
-    while taken < most {
-        let batch = if effects.adaptive {
-            FIRST_BATCH.min(most - taken)
-        } else {
-            most
-        };
-        for index in taken..taken + batch {
-            let (px, py) = position(x, y, index);
-            let rgb = trace(&camera.ray_at(px, py)).rgb;
-            let channels = [(rgb >> 16) as u8, (rgb >> 8) as u8, rgb as u8];
-            for (s, c) in sum.iter_mut().zip(channels) {
-                *s += gamma::linear(c);
-            }
-            bytes.add(channels);
-        }
-        taken += batch;
-        if effects.adaptive && bytes.agree(taken) {
+    let mut estimate = Estimate::default();
+    for index in 0..effects.samples.max(1) {
+        let (px, py) = position(x, y, index);
+        let may_stop = estimate.add(trace(&camera.ray_at(px, py)).rgb);
+        if effects.adaptive && may_stop {
             break;
         }
     }
-    let n = f64::from(taken);
-    let channel = |s: f64| u32::from(gamma::byte(s / n));
-    let rgb = (channel(sum[0]) << 16) | (channel(sum[1]) << 8) | channel(sum[2]);
-    (rgb, taken)
+    (estimate.rgb(), estimate.taken)
 }
 
-/// Running sums of a pixel's display bytes, per channel.
-#[derive(Default)]
-struct Moments {
+/// A pixel's samples so far, in linear light.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Estimate {
     sum: [f64; 3],
-    squares: [f64; 3],
+    /// The sum at the last power of two of samples: the first half of the next check.
+    half: [f64; 3],
+    /// Samples added.
+    pub taken: u32,
 }
 
-impl Moments {
-    fn add(&mut self, channels: [u8; 3]) {
-        for ((sum, squares), c) in self.sum.iter_mut().zip(&mut self.squares).zip(channels) {
-            let c = f64::from(c);
-            *sum += c;
-            *squares += c * c;
+impl Estimate {
+    /// Adds a sample (0x00RRGGBB); true where an adaptive pixel may stop here.
+    pub fn add(&mut self, rgb: u32) -> bool {
+        let channels = [16, 8, 0].map(|shift| (rgb >> shift) as u8);
+        for (s, c) in self.sum.iter_mut().zip(channels) {
+            *s += gamma::linear(c);
         }
+        self.taken += 1;
+        let n = self.taken;
+        if !n.is_power_of_two() {
+            return false;
+        }
+        let agree = n >= FIRST_BATCH
+            && (0..3).all(|k| (2.0 * self.half[k] - self.sum[k]).abs() <= TOLERANCE * f64::from(n));
+        self.half = self.sum;
+        agree
     }
 
-    /// Whether `n` samples pin every channel's mean to within [`TOLERANCE`] bytes at 95%
-    /// confidence (Student's t on the samples' own spread).
-    fn agree(&self, n: u32) -> bool {
-        let count = f64::from(n);
-        (0..3).all(|k| {
-            let mean = self.sum[k] / count;
-            let variance = ((self.squares[k] - count * mean * mean) / (count - 1.0)).max(0.0);
-            student_t(n - 1) * (variance / count).sqrt() <= TOLERANCE
-        })
+    /// The samples' mean, 0x00RRGGBB (black before any).
+    pub fn rgb(&self) -> u32 {
+        let n = f64::from(self.taken.max(1));
+        let channel = |s: f64| u32::from(gamma::byte(s / n));
+        (channel(self.sum[0]) << 16) | (channel(self.sum[1]) << 8) | channel(self.sum[2])
     }
 }

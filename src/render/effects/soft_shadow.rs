@@ -2,12 +2,14 @@
 //! towards the disc provably clears the terrain is settled by the rules hard shadows use
 //! (generalised to the cone's lowest direction) or by the mipmap's bound of how steeply the
 //! terrain rises around it; elsewhere each direction of a stratified set over the disc is a
-//! shadow ray, unless it alone climbs above that bound.
+//! shadow ray, unless it alone climbs above that bound. A cone whose first direction traced
+//! is blocked may be settled as blocked whole ([`umbra`](super::umbra)) by one more ray.
 
 use super::horizon::{climbs_above, slope_bound, Sector};
 use super::sampling::{cone, point, seed_of};
+use super::umbra::{self, Cone};
 use crate::render::shade::{Cast, Shader, Shadow, ShadowSkip};
-use crate::traverse::{Counters, Found, Scalar};
+use crate::traverse::{Counters, Found, Scalar, Tracer};
 use crate::Ray;
 use glam::{DVec2, DVec3};
 
@@ -21,8 +23,13 @@ pub struct SoftShadow {
     pub clear: u16,
     /// Directions asked.
     pub of: u16,
-    /// Directions traced (the others climbed above the terrain's bound).
+    /// Directions traced (the others climbed above the terrain's bound, or the cone was
+    /// settled as blocked).
     pub cast: u16,
+    /// A ray looked for the cone blocked whole ([`umbra`](super::umbra)).
+    pub probed: bool,
+    /// The cone is blocked whole: no direction reaches the sun.
+    pub blocked: bool,
 }
 
 impl SoftShadow {
@@ -71,9 +78,20 @@ impl Shader<'_> {
             clear: 0,
             of: rays as u16,
             cast: 0,
+            probed: false,
+            blocked: false,
         };
         let (mut counters, mut exactly) = (Counters::default(), false);
         for index in 0..rays {
+            // A cone whose first direction traced is blocked may be blocked whole.
+            if self.culling.cone_blocked && soft.cast == 1 && soft.clear == 0 && !soft.probed {
+                soft.probed = true;
+                let cone = Cone::new(start, axis, half);
+                if cone.is_some_and(|cone| self.cone_blocked(&cone, found, &mut counters)) {
+                    soft.blocked = true;
+                    break;
+                }
+            }
             let (u, v) = point(index, seed);
             let dir = cone(axis, half, u, v);
             if climbs_above(dir, bound) {
@@ -92,6 +110,29 @@ impl Shader<'_> {
             exactly |= answer.exactly;
         }
         (Shadow::Soft(soft), counters, exactly)
+    }
+
+    /// Whether every direction of `cone` from the hit `found` is provably blocked, looking
+    /// with one ray traced in `f64` (its queries added to `counters`).
+    fn cone_blocked<S: Scalar>(
+        &self,
+        cone: &Cone,
+        found: &Found<S>,
+        counters: &mut Counters,
+    ) -> bool {
+        let tracer = Tracer::new(self.terrain, self.method);
+        let first_touch = |from: DVec3, dir: DVec3| {
+            let ray = Ray::new(from.into(), dir.into()).ok()?;
+            let traced = tracer.trace::<f64>(&ray, None);
+            *counters += traced.counters;
+            Some(traced.hit?.t * dir.truncate().length())
+        };
+        umbra::blocked(
+            self.terrain,
+            cone,
+            (found.cell, found.triangle),
+            first_touch,
+        )
     }
 }
 

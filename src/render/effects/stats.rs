@@ -17,6 +17,10 @@ pub struct SoftStats {
     pub directions: u64,
     /// Directions traced as shadow rays.
     pub rays: u64,
+    /// Rays that looked for a cone blocked whole (beside the directions).
+    pub probes: u64,
+    /// Points whose cone was settled as blocked whole.
+    pub blocked: u64,
     /// Directions that reached the sun.
     pub clear: u64,
 }
@@ -64,6 +68,8 @@ impl EffectStats {
         self.soft.points += 1;
         self.soft.directions += u64::from(soft.of);
         self.soft.rays += u64::from(soft.cast);
+        self.soft.probes += u64::from(soft.probed);
+        self.soft.blocked += u64::from(soft.blocked);
         self.soft.clear += u64::from(soft.clear);
     }
 
@@ -93,7 +99,8 @@ impl EffectStats {
         json!({
             "soft_shadow": {
                 "points": soft.points, "directions": soft.directions, "rays": soft.rays,
-                "culled_horizon_clear": soft.directions - soft.rays, "clear": soft.clear,
+                "probes": soft.probes, "points_blocked": soft.blocked,
+                "culled": soft.directions - soft.rays, "clear": soft.clear,
             },
             "sky_light": {
                 "points": sky.points, "directions": sky.directions, "rays": sky.rays,
@@ -114,6 +121,8 @@ impl AddAssign for EffectStats {
         a.points += b.points;
         a.directions += b.directions;
         a.rays += b.rays;
+        a.probes += b.probes;
+        a.blocked += b.blocked;
         a.clear += b.clear;
         let (a, b) = (&mut self.sky, rhs.sky);
         a.points += b.points;

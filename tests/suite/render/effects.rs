@@ -217,6 +217,52 @@ fn a_straight_edge_casts_a_penumbra_as_wide_as_the_sun() {
     }
 }
 
+/// Behind the plateau's edge, cones settled as blocked whole by one more ray: each point's
+/// colour and share of the sun are those of casting every direction, in every arithmetic.
+#[test]
+fn cones_settled_as_blocked_are_blocked_in_every_arithmetic() {
+    let terrain = edge_terrain();
+    let e = 30.0f64.to_radians();
+    let mut lighting = lighting([e.cos(), 0.0, e.sin()], true);
+    lighting.effects.sun_angle_deg = 2.0;
+    lighting.effects.sun_rays = 16;
+    let settling = shader(&terrain, lighting);
+    let casting = Shader {
+        culling: Culling {
+            cone_blocked: false,
+            ..Culling::default()
+        },
+        ..shader(&terrain, lighting)
+    };
+    // Fully shadowed from x = 61 - 20 / tan(31 degrees) = 27.7 on, lit below 24.9.
+    let xs: Vec<f64> = (0..100).map(|k| 20.0 + f64::from(k) * 0.4).collect();
+    for arith in [Arith::F32, Arith::F64, Arith::Exact] {
+        let mut settled = 0;
+        for &x in &xs {
+            let ray = down_at(x, 16.3);
+            let (with, without) = (
+                settling.traced(&ray, arith).0,
+                casting.traced(&ray, arith).0,
+            );
+            assert_eq!(with.rgb, without.rgb, "{arith} at {x}");
+            let (Shadow::Soft(a), Shadow::Soft(b)) = (with.shadow, without.shadow) else {
+                // Settled as clear by the same rules either way.
+                assert_eq!(with.shadow, without.shadow, "{arith} at {x}");
+                continue;
+            };
+            assert_eq!(a.clear, b.clear, "{arith} at {x}");
+            assert!(!b.blocked);
+            if a.blocked {
+                settled += 1;
+                assert!(x > 27.7, "{arith}: {x} is in the penumbra");
+                assert_eq!((a.cast, b.cast), (1, 16), "{arith} at {x}");
+            }
+        }
+        // Every point from 28 to 59.6 (the cliff's foot at 60).
+        assert!(settled >= 78, "{arith}: {settled} settled");
+    }
+}
+
 /// small49's scene with soft shadows, sky light and `samples` samples per pixel.
 fn effects_scene(samples: u32, adaptive: bool) -> Scene {
     let mut scene = builtin_scene("small49", 32);
@@ -252,6 +298,7 @@ fn each_effect_culling_rule_on_or_off_gives_the_same_image() {
         no_shadow_possible: false,
         above_terrain: false,
         horizon_clear: false,
+        cone_blocked: false,
     };
     for culling in [
         Culling {
@@ -260,6 +307,10 @@ fn each_effect_culling_rule_on_or_off_gives_the_same_image() {
         },
         Culling {
             above_terrain: false,
+            ..Culling::default()
+        },
+        Culling {
+            cone_blocked: false,
             ..Culling::default()
         },
         none,

@@ -47,6 +47,7 @@ fn no_shadow_rays_where_no_shadow_is_possible() {
         no_shadow_possible: false,
         above_terrain: false,
         horizon_clear: false,
+        cone_blocked: false,
     };
     let brute = render_by(
         Method::Runs,
@@ -98,6 +99,7 @@ fn each_culling_rule_on_or_off_gives_the_same_image() {
             no_shadow_possible: false,
             above_terrain: false,
             horizon_clear: false,
+            cone_blocked: false,
         },
     ];
     for culling in rules {
