@@ -29,7 +29,7 @@ mod search;
 mod tracer;
 mod walks;
 
-pub use beam::{Beam, Clearance};
+pub use beam::{highest_under, Beam, Clearance};
 pub use counters::{Counters, HitMiss};
 pub use exact_mode::{crosses_plane, plane_t_exact};
 use exact_mode::{exact_t, f64_ray, point_over, trace_certified, walk_cleared, F64Ray};

@@ -38,7 +38,7 @@ impl Sector {
 
     /// The most `g . u` over the unit vectors `u` of the sector: how fast a plane of gradient
     /// `g` rises along the steepest of its azimuths.
-    fn steepest_rise(&self, g: DVec2) -> f64 {
+    pub fn steepest_rise(&self, g: DVec2) -> f64 {
         let inside = self.lo.perp_dot(g) >= 0.0 && g.perp_dot(self.hi) >= 0.0;
         if inside {
             g.length()
@@ -75,20 +75,12 @@ const ROOM: f64 = 1e-9;
 /// lies below the surface (a start no bound describes). `o` is a point on or above the
 /// surface inside the map, as a shadow ray's start.
 pub fn slope_bound(terrain: &Terrain, o: DVec3, sector: Option<Sector>) -> f64 {
+    let (cell, near) = match near_rise(terrain, o, sector.as_ref()) {
+        Some(near) => near,
+        None => return f64::INFINITY,
+    };
     let field = terrain.field();
-    let (w, h) = (field.width(), field.height());
-    let (cells_x, cells_y) = (w - 1, h - 1);
-    let cell = (
-        (o.x.max(0.0) as usize).min(cells_x - 1),
-        (o.y.max(0.0) as usize).min(cells_y - 1),
-    );
-    let surface = surface_height(terrain, cell, o);
-    if o.z < surface - ROOM * (1.0 + surface.abs()) {
-        return f64::INFINITY;
-    }
-    // Within the 3x3 cells around the point's cell (a convex region), the surface rises from
-    // the point no faster than the steepest of their triangles along the sector's azimuths.
-    let near = near_slope(terrain, cell, (cells_x, cells_y), sector.as_ref());
+    let (cells_x, cells_y) = (field.width() - 1, field.height() - 1);
     let mut search = Search {
         terrain,
         o,
@@ -102,6 +94,28 @@ pub fn slope_bound(terrain: &Terrain, o: DVec3, sector: Option<Sector>) -> f64 {
     search.block(top, 0, 0);
     let bound = search.best.min(terrain.max_slope());
     bound * (1.0 + ROOM) + ROOM
+}
+
+/// The cell of `o` (a point inside the map) and how fast the surface rises from `o` within
+/// the 3x3 cells around it (a convex region holding every point within a cell's width of
+/// `o`): no faster than the steepest of their triangles along the sector's azimuths. `None`
+/// where `o` lies below the surface.
+fn near_rise(
+    terrain: &Terrain,
+    o: DVec3,
+    sector: Option<&Sector>,
+) -> Option<((usize, usize), f64)> {
+    let field = terrain.field();
+    let (cells_x, cells_y) = (field.width() - 1, field.height() - 1);
+    let cell = (
+        (o.x.max(0.0) as usize).min(cells_x - 1),
+        (o.y.max(0.0) as usize).min(cells_y - 1),
+    );
+    let surface = surface_height(terrain, cell, o);
+    if o.z < surface - ROOM * (1.0 + surface.abs()) {
+        return None;
+    }
+    Some((cell, near_slope(terrain, cell, (cells_x, cells_y), sector)))
 }
 
 /// Whether direction `d` climbs strictly more steeply than `slope` (a [`slope_bound`]).

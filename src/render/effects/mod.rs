@@ -11,7 +11,7 @@ mod sampling;
 mod sky;
 mod soft_shadow;
 mod stats;
-mod umbra;
+mod sun_cone;
 
 pub use accumulate::Accumulation;
 pub use horizon::{climbs_above, slope_bound};

@@ -3,11 +3,11 @@
 //! (generalised to the cone's lowest direction) or by the mipmap's bound of how steeply the
 //! terrain rises around it; elsewhere each direction of a stratified set over the disc is a
 //! shadow ray, unless it alone climbs above that bound. A cone whose first direction traced
-//! is blocked may be settled as blocked whole ([`umbra`](super::umbra)) by one more ray.
+//! is blocked may be settled as blocked whole ([`sun_cone`](super::sun_cone)) by one more ray.
 
 use super::horizon::{climbs_above, slope_bound, Sector};
 use super::sampling::{cone, point, seed_of};
-use super::umbra::{self, Cone};
+use super::sun_cone::{self, Cone};
 use crate::render::shade::{Cast, Shader, Shadow, ShadowSkip};
 use crate::traverse::{Counters, Found, Scalar, Tracer};
 use crate::Ray;
@@ -26,7 +26,7 @@ pub struct SoftShadow {
     /// Directions traced (the others climbed above the terrain's bound, or the cone was
     /// settled as blocked).
     pub cast: u16,
-    /// A ray looked for the cone blocked whole ([`umbra`](super::umbra)).
+    /// A ray looked for the cone blocked whole ([`sun_cone`](super::sun_cone)).
     pub probed: bool,
     /// The cone is blocked whole: no direction reaches the sun.
     pub blocked: bool,
@@ -64,8 +64,13 @@ impl Shader<'_> {
         if self.culling.above_terrain && rises && start.z > z_max {
             return skip(ShadowSkip::AboveTerrain);
         }
+        let whole_cone = Cone::new(start, axis, half);
+        let sector = sun_sector(axis, half);
+        if self.culling.horizon_clear && whole_cone.is_some_and(|c| sun_cone::clear(self.terrain, &c)) {
+            return skip(ShadowSkip::HorizonClear);
+        }
         let bound = if self.culling.horizon_clear {
-            slope_bound(self.terrain, start, sun_sector(axis, half))
+            slope_bound(self.terrain, start, sector)
         } else {
             f64::INFINITY
         };
@@ -86,8 +91,7 @@ impl Shader<'_> {
             // A cone whose first direction traced is blocked may be blocked whole.
             if self.culling.cone_blocked && soft.cast == 1 && soft.clear == 0 && !soft.probed {
                 soft.probed = true;
-                let cone = Cone::new(start, axis, half);
-                if cone.is_some_and(|cone| self.cone_blocked(&cone, found, &mut counters)) {
+                if whole_cone.is_some_and(|whole| self.cone_blocked(&whole, found, &mut counters)) {
                     soft.blocked = true;
                     break;
                 }
@@ -127,7 +131,7 @@ impl Shader<'_> {
             *counters += traced.counters;
             Some(traced.hit?.t * dir.truncate().length())
         };
-        umbra::blocked(
+        sun_cone::blocked(
             self.terrain,
             cone,
             (found.cell, found.triangle),
