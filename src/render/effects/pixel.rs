@@ -1,15 +1,9 @@
 //! Several camera rays per pixel: stratified positions over the pixel (a low-discrepancy
 //! sequence rotated per pixel by a hash of its position, so a pixel's samples are the same on
-//! every thread and in every pass), box-filtered in linear light.
-//!
-//! Adaptive sampling doubles a pixel's samples (4, 8, 16, ...) while their two halves
-//! disagree. Every power-of-two prefix of the sequence is stratified over the pixel, and so is
-//! each of its halves: the two half means are independent estimates of the same kind, and
-//! half their difference estimates the error of the whole prefix's mean, stratification
-//! included (the samples' own spread would overstate it where the pixel holds a smooth
-//! gradient). A pixel stops at a prefix whose estimate is within [`TOLERANCE`] on every
-//! channel, with at least [`FIRST_BATCH`] samples: a stopped pixel has the error of a
-//! stratified set, as if its samples had been fixed in advance.
+//! every thread and in every pass), box-filtered in linear light. Adaptive sampling takes a
+//! first batch, then more batches only while the samples' mean is not yet known to within a
+//! display byte. The decision is the pixel's own ([`Estimate`]), so a view that adds one
+//! sample of every pixel at a time stops each pixel where `render` does.
 
 use super::sampling::{mix, point};
 use super::Effects;
@@ -18,11 +12,23 @@ use crate::render::gamma;
 use crate::render::shade::Sample;
 use crate::Ray;
 
-/// Samples every adaptive pixel takes before it may stop.
+/// Samples every adaptive pixel takes before it may stop; also the batch it adds at a time.
 pub const FIRST_BATCH: u32 = 4;
 
-/// The error estimate a pixel may stop at, in linear light (0 to 1), on each channel.
-const TOLERANCE: f64 = 0.002;
+/// Half-width of the confidence interval allowed on each channel's mean, in display bytes.
+const TOLERANCE: f64 = 1.0;
+
+/// Student's t at 95% two-sided for the degrees of freedom of a pixel's samples (n - 1,
+/// looked up from 3 on; 2.0 from 30 on).
+fn student_t(dof: u32) -> f64 {
+    const T: [f64; 8] = [3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228];
+    match dof {
+        0..=2 => 4.303,
+        3..=10 => T[dof as usize - 3],
+        11..=29 => 2.1,
+        _ => 2.0,
+    }
+}
 
 /// The purpose a pixel's positions are seeded with.
 const PURPOSE: u64 = 0x05a3_b1e5;
@@ -71,32 +77,39 @@ pub fn shade(
     (estimate.rgb(), estimate.taken)
 }
 
-/// A pixel's samples so far, in linear light.
+/// A pixel's samples so far: their sum in linear light, and their display bytes' moments.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Estimate {
     sum: [f64; 3],
-    /// The sum at the last power of two of samples: the first half of the next check.
-    half: [f64; 3],
+    bytes: [f64; 3],
+    squares: [f64; 3],
     /// Samples added.
     pub taken: u32,
 }
 
 impl Estimate {
-    /// Adds a sample (0x00RRGGBB); true where an adaptive pixel may stop here.
+    /// Adds a sample (0x00RRGGBB); true where an adaptive pixel may stop here: at the end of
+    /// a batch whose samples pin every channel's mean to within [`TOLERANCE`] bytes at 95%
+    /// confidence (Student's t on the samples' own spread).
     pub fn add(&mut self, rgb: u32) -> bool {
         let channels = [16, 8, 0].map(|shift| (rgb >> shift) as u8);
-        for (s, c) in self.sum.iter_mut().zip(channels) {
-            *s += gamma::linear(c);
+        for (k, c) in channels.into_iter().enumerate() {
+            self.sum[k] += gamma::linear(c);
+            let c = f64::from(c);
+            self.bytes[k] += c;
+            self.squares[k] += c * c;
         }
         self.taken += 1;
         let n = self.taken;
-        if !n.is_power_of_two() {
+        if n % FIRST_BATCH != 0 {
             return false;
         }
-        let agree = n >= FIRST_BATCH
-            && (0..3).all(|k| (2.0 * self.half[k] - self.sum[k]).abs() <= TOLERANCE * f64::from(n));
-        self.half = self.sum;
-        agree
+        let count = f64::from(n);
+        (0..3).all(|k| {
+            let mean = self.bytes[k] / count;
+            let variance = ((self.squares[k] - count * mean * mean) / (count - 1.0)).max(0.0);
+            student_t(n - 1) * (variance / count).sqrt() <= TOLERANCE
+        })
     }
 
     /// The samples' mean, 0x00RRGGBB (black before any).
