@@ -4,21 +4,27 @@
 use super::camera::{Camera, CameraError};
 use super::effects::{Effects, DEFAULT_RAYS};
 use super::ramp::Ramp;
-use crate::heightfield::{Heightfield, LoadError};
+use crate::heightfield::{Drape, DrapeError, Heightfield, LoadError};
 use crate::regular_file::{self, OpenError};
 use crate::traverse::{Arith, Method};
 use serde::Deserialize;
 use std::io::Read;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use thiserror::Error;
 
 mod heightmap;
 mod sun;
 mod view;
+mod water;
 
 use heightmap::HeightmapError;
 pub use heightmap::{HeightmapSection, NoDataKey};
 pub use view::{CameraSection, Orbit, DEFAULT_SIZE};
+pub use water::{
+    bytes_from_hex, bytes_from_linear, level_in_map_units, level_z, linear_from_bytes,
+    WaterSection, DEFAULT_WATER_COLOUR,
+};
 
 /// Why a scene could not be used.
 #[derive(Debug, Error)]
@@ -81,6 +87,14 @@ pub enum SceneError {
         /// Why the camera was refused.
         source: CameraError,
     },
+    /// The `[overlay]` section's image could not be laid over the map.
+    #[error("scene {path}: [overlay] {source}")]
+    Overlay {
+        /// The scene file.
+        path: PathBuf,
+        /// Why the image was refused.
+        source: DrapeError,
+    },
     /// The `[heightmap]` section's map could not be loaded.
     #[error("scene {path}: [heightmap] {source}")]
     Heightmap {
@@ -116,6 +130,12 @@ pub struct SceneFile {
     /// `[render]`: traversal method and arithmetic.
     #[serde(default)]
     pub render: RenderSection,
+    /// `[overlay]`: an image colouring the surface instead of the ramp.
+    #[serde(default)]
+    pub overlay: Option<OverlaySection>,
+    /// `[water]`: a water surface at a level.
+    #[serde(default)]
+    pub water: Option<WaterSection>,
     /// An image size replacing the scene's (`render --size`); not a key of the file.
     #[serde(skip)]
     pub size: Option<(u32, u32)>,
@@ -227,6 +247,17 @@ pub struct EffectsSection {
     /// Sky-light rays per point (default 16).
     #[serde(default)]
     pub sky_rays: Option<u32>,
+}
+
+/// A scene file's `[overlay]` section: an image (PNG, JPEG or TIFF) draped over the map.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct OverlaySection {
+    /// The image, relative to the scene file.
+    pub path: String,
+    /// How much of the ramp's colour the image replaces, 0 to 1 (default 1).
+    #[serde(default = "one")]
+    pub opacity: f64,
 }
 
 /// A scene file's `[shading]` section.
@@ -345,6 +376,29 @@ impl Lighting {
         direction.map(|c| c / length)
     }
 
+    /// Whether the sun stands above the horizon.
+    pub fn sun_up(&self) -> bool {
+        self.sun[2] > 0.0
+    }
+
+    /// This lighting as the sun's place allows: a sun on or below the horizon lights nothing
+    /// directly, and no shadow, soft-shadow or sky-light rays are cast (the sky is the night's,
+    /// see [`Shader`](crate::render::Shader)); the ambient term stays, as moonlight would.
+    pub fn after_dark(self) -> Lighting {
+        if self.sun_up() {
+            return self;
+        }
+        Lighting {
+            intensity: 0.0,
+            shadows: false,
+            effects: Effects {
+                sky_light: false,
+                ..self.effects
+            },
+            ..self
+        }
+    }
+
     /// The lighting a scene file's sections describe (the sun's direction non-zero: scene
     /// files are checked for that first), with the direction normalised.
     pub fn from_sections(
@@ -410,6 +464,17 @@ impl Scene {
                 source,
             },
         })?;
+        let field = match &file.overlay {
+            Some(overlay) => {
+                let drape = Drape::load(&base.join(&overlay.path), &field, overlay.opacity)
+                    .map_err(|source| SceneError::Overlay {
+                        path: path.to_owned(),
+                        source,
+                    })?;
+                field.with_drape(Some(Arc::new(drape)))
+            }
+            None => field,
+        };
         let (field, camera) = view::camera(file.camera.as_ref(), file.size, field, path)?;
         let sun = &file.sun;
         let length = sun.direction.iter().map(|c| c * c).sum::<f64>().sqrt();
@@ -443,6 +508,13 @@ impl Scene {
         let mut lighting = sun::place_sun(sun, &field, lighting).map_err(invalid)?;
         lighting.effects =
             Effects::from_sections(sun, &file.effects, &file.render).map_err(invalid)?;
+        lighting.effects.water = file
+            .water
+            .as_ref()
+            .map(|water| water.validate(&field))
+            .transpose()
+            .map_err(invalid)?;
+        let lighting = lighting.after_dark();
         Ok(Scene {
             field,
             camera,

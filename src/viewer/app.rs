@@ -6,12 +6,12 @@ use super::accuracy::Accuracy;
 use super::compose::{self, PixelRect};
 use super::export::{self, Exports};
 use super::hooks::{Counts, Hooks};
-use super::loader::{LoadRequest, Loaded, Loader, Source};
+use super::loader::{LoadRequest, Loaded, Loader};
 use super::model::{Action, Model, Shown};
 use super::navigation::{self, Home};
 use super::quality::{detail, JobKey, Quality, ViewKey};
 use super::worker::{RenderJob, RenderWorker, RenderedFrame};
-use super::{panels, view, UserEvent};
+use super::{overlay_ui, panels, view, UserEvent};
 
 mod present;
 
@@ -137,13 +137,7 @@ impl App {
             }
             WindowEvent::DroppedFile(path) => {
                 self.model.drop_hover = false;
-                self.start_load(LoadRequest {
-                    source: Source::File(path),
-                    z_scale: None,
-                    reframe: true,
-                    from_memory: None,
-                    decoding: self.model.decoding,
-                });
+                self.start_load(overlay_ui::dropped(&self.model, path));
             }
             WindowEvent::Resized(_) | WindowEvent::ScaleFactorChanged { .. } => {
                 self.window.request_redraw();

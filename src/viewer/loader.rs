@@ -58,6 +58,33 @@ pub struct LoadRequest {
     pub from_memory: Option<Arc<Terrain>>,
     /// How a height map image is decoded (a scene file says so itself).
     pub decoding: Decoding,
+    /// An image to lay over the map, or to take off it; `None` keeps what the source gives
+    /// (a scene's `[overlay]`, the drape of samples rescaled in memory, none on a new map).
+    pub overlay: Option<OverlayChange>,
+}
+
+/// A change to the image draped over the map.
+#[derive(Clone, Debug, PartialEq)]
+pub enum OverlayChange {
+    /// Drape this image, replacing any other.
+    Lay {
+        /// The image file.
+        path: PathBuf,
+        /// How much of the ramp's colour it replaces, 0 to 1.
+        opacity: f64,
+    },
+    /// Show the ramp again.
+    Remove,
+}
+
+impl LoadRequest {
+    /// What the load is of, for its progress and its error message.
+    fn label(&self) -> String {
+        match &self.overlay {
+            Some(OverlayChange::Lay { path, .. }) => format!("the overlay {}", path.display()),
+            _ => self.source.label(),
+        }
+    }
 }
 
 /// A scene file's camera, lighting and traversal.
@@ -154,7 +181,7 @@ impl Loader {
 
     /// Queues a load, superseding any load in progress or waiting.
     pub fn start(&mut self, request: LoadRequest) {
-        let label = request.source.label();
+        let label = request.label();
         let generation = self.shared.requests.post(request);
         let progress = Progress {
             label,
@@ -256,6 +283,7 @@ mod tests {
             reframe: true,
             from_memory: None,
             decoding: Decoding::default(),
+            overlay: None,
         }
     }
 
@@ -266,6 +294,7 @@ mod tests {
             reframe: true,
             from_memory: None,
             decoding: Decoding::default(),
+            overlay: None,
         }
     }
 
@@ -379,6 +408,7 @@ mod tests {
                 colour: crate::heightfield::ColourEncoding::Mapbox,
                 nodata: crate::heightfield::NoDataValue::Off,
             },
+            overlay: None,
         })
         .expect("loads");
         let (lo, hi) = loaded.terrain.z_range();

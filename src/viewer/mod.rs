@@ -21,6 +21,7 @@ mod mailbox;
 mod model;
 mod navigation;
 mod orbit;
+mod overlay_ui;
 mod panels;
 mod probe;
 mod probe_ui;
@@ -32,6 +33,7 @@ mod sources;
 mod stats_ui;
 mod sun_clock;
 mod view;
+mod water_ui;
 mod worker;
 
 pub use decoding::Decoding;
@@ -113,6 +115,7 @@ pub fn run(options: ViewerOptions) -> anyhow::Result<()> {
         reframe: true,
         from_memory: None,
         decoding: options.decoding,
+        overlay: None,
     };
     let loaded = loader::load_now(request).map_err(anyhow::Error::msg)?;
     let event_loop = EventLoop::<UserEvent>::with_user_event()

@@ -8,6 +8,7 @@ use super::export::Exports;
 use super::loader::{LoadRequest, Progress, Source};
 use super::navigation::{Framed, Home};
 use super::orbit::Orbit;
+use super::overlay_ui::OverlayControls;
 use super::probe::Probe;
 use super::settings::Settings;
 use super::sun_clock::SunClock;
@@ -114,6 +115,8 @@ pub struct Model {
     pub path_source: Option<Source>,
     /// How images opened or dropped from now on are decoded.
     pub decoding: Decoding,
+    /// The overlay path, opacity and what a drop loads.
+    pub overlay: OverlayControls,
     pub panels_visible: bool,
     /// The panel was hidden because the window became too narrow for it.
     pub panel_auto_hidden: bool,
@@ -183,6 +186,7 @@ impl Model {
             sun_clock: SunClock::default(),
             path_text: String::new(),
             path_source: None,
+            overlay: OverlayControls::default(),
             panels_visible: true,
             panel_auto_hidden: false,
             narrow_window: false,

@@ -212,6 +212,8 @@ fn light_ui(ui: &mut Ui, model: &mut Model) {
 
 fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     source_ui(ui, model, actions);
+    super::overlay_ui::overlay_ui(ui, model, actions);
+    super::water_ui::water_ui(ui, model);
     decoding_ui(ui, model, actions);
     z_scale_ui(ui, model, actions);
     let s = &mut model.settings;
@@ -317,6 +319,7 @@ fn z_scale_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             reframe: false,
             from_memory: Some(model.shown.terrain.clone()),
             decoding: model.shown.decoding,
+            overlay: None,
         }));
     }
 }
@@ -329,6 +332,7 @@ fn load(source: Source, decoding: Decoding) -> Action {
         reframe: true,
         from_memory: None,
         decoding,
+        overlay: None,
     })
 }
 

@@ -1,10 +1,10 @@
 //! Where terrains come from: built-ins, height map images (georeferenced ones at true scale,
 //! plain ones with a z scale that makes their relief visible) and scene files (with their
-//! camera and lighting); and rescaling.
+//! camera and lighting); rescaling, and laying an image over the map.
 
-use super::loader::{LoadRequest, Loaded, SceneSetup, Source, Stage};
+use super::loader::{LoadRequest, Loaded, OverlayChange, SceneSetup, Source, Stage};
 use super::orbit::Orbit;
-use crate::heightfield::{self, relief, Builtin, LoadOptions};
+use crate::heightfield::{self, relief, Builtin, Drape, LoadOptions};
 use crate::render::{Lighting, Scene, SceneFile};
 use crate::{Arith, Heightfield, Method, Terrain};
 use std::ops::ControlFlow;
@@ -50,6 +50,14 @@ pub fn load(
     let field = match request.z_scale {
         Some(z) => rescale(field, z)?,
         None => field,
+    };
+    let field = match &request.overlay {
+        None => field,
+        Some(OverlayChange::Remove) => field.with_drape(None),
+        Some(OverlayChange::Lay { path, opacity }) => {
+            let drape = Drape::load(path, &field, *opacity).map_err(|e| e.to_string())?;
+            field.with_drape(Some(Arc::new(drape)))
+        }
     };
     let decode_time = start.elapsed();
     report(Stage::Building);
