@@ -161,8 +161,7 @@ impl Shader<'_> {
         if let Some(water) = &self.lighting.effects.water {
             let field = self.terrain.field();
             let terrain_t = primary.hit.as_ref().map(|found| found.t.to_f64());
-            let size = (field.width(), field.height());
-            if let Some(t) = water.crossing(ray.origin(), ray.dir(), terrain_t, size) {
+            if let Some(t) = water.crossing(ray.origin(), ray.dir(), terrain_t, field) {
                 let water = self.water_pixel::<S>(water, ray, t);
                 return Sample {
                     rgb: water.rgb,

@@ -11,7 +11,7 @@ use super::model::{Action, Model, Shown};
 use super::navigation::{self, Home};
 use super::quality::{detail, JobKey, Quality, ViewKey};
 use super::worker::{RenderJob, RenderWorker, RenderedFrame};
-use super::{overlay_ui, panels, view, UserEvent};
+use super::{drops, overlay_ui, panels, view, UserEvent};
 
 mod present;
 
@@ -137,7 +137,7 @@ impl App {
             }
             WindowEvent::DroppedFile(path) => {
                 self.model.drop_hover = false;
-                self.start_load(overlay_ui::dropped(&self.model, path));
+                self.model.dropped.push(path);
             }
             WindowEvent::Resized(_) | WindowEvent::ScaleFactorChanged { .. } => {
                 self.window.request_redraw();
@@ -167,6 +167,9 @@ impl App {
     /// Sleeps until the next thing to draw: a frame from the worker, input, egui's own
     /// repaint time, or the moment the camera comes to rest (to refine at full resolution).
     pub fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        if let Some(request) = drops::take(&mut self.model) {
+            self.start_load(request);
+        }
         let wake = [self.next_repaint, self.quality.rest_deadline()]
             .into_iter()
             .flatten()
@@ -201,6 +204,7 @@ impl App {
             decode_time: loaded.decode_time,
         };
         model.error = None;
+        overlay_ui::shown(model, loaded.request.overlay.as_ref());
         // A rescale keeps the z scale field as the user has it (they may still be dragging).
         if loaded.request.reframe {
             model.z_scale = terrain.field().z_scale();

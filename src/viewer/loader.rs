@@ -20,6 +20,8 @@ pub enum Source {
     Builtin(&'static str),
     /// A height map image, or a `.toml` scene file.
     File(PathBuf),
+    /// Georeferenced tiles joined into one map.
+    Tiles(Vec<PathBuf>),
 }
 
 impl Source {
@@ -27,10 +29,11 @@ impl Source {
     pub fn label(&self) -> String {
         match self {
             Source::Builtin(name) => format!("{name} (built-in)"),
-            Source::File(path) => path.file_name().map_or_else(
-                || path.display().to_string(),
-                |n| n.to_string_lossy().into(),
-            ),
+            Source::File(path) => file_name(path),
+            Source::Tiles(paths) => match paths.split_first() {
+                Some((first, rest)) => format!("{} (+{} tiles)", file_name(first), rest.len()),
+                None => "no tiles".into(),
+            },
         }
     }
 
@@ -39,9 +42,27 @@ impl Source {
         Source::Builtin(BUILTINS[0].name)
     }
 
+    /// The source of the files given on the command line or dropped together: one file, or
+    /// tiles to join; `None` for none.
+    pub fn of_paths(mut paths: Vec<PathBuf>) -> Option<Source> {
+        match paths.len() {
+            0 => None,
+            1 => paths.pop().map(Source::File),
+            _ => Some(Source::Tiles(paths)),
+        }
+    }
+
     pub(super) fn is_scene(&self) -> bool {
         matches!(self, Source::File(p) if SceneFile::is_scene_path(p))
     }
+}
+
+/// A path's file name, for labels.
+fn file_name(path: &std::path::Path) -> String {
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into(),
+    )
 }
 
 /// What to load.

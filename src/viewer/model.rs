@@ -15,6 +15,7 @@ use super::sun_clock::SunClock;
 use super::worker::RenderedFrame;
 use crate::Terrain;
 use std::collections::{BTreeMap, VecDeque};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -117,6 +118,8 @@ pub struct Model {
     pub decoding: Decoding,
     /// The overlay path, opacity and what a drop loads.
     pub overlay: OverlayControls,
+    /// Files dropped onto the window and not yet loaded (a drop delivers them one by one).
+    pub dropped: Vec<PathBuf>,
     pub panels_visible: bool,
     /// The panel was hidden because the window became too narrow for it.
     pub panel_auto_hidden: bool,
@@ -187,6 +190,7 @@ impl Model {
             path_text: String::new(),
             path_source: None,
             overlay: OverlayControls::default(),
+            dropped: Vec::new(),
             panels_visible: true,
             panel_auto_hidden: false,
             narrow_window: false,

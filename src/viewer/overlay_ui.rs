@@ -1,22 +1,13 @@
 //! The Height map panel's overlay controls: an image path and its opacity to drape over the
-//! map, what is draped now, and whether a file dropped onto the window is a height map or an
-//! overlay.
+//! map, what is draped now, and whether files dropped onto the window are a height map (or
+//! tiles) or an overlay.
 
-use super::loader::{LoadRequest, OverlayChange, Source};
+use super::drops::DropLoads;
+use super::loader::{LoadRequest, OverlayChange};
 use super::model::{Action, Model};
 use super::panels::named;
 use egui::{Slider, Ui};
 use std::path::PathBuf;
-
-/// What a file dropped onto the window loads.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum DropLoads {
-    /// A new height map (or scene).
-    #[default]
-    HeightMap,
-    /// An image draped over the map on screen.
-    Overlay,
-}
 
 /// The overlay controls' state.
 #[derive(Clone, Debug, PartialEq)]
@@ -51,21 +42,18 @@ pub fn overlay_request(model: &Model, change: OverlayChange) -> LoadRequest {
     }
 }
 
-/// The request a file dropped onto the window makes.
-pub fn dropped(model: &Model, path: PathBuf) -> LoadRequest {
-    match model.overlay.drop_loads {
-        DropLoads::HeightMap => LoadRequest {
-            source: Source::File(path),
-            z_scale: None,
-            reframe: true,
-            from_memory: None,
-            decoding: model.decoding,
-            overlay: None,
-        },
-        DropLoads::Overlay => {
-            let opacity = model.overlay.opacity;
-            overlay_request(model, OverlayChange::Lay { path, opacity })
+/// Takes the opacity of the overlay shown (a scene's, or one just laid), and says what a
+/// change of overlay did.
+pub fn shown(model: &mut Model, change: Option<&OverlayChange>) {
+    if let Some(drape) = model.shown.terrain.field().drape() {
+        model.overlay.opacity = drape.opacity();
+    }
+    match change {
+        Some(OverlayChange::Lay { path, .. }) => {
+            model.notify(format!("Draped {} over the map", path.display()))
         }
+        Some(OverlayChange::Remove) => model.notify("Removed the overlay"),
+        None => {}
     }
 }
 
@@ -126,13 +114,9 @@ pub fn overlay_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         }
     }
     ui.horizontal(|ui| {
-        ui.label("a dropped file is");
+        ui.label("a drop opens");
         let controls = &mut model.overlay;
-        ui.radio_value(
-            &mut controls.drop_loads,
-            DropLoads::HeightMap,
-            "a height map",
-        );
+        ui.radio_value(&mut controls.drop_loads, DropLoads::HeightMap, "a map");
         ui.radio_value(&mut controls.drop_loads, DropLoads::Overlay, "an overlay");
     });
 }

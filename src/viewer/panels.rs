@@ -261,7 +261,7 @@ fn follow_shown_path(model: &mut Model) {
     }
     model.path_text = match current {
         Source::File(path) => path.display().to_string(),
-        Source::Builtin(_) => String::new(),
+        Source::Builtin(_) | Source::Tiles(_) => String::new(),
     };
     model.path_source = Some(current.clone());
 }
@@ -272,6 +272,7 @@ fn source_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let selected = match &current {
         Source::Builtin(name) => (*name).to_owned(),
         Source::File(_) => "(a file)".to_owned(),
+        Source::Tiles(_) => "(tiles)".to_owned(),
     };
     egui::ComboBox::from_label("built-in")
         .selected_text(selected)

@@ -96,7 +96,7 @@ fn overlay_keys(model: &Model) -> String {
 /// The `[heightmap]` keys but the z scale: the map's path in full (a scene's own map, when a
 /// scene is shown) and how it was read.
 fn heightmap_keys(source: &Source, model: &Model) -> Result<String, String> {
-    let (path, rgb, nodata) = match source {
+    let (paths, rgb, nodata) = match source {
         Source::Builtin(name) => return Ok(format!("path = \"builtin:{name}\"\n")),
         Source::File(path) if SceneFile::is_scene_path(path) => {
             let file = SceneFile::read(path).map_err(|e| e.to_string())?;
@@ -110,21 +110,39 @@ fn heightmap_keys(source: &Source, model: &Model) -> Result<String, String> {
                 Some(NoDataKey::Word(w)) => w.parse()?,
             };
             let rgb = map.rgb.unwrap_or_else(|| "luminance".into());
-            (Scene::base(path).join(map.path), rgb, nodata)
+            let base = Scene::base(path);
+            let paths = if map.paths.is_empty() {
+                vec![base.join(map.path)]
+            } else {
+                map.paths.iter().map(|p| base.join(p)).collect()
+            };
+            (paths, rgb, nodata)
         }
         Source::File(path) => {
             let decoding = model.shown.decoding;
-            (path.clone(), decoding.colour.to_string(), decoding.nodata)
+            (
+                vec![path.clone()],
+                decoding.colour.to_string(),
+                decoding.nodata,
+            )
         }
+        Source::Tiles(paths) => {
+            let decoding = model.shown.decoding;
+            (paths.clone(), decoding.colour.to_string(), decoding.nodata)
+        }
+    };
+    let path = match &paths[..] {
+        [path] => format!("path = {:?}", absolute(path)),
+        tiles => format!(
+            "paths = {:?}",
+            tiles.iter().map(|p| absolute(p)).collect::<Vec<_>>()
+        ),
     };
     let nodata = match nodata {
         NoDataValue::Value(v) => format!("{v:?}"),
         word => format!("\"{word}\""),
     };
-    Ok(format!(
-        "path = {:?}\nrgb = \"{rgb}\"\nnodata = {nodata}\n",
-        absolute(&path)
-    ))
+    Ok(format!("{path}\nrgb = \"{rgb}\"\nnodata = {nodata}\n"))
 }
 
 /// `path` in full, so the scene works from any folder.

@@ -8,7 +8,7 @@ use crate::heightfield::{self, relief, Builtin, Drape, LoadOptions};
 use crate::render::{Lighting, Scene, SceneFile};
 use crate::{Arith, Heightfield, Method, Terrain};
 use std::ops::ControlFlow;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -28,24 +28,11 @@ pub fn load(
             (builtin.load().map_err(|e| e.to_string())?, None)
         }
         (Source::File(path), None) if request.source.is_scene() => load_scene(path)?,
-        (Source::File(path), None) => {
-            let cancel = |_| {
-                if superseded() {
-                    ControlFlow::Break(())
-                } else {
-                    ControlFlow::Continue(())
-                }
-            };
-            let options = LoadOptions {
-                colour: request.decoding.colour,
-                nodata: request.decoding.nodata,
-                ..LoadOptions::new(1.0)
-            };
-            let field =
-                heightfield::load_with(path, &options, &cancel).map_err(|e| e.to_string())?;
-            let sensible = relief::default_z_scale(&field);
-            (rescale(field, sensible)?, None)
-        }
+        (Source::File(path), None) => (
+            read_map(std::slice::from_ref(path), &request, superseded)?,
+            None,
+        ),
+        (Source::Tiles(paths), None) => (read_map(paths, &request, superseded)?, None),
     };
     let field = match request.z_scale {
         Some(z) => rescale(field, z)?,
@@ -69,6 +56,34 @@ pub fn load(
         scene,
         decode_time,
     })
+}
+
+/// Reads a height map, or tiles joined into one, at its default relief; stops when
+/// `superseded` says so.
+fn read_map(
+    paths: &[PathBuf],
+    request: &LoadRequest,
+    superseded: &dyn Fn() -> bool,
+) -> Result<Heightfield, String> {
+    let cancel = |_| {
+        if superseded() {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    };
+    let options = LoadOptions {
+        colour: request.decoding.colour,
+        nodata: request.decoding.nodata,
+        ..LoadOptions::new(1.0)
+    };
+    let field = match paths {
+        [path] => heightfield::load_with(path, &options, &cancel),
+        tiles => heightfield::load_mosaic(tiles, &options, &cancel),
+    }
+    .map_err(|e| e.to_string())?;
+    let sensible = relief::default_z_scale(&field);
+    rescale(field, sensible)
 }
 
 /// A validated scene and the camera section as written (the scene's `Camera` keeps no orbit).

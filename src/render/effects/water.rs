@@ -6,6 +6,7 @@
 //! camera rays are, in the frame's arithmetic.
 
 use super::horizon::{climbs_above, slope_bound, Sector};
+use crate::heightfield::Heightfield;
 use crate::render::shade::Shader;
 use crate::traverse::{Counters, Scalar, Tracer};
 use crate::Ray;
@@ -47,14 +48,15 @@ pub fn schlick(cos: f64) -> f64 {
 
 impl Water {
     /// Where the ray `o + t d` (grid coordinates) meets the water: its `t`, if it crosses
-    /// the level from above over a field of `size` samples, before the terrain's hit at
-    /// `terrain_t` if any (a terrain hit at the level or above it is dry land).
+    /// the level from above over a cell of `field` that is not a hole (no data holds no
+    /// water), before the terrain's hit at `terrain_t` if any (a terrain hit at the level or
+    /// above it is dry land).
     pub fn crossing(
         &self,
         o: [f64; 3],
         d: [f64; 3],
         terrain_t: Option<f64>,
-        size: (usize, usize),
+        field: &Heightfield,
     ) -> Option<f64> {
         if !(d[2] < 0.0 && o[2] > self.level) {
             return None;
@@ -64,8 +66,14 @@ impl Water {
             return None;
         }
         let (x, y) = (o[0] + t * d[0], o[1] + t * d[1]);
-        let over = |v: f64, samples: usize| (0.0..=(samples - 1) as f64).contains(&v);
-        (over(x, size.0) && over(y, size.1)).then_some(t)
+        let cells = (field.width() - 1, field.height() - 1);
+        let over = |v: f64, cells: usize| (0.0..=cells as f64).contains(&v);
+        if !(over(x, cells.0) && over(y, cells.1)) {
+            return None;
+        }
+        // (The far edges belong to the last cells.)
+        let cell = |v: f64, cells: usize| (v as usize).min(cells - 1);
+        (!field.is_hole_cell(cell(x, cells.0), cell(y, cells.1))).then_some(t)
     }
 }
 
@@ -175,25 +183,27 @@ mod tests {
             colour: [0.0; 3],
         };
         let down = [1.0, 0.0, -1.0];
+        let field = |side| Heightfield::from_fn(side, side, 1, 1.0, |_, _| 0).unwrap();
+        let (large, small) = (field(9), field(3));
         // From (0, 1, 5) down at 45 degrees: the level at t = 3, over x = 3.
         assert_eq!(
-            water.crossing([0.0, 1.0, 5.0], down, None, (9, 9)),
+            water.crossing([0.0, 1.0, 5.0], down, None, &large),
             Some(3.0)
         );
         assert_eq!(
-            water.crossing([0.0, 1.0, 5.0], down, Some(4.0), (9, 9)),
+            water.crossing([0.0, 1.0, 5.0], down, Some(4.0), &large),
             Some(3.0)
         );
         // The terrain at the level or above it first: dry land.
         assert_eq!(
-            water.crossing([0.0, 1.0, 5.0], down, Some(3.0), (9, 9)),
+            water.crossing([0.0, 1.0, 5.0], down, Some(3.0), &large),
             None
         );
-        // Off the map (x = 3 on a 3-sample map), from below, and rising.
-        assert_eq!(water.crossing([0.0, 1.0, 5.0], down, None, (3, 3)), None);
-        assert_eq!(water.crossing([0.0, 1.0, 1.0], down, None, (9, 9)), None);
+        // Off the map (x = 3 past a 3-sample map's x = 2), from below, and rising.
+        assert_eq!(water.crossing([0.0, 1.0, 5.0], down, None, &small), None);
+        assert_eq!(water.crossing([0.0, 1.0, 1.0], down, None, &large), None);
         assert_eq!(
-            water.crossing([0.0, 1.0, 5.0], [1.0, 0.0, 1.0], None, (9, 9)),
+            water.crossing([0.0, 1.0, 5.0], [1.0, 0.0, 1.0], None, &large),
             None
         );
     }
