@@ -9,7 +9,8 @@ use crate::common::top_down::overhead_light;
 use heightray::render::{Camera, Culling, Frame, Ramp, Renderer, Scene, Shader};
 use heightray::{Arith, Method, Terrain};
 use std::path::Path;
-use tiff::encoder::colortype::{Gray32Float, RGB8};
+use tiff::encoder::colortype::{ColorType, Gray32Float, RGB8};
+use tiff::encoder::TiffValue;
 use tiff::tags::Tag;
 
 /// The test image's pixel `(c, r)`: every pixel a different colour.
@@ -126,25 +127,32 @@ fn opacity_blends_the_overlay_with_the_ramp() {
     }
 }
 
-/// A flat 9x9 float DEM, 100 m high, of 10 m cells, the top-left pixel's corner at
-/// (1000, 2090) in a projected CRS: sample (i, j) at (1005 + 10 i, 2005 + 10 j). One sample
-/// in the top-left corner is 103 m, so that the DEM has a range to quantise.
-fn write_dem(dir: &Path) {
-    let mut heights = vec![100.0f32; 81];
-    heights[0] = 103.0;
+/// A square GeoTIFF `side` pixels wide of 10 m pixels in a projected CRS in metres, the
+/// top-left pixel's corner at `corner`.
+fn projected_tiff<C: ColorType>(side: u32, data: &[C::Inner], corner: [f64; 2]) -> Vec<u8>
+where
+    [C::Inner]: TiffValue,
+{
     let keys = [1, 1, 0, 1, 1024, 0, 1, 1];
+    let tiepoint = [0.0, 0.0, 0.0, corner[0], corner[1], 0.0];
     let tags = [
         (Tag::GeoKeyDirectoryTag, TagData::Shorts(&keys)),
         (
             Tag::ModelPixelScaleTag,
             TagData::Doubles(&[10.0, 10.0, 0.0]),
         ),
-        (
-            Tag::ModelTiepointTag,
-            TagData::Doubles(&[0.0, 0.0, 0.0, 1000.0, 2090.0, 0.0]),
-        ),
+        (Tag::ModelTiepointTag, TagData::Doubles(&tiepoint)),
     ];
-    let bytes = tagged_tiff::<Gray32Float>(9, 9, &heights, &tags);
+    tagged_tiff::<C>(side, side, data, &tags)
+}
+
+/// A flat 9x9 float DEM, 100 m high, of 10 m cells, the top-left pixel's corner at
+/// (1000, 2090) in a projected CRS: sample (i, j) at (1005 + 10 i, 2005 + 10 j). One sample
+/// in the top-left corner is 103 m, so that the DEM has a range to quantise.
+fn write_dem(dir: &Path) {
+    let mut heights = vec![100.0f32; 81];
+    heights[0] = 103.0;
+    let bytes = projected_tiff::<Gray32Float>(9, &heights, [1000.0, 2090.0]);
     std::fs::write(dir.join("dem.tif"), bytes).expect("the DEM written");
 }
 
@@ -179,19 +187,7 @@ fn a_geotiff_overlay_lands_where_its_map_coordinates_say() {
     let dir = tempfile::tempdir().unwrap();
     write_dem(dir.path());
     let rgb: Vec<u8> = (0..16).flat_map(|k| pattern(k % 4, k / 4)).collect();
-    let keys = [1, 1, 0, 1, 1024, 0, 1, 1];
-    let tags = [
-        (Tag::GeoKeyDirectoryTag, TagData::Shorts(&keys)),
-        (
-            Tag::ModelPixelScaleTag,
-            TagData::Doubles(&[10.0, 10.0, 0.0]),
-        ),
-        (
-            Tag::ModelTiepointTag,
-            TagData::Doubles(&[0.0, 0.0, 0.0, 1025.0, 2075.0, 0.0]),
-        ),
-    ];
-    let bytes = tagged_tiff::<RGB8>(4, 4, &rgb, &tags);
+    let bytes = projected_tiff::<RGB8>(4, &rgb, [1025.0, 2075.0]);
     std::fs::write(dir.path().join("ortho.tif"), bytes).unwrap();
     let (plain, draped) = georeferenced_frames(dir.path(), "ortho.tif");
     assert_placed_with_offset(&plain, &draped);
@@ -231,7 +227,7 @@ fn bad_overlays_are_explained() {
         ("far.png", "lies outside the map"),
         ("turned.png", "rotated"),
     ] {
-        let error = load(dir.path(), &scene(file)).err().expect(file);
+        let error = load(dir.path(), &scene(file)).expect_err(file);
         assert!(error.contains("[overlay]"), "{file}: {error}");
         assert!(error.contains(words), "{file}: {error}");
     }

@@ -87,7 +87,7 @@ fn tiles_not_on_one_grid_are_refused_with_the_reason() {
         ("shifted.asc", "not on one grid"),
         ("plain.pgm", "not georeferenced"),
     ] {
-        let error = load(dir.path(), &["a.asc", other]).err().expect(other);
+        let error = load(dir.path(), &["a.asc", other]).expect_err(other);
         assert!(
             error.contains("cannot join") && error.contains(says),
             "{other}: {error}"

@@ -54,19 +54,7 @@ fn a_sun_below_the_horizon_lights_nothing_and_casts_no_shadow_rays() {
     assert!(night.lighting.sun[2] < 0.0);
     assert_eq!(night.lighting.intensity, 0.0);
     assert!(!night.lighting.shadows);
-    let terrain = Terrain::new(night.field);
-    let renderer = Renderer {
-        shader: Shader {
-            terrain: &terrain,
-            lighting: night.lighting,
-            method: night.method,
-            culling: Culling::default(),
-        },
-        camera: night.camera.in_grid(terrain.world_from_grid()),
-        arith: night.arith,
-    };
-    let mut frame = Frame::new(16, 16);
-    renderer.render(&mut frame);
+    let (frame, _) = render(night);
     assert!(frame.totals.primary_hits > 0);
     assert_eq!(frame.totals.shadow_rays, 0);
 }
