@@ -11,7 +11,7 @@ use super::model::{Action, Model, Shown};
 use super::navigation::{self, Home};
 use super::quality::{detail, JobKey, Quality, ViewKey};
 use super::worker::{RenderJob, RenderWorker, RenderedFrame};
-use super::{drops, overlay_ui, panels, view, UserEvent};
+use super::{drops, overlay_ui, panels, view, water_ui, UserEvent};
 
 mod present;
 
@@ -197,6 +197,7 @@ impl App {
     fn show(&mut self, loaded: Loaded) {
         let terrain = loaded.terrain;
         let model = &mut self.model;
+        let relief_was = model.shown.terrain.field().z_scale();
         model.shown = Shown {
             source: loaded.request.source.clone(),
             decoding: loaded.request.decoding,
@@ -205,6 +206,9 @@ impl App {
         };
         model.error = None;
         overlay_ui::shown(model, loaded.request.overlay.as_ref());
+        if !loaded.request.reframe {
+            water_ui::follow_relief(model, relief_was);
+        }
         // A rescale keeps the z scale field as the user has it (they may still be dragging).
         if loaded.request.reframe {
             model.z_scale = terrain.field().z_scale();

@@ -43,3 +43,14 @@ pub fn water_ui(ui: &mut Ui, model: &mut Model) {
     water.colour = linear_from_bytes(bytes);
     model.settings.effects.water = Some(water);
 }
+
+/// Keeps the water on the same contour of the map on screen after its relief was rescaled
+/// from `z_scale_was`: every height scales with the z scale.
+pub fn follow_relief(model: &mut Model, z_scale_was: f64) {
+    let z_scale = model.shown.terrain.field().z_scale();
+    if let Some(water) = &mut model.settings.effects.water {
+        if z_scale_was > 0.0 {
+            water.level *= z_scale / z_scale_was;
+        }
+    }
+}
