@@ -170,11 +170,6 @@ impl Drape {
         self.georeferenced
     }
 
-    /// Where grid points land in the image.
-    pub fn placement(&self) -> Placement {
-        self.placement
-    }
-
     /// The image's colour at grid point `(x, y)` in linear light, and how much of the ramp's
     /// colour it replaces there (its alpha times the opacity); `None` outside the image.
     pub fn colour(&self, x: f64, y: f64) -> Option<([f64; 3], f64)> {
