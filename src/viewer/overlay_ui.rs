@@ -117,6 +117,7 @@ pub fn overlay_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         ui.label("a drop opens");
         let controls = &mut model.overlay;
         ui.radio_value(&mut controls.drop_loads, DropLoads::HeightMap, "a map");
-        ui.radio_value(&mut controls.drop_loads, DropLoads::Overlay, "an overlay");
+        let overlay = ui.radio_value(&mut controls.drop_loads, DropLoads::Overlay, "an overlay");
+        named(model, "drop_overlay", overlay);
     });
 }
