@@ -136,7 +136,11 @@ impl Beam {
 
 /// The highest height under the cells meeting the box `[x0, x1] x [y0, y1]`, from at most
 /// four blocks of one mipmap level, and that level; `None` if the box misses the grid.
-pub fn highest_under(terrain: &Terrain, [x0, x1]: [f64; 2], [y0, y1]: [f64; 2]) -> Option<(f64, u32)> {
+pub fn highest_under(
+    terrain: &Terrain,
+    [x0, x1]: [f64; 2],
+    [y0, y1]: [f64; 2],
+) -> Option<(f64, u32)> {
     let field = terrain.field();
     let (w, h) = (field.width() as f64 - 1.0, field.height() as f64 - 1.0);
     if x1 < 0.0 || y1 < 0.0 || x0 > w || y0 > h {

@@ -291,7 +291,7 @@ mod tests {
             let o = DVec3::new(x, y, surface_height(&terrain, cell, DVec3::new(x, y, 0.0)));
             for k in 0..16 {
                 let bound = slope_bound(&terrain, o, Some(Sector::nth(k, 16)));
-                let mut check = |q: DVec3| {
+                let check = |q: DVec3| {
                     let r = (q.x - x).hypot(q.y - y);
                     if r > 1e-12 && sector_of(q - o, 16) == k {
                         let slope = (q.z - o.z) / r;

@@ -12,12 +12,14 @@ mod sky;
 mod soft_shadow;
 mod stats;
 mod sun_cone;
+mod water;
 
 pub use accumulate::Accumulation;
 pub use horizon::{climbs_above, slope_bound};
 pub use sky::{open_sky_mean, SkyRays};
 pub use soft_shadow::SoftShadow;
-pub use stats::{EffectStats, SampleStats, SkyStats, SoftStats};
+pub use stats::{EffectStats, SampleStats, SkyStats, SoftStats, WaterStats};
+pub use water::{schlick, Reflection, Water, WaterPixel, NORMAL_REFLECTANCE};
 
 use super::scene::{EffectsSection, RenderSection, SunSection};
 
@@ -42,6 +44,8 @@ pub struct Effects {
     pub samples: u32,
     /// A pixel stops taking samples once they agree (see [`pixel`]).
     pub adaptive: bool,
+    /// A water surface and its reflections.
+    pub water: Option<Water>,
 }
 
 impl Default for Effects {
@@ -53,6 +57,7 @@ impl Default for Effects {
             sky_rays: DEFAULT_RAYS,
             samples: 1,
             adaptive: false,
+            water: None,
         }
     }
 }
@@ -85,11 +90,12 @@ impl Effects {
             sky_rays: count("[effects] sky_rays", effects.sky_rays)?,
             samples: count("[render] samples", Some(render.samples))?,
             adaptive: render.adaptive,
+            water: None,
         })
     }
 
     /// Whether any effect beyond today's frame is asked for.
     pub fn any(&self) -> bool {
-        self.sun_angle_deg > 0.0 || self.sky_light || self.samples > 1
+        self.sun_angle_deg > 0.0 || self.sky_light || self.samples > 1 || self.water.is_some()
     }
 }

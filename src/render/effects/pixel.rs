@@ -101,7 +101,7 @@ impl Estimate {
         }
         self.taken += 1;
         let n = self.taken;
-        if n % FIRST_BATCH != 0 {
+        if !n.is_multiple_of(FIRST_BATCH) {
             return false;
         }
         let count = f64::from(n);

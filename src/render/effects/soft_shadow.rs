@@ -66,7 +66,9 @@ impl Shader<'_> {
         }
         let whole_cone = Cone::new(start, axis, half);
         let sector = sun_sector(axis, half);
-        if self.culling.horizon_clear && whole_cone.is_some_and(|c| sun_cone::clear(self.terrain, &c)) {
+        if self.culling.horizon_clear
+            && whole_cone.is_some_and(|c| sun_cone::clear(self.terrain, &c))
+        {
             return skip(ShadowSkip::HorizonClear);
         }
         let bound = if self.culling.horizon_clear {

@@ -119,8 +119,8 @@ pub fn clear(terrain: &Terrain, cone: &Cone) -> bool {
     // cone's azimuths.
     let first = stretch(cone, 0.0, SHORTEST_STRETCH);
     let lowest_first = cone.start.z + SHORTEST_STRETCH * cone.lowest.min(0.0);
-    let above = surface_extreme(terrain, first, f64::max, false)
-        .is_some_and(|z| lowest_first > z + margin);
+    let above =
+        surface_extreme(terrain, first, f64::max, false).is_some_and(|z| lowest_first > z + margin);
     let at_start = surface_extreme(terrain, (o - ROOM, o + ROOM), f64::max, false);
     let on = at_start.is_some_and(|z| cone.start.z >= z - ROOM * (1.0 + z.abs()));
     let steeper = || cone.lowest > rise_under(terrain, first, &cone.sector) * (1.0 + 1e-9) + 1e-9;
