@@ -20,6 +20,7 @@ mod georeferencing;
 mod hard_cases;
 mod holes;
 mod loader_fuzz;
+mod packets;
 mod ramps;
 mod recorded_cells;
 mod render;
