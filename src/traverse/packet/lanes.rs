@@ -76,7 +76,8 @@ impl<'a> Packet<'a> {
             lanes.inv_dv[l] = f.inv_dv;
             lanes.oz[l] = o[2];
             lanes.dz[l] = d[2];
-            lanes.t_lo[l] = f.t0.max(from_t);
+            // (The clipped start is rounded: moved down by far more.)
+            lanes.t_lo[l] = (f.t0 - ROOM * f.t0.abs()).max(from_t);
             lanes.t_hi[l] = f.t1;
             members |= 1 << l;
             size = o.iter().fold(size, |m, x| m.max(x.abs()));
