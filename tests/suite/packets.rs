@@ -6,6 +6,7 @@
 
 use crate::common::describe;
 use crate::common::families::{self, hash, integer_hills, ray, terrain};
+use crate::common::random::Rng;
 use crate::common::reference::{q, solve};
 use heightray::bench::sized_scene;
 use heightray::heightfield::landscape;
@@ -53,42 +54,25 @@ fn assert_packets_agree(name: &str, terrain: &Terrain, rays: &[Ray]) -> usize {
         .sum()
 }
 
-/// A small deterministic generator (xorshift).
-struct Random(u64);
-
-impl Random {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// A value in `[lo, hi)`.
-    fn within(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-
-    /// An integer in `lo..=hi`.
-    fn int(&mut self, lo: i64, hi: i64) -> f64 {
-        (lo + (self.next() * (hi - lo + 1) as f64) as i64).min(hi) as f64
-    }
+/// An integer in `lo..=hi`, as a float.
+fn int(r: &mut Rng, lo: i64, hi: i64) -> f64 {
+    (lo + r.below((hi - lo + 1) as usize) as i64) as f64
 }
 
 /// A tile of 4x2 rays from one eye, around a direction that is, by `kind`: anywhere; near an
 /// axis or a diagonal of the grid, so that the tile straddles octants; or an integer
 /// direction from a lattice point, whose rays pass through lattice points and along grid
 /// lines.
-fn tile(r: &mut Random, terrain: &Terrain, kind: u32) -> Vec<Ray> {
+fn tile(r: &mut Rng, terrain: &Terrain, kind: u32) -> Vec<Ray> {
     let field = terrain.field();
     let (w, h) = ((field.width() - 1) as f64, (field.height() - 1) as f64);
     let (_, z_hi) = terrain.z_range();
     let target = [r.within(0.0, w), r.within(0.0, h), 0.0];
     let eye = match kind {
         3 => [
-            r.int(-2, w as i64 + 2),
-            r.int(-2, h as i64 + 2),
-            r.int(1, z_hi as i64 + 3),
+            int(r, -2, w as i64 + 2),
+            int(r, -2, h as i64 + 2),
+            int(r, 1, z_hi as i64 + 3),
         ],
         _ => [
             r.within(-0.3 * w, 1.3 * w),
@@ -100,7 +84,7 @@ fn tile(r: &mut Random, terrain: &Terrain, kind: u32) -> Vec<Ray> {
     let spread = match kind {
         1 => {
             // Along an axis: the tile's rays go both ways across it.
-            base[r.int(0, 1) as usize] = 0.0;
+            base[int(r, 0, 1) as usize] = 0.0;
             0.02
         }
         2 => {
@@ -116,7 +100,11 @@ fn tile(r: &mut Random, terrain: &Terrain, kind: u32) -> Vec<Ray> {
             let (a, b) = ((l % 4) as f64 - 1.5, (l / 4) as f64 - 0.5);
             let d = if kind == 3 {
                 // Small integer directions: dyadic steps through lattice points.
-                [base[0].round() + a, base[1].round() + 2.0 * b, -r.int(1, 4)]
+                [
+                    base[0].round() + a,
+                    base[1].round() + 2.0 * b,
+                    -int(r, 1, 4),
+                ]
             } else {
                 [
                     base[0] + spread * length * a,
@@ -160,7 +148,7 @@ fn packets_answer_as_single_rays_on_the_ray_families() {
 
 #[test]
 fn packets_answer_as_single_rays_on_random_tiles() {
-    let mut r = Random(0x5DEE_CE66_D1CE_4E5B);
+    let mut r = Rng(0x5DEE_CE66_D1CE_4E5B);
     let (mut rays, mut moved) = (0, 0);
     for (name, terrain) in terrains() {
         for n in 0..160 {
@@ -176,7 +164,7 @@ fn packets_answer_as_single_rays_on_random_tiles() {
 
 #[test]
 fn no_ray_of_a_packet_starts_past_its_first_hit() {
-    let mut r = Random(0x2545_F491_4F6C_DD1D);
+    let mut r = Rng(0x2545_F491_4F6C_DD1D);
     for (name, terrain) in terrains() {
         for n in 0..40 {
             let tile = tile(&mut r, &terrain, n % 4);
@@ -197,7 +185,7 @@ fn no_ray_of_a_packet_starts_past_its_first_hit() {
 
 #[test]
 fn every_simd_path_clears_alike() {
-    let mut r = Random(0x9E37_79B9_7F4A_7C15);
+    let mut r = Rng(0x9E37_79B9_7F4A_7C15);
     let paths = [SimdPath::Scalar, SimdPath::Avx2, SimdPath::Avx512];
     for (name, terrain) in terrains() {
         for n in 0..60 {
