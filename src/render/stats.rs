@@ -109,6 +109,7 @@ impl FrameStats {
             Shadow::Soft(soft) => self.effects.add_soft(&soft),
         }
         self.effects.add_sky(&sample.sky);
+        self.effects.add_reflection(sample.reflection);
     }
 
     /// Primary and shadow queries together.
@@ -187,6 +188,13 @@ impl FrameStats {
             self.skipped.no_shadow_possible,
             self.skipped.above_terrain
         );
+        let water = &self.effects.water;
+        if water.points > 0 {
+            out += &format!(
+                "water: {} pixels, {} reflected rays cast ({} met the terrain), {} culled (the sky, provably)\n",
+                water.points, water.rays, water.hits, water.culled
+            );
+        }
         out
     }
 }
