@@ -347,19 +347,8 @@ fn a_sun_in_the_slope_plane_shadows_it_exactly() {
 /// a recorded sample is traced.
 #[test]
 fn a_frame_counts_what_its_samples_record() {
-    let field = heightray::heightfield::Builtin::named("valley513")
-        .and_then(|b| b.load().ok())
-        .expect("decodes");
-    let terrain = Terrain::new(field);
-    let size = 40;
-    let camera = Camera::look_at(
-        [-40.0, -60.0, 180.0],
-        [256.0, 256.0, 40.0],
-        [0.0, 0.0, 1.0],
-        45.0,
-        (size, size),
-    )
-    .expect("a camera");
+    let scene = builtin_scene("valley513", 40);
+    let terrain = Terrain::new(scene.field.clone());
     let sky = Effects {
         sky_light: true,
         sky_rays: 4,
@@ -372,15 +361,10 @@ fn a_frame_counts_what_its_samples_record() {
         (sky, Arith::Exact),
     ] {
         let lighting = Lighting {
-            sun: Lighting::unit([0.8, 0.3, 0.25]),
-            intensity: 1.0,
-            ambient: 0.25,
-            shadows: true,
-            fog: 0.0,
-            normals: Normals::Flat,
-            ramp: Ramp::Gray,
             effects,
+            ..scene.lighting
         };
+        let camera = scene.camera;
         let frame = render_by(
             Method::Runs,
             &terrain,
@@ -397,10 +381,11 @@ fn a_frame_counts_what_its_samples_record() {
             culling: Culling::default(),
         };
         let mut totals = heightray::render::FrameStats::default();
-        for y in 0..size {
-            for x in 0..size {
+        let (width, height) = camera.size();
+        for y in 0..height {
+            for x in 0..width {
                 let (sample, _) = shader.traced(&camera.ray(x, y), arith);
-                let at = (y * size + x) as usize;
+                let at = (y * width + x) as usize;
                 assert_eq!(sample.rgb, frame.pixels[at], "({x}, {y}) {arith}");
                 let stats = heightray::render::PixelStats::of(&sample);
                 assert_eq!(stats, frame.stats[at], "({x}, {y}) {arith}");
