@@ -50,10 +50,10 @@ pub enum Command {
 
 #[derive(clap::Args, Debug)]
 pub struct ViewArgs {
-    /// Height map (PNG, PGM, TIFF, .hgt or .asc, see `trace --help`) or scene file (.toml); default:
-    /// the built-in terrain.
+    /// Height map (PNG, PGM, TIFF, .hgt or .asc, see `trace --help`) or scene file (.toml), or
+    /// several georeferenced tiles to join into one map; default: the built-in terrain.
     #[arg(value_name = "FILE_OR_SCENE")]
-    pub source: Option<PathBuf>,
+    pub sources: Vec<PathBuf>,
     /// Height of the largest sample value (default: a built-in's or scene's own; a quarter
     /// of the larger side for an image).
     #[arg(long)]
@@ -306,7 +306,7 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
 
 /// Opens the viewer.
 pub fn view(args: ViewArgs) -> anyhow::Result<ExitCode> {
-    if let Some(source) = args.source.as_ref().filter(|p| !p.exists()) {
+    if let Some(source) = args.sources.iter().find(|p| !p.exists()) {
         // `heightray rendr` lands here too: say what else it could have meant.
         anyhow::bail!(
             "no file '{}' to view (subcommands: view, render, trace, bench, generate)",
@@ -320,7 +320,7 @@ pub fn view(args: ViewArgs) -> anyhow::Result<ExitCode> {
         );
     }
     heightray::viewer::run(heightray::viewer::ViewerOptions {
-        source: args.source,
+        sources: args.sources,
         z_scale: args.z_scale,
         decoding: heightray::viewer::Decoding {
             colour: args.loading.rgb,

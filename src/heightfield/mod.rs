@@ -7,6 +7,7 @@
 //! with ([`Terrain`](crate::heightfield::Terrain)).
 
 mod builtin;
+mod drape;
 mod fetch;
 mod generate;
 mod georef;
@@ -21,19 +22,21 @@ mod summary;
 mod terrain;
 
 pub use builtin::{Builtin, BUILTINS};
+pub use drape::{Drape, DrapeError, Placement};
 pub use fetch::Window;
 pub use generate::landscape;
 pub use georef::{Georef, Georeferencing, MapUnits, METRES_PER_DEGREE};
 pub use limits::{MAX_DECODED_BYTES, MAX_SAMPLES};
 pub use load::{
-    load, load_bytes, load_bytes_with, load_with, ColourEncoding, LoadError, LoadOptions,
-    NoDataValue, Progress,
+    load, load_bytes, load_bytes_with, load_mosaic, load_with, ColourEncoding, LoadError,
+    LoadOptions, NoDataValue, Progress,
 };
 pub use maxima::{CellMaxima, LineMaxima};
 pub use mipmap::Mipmap;
 pub use nodata::NoDataMask;
 pub use terrain::{Lines, Terrain};
 
+use std::sync::Arc;
 use thiserror::Error;
 
 /// Why a height field could not be built.
@@ -134,6 +137,8 @@ pub struct Heightfield {
     nodata: Option<NoDataMask>,
     /// Where the samples lie on the Earth, if the file said.
     georef: Georeferencing,
+    /// An image colouring the surface, if one is laid over it.
+    drape: Option<Arc<Drape>>,
 }
 
 impl Heightfield {
@@ -235,12 +240,23 @@ impl Heightfield {
             unit,
             nodata,
             georef: Georeferencing::None,
+            drape: None,
         })
     }
 
     /// The same field, placed on the Earth.
     pub fn with_georeferencing(self, georef: Georeferencing) -> Self {
         Heightfield { georef, ..self }
+    }
+
+    /// The same field with `drape` colouring its surface (or none).
+    pub fn with_drape(self, drape: Option<Arc<Drape>>) -> Self {
+        Heightfield { drape, ..self }
+    }
+
+    /// The image colouring the surface, if any.
+    pub fn drape(&self) -> Option<&Drape> {
+        self.drape.as_deref()
     }
 
     /// What the file said about where the samples lie.

@@ -17,8 +17,12 @@ pub use camera::{Camera, CameraError};
 pub use passes::{Frame, Renderer, PASS_BLOCKS};
 pub use ramp::{HeightSpan, Ramp};
 pub use scene::{
-    CameraSection, EffectsSection, HeightmapSection, Lighting, NoDataKey, Normals, Orbit, Scene,
-    SceneError, SceneFile, ShadingSection, SunSection, DEFAULT_SIZE,
+    bytes_from_hex, bytes_from_linear, level_in_map_units, level_z, linear_from_bytes,
+};
+pub use scene::{
+    CameraSection, EffectsSection, HeightmapSection, Lighting, NoDataKey, Normals, Orbit,
+    OverlaySection, Scene, SceneError, SceneFile, ShadingSection, SunSection, WaterSection,
+    DEFAULT_SIZE, DEFAULT_WATER_COLOUR,
 };
 pub use shade::{Culling, Sample, Shader, Shadow, ShadowSkip};
 pub use stats::{FrameStats, PixelStats};

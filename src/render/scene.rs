@@ -2,23 +2,31 @@
 //! name.
 
 use super::camera::{Camera, CameraError};
-use super::effects::{Effects, DEFAULT_RAYS};
+use super::effects::Effects;
 use super::ramp::Ramp;
-use crate::heightfield::{Heightfield, LoadError};
+use crate::heightfield::{Drape, DrapeError, Heightfield, LoadError};
 use crate::regular_file::{self, OpenError};
 use crate::traverse::{Arith, Method};
 use serde::Deserialize;
 use std::io::Read;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use thiserror::Error;
 
 mod heightmap;
+mod lighting;
 mod sun;
 mod view;
+mod water;
 
 use heightmap::HeightmapError;
 pub use heightmap::{HeightmapSection, NoDataKey};
+pub use lighting::Lighting;
 pub use view::{CameraSection, Orbit, DEFAULT_SIZE};
+pub use water::{
+    bytes_from_hex, bytes_from_linear, level_in_map_units, level_z, linear_from_bytes,
+    WaterSection, DEFAULT_WATER_COLOUR,
+};
 
 /// Why a scene could not be used.
 #[derive(Debug, Error)]
@@ -81,6 +89,14 @@ pub enum SceneError {
         /// Why the camera was refused.
         source: CameraError,
     },
+    /// The `[overlay]` section's image could not be laid over the map.
+    #[error("scene {path}: [overlay] {source}")]
+    Overlay {
+        /// The scene file.
+        path: PathBuf,
+        /// Why the image was refused.
+        source: DrapeError,
+    },
     /// The `[heightmap]` section's map could not be loaded.
     #[error("scene {path}: [heightmap] {source}")]
     Heightmap {
@@ -116,6 +132,12 @@ pub struct SceneFile {
     /// `[render]`: traversal method and arithmetic.
     #[serde(default)]
     pub render: RenderSection,
+    /// `[overlay]`: an image colouring the surface instead of the ramp.
+    #[serde(default)]
+    pub overlay: Option<OverlaySection>,
+    /// `[water]`: a water surface at a level.
+    #[serde(default)]
+    pub water: Option<WaterSection>,
     /// An image size replacing the scene's (`render --size`); not a key of the file.
     #[serde(skip)]
     pub size: Option<(u32, u32)>,
@@ -229,6 +251,17 @@ pub struct EffectsSection {
     pub sky_rays: Option<u32>,
 }
 
+/// A scene file's `[overlay]` section: an image (PNG, JPEG or TIFF) draped over the map.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct OverlaySection {
+    /// The image, relative to the scene file.
+    pub path: String,
+    /// How much of the ramp's colour the image replaces, 0 to 1 (default 1).
+    #[serde(default = "one")]
+    pub opacity: f64,
+}
+
 /// A scene file's `[shading]` section.
 #[derive(Clone, Debug, Default, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -316,61 +349,6 @@ fn default_arith() -> String {
     "f64".into()
 }
 
-/// Lighting and effects, validated.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Lighting {
-    /// Unit vector towards the sun.
-    pub sun: [f64; 3],
-    /// Direct light at full facing: light is `ambient + intensity * cos(angle to the sun)`.
-    pub intensity: f64,
-    /// Light everywhere, facing the sun or not.
-    pub ambient: f64,
-    /// Whether shadow rays are cast.
-    pub shadows: bool,
-    /// Fog density per unit of distance; 0 is off.
-    pub fog: f64,
-    /// Flat or smooth normals.
-    pub normals: Normals,
-    /// The colour ramp by elevation.
-    pub ramp: Ramp,
-    /// Soft shadows, sky light and samples per pixel.
-    pub effects: Effects,
-}
-
-impl Lighting {
-    /// `direction` scaled to unit length, as a scene's sun is: the viewer scales its sun the
-    /// same way, so a scene written from the viewer's sun renders the same image.
-    pub fn unit(direction: [f64; 3]) -> [f64; 3] {
-        let length = direction.iter().map(|c| c * c).sum::<f64>().sqrt();
-        direction.map(|c| c / length)
-    }
-
-    /// The lighting a scene file's sections describe (the sun's direction non-zero: scene
-    /// files are checked for that first), with the direction normalised.
-    pub fn from_sections(
-        sun: &SunSection,
-        effects: &EffectsSection,
-        shading: &ShadingSection,
-    ) -> Lighting {
-        Lighting {
-            sun: Lighting::unit(sun.direction),
-            intensity: sun.intensity,
-            ambient: sun.ambient,
-            shadows: effects.shadows,
-            fog: effects.fog,
-            normals: shading.normals,
-            ramp: shading.ramp,
-            effects: Effects {
-                sun_angle_deg: sun.angle_deg,
-                sun_rays: sun.rays.unwrap_or(DEFAULT_RAYS),
-                sky_light: effects.sky_light,
-                sky_rays: effects.sky_rays.unwrap_or(DEFAULT_RAYS),
-                ..Effects::default()
-            },
-        }
-    }
-}
-
 /// A scene ready to render.
 #[derive(Clone, Debug)]
 pub struct Scene {
@@ -410,6 +388,17 @@ impl Scene {
                 source,
             },
         })?;
+        let field = match &file.overlay {
+            Some(overlay) => {
+                let drape = Drape::load(&base.join(&overlay.path), &field, overlay.opacity)
+                    .map_err(|source| SceneError::Overlay {
+                        path: path.to_owned(),
+                        source,
+                    })?;
+                field.with_drape(Some(Arc::new(drape)))
+            }
+            None => field,
+        };
         let (field, camera) = view::camera(file.camera.as_ref(), file.size, field, path)?;
         let sun = &file.sun;
         let length = sun.direction.iter().map(|c| c * c).sum::<f64>().sqrt();
@@ -443,6 +432,13 @@ impl Scene {
         let mut lighting = sun::place_sun(sun, &field, lighting).map_err(invalid)?;
         lighting.effects =
             Effects::from_sections(sun, &file.effects, &file.render).map_err(invalid)?;
+        lighting.effects.water = file
+            .water
+            .as_ref()
+            .map(|water| water.validate(&field))
+            .transpose()
+            .map_err(invalid)?;
+        let lighting = lighting.after_dark();
         Ok(Scene {
             field,
             camera,

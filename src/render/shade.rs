@@ -1,7 +1,7 @@
 //! From a ray to a colour: the primary ray, the shadow ray only where it can change the pixel,
 //! Lambert shading with an elevation ramp, sky and fog.
 
-use super::effects::{SkyRays, SoftShadow};
+use super::effects::{Reflection, SkyRays, SoftShadow};
 use super::gamma;
 use super::normals;
 use super::ramp::HeightSpan;
@@ -61,10 +61,12 @@ pub struct Sample {
     pub shadow: Shadow,
     /// The primary ray's queries.
     pub primary: Counters,
-    /// The shadow rays' queries (towards the sun, or its disc).
+    /// The shadow rays' queries (towards the sun, or its disc), or the reflected ray's.
     pub secondary: Counters,
     /// The sky-light rays.
     pub sky: SkyRays,
+    /// What became of the reflection of water the pixel shows.
+    pub reflection: Reflection,
     /// Intervals left a decision unsettled, and exact mode made it again exactly: it traced
     /// the pixel again in rationals, or cast only its shadow ray again, or decided one of the
     /// shadow ray's triangle tests on its own.
@@ -213,6 +215,18 @@ impl Shader<'_> {
     ) -> u32 {
         let primary = Tracer::new(self.terrain, self.method).trace::<S>(ray, beam);
         tally.primary(&primary.counters, primary.hit.is_some());
+        if let Some(water) = &self.lighting.effects.water {
+            let field = self.terrain.field();
+            let terrain_t = primary.hit.as_ref().map(|found| found.t.to_f64());
+            if let Some(t) = water.crossing(ray.origin(), ray.dir(), terrain_t, field) {
+                let water = self.water_pixel::<S>(water, ray, t);
+                tally.water(water.reflection, &water.counters);
+                if water.redone {
+                    tally.redone();
+                }
+                return water.rgb;
+            }
+        }
         let Some(found) = primary.hit else {
             return self.sky_rgb(ray);
         };
@@ -278,7 +292,7 @@ impl Shader<'_> {
             _ => facing.max(0.0),
         };
         let light = self.lighting.ambient + self.lighting.intensity * lit;
-        let colour = self.lighting.ramp.colour(p.z, HeightSpan::of(self.terrain)) * light;
+        let colour = self.albedo(p) * light;
         self.fogged_rgb(ray, t, colour)
     }
 
@@ -299,17 +313,29 @@ impl Shader<'_> {
             _ => facing.max(0.0),
         };
         let light = ambient + DVec3::splat(self.lighting.intensity * lit);
-        let colour = self.lighting.ramp.colour(p.z, HeightSpan::of(self.terrain)) * light;
+        let colour = self.albedo(p) * light;
         self.fogged_rgb(ray, t, colour)
+    }
+
+    /// The surface's colour at `p` before it is lit: the ramp's, under the drape where one
+    /// lies.
+    #[inline(always)]
+    pub(super) fn albedo(&self, p: DVec3) -> DVec3 {
+        let ramp = self.lighting.ramp.colour(p.z, HeightSpan::of(self.terrain));
+        let drape = self.terrain.field().drape();
+        match drape.and_then(|drape| drape.colour(p.x, p.y)) {
+            Some((rgb, cover)) => ramp.lerp(DVec3::from(rgb), cover),
+            None => ramp,
+        }
     }
 
     /// A surface's linear `colour` seen along `ray` at `t`, through the fog, packed.
     #[inline(always)]
-    fn fogged_rgb(&self, ray: &Ray, t: f64, mut colour: DVec3) -> u32 {
+    pub(super) fn fogged_rgb(&self, ray: &Ray, t: f64, mut colour: DVec3) -> u32 {
         if self.lighting.fog > 0.0 {
             let distance = t * self.world_dir(ray.dir()).length();
             let clear = (-self.lighting.fog * distance).exp();
-            colour = colour * clear + horizon() * (1.0 - clear);
+            colour = colour * clear + self.haze() * (1.0 - clear);
         }
         pack(colour)
     }
@@ -432,16 +458,29 @@ impl Shader<'_> {
     }
 
     /// A ray direction in grid coordinates as a direction in the world.
-    fn world_dir(&self, dir: [f64; 3]) -> DVec3 {
+    pub(super) fn world_dir(&self, dir: [f64; 3]) -> DVec3 {
         match self.terrain.world_from_grid() {
             Some(scale) => DVec3::from(dir) * DVec3::from(scale),
             None => DVec3::from(dir),
         }
     }
 
-    /// Sky gradient for rays that miss.
-    fn sky(&self, dir: [f64; 3]) -> DVec3 {
-        sky_colour(DVec3::from(dir))
+    /// Sky gradient for rays that miss: the day's, or the night's once the sun is down.
+    pub(super) fn sky(&self, dir: [f64; 3]) -> DVec3 {
+        if self.lighting.sun_up() {
+            sky_colour(DVec3::from(dir))
+        } else {
+            night_sky_colour(DVec3::from(dir))
+        }
+    }
+
+    /// The colour fog fades to: the sky's at the horizon.
+    fn haze(&self) -> DVec3 {
+        if self.lighting.sun_up() {
+            horizon()
+        } else {
+            NIGHT_HORIZON
+        }
     }
 }
 
@@ -473,6 +512,18 @@ pub(super) fn sky_colour(dir: DVec3) -> DVec3 {
     let d = dir.normalize_or(DVec3::Z);
     horizon().lerp(zenith(), d.z.clamp(0.0, 1.0).sqrt())
 }
+
+/// The night sky's colour towards `dir`, graded as the day's.
+fn night_sky_colour(dir: DVec3) -> DVec3 {
+    let d = dir.normalize_or(DVec3::Z);
+    NIGHT_HORIZON.lerp(NIGHT_ZENITH, d.z.clamp(0.0, 1.0).sqrt())
+}
+
+/// The night sky's colour at the horizon: a faint glow.
+const NIGHT_HORIZON: DVec3 = DVec3::new(0.012, 0.016, 0.035);
+
+/// The night sky's colour at the zenith.
+const NIGHT_ZENITH: DVec3 = DVec3::new(0.002, 0.003, 0.010);
 
 /// The sky's colour at the horizon.
 pub(super) fn horizon() -> DVec3 {

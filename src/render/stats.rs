@@ -177,6 +177,13 @@ impl FrameStats {
             self.skipped.no_shadow_possible,
             self.skipped.above_terrain
         );
+        let water = &self.effects.water;
+        if water.points > 0 {
+            out += &format!(
+                "water: {} pixels, {} reflected rays cast ({} met the terrain), {} culled (the sky, provably)\n",
+                water.points, water.rays, water.hits, water.culled
+            );
+        }
         out
     }
 }

@@ -5,7 +5,7 @@
 //! A frame's pixels then carry no counters of their own: only their colour and heat-map
 //! queries leave the shader.
 
-use super::effects::SkyRays;
+use super::effects::{Reflection, SkyRays};
 use super::shade::{Sample, Shadow, ShadowSkip};
 use super::stats::{FrameStats, PixelStats};
 use crate::traverse::Counters;
@@ -23,6 +23,8 @@ pub trait Tally {
     fn shadow(&mut self, shadow: Shadow, counters: &Counters);
     /// Its sky-light rays (a scene with sky light only).
     fn sky(&mut self, sky: &SkyRays);
+    /// What became of the reflection of the water it shows, and the reflected ray's queries.
+    fn water(&mut self, reflection: Reflection, counters: &Counters);
     /// A decision on it was made again exactly ([`Sample::redone`]); noted once per sample.
     fn redone(&mut self);
 }
@@ -63,6 +65,11 @@ impl Tally for Counting<'_> {
         self.pixel.add_queries(&sky.counters);
     }
     #[inline(always)]
+    fn water(&mut self, reflection: Reflection, counters: &Counters) {
+        self.frame.water(reflection, counters);
+        self.pixel.add_queries(counters);
+    }
+    #[inline(always)]
     fn redone(&mut self) {
         self.frame.redone();
     }
@@ -96,6 +103,12 @@ impl Tally for FrameStats {
         self.effects.add_sky(sky);
     }
     #[inline(always)]
+    fn water(&mut self, reflection: Reflection, counters: &Counters) {
+        // (The reflected ray's queries count with the shadow rays', as secondary rays.)
+        self.shadow += *counters;
+        self.effects.add_reflection(reflection);
+    }
+    #[inline(always)]
     fn redone(&mut self) {
         self.redone += 1;
     }
@@ -114,6 +127,9 @@ impl Tally for Sample {
     fn sky(&mut self, sky: &SkyRays) {
         self.sky = *sky;
     }
+    fn water(&mut self, reflection: Reflection, counters: &Counters) {
+        (self.reflection, self.secondary) = (reflection, *counters);
+    }
     fn redone(&mut self) {
         self.redone = true;
     }
@@ -128,6 +144,9 @@ impl Sample {
         }
         if self.sky.of > 0 {
             tally.sky(&self.sky);
+        }
+        if self.reflection != Reflection::NotWater {
+            tally.water(self.reflection, &self.secondary);
         }
         if self.redone {
             tally.redone();

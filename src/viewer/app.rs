@@ -6,12 +6,12 @@ use super::accuracy::Accuracy;
 use super::compose::{self, PixelRect};
 use super::export::{self, Exports};
 use super::hooks::{Counts, Hooks};
-use super::loader::{LoadRequest, Loaded, Loader, Source};
+use super::loader::{LoadRequest, Loaded, Loader};
 use super::model::{Action, Model, Shown};
 use super::navigation::{self, Home};
 use super::quality::{detail, JobKey, Quality, ViewKey};
 use super::worker::{RenderJob, RenderWorker, RenderedFrame};
-use super::{panels, view, UserEvent};
+use super::{drops, overlay_ui, panels, view, water_ui, UserEvent};
 
 mod present;
 
@@ -137,13 +137,7 @@ impl App {
             }
             WindowEvent::DroppedFile(path) => {
                 self.model.drop_hover = false;
-                self.start_load(LoadRequest {
-                    source: Source::File(path),
-                    z_scale: None,
-                    reframe: true,
-                    from_memory: None,
-                    decoding: self.model.decoding,
-                });
+                self.model.dropped.push(path);
             }
             WindowEvent::Resized(_) | WindowEvent::ScaleFactorChanged { .. } => {
                 self.window.request_redraw();
@@ -173,6 +167,9 @@ impl App {
     /// Sleeps until the next thing to draw: a frame from the worker, input, egui's own
     /// repaint time, or the moment the camera comes to rest (to refine at full resolution).
     pub fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        if let Some(request) = drops::take(&mut self.model) {
+            self.start_load(request);
+        }
         let wake = [self.next_repaint, self.quality.rest_deadline()]
             .into_iter()
             .flatten()
@@ -200,6 +197,7 @@ impl App {
     fn show(&mut self, loaded: Loaded) {
         let terrain = loaded.terrain;
         let model = &mut self.model;
+        let relief_was = model.shown.terrain.field().z_scale();
         model.shown = Shown {
             source: loaded.request.source.clone(),
             decoding: loaded.request.decoding,
@@ -207,6 +205,10 @@ impl App {
             decode_time: loaded.decode_time,
         };
         model.error = None;
+        overlay_ui::shown(model, loaded.request.overlay.as_ref());
+        if !loaded.request.reframe {
+            water_ui::follow_relief(model, relief_was);
+        }
         // A rescale keeps the z scale field as the user has it (they may still be dragging).
         if loaded.request.reframe {
             model.z_scale = terrain.field().z_scale();

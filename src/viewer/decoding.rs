@@ -60,6 +60,7 @@ pub fn decoding_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
                 reframe: true,
                 from_memory: None,
                 decoding: model.decoding,
+                overlay: None,
             }));
         }
     }

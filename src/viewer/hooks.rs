@@ -94,6 +94,7 @@ fn report(model: &Model, counts: &Counts) -> Value {
             "z_scale": field.z_scale(), "nodata_count": field.nodata_count(),
             "exaggeration": relief::exaggeration(field), "cell_metres": field.cell_metres(),
             "decoded_as": decoding_report(model.shown.decoding),
+            "overlay": field.drape().map(|d| d.path().display().to_string()),
         },
         "decoding": decoding_report(model.decoding),
         "path_field": model.path_text,

@@ -20,6 +20,8 @@ pub enum Source {
     Builtin(&'static str),
     /// A height map image, or a `.toml` scene file.
     File(PathBuf),
+    /// Georeferenced tiles joined into one map.
+    Tiles(Vec<PathBuf>),
 }
 
 impl Source {
@@ -27,10 +29,11 @@ impl Source {
     pub fn label(&self) -> String {
         match self {
             Source::Builtin(name) => format!("{name} (built-in)"),
-            Source::File(path) => path.file_name().map_or_else(
-                || path.display().to_string(),
-                |n| n.to_string_lossy().into(),
-            ),
+            Source::File(path) => file_name(path),
+            Source::Tiles(paths) => match paths.split_first() {
+                Some((first, rest)) => format!("{} (+{} tiles)", file_name(first), rest.len()),
+                None => "no tiles".into(),
+            },
         }
     }
 
@@ -39,9 +42,27 @@ impl Source {
         Source::Builtin(BUILTINS[0].name)
     }
 
+    /// The source of the files given on the command line or dropped together: one file, or
+    /// tiles to join; `None` for none.
+    pub fn of_paths(mut paths: Vec<PathBuf>) -> Option<Source> {
+        match paths.len() {
+            0 => None,
+            1 => paths.pop().map(Source::File),
+            _ => Some(Source::Tiles(paths)),
+        }
+    }
+
     pub(super) fn is_scene(&self) -> bool {
         matches!(self, Source::File(p) if SceneFile::is_scene_path(p))
     }
+}
+
+/// A path's file name, for labels.
+fn file_name(path: &std::path::Path) -> String {
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into(),
+    )
 }
 
 /// What to load.
@@ -58,6 +79,33 @@ pub struct LoadRequest {
     pub from_memory: Option<Arc<Terrain>>,
     /// How a height map image is decoded (a scene file says so itself).
     pub decoding: Decoding,
+    /// An image to lay over the map, or to take off it; `None` keeps what the source gives
+    /// (a scene's `[overlay]`, the drape of samples rescaled in memory, none on a new map).
+    pub overlay: Option<OverlayChange>,
+}
+
+/// A change to the image draped over the map.
+#[derive(Clone, Debug, PartialEq)]
+pub enum OverlayChange {
+    /// Drape this image, replacing any other.
+    Lay {
+        /// The image file.
+        path: PathBuf,
+        /// How much of the ramp's colour it replaces, 0 to 1.
+        opacity: f64,
+    },
+    /// Show the ramp again.
+    Remove,
+}
+
+impl LoadRequest {
+    /// What the load is of, for its progress and its error message.
+    fn label(&self) -> String {
+        match &self.overlay {
+            Some(OverlayChange::Lay { path, .. }) => format!("the overlay {}", path.display()),
+            _ => self.source.label(),
+        }
+    }
 }
 
 /// A scene file's camera, lighting and traversal.
@@ -154,7 +202,7 @@ impl Loader {
 
     /// Queues a load, superseding any load in progress or waiting.
     pub fn start(&mut self, request: LoadRequest) {
-        let label = request.source.label();
+        let label = request.label();
         let generation = self.shared.requests.post(request);
         let progress = Progress {
             label,
@@ -256,6 +304,7 @@ mod tests {
             reframe: true,
             from_memory: None,
             decoding: Decoding::default(),
+            overlay: None,
         }
     }
 
@@ -266,6 +315,7 @@ mod tests {
             reframe: true,
             from_memory: None,
             decoding: Decoding::default(),
+            overlay: None,
         }
     }
 
@@ -379,6 +429,7 @@ mod tests {
                 colour: crate::heightfield::ColourEncoding::Mapbox,
                 nodata: crate::heightfield::NoDataValue::Off,
             },
+            overlay: None,
         })
         .expect("loads");
         let (lo, hi) = loaded.terrain.z_range();

@@ -11,6 +11,7 @@ mod app;
 mod background;
 mod compose;
 mod decoding;
+mod drops;
 mod export;
 mod framing;
 mod ground;
@@ -21,6 +22,7 @@ mod mailbox;
 mod model;
 mod navigation;
 mod orbit;
+mod overlay_ui;
 mod panels;
 mod probe;
 mod probe_ui;
@@ -32,6 +34,7 @@ mod sources;
 mod stats_ui;
 mod sun_clock;
 mod view;
+mod water_ui;
 mod worker;
 
 pub use decoding::Decoding;
@@ -50,8 +53,9 @@ use winit::window::{Window, WindowId};
 /// How to start the viewer.
 #[derive(Clone, Debug)]
 pub struct ViewerOptions {
-    /// A height map or `.toml` scene; None shows the built-in default terrain.
-    pub source: Option<PathBuf>,
+    /// A height map or `.toml` scene, or tiles to join into one map; none shows the built-in
+    /// default terrain.
+    pub sources: Vec<PathBuf>,
     /// z scale for a height map (default: its own, or a quarter of the larger side).
     pub z_scale: Option<f64>,
     /// How height map images are decoded (the panel can change it).
@@ -75,7 +79,7 @@ pub struct ViewerOptions {
 impl Default for ViewerOptions {
     fn default() -> Self {
         ViewerOptions {
-            source: None,
+            sources: Vec::new(),
             z_scale: None,
             decoding: Decoding::default(),
             size: (1280, 720),
@@ -105,14 +109,12 @@ pub enum UserEvent {
 pub fn run(options: ViewerOptions) -> anyhow::Result<()> {
     // Load first: a file named on the command line that cannot be used is an error there.
     let request = LoadRequest {
-        source: options
-            .source
-            .clone()
-            .map_or_else(Source::default_builtin, Source::File),
+        source: Source::of_paths(options.sources.clone()).unwrap_or_else(Source::default_builtin),
         z_scale: options.z_scale,
         reframe: true,
         from_memory: None,
         decoding: options.decoding,
+        overlay: None,
     };
     let loaded = loader::load_now(request).map_err(anyhow::Error::msg)?;
     let event_loop = EventLoop::<UserEvent>::with_user_event()

@@ -8,12 +8,14 @@ use super::export::Exports;
 use super::loader::{LoadRequest, Progress, Source};
 use super::navigation::{Framed, Home};
 use super::orbit::Orbit;
+use super::overlay_ui::OverlayControls;
 use super::probe::Probe;
 use super::settings::Settings;
 use super::sun_clock::SunClock;
 use super::worker::RenderedFrame;
 use crate::Terrain;
 use std::collections::{BTreeMap, VecDeque};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -114,6 +116,10 @@ pub struct Model {
     pub path_source: Option<Source>,
     /// How images opened or dropped from now on are decoded.
     pub decoding: Decoding,
+    /// The overlay path, opacity and what a drop loads.
+    pub overlay: OverlayControls,
+    /// Files dropped onto the window and not yet loaded (a drop delivers them one by one).
+    pub dropped: Vec<PathBuf>,
     pub panels_visible: bool,
     /// The panel was hidden because the window became too narrow for it.
     pub panel_auto_hidden: bool,
@@ -183,6 +189,8 @@ impl Model {
             sun_clock: SunClock::default(),
             path_text: String::new(),
             path_source: None,
+            overlay: OverlayControls::default(),
+            dropped: Vec::new(),
             panels_visible: true,
             panel_auto_hidden: false,
             narrow_window: false,

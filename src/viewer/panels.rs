@@ -212,6 +212,8 @@ fn light_ui(ui: &mut Ui, model: &mut Model) {
 
 fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     source_ui(ui, model, actions);
+    super::overlay_ui::overlay_ui(ui, model, actions);
+    super::water_ui::water_ui(ui, model);
     decoding_ui(ui, model, actions);
     z_scale_ui(ui, model, actions);
     let s = &mut model.settings;
@@ -259,7 +261,7 @@ fn follow_shown_path(model: &mut Model) {
     }
     model.path_text = match current {
         Source::File(path) => path.display().to_string(),
-        Source::Builtin(_) => String::new(),
+        Source::Builtin(_) | Source::Tiles(_) => String::new(),
     };
     model.path_source = Some(current.clone());
 }
@@ -270,6 +272,7 @@ fn source_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let selected = match &current {
         Source::Builtin(name) => (*name).to_owned(),
         Source::File(_) => "(a file)".to_owned(),
+        Source::Tiles(_) => "(tiles)".to_owned(),
     };
     egui::ComboBox::from_label("built-in")
         .selected_text(selected)
@@ -317,6 +320,7 @@ fn z_scale_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             reframe: false,
             from_memory: Some(model.shown.terrain.clone()),
             decoding: model.shown.decoding,
+            overlay: None,
         }));
     }
 }
@@ -329,6 +333,7 @@ fn load(source: Source, decoding: Decoding) -> Action {
         reframe: true,
         from_memory: None,
         decoding,
+        overlay: None,
     })
 }
 

@@ -7,7 +7,7 @@ use super::export::create_numbered;
 use super::loader::Source;
 use super::model::Model;
 use crate::heightfield::NoDataValue;
-use crate::render::{NoDataKey, Scene, SceneFile};
+use crate::render::{bytes_from_linear, level_in_map_units, NoDataKey, Scene, SceneFile};
 use std::io::Write;
 use std::path::Path;
 
@@ -48,7 +48,7 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
          angle_deg = {:?}\nrays = {}\n\n\
          [effects]\nshadows = {}\nfog = {:?}\nsky_light = {}\nsky_rays = {}\n\n\
          [shading]\nnormals = \"{}\"\nramp = \"{}\"\n\n\
-         [render]\nmethod = \"{}\"\narith = \"{}\"\nsamples = {}\n",
+         [render]\nmethod = \"{}\"\narith = \"{}\"\nsamples = {}\n{}{}",
         orbit.yaw_deg,
         orbit.pitch_deg,
         orbit.distance,
@@ -66,13 +66,37 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
         model.settings.method,
         model.settings.arith(),
         effects.samples,
+        overlay_keys(model),
+        water_keys(model),
     ))
+}
+
+/// The `[water]` section, if the view shows water.
+fn water_keys(model: &Model) -> String {
+    let Some(water) = model.settings.effects.water else {
+        return String::new();
+    };
+    let level = level_in_map_units(model.shown.terrain.field(), water.level);
+    let [r, g, b] = bytes_from_linear(water.colour);
+    format!("\n[water]\nlevel = {level:?}\ncolour = \"#{r:02x}{g:02x}{b:02x}\"\n")
+}
+
+/// The `[overlay]` section of the image draped over the map, if any.
+fn overlay_keys(model: &Model) -> String {
+    let Some(drape) = model.shown.terrain.field().drape() else {
+        return String::new();
+    };
+    format!(
+        "\n[overlay]\npath = {:?}\nopacity = {:?}\n",
+        absolute(drape.path()),
+        drape.opacity()
+    )
 }
 
 /// The `[heightmap]` keys but the z scale: the map's path in full (a scene's own map, when a
 /// scene is shown) and how it was read.
 fn heightmap_keys(source: &Source, model: &Model) -> Result<String, String> {
-    let (path, rgb, nodata) = match source {
+    let (paths, rgb, nodata) = match source {
         Source::Builtin(name) => return Ok(format!("path = \"builtin:{name}\"\n")),
         Source::File(path) if SceneFile::is_scene_path(path) => {
             let file = SceneFile::read(path).map_err(|e| e.to_string())?;
@@ -86,21 +110,39 @@ fn heightmap_keys(source: &Source, model: &Model) -> Result<String, String> {
                 Some(NoDataKey::Word(w)) => w.parse()?,
             };
             let rgb = map.rgb.unwrap_or_else(|| "luminance".into());
-            (Scene::base(path).join(map.path), rgb, nodata)
+            let base = Scene::base(path);
+            let paths = if map.paths.is_empty() {
+                vec![base.join(map.path)]
+            } else {
+                map.paths.iter().map(|p| base.join(p)).collect()
+            };
+            (paths, rgb, nodata)
         }
         Source::File(path) => {
             let decoding = model.shown.decoding;
-            (path.clone(), decoding.colour.to_string(), decoding.nodata)
+            (
+                vec![path.clone()],
+                decoding.colour.to_string(),
+                decoding.nodata,
+            )
         }
+        Source::Tiles(paths) => {
+            let decoding = model.shown.decoding;
+            (paths.clone(), decoding.colour.to_string(), decoding.nodata)
+        }
+    };
+    let path = match &paths[..] {
+        [path] => format!("path = {:?}", absolute(path)),
+        tiles => format!(
+            "paths = {:?}",
+            tiles.iter().map(|p| absolute(p)).collect::<Vec<_>>()
+        ),
     };
     let nodata = match nodata {
         NoDataValue::Value(v) => format!("{v:?}"),
         word => format!("\"{word}\""),
     };
-    Ok(format!(
-        "path = {:?}\nrgb = \"{rgb}\"\nnodata = {nodata}\n",
-        absolute(&path)
-    ))
+    Ok(format!("{path}\nrgb = \"{rgb}\"\nnodata = {nodata}\n"))
 }
 
 /// `path` in full, so the scene works from any folder.

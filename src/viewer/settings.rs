@@ -202,19 +202,19 @@ impl Settings {
     }
 
     /// The renderer's lighting; a sun below the horizon (set by a date and time) lights
-    /// nothing and casts no shadows.
+    /// nothing and casts no shadows ([`Lighting::after_dark`]).
     pub fn lighting(&self) -> Lighting {
-        let night = self.sun_elevation_deg < 0.0;
         Lighting {
             sun: Lighting::unit(self.sun()),
-            intensity: if night { 0.0 } else { self.intensity },
+            intensity: self.intensity,
             ambient: self.ambient,
-            shadows: self.shadows && !night,
+            shadows: self.shadows,
             fog: self.fog,
             normals: self.normals,
             ramp: self.ramp,
             effects: self.effects,
         }
+        .after_dark()
     }
 
     /// The traversal arithmetic.

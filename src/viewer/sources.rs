@@ -1,14 +1,14 @@
 //! Where terrains come from: built-ins, height map images (georeferenced ones at true scale,
 //! plain ones with a z scale that makes their relief visible) and scene files (with their
-//! camera and lighting); and rescaling.
+//! camera and lighting); rescaling, and laying an image over the map.
 
-use super::loader::{LoadRequest, Loaded, SceneSetup, Source, Stage};
+use super::loader::{LoadRequest, Loaded, OverlayChange, SceneSetup, Source, Stage};
 use super::orbit::Orbit;
-use crate::heightfield::{self, relief, Builtin, LoadOptions};
+use crate::heightfield::{self, relief, Builtin, Drape, LoadOptions};
 use crate::render::{Lighting, Scene, SceneFile};
 use crate::{Arith, Heightfield, Method, Terrain};
 use std::ops::ControlFlow;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -28,28 +28,23 @@ pub fn load(
             (builtin.load().map_err(|e| e.to_string())?, None)
         }
         (Source::File(path), None) if request.source.is_scene() => load_scene(path)?,
-        (Source::File(path), None) => {
-            let cancel = |_| {
-                if superseded() {
-                    ControlFlow::Break(())
-                } else {
-                    ControlFlow::Continue(())
-                }
-            };
-            let options = LoadOptions {
-                colour: request.decoding.colour,
-                nodata: request.decoding.nodata,
-                ..LoadOptions::new(1.0)
-            };
-            let field =
-                heightfield::load_with(path, &options, &cancel).map_err(|e| e.to_string())?;
-            let sensible = relief::default_z_scale(&field);
-            (rescale(field, sensible)?, None)
-        }
+        (Source::File(path), None) => (
+            read_map(std::slice::from_ref(path), &request, superseded)?,
+            None,
+        ),
+        (Source::Tiles(paths), None) => (read_map(paths, &request, superseded)?, None),
     };
     let field = match request.z_scale {
         Some(z) => rescale(field, z)?,
         None => field,
+    };
+    let field = match &request.overlay {
+        None => field,
+        Some(OverlayChange::Remove) => field.with_drape(None),
+        Some(OverlayChange::Lay { path, opacity }) => {
+            let drape = Drape::load(path, &field, *opacity).map_err(|e| e.to_string())?;
+            field.with_drape(Some(Arc::new(drape)))
+        }
     };
     let decode_time = start.elapsed();
     report(Stage::Building);
@@ -61,6 +56,34 @@ pub fn load(
         scene,
         decode_time,
     })
+}
+
+/// Reads a height map, or tiles joined into one, at its default relief; stops when
+/// `superseded` says so.
+fn read_map(
+    paths: &[PathBuf],
+    request: &LoadRequest,
+    superseded: &dyn Fn() -> bool,
+) -> Result<Heightfield, String> {
+    let cancel = |_| {
+        if superseded() {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    };
+    let options = LoadOptions {
+        colour: request.decoding.colour,
+        nodata: request.decoding.nodata,
+        ..LoadOptions::new(1.0)
+    };
+    let field = match paths {
+        [path] => heightfield::load_with(path, &options, &cancel),
+        tiles => heightfield::load_mosaic(tiles, &options, &cancel),
+    }
+    .map_err(|e| e.to_string())?;
+    let sensible = relief::default_z_scale(&field);
+    rescale(field, sensible)
 }
 
 /// A validated scene and the camera section as written (the scene's `Camera` keeps no orbit).

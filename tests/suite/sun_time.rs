@@ -3,7 +3,7 @@
 //! horizon lights nothing and casts no shadow rays; a place that cannot be found is explained.
 
 use crate::common::files::dem_bytes;
-use crate::common::scenes::load_scene_text;
+use crate::common::scenes::{load_scene_text, SMALL_SCENE};
 use heightray::render::sun_position::SunPosition;
 use heightray::render::{Culling, Frame, Lighting, Renderer, Scene, Shader};
 use heightray::Terrain;
@@ -54,19 +54,7 @@ fn a_sun_below_the_horizon_lights_nothing_and_casts_no_shadow_rays() {
     assert!(night.lighting.sun[2] < 0.0);
     assert_eq!(night.lighting.intensity, 0.0);
     assert!(!night.lighting.shadows);
-    let terrain = Terrain::new(night.field);
-    let renderer = Renderer {
-        shader: Shader {
-            terrain: &terrain,
-            lighting: night.lighting,
-            method: night.method,
-            culling: Culling::default(),
-        },
-        camera: night.camera.in_grid(terrain.world_from_grid()),
-        arith: night.arith,
-    };
-    let mut frame = Frame::new(16, 16);
-    renderer.render(&mut frame);
+    let (frame, _) = render(night);
     assert!(frame.totals.primary_hits > 0);
     assert_eq!(frame.totals.shadow_rays, 0);
 }
@@ -94,4 +82,71 @@ fn a_place_or_time_that_cannot_be_used_is_explained() {
         let error = scene(sun, geographic).unwrap_err();
         assert!(error.contains(says), "{sun}: {error}");
     }
+}
+
+/// Renders `scene` at its own camera, 16x16, and which pixels' camera rays hit the terrain.
+fn render(scene: Scene) -> (Frame, Vec<bool>) {
+    let terrain = Terrain::new(scene.field);
+    let renderer = Renderer {
+        shader: Shader {
+            terrain: &terrain,
+            lighting: scene.lighting,
+            method: scene.method,
+            culling: Culling::default(),
+        },
+        camera: scene.camera.in_grid(terrain.world_from_grid()),
+        arith: scene.arith,
+    };
+    let mut frame = Frame::new(16, 16);
+    renderer.render(&mut frame);
+    let hits = renderer
+        .camera
+        .rays()
+        .map(|ray| renderer.shader.traced(&ray, scene.arith).0.hit)
+        .collect();
+    (frame, hits)
+}
+
+#[test]
+fn a_sun_set_below_the_horizon_gives_a_night_sky_and_casts_no_rays_towards_it() {
+    // A direction below the horizon, with hard and soft shadows and sky light asked for.
+    let effects = "angle_deg = 0.53\n[effects]\nshadows = true\nsky_light = true\n";
+    let night = load_scene_text(
+        "night.toml",
+        &format!(
+            "{}[sun]\ndirection = [0.3, 0.2, -0.4]\n{effects}",
+            SMALL_SCENE
+        ),
+    )
+    .unwrap();
+    assert!(!night.lighting.sun_up());
+    // The same view lit by the ambient term alone, under a day sky.
+    let ambient_only = load_scene_text(
+        "ambient.toml",
+        &format!("{}[sun]\nintensity = 0.0\n", SMALL_SCENE),
+    )
+    .unwrap();
+    let ((night, hits), (day, _)) = (render(night), render(ambient_only));
+    let totals = &night.totals;
+    assert!(
+        totals.primary_hits > 0 && totals.primary_hits < 256,
+        "{totals:?}"
+    );
+    assert_eq!(totals.shadow_rays, 0);
+    assert_eq!(totals.effects.soft.rays + totals.effects.soft.directions, 0);
+    assert_eq!(totals.effects.sky.rays + totals.effects.sky.directions, 0);
+    let mut sky_pixels = 0;
+    for (k, (&dark, &lit)) in night.pixels.iter().zip(&day.pixels).enumerate() {
+        if hits[k] {
+            // The terrain, by the ambient term alone.
+            assert_eq!(dark, lit, "pixel {k}");
+        } else {
+            // The sky: dark (a day sky's channels are all above 0x70), not the day's.
+            sky_pixels += 1;
+            let channels = [dark >> 16, (dark >> 8) & 0xff, dark & 0xff];
+            assert!(channels.iter().all(|&c| c <= 0x40), "pixel {k}: {dark:06x}");
+            assert!(lit & 0xff > 0x70, "pixel {k}: day sky {lit:06x}");
+        }
+    }
+    assert!(sky_pixels > 0);
 }

@@ -180,9 +180,9 @@ fn render_file(scene: &Path, size: Option<&str>) -> image::RgbImage {
     image::open(&out).expect("the rendered PNG").to_rgb8()
 }
 
-#[test]
-fn a_saved_scene_renders_the_exported_image_and_renders_at_any_size() {
-    let mut session = Session::start(&["--export-dir", "out"]);
+/// Saves the scene and exports the view with S; returns the scene file, and checks that it
+/// renders the exported image.
+fn save_and_export(session: &mut Session) -> PathBuf {
     let state = session.open_section("export_section", "save_scene");
     session.click(&state, "save_scene");
     let saved = session
@@ -190,13 +190,6 @@ fn a_saved_scene_renders_the_exported_image_and_renders_at_any_size() {
         .wait_for("the scene saved", |s| s["export"]["scene"].is_string());
     assert_eq!(saved["error"], Value::Null);
     let scene = PathBuf::from(saved["export"]["scene"].as_str().expect("a scene path"));
-    assert_eq!(
-        scene,
-        session
-            .viewer
-            .path("out")
-            .join("heightray-valley513-001.toml")
-    );
     session.x.focus(session.window);
     session.x.key('s' as u32);
     let done = session.viewer.wait_for("the export", |s| {
@@ -207,8 +200,44 @@ fn a_saved_scene_renders_the_exported_image_and_renders_at_any_size() {
     let file = PathBuf::from(done["export"]["last"].as_str().expect("an export"));
     let exported = image::open(&file).expect("an exported PNG").to_rgb8();
     assert_same(&file, &exported, &render_file(&scene, None));
+    scene
+}
+
+#[test]
+fn a_saved_scene_renders_the_exported_image_and_renders_at_any_size() {
+    let mut session = Session::start(&["--export-dir", "out"]);
+    let scene = save_and_export(&mut session);
+    let out = session.viewer.path("out");
+    assert_eq!(scene, out.join("heightray-valley513-001.toml"));
     assert_eq!(
         render_file(&scene, Some("320x180")).dimensions(),
         (320, 180)
+    );
+}
+
+#[test]
+fn a_saved_scene_keeps_the_overlay_and_the_water() {
+    let files = tempfile::tempdir().expect("a temporary directory");
+    let overlay = files.path().join("ortho.png");
+    image::RgbImage::from_fn(64, 64, |x, y| image::Rgb([x as u8 * 4, y as u8 * 4, 128]))
+        .save(&overlay)
+        .expect("the overlay written");
+    let scene = files.path().join("draped.toml");
+    let text = format!(
+        "[heightmap]\npath = \"builtin:small49\"\nz_scale = 12.0\n\
+         [overlay]\npath = {overlay:?}\nopacity = 0.7\n[water]\nlevel = 3.5\n"
+    );
+    std::fs::write(&scene, text).expect("the scene written");
+    let mut session =
+        Session::start(&[scene.to_str().expect("a UTF-8 path"), "--export-dir", "out"]);
+    let saved = std::fs::read_to_string(save_and_export(&mut session)).expect("the saved scene");
+    let overlay_keys = format!(
+        "[overlay]\npath = {:?}\nopacity = 0.7\n",
+        overlay.display().to_string()
+    );
+    assert!(saved.contains(&overlay_keys), "{saved}");
+    assert!(
+        saved.contains("[water]\nlevel = 3.5\ncolour = \"#1e4d6b\""),
+        "{saved}"
     );
 }

@@ -341,6 +341,45 @@ fn dropping_a_height_map_loads_it_and_a_non_image_keeps_it_with_an_error() {
     drop_a_non_image(&mut session, &notes, at, &loaded);
 }
 
+/// With "a drop opens: an overlay", a dropped image is draped over the map on screen, which
+/// stays; a dropped non-image is refused with a message and the overlay stays.
+#[test]
+fn a_dropped_image_is_draped_when_drops_open_overlays() {
+    let mut session = Session::start(&[]);
+    let state = session.open_section("heightmap_section", "drop_overlay");
+    session.click(&state, "drop_overlay");
+    let state = session.state();
+    let at = session.screen(session.view_centre(&state));
+    let (ortho, notes) = (
+        session.viewer.path("ortho.png"),
+        session.viewer.path("notes.txt"),
+    );
+    image::RgbImage::from_fn(32, 32, |x, _| image::Rgb([x as u8 * 8, 0, 0]))
+        .save(&ortho)
+        .expect("write the overlay");
+    std::fs::write(&notes, "not an image\n").expect("write notes");
+    assert_eq!(
+        xdnd::drag_file(&session.x, &ortho, at, false),
+        xdnd::Outcome::Accepted
+    );
+    let ortho_name = ortho.display().to_string();
+    let draped = session.viewer.wait_for("the overlay to be draped", |s| {
+        s["terrain"]["overlay"] == ortho_name.as_str()
+    });
+    assert_eq!(draped["terrain"]["name"], state["terrain"]["name"]);
+    assert_eq!(draped["error"], Value::Null);
+    assert_eq!(
+        xdnd::drag_file(&session.x, &notes, at, false),
+        xdnd::Outcome::Accepted
+    );
+    let refused = session
+        .viewer
+        .wait_for("the error", |s| s["error"].is_string());
+    let error = refused["error"].as_str().unwrap_or_default();
+    assert!(error.contains("cannot be decoded"), "{error}");
+    assert_eq!(refused["terrain"]["overlay"], ortho_name.as_str());
+}
+
 /// Drops a text file: the terrain stays and the window says why.
 fn drop_a_non_image(
     session: &mut Session,

@@ -16,7 +16,7 @@ mod hard_cases;
 
 pub use hard_cases::{hard_cases_in_f32, F32_TOLERANCE};
 
-use crate::render::effects::SkyRays;
+use crate::render::effects::{Reflection, SkyRays};
 use crate::render::{Frame, FrameStats, PixelStats, Renderer, Sample, Shadow, ShadowSkip};
 use crate::traverse::Counters;
 use crate::{Heightfield, Ray, Terrain};
@@ -280,6 +280,7 @@ impl EmbreeScene {
             primary: Counters::default(),
             secondary: Counters::default(),
             sky: SkyRays::default(),
+            reflection: Reflection::NotWater,
             redone: false,
         };
         let Some(hit) = self.intersect(&ray) else {

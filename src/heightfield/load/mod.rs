@@ -8,8 +8,9 @@
 //! memory follows the image's size, never the file's.
 
 mod asc;
-mod geotiff;
+pub(super) mod geotiff;
 mod hgt;
+mod mosaic;
 mod pgm;
 mod png;
 mod raster;
@@ -25,6 +26,8 @@ use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 use watched::{Watch, Watched};
+
+pub use mosaic::load_mosaic;
 
 /// Why a file could not be loaded as a height field.
 #[derive(Debug, Error)]
@@ -115,6 +118,14 @@ pub enum LoadError {
         name: String,
         /// Why the field was refused.
         source: HeightfieldError,
+    },
+    /// Tiles that cannot be joined into one map.
+    #[error("cannot join {names} into one map: {reason}")]
+    Mosaic {
+        /// The tiles' names.
+        names: String,
+        /// Why not.
+        reason: String,
     },
     /// The progress callback asked to stop.
     #[error("loading {name} was cancelled")]

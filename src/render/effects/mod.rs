@@ -11,12 +11,14 @@ mod sampling;
 mod sky;
 mod soft_shadow;
 mod stats;
+mod water;
 
 pub use accumulate::Accumulation;
 pub use horizon::{climbs_above, slope_bound};
 pub use sky::{open_sky_mean, SkyRays};
 pub use soft_shadow::SoftShadow;
-pub use stats::{EffectStats, SampleStats, SkyStats, SoftStats};
+pub use stats::{EffectStats, SampleStats, SkyStats, SoftStats, WaterStats};
+pub use water::{schlick, Reflection, Water, WaterPixel, NORMAL_REFLECTANCE};
 
 use super::scene::{EffectsSection, RenderSection, SunSection};
 
@@ -41,6 +43,8 @@ pub struct Effects {
     pub samples: u32,
     /// A pixel stops taking samples once they agree (see [`pixel`]).
     pub adaptive: bool,
+    /// A water surface and its reflections.
+    pub water: Option<Water>,
 }
 
 impl Default for Effects {
@@ -52,6 +56,7 @@ impl Default for Effects {
             sky_rays: DEFAULT_RAYS,
             samples: 1,
             adaptive: false,
+            water: None,
         }
     }
 }
@@ -84,11 +89,12 @@ impl Effects {
             sky_rays: count("[effects] sky_rays", effects.sky_rays)?,
             samples: count("[render] samples", Some(render.samples))?,
             adaptive: render.adaptive,
+            water: None,
         })
     }
 
     /// Whether any effect beyond today's frame is asked for.
     pub fn any(&self) -> bool {
-        self.sun_angle_deg > 0.0 || self.sky_light || self.samples > 1
+        self.sun_angle_deg > 0.0 || self.sky_light || self.samples > 1 || self.water.is_some()
     }
 }

@@ -3,6 +3,7 @@
 
 use super::sky::SkyRays;
 use super::soft_shadow::SoftShadow;
+use super::water::Reflection;
 use crate::traverse::Counters;
 use serde_json::{json, Value};
 use std::ops::AddAssign;
@@ -38,6 +39,19 @@ pub struct SkyStats {
     pub queries: Counters,
 }
 
+/// Water of a frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct WaterStats {
+    /// Pixels showing water.
+    pub points: u64,
+    /// Reflected rays traced.
+    pub rays: u64,
+    /// Reflected rays that met the terrain.
+    pub hits: u64,
+    /// Reflected rays left out: they climb above the terrain's bound and see the sky.
+    pub culled: u64,
+}
+
 /// Samples per pixel: how many pixels took how many camera rays.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SampleStats {
@@ -56,6 +70,8 @@ pub struct EffectStats {
     pub sky: SkyStats,
     /// Samples per pixel.
     pub samples: SampleStats,
+    /// Water.
+    pub water: WaterStats,
 }
 
 impl EffectStats {
@@ -80,6 +96,20 @@ impl EffectStats {
         self.sky.queries += sky.counters;
     }
 
+    /// Counts one camera ray's reflection.
+    pub fn add_reflection(&mut self, reflection: Reflection) {
+        let water = &mut self.water;
+        match reflection {
+            Reflection::NotWater => return,
+            Reflection::Clear => water.culled += 1,
+            Reflection::Cast { hit } => {
+                water.rays += 1;
+                water.hits += u64::from(hit);
+            }
+        }
+        water.points += 1;
+    }
+
     /// Counts one finished pixel that took `samples` camera rays.
     pub fn add_pixel(&mut self, samples: u32) {
         self.samples.pixels += 1;
@@ -99,6 +129,10 @@ impl EffectStats {
                 "points": sky.points, "directions": sky.directions, "rays": sky.rays,
                 "culled_horizon_clear": sky.directions - sky.rays, "open": sky.open,
                 "points_without_rays": sky.points_clear, "queries": sky.queries,
+            },
+            "water": {
+                "points": self.water.points, "rays": self.water.rays,
+                "culled_horizon_clear": self.water.culled, "hits": self.water.hits,
             },
             "samples_per_pixel": {
                 "mean": camera_rays as f64 / samples.pixels.max(1) as f64,
@@ -122,6 +156,11 @@ impl AddAssign for EffectStats {
         a.open += b.open;
         a.points_clear += b.points_clear;
         a.queries += b.queries;
+        let (a, b) = (&mut self.water, rhs.water);
+        a.points += b.points;
+        a.rays += b.rays;
+        a.hits += b.hits;
+        a.culled += b.culled;
         self.samples.pixels += rhs.samples.pixels;
         for (a, b) in self.samples.histogram.iter_mut().zip(rhs.samples.histogram) {
             *a += b;

@@ -12,7 +12,11 @@ use std::path::Path;
 #[serde(deny_unknown_fields)]
 pub struct HeightmapSection {
     /// A file, relative to the scene file; or `builtin:NAME` for a built-in terrain.
+    #[serde(default)]
     pub path: String,
+    /// Instead of `path`: georeferenced tiles joined into one map (a mosaic).
+    #[serde(default)]
+    pub paths: Vec<String>,
     /// Height of the largest sample value (maxval); for float and signed rasters, the factor
     /// applied to their values. Left out, a georeferenced map is shown at true scale and a
     /// plain image with its relief a quarter of its larger side.
@@ -63,6 +67,7 @@ impl SceneFile {
         SceneFile {
             heightmap: HeightmapSection {
                 path: name.to_string_lossy().into_owned(),
+                paths: Vec::new(),
                 z_scale: None,
                 exaggeration: None,
                 rgb: None,
@@ -73,6 +78,8 @@ impl SceneFile {
             effects: Default::default(),
             shading: Default::default(),
             render: Default::default(),
+            overlay: None,
+            water: None,
             size: None,
         }
     }
@@ -96,6 +103,13 @@ impl HeightmapSection {
             (z, _) => z,
         };
         let field = match self.path.strip_prefix("builtin:") {
+            _ if self.path.is_empty() == self.paths.is_empty() => {
+                return Err(invalid(
+                    "[heightmap] needs path (a map) or paths (tiles joined into one map), not \
+                     both"
+                        .into(),
+                ))
+            }
             Some(name) => {
                 let builtin = Builtin::named(name).ok_or_else(|| {
                     invalid(format!("[heightmap] path: no built-in terrain '{name}'"))
@@ -117,7 +131,12 @@ impl HeightmapSection {
                         .map_err(|e| invalid(format!("[heightmap] nodata: {e}")))?,
                 };
                 let keep_going = |_| ControlFlow::Continue(());
-                heightfield::load_with(&base.join(&self.path), &options, &keep_going)
+                if self.paths.is_empty() {
+                    heightfield::load_with(&base.join(&self.path), &options, &keep_going)
+                } else {
+                    let tiles: Vec<_> = self.paths.iter().map(|p| base.join(p)).collect();
+                    heightfield::load_mosaic(&tiles, &options, &keep_going)
+                }
             }
         }
         .map_err(HeightmapError::Load)?;

@@ -1,6 +1,6 @@
 //! `[sun] time`: the sun where it stands at a place and time, the place the map's centre (on a
-//! map in longitude and latitude) or the `lat` and `lon` keys. A sun below the horizon lights
-//! nothing and casts no shadow rays.
+//! map in longitude and latitude) or the `lat` and `lon` keys. (A sun below the horizon lights
+//! nothing: [`Lighting::after_dark`].)
 
 use super::{Lighting, SunSection};
 use crate::heightfield::{place, Heightfield};
@@ -22,17 +22,8 @@ pub fn place_sun(
         _ => return Err("[sun] lat and lon go together: give both or neither".into()),
     };
     let sun = SunPosition::at(time, latitude, longitude).map_err(|e| format!("[sun] time: {e}"))?;
-    let placed = Lighting {
+    Ok(Lighting {
         sun: Lighting::unit(sun.direction()),
         ..lighting
-    };
-    Ok(if sun.is_up() {
-        placed
-    } else {
-        Lighting {
-            intensity: 0.0,
-            shadows: false,
-            ..placed
-        }
     })
 }

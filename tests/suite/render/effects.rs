@@ -230,6 +230,7 @@ fn effects_scene(samples: u32, adaptive: bool) -> Scene {
         sky_rays: 8,
         samples,
         adaptive,
+        water: None,
     };
     scene
 }
@@ -430,6 +431,7 @@ fn effect_keys_are_read_and_checked() {
         sky_rays: 8,
         samples: 16,
         adaptive: true,
+        water: None,
     };
     assert_eq!(scene.lighting.effects, expected);
     for (sections, key) in [

@@ -342,7 +342,7 @@ fn a_sun_in_the_slope_plane_shadows_it_exactly() {
 
 /// A frame counts its pixels' rays straight into its totals and heat-map queries: the same
 /// figures as each pixel's sample recorded on its own ([`Shader::traced`]) and added up, with
-/// shadow rays and sky-light rays, in `f64` and exact arithmetic (where a pixel traced again
+/// shadow rays, sky-light rays and water's reflected rays, in `f64` and exact arithmetic (where a pixel traced again
 /// in rationals counts only that trace). The run walk traces every pixel without a beam, as
 /// a recorded sample is traced.
 #[test]
@@ -354,11 +354,21 @@ fn a_frame_counts_what_its_samples_record() {
         sky_rays: 4,
         ..Effects::default()
     };
+    // A lake over the valley floor: its pixels cast reflected rays instead of shadow rays.
+    let water = Effects {
+        water: Some(heightray::render::effects::Water {
+            level: 30.0,
+            colour: [0.05, 0.2, 0.3],
+        }),
+        ..Effects::default()
+    };
     for (effects, arith) in [
         (Effects::default(), Arith::F64),
         (Effects::default(), Arith::Exact),
         (sky, Arith::F64),
         (sky, Arith::Exact),
+        (water, Arith::F64),
+        (water, Arith::Exact),
     ] {
         let lighting = Lighting {
             effects,
@@ -401,5 +411,7 @@ fn a_frame_counts_what_its_samples_record() {
         // Shadow rays and (with sky light) sky rays were counted.
         assert!(totals.shadow_rays > 100, "{arith}: {totals:?}");
         assert_eq!(totals.effects.sky.rays > 0, effects.sky_light, "{arith}");
+        let reflected = totals.effects.water.rays;
+        assert_eq!(reflected > 0, effects.water.is_some(), "{arith}");
     }
 }

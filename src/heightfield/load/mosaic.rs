@@ -1,0 +1,162 @@
+//! Mosaics: georeferenced tiles given together, joined into one height field when they share
+//! their units and cell size and lie on one grid. The field spans all of them; samples no tile
+//! covers are no data, and where tiles overlap (SRTM tiles share their edge rows) the first
+//! tile given wins.
+
+use super::raster::{Raster, Values};
+use super::{load_with, LoadError, LoadOptions, NoDataValue, Progress};
+use crate::heightfield::georef::{Georef, Georeferencing, MapUnits};
+use crate::heightfield::limits::{MAX_DECODED_BYTES, MAX_SAMPLES};
+use crate::heightfield::{Heightfield, Quantisation};
+use std::path::{Path, PathBuf};
+
+/// How far (in cells) a tile's origin may lie off the first tile's grid, and how far apart
+/// (relatively) two cell sizes may be, and still be one grid: rounding in the files' tags.
+const TOLERANCE: f64 = 1e-6;
+
+/// Loads the tiles at `paths` and joins them into one field, as `options` say.
+pub fn load_mosaic(
+    paths: &[PathBuf],
+    options: &LoadOptions,
+    progress: Progress,
+) -> Result<Heightfield, LoadError> {
+    let names = paths
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect::<Vec<_>>()
+        .join(", ");
+    let refuse = |reason: String| LoadError::Mosaic {
+        names: names.clone(),
+        reason,
+    };
+    let tile_options = LoadOptions {
+        z_scale: 1.0,
+        ..*options
+    };
+    let mut tiles = Vec::with_capacity(paths.len());
+    for path in paths {
+        let field = load_with(path, &tile_options, progress)?;
+        let Some(georef) = field.georef().copied() else {
+            return Err(refuse(format!(
+                "{} is not georeferenced, so where it lies beside the others is unknown",
+                path.display()
+            )));
+        };
+        tiles.push((path.as_path(), field, georef));
+    }
+    let (first_path, _, first) = tiles
+        .first()
+        .ok_or_else(|| refuse("no tiles given".into()))?;
+    for (path, _, georef) in &tiles[1..] {
+        one_grid(first, georef).map_err(|why| {
+            refuse(format!(
+                "{} and {} {why}",
+                first_path.display(),
+                path.display()
+            ))
+        })?;
+    }
+    let raster = join(&tiles, *first).map_err(refuse)?;
+    raster
+        .into_field(&LoadOptions {
+            // The tiles' own no-data samples are NaN by now.
+            nodata: NoDataValue::Off,
+            ..*options
+        })
+        .map_err(|source| LoadError::Field {
+            name: names,
+            source,
+        })
+}
+
+/// Whether tile `b` lies on `a`'s grid, or why not.
+fn one_grid(a: &Georef, b: &Georef) -> Result<(), String> {
+    let same_units = match (a.units, b.units) {
+        (MapUnits::Degrees, MapUnits::Degrees) => true,
+        (MapUnits::Linear { metres: x }, MapUnits::Linear { metres: y }) => x == y,
+        _ => false,
+    };
+    if !same_units {
+        return Err(format!(
+            "are in different units ({:?} and {:?}); reproject them to one CRS",
+            a.units, b.units
+        ));
+    }
+    for axis in 0..2 {
+        let (x, y) = (a.spacing[axis], b.spacing[axis]);
+        if (x - y).abs() > TOLERANCE * x.max(y) {
+            return Err(format!(
+                "have different cell sizes ({:?} and {:?}); resample them to one",
+                a.spacing, b.spacing
+            ));
+        }
+        let offset = (b.origin[axis] - a.origin[axis]) / x;
+        if (offset - offset.round()).abs() > TOLERANCE {
+            return Err("are not on one grid: their samples are offset by part of a cell".into());
+        }
+    }
+    Ok(())
+}
+
+/// The tiles' values in one raster over their joint extent, NaN where no tile has data.
+fn join(tiles: &[(&Path, Heightfield, Georef)], first: Georef) -> Result<Raster, String> {
+    let offset = |georef: &Georef, axis: usize| {
+        ((georef.origin[axis] - first.origin[axis]) / first.spacing[axis]).round() as i64
+    };
+    let (mut lo, mut hi) = ([i64::MAX; 2], [i64::MIN; 2]);
+    for (_, field, georef) in tiles {
+        let size = [field.width() as i64, field.height() as i64];
+        for axis in 0..2 {
+            lo[axis] = lo[axis].min(offset(georef, axis));
+            hi[axis] = hi[axis].max(offset(georef, axis) + size[axis] - 1);
+        }
+    }
+    let (width, height) = ((hi[0] - lo[0] + 1) as u64, (hi[1] - lo[1] + 1) as u64);
+    let samples = width.saturating_mul(height);
+    if samples > MAX_SAMPLES || samples.saturating_mul(8) > MAX_DECODED_BYTES {
+        return Err(format!(
+            "together they span {width}x{height} samples, more than the limits of \
+             {MAX_SAMPLES} samples and {} GiB decoded; give fewer or smaller tiles",
+            MAX_DECODED_BYTES >> 30
+        ));
+    }
+    let (width, height) = (width as usize, height as usize);
+    let mut values = vec![f64::NAN; width * height];
+    for (_, field, georef) in tiles {
+        let (di, dj) = (
+            (offset(georef, 0) - lo[0]) as usize,
+            (offset(georef, 1) - lo[1]) as usize,
+        );
+        for j in 0..field.height() {
+            // Image order: row 0 is the northern edge.
+            let row = height - 1 - (dj + j);
+            for i in 0..field.width() {
+                let at = &mut values[row * width + di + i];
+                if at.is_nan() && !field.is_nodata(i, j) {
+                    *at = value(field, i, j);
+                }
+            }
+        }
+    }
+    let origin = [
+        first.origin[0] + lo[0] as f64 * first.spacing[0],
+        first.origin[1] + lo[1] as f64 * first.spacing[1],
+    ];
+    let georef = Georef::new(origin, first.spacing, first.units)?;
+    Ok(Raster {
+        width,
+        height,
+        values: Values::F64(values),
+        file_nodata: None,
+        georef: Georeferencing::Map(georef),
+    })
+}
+
+/// A tile's raster value at sample `(i, j)` (loaded at z scale 1): a height in its own units,
+/// or an unsigned integer sample as it is (a DEM of whole metres).
+fn value(field: &Heightfield, i: usize, j: usize) -> f64 {
+    match field.quantisation() {
+        Quantisation::Offset { .. } => field.z(i, j),
+        Quantisation::Maxval(_) => f64::from(field.sample(i, j)),
+    }
+}

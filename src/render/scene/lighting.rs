@@ -1,0 +1,84 @@
+//! A scene's light, shading and effects, validated: the sun (above the horizon or not), the
+//! ambient term, shadows, fog, normals, the ramp and the effects.
+
+use super::{EffectsSection, Normals, ShadingSection, SunSection};
+use crate::render::effects::{Effects, DEFAULT_RAYS};
+use crate::render::ramp::Ramp;
+
+/// Lighting and effects, validated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lighting {
+    /// Unit vector towards the sun.
+    pub sun: [f64; 3],
+    /// Direct light at full facing: light is `ambient + intensity * cos(angle to the sun)`.
+    pub intensity: f64,
+    /// Light everywhere, facing the sun or not.
+    pub ambient: f64,
+    /// Whether shadow rays are cast.
+    pub shadows: bool,
+    /// Fog density per unit of distance; 0 is off.
+    pub fog: f64,
+    /// Flat or smooth normals.
+    pub normals: Normals,
+    /// The colour ramp by elevation.
+    pub ramp: Ramp,
+    /// Soft shadows, sky light and samples per pixel.
+    pub effects: Effects,
+}
+
+impl Lighting {
+    /// `direction` scaled to unit length, as a scene's sun is: the viewer scales its sun the
+    /// same way, so a scene written from the viewer's sun renders the same image.
+    pub fn unit(direction: [f64; 3]) -> [f64; 3] {
+        let length = direction.iter().map(|c| c * c).sum::<f64>().sqrt();
+        direction.map(|c| c / length)
+    }
+
+    /// Whether the sun stands above the horizon.
+    pub fn sun_up(&self) -> bool {
+        self.sun[2] > 0.0
+    }
+
+    /// This lighting as the sun's place allows: a sun on or below the horizon lights nothing
+    /// directly, and no shadow, soft-shadow or sky-light rays are cast (the sky is the night's,
+    /// see [`Shader`](crate::render::Shader)); the ambient term stays, as moonlight would.
+    pub fn after_dark(self) -> Lighting {
+        if self.sun_up() {
+            return self;
+        }
+        Lighting {
+            intensity: 0.0,
+            shadows: false,
+            effects: Effects {
+                sky_light: false,
+                ..self.effects
+            },
+            ..self
+        }
+    }
+
+    /// The lighting a scene file's sections describe (the sun's direction non-zero: scene
+    /// files are checked for that first), with the direction normalised.
+    pub fn from_sections(
+        sun: &SunSection,
+        effects: &EffectsSection,
+        shading: &ShadingSection,
+    ) -> Lighting {
+        Lighting {
+            sun: Lighting::unit(sun.direction),
+            intensity: sun.intensity,
+            ambient: sun.ambient,
+            shadows: effects.shadows,
+            fog: effects.fog,
+            normals: shading.normals,
+            ramp: shading.ramp,
+            effects: Effects {
+                sun_angle_deg: sun.angle_deg,
+                sun_rays: sun.rays.unwrap_or(DEFAULT_RAYS),
+                sky_light: effects.sky_light,
+                sky_rays: effects.sky_rays.unwrap_or(DEFAULT_RAYS),
+                ..Effects::default()
+            },
+        }
+    }
+}

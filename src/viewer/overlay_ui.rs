@@ -1,0 +1,123 @@
+//! The Height map panel's overlay controls: an image path and its opacity to drape over the
+//! map, what is draped now, and whether files dropped onto the window are a height map (or
+//! tiles) or an overlay.
+
+use super::drops::DropLoads;
+use super::loader::{LoadRequest, OverlayChange};
+use super::model::{Action, Model};
+use super::panels::named;
+use egui::{Slider, Ui};
+use std::path::PathBuf;
+
+/// The overlay controls' state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OverlayControls {
+    /// The overlay path field.
+    pub path_text: String,
+    /// The opacity an overlay is laid with.
+    pub opacity: f64,
+    /// What a dropped file loads.
+    pub drop_loads: DropLoads,
+}
+
+impl Default for OverlayControls {
+    fn default() -> Self {
+        OverlayControls {
+            path_text: String::new(),
+            opacity: 1.0,
+            drop_loads: DropLoads::default(),
+        }
+    }
+}
+
+/// The request that drapes `change` over the map on screen, keeping its samples and view.
+pub fn overlay_request(model: &Model, change: OverlayChange) -> LoadRequest {
+    LoadRequest {
+        source: model.shown.source.clone(),
+        z_scale: Some(model.shown.terrain.field().z_scale()),
+        reframe: false,
+        from_memory: Some(model.shown.terrain.clone()),
+        decoding: model.shown.decoding,
+        overlay: Some(change),
+    }
+}
+
+/// Takes the opacity of the overlay shown (a scene's, or one just laid), and says what a
+/// change of overlay did.
+pub fn shown(model: &mut Model, change: Option<&OverlayChange>) {
+    if let Some(drape) = model.shown.terrain.field().drape() {
+        model.overlay.opacity = drape.opacity();
+    }
+    match change {
+        Some(OverlayChange::Lay { path, .. }) => {
+            model.notify(format!("Draped {} over the map", path.display()))
+        }
+        Some(OverlayChange::Remove) => model.notify("Removed the overlay"),
+        None => {}
+    }
+}
+
+/// The overlay path, opacity and drop target; what is draped now.
+pub fn overlay_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
+    ui.horizontal(|ui| {
+        let field = ui.add(
+            egui::TextEdit::singleline(&mut model.overlay.path_text)
+                .hint_text("overlay image: PNG, JPEG or TIFF")
+                .desired_width(ui.available_width() - 70.0),
+        );
+        let field = named(model, "overlay_path", field);
+        let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+        let lay = named(model, "overlay_open", ui.button("Overlay"));
+        let path = model.overlay.path_text.trim();
+        if (lay.clicked() || entered) && !path.is_empty() {
+            let change = OverlayChange::Lay {
+                path: PathBuf::from(path),
+                opacity: model.overlay.opacity,
+            };
+            actions.push(Action::Load(overlay_request(model, change)));
+        }
+    });
+    let opacity = ui.add(Slider::new(&mut model.overlay.opacity, 0.0..=1.0).text("opacity"));
+    let opacity = named(model, "overlay_opacity", opacity);
+    let drape = model.shown.terrain.field().drape();
+    let shown = drape.map(|d| {
+        (
+            d.size(),
+            d.georeferenced(),
+            d.path().to_owned(),
+            d.opacity(),
+        )
+    });
+    match shown {
+        Some(((w, h), georeferenced, path, laid_with)) => {
+            let placed = if georeferenced {
+                "placed by its georeferencing"
+            } else {
+                "stretched over the map"
+            };
+            let name = path.file_name().unwrap_or_default().to_string_lossy();
+            ui.label(format!("overlay {name}: {w} x {h} px, {placed}"));
+            let relay = opacity.drag_stopped() && model.overlay.opacity != laid_with;
+            let change = OverlayChange::Lay {
+                path,
+                opacity: model.overlay.opacity,
+            };
+            let remove = named(model, "overlay_remove", ui.button("Remove overlay"));
+            if remove.clicked() {
+                actions.push(Action::Load(overlay_request(model, OverlayChange::Remove)));
+            } else if relay {
+                actions.push(Action::Load(overlay_request(model, change)));
+            }
+        }
+        None => {
+            ui.weak("no overlay: the colour ramp colours the map");
+        }
+    }
+    ui.horizontal(|ui| {
+        ui.label("a drop opens");
+        let controls = &mut model.overlay;
+        ui.radio_value(&mut controls.drop_loads, DropLoads::HeightMap, "a map");
+        let overlay = ui.radio_value(&mut controls.drop_loads, DropLoads::Overlay, "an overlay");
+        named(model, "drop_overlay", overlay);
+    });
+}
