@@ -5,9 +5,9 @@
 use super::camera::Camera;
 use super::effects::pixel;
 use super::scene::Lighting;
-use super::shade::Sample;
 use super::shade::Shader;
 use super::stats::{FrameStats, PixelStats};
+use super::tally::Counting;
 use crate::arith::{with_numbers, Arith, Numbers, WithNumbers};
 use crate::traverse::{clear_packet, Clearance, LANES};
 use crate::Ray;
@@ -172,7 +172,7 @@ impl Renderer<'_> {
         &self,
         out: &mut BandOut<'_>,
         passes: Range<usize>,
-        sample: impl Fn(&Ray, Option<Clearance>) -> Sample,
+        sample: impl Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32,
         cancelled: &(dyn Fn() -> bool + Sync),
     ) -> Option<FrameStats> {
         let y_end = (out.y0 + BAND).min(out.height);
@@ -231,7 +231,7 @@ impl WithNumbers for Band<'_, '_, '_, '_> {
     type Output = Option<FrameStats>;
     fn with<N: Numbers>(self) -> Self::Output {
         let shader = self.shader;
-        let sample = |r: &Ray, c| shader.sample::<N>(r, c);
+        let sample = |r: &Ray, c, counting: &mut Counting<'_>| shader.sample::<N>(r, c, counting);
         self.renderer
             .band(self.out, self.passes, sample, self.cancelled)
     }
@@ -245,7 +245,7 @@ struct Tiles<'r, 'o, 'b, F> {
     totals: FrameStats,
 }
 
-impl<F: Fn(&Ray, Option<Clearance>) -> Sample> Tiles<'_, '_, '_, F> {
+impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_, F> {
     /// Whether pixels take several samples: their rays then reach past the pixels' centres,
     /// outside the tile's beam, which is not used.
     fn sub_pixel(&self) -> bool {
@@ -254,17 +254,17 @@ impl<F: Fn(&Ray, Option<Clearance>) -> Sample> Tiles<'_, '_, '_, F> {
 
     /// Traces pixel `(x, y)` with several samples (see [`pixel::shade`]) and paints it.
     fn trace_samples(&mut self, x: u32, y: u32, block: u32) {
-        let mut stats = PixelStats::default();
-        let (renderer, sample, totals) = (self.renderer, &self.sample, &mut self.totals);
+        let (renderer, sample) = (self.renderer, &self.sample);
+        let mut counting = Counting::new(&mut self.totals);
         let effects = &renderer.shader.lighting.effects;
         let (rgb, taken) = pixel::shade(&renderer.camera, (x, y), effects, |ray| {
-            let traced = sample(ray, None);
-            totals.add(&traced);
-            stats += PixelStats::of(&traced);
-            traced
+            sample(ray, None, &mut counting)
         });
-        totals.effects.add_pixel(taken);
-        stats.samples = taken;
+        let stats = PixelStats {
+            samples: taken,
+            ..counting.pixel
+        };
+        self.totals.effects.add_pixel(taken);
         self.out.paint(x, y, block, rgb, stats);
     }
 
@@ -332,11 +332,14 @@ impl<F: Fn(&Ray, Option<Clearance>) -> Sample> Tiles<'_, '_, '_, F> {
 
     /// Traces pixel `(x, y)`'s ray behind `beam` and paints it.
     fn trace_pixel(&mut self, (x, y): (u32, u32), ray: &Ray, block: u32, beam: Option<Clearance>) {
-        let sample = (self.sample)(ray, beam);
-        self.totals.add(&sample);
+        let mut counting = Counting::new(&mut self.totals);
+        let rgb = (self.sample)(ray, beam, &mut counting);
+        let stats = PixelStats {
+            samples: 1,
+            ..counting.pixel
+        };
         self.totals.effects.add_pixel(1);
-        self.out
-            .paint(x, y, block, sample.rgb, PixelStats::of(&sample));
+        self.out.paint(x, y, block, rgb, stats);
     }
 }
 

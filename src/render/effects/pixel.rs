@@ -8,7 +8,6 @@ use super::sampling::{mix, point};
 use super::Effects;
 use crate::render::camera::Camera;
 use crate::render::gamma;
-use crate::render::shade::Sample;
 use crate::Ray;
 
 /// Samples every adaptive pixel takes before it may stop; also the batch it adds at a time.
@@ -57,13 +56,13 @@ pub fn per_sample(effects: &Effects) -> Effects {
     }
 }
 
-/// Shades pixel `(x, y)` with the samples `effects` asks for, each traced by `trace`;
-/// returns the pixel's colour (0x00RRGGBB) and the samples taken.
+/// Shades pixel `(x, y)` with the samples `effects` asks for, each traced by `trace` (which
+/// gives its colour); returns the pixel's colour (0x00RRGGBB) and the samples taken.
 pub fn shade(
     camera: &Camera,
     (x, y): (u32, u32),
     effects: &Effects,
-    mut trace: impl FnMut(&Ray) -> Sample,
+    mut trace: impl FnMut(&Ray) -> u32,
 ) -> (u32, u32) {
     let most = effects.samples.max(1);
     let mut sum = [0.0f64; 3];
@@ -77,7 +76,7 @@ pub fn shade(
         };
         for index in taken..taken + batch {
             let (px, py) = position(x, y, index);
-            let rgb = trace(&camera.ray_at(px, py)).rgb;
+            let rgb = trace(&camera.ray_at(px, py));
             let channels = [(rgb >> 16) as u8, (rgb >> 8) as u8, rgb as u8];
             for (s, c) in sum.iter_mut().zip(channels) {
                 *s += gamma::linear(c);
