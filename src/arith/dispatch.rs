@@ -27,6 +27,9 @@ pub struct Ran<O> {
 
 /// How an arithmetic runs [`Generic`] code, one call (a ray, a pixel) at a time.
 pub trait Numbers {
+    /// Whether [`Numbers::run`] may run code twice (exact arithmetic, again in rationals
+    /// after intervals), so that what the first run recorded must be taken back.
+    const REDOES: bool = false;
     /// Runs `code` in this arithmetic.
     fn run<G: Generic>(code: &G) -> Ran<G::Output>;
 }
@@ -51,6 +54,7 @@ impl<S: Scalar> Numbers for Plain<S> {
 pub struct Settling;
 
 impl Numbers for Settling {
+    const REDOES: bool = true;
     #[inline(always)]
     fn run<G: Generic>(code: &G) -> Ran<G::Output> {
         match settled(|| code.run::<Interval>()) {

@@ -12,6 +12,7 @@ use heightray::bench::{
 use heightray::render::Frame;
 use heightray::render::{Scene, SceneFile};
 use heightray::traverse::{Arith, Method};
+use heightray::traverse::{SimdPath, SIMD_VARIABLE};
 use heightray::Terrain;
 use indicatif::ProgressBar;
 use indicatif::ProgressStyle;
@@ -64,6 +65,14 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
     for terrain in &report.terrains {
         print_table(out, terrain)?;
     }
+    if let Err(message) = SimdPath::requested() {
+        eprintln!("heightray: {message}");
+    }
+    writeln!(
+        out,
+        "SIMD path of the packet walk (`render --packets on`): {} (forced with {SIMD_VARIABLE}=scalar|avx2|avx512)",
+        SimdPath::active()
+    )?;
     if report.terrains.len() > 1 && !args.sizes.is_empty() {
         print_growth(out, &report.terrains)?;
     }

@@ -242,6 +242,9 @@ pub struct RenderArgs {
     /// Let each pixel stop taking samples once they agree, as `[render] adaptive = true`.
     #[arg(long)]
     pub adaptive: bool,
+    /// Walk neighbouring camera rays in packets (on) or each alone (off): the same image.
+    #[arg(long, default_value = "off", value_parser = ["on", "off"])]
+    pub packets: String,
 }
 
 /// How to read a height map.

@@ -54,7 +54,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     // Built before the clock starts, so the render time is the render's alone.
     let build_ms = prepare(&terrain, method).0.as_secs_f64() * 1e3;
     let start = Instant::now();
-    pool.install(|| renderer.render(&mut frame));
+    match args.packets.as_str() {
+        "on" => pool.install(|| renderer.render_in_packets(&mut frame)),
+        _ => pool.install(|| renderer.render(&mut frame)),
+    }
     let render_ms = start.elapsed().as_secs_f64() * 1e3;
 
     save_png(&frame, &args.output)?;

@@ -9,6 +9,7 @@ mod scene;
 mod shade;
 mod stats;
 pub mod sun_position;
+mod tally;
 pub mod timing;
 mod versus_exact;
 
@@ -25,4 +26,5 @@ pub use scene::{
 };
 pub use shade::{Culling, Sample, Shader, Shadow, ShadowSkip};
 pub use stats::{FrameStats, PixelStats};
+pub use tally::{Counting, Tally};
 pub use versus_exact::{differing_pixels, view_pixel_differences, PixelRow, View};

@@ -5,11 +5,11 @@
 use super::camera::Camera;
 use super::effects::pixel;
 use super::scene::Lighting;
-use super::shade::Sample;
 use super::shade::Shader;
 use super::stats::{FrameStats, PixelStats};
+use super::tally::Counting;
 use crate::arith::{with_numbers, Arith, Numbers, WithNumbers};
-use crate::traverse::Clearance;
+use crate::traverse::{clear_packet, Clearance, LANES};
 use crate::Ray;
 use rayon::prelude::*;
 use std::ops::Range;
@@ -23,6 +23,9 @@ const BAND: u32 = 8;
 
 /// Columns per tile: a band is traced tile by tile.
 const TILE: u32 = 16;
+
+/// The columns of a pass's pixels whose rays are walked in packets, row by row.
+const PACKET_COLUMNS: usize = 4;
 
 /// The passes whose pixels lie at most this far apart trace each tile's rays behind a beam
 /// (a coarser pass has too few rays per tile to pay for the beam's march).
@@ -82,7 +85,16 @@ impl Renderer<'_> {
     /// be seen, and painting them would cost a share of every frame.
     pub fn render(&self, frame: &mut Frame) {
         let remaining = frame.passes_done..PASS_BLOCKS.len();
-        self.passes(frame, remaining, &|| false, Paint::Pixels);
+        self.passes(frame, remaining, &|| false, Paint::Pixels, Walking::Singly);
+    }
+
+    /// [`Renderer::render`] with neighbouring camera rays walked down the mipmap in packets
+    /// ([`clear_packet`]) where the tile's beam is used and the arithmetic is `f64`: the same
+    /// image. (Not the default: on the built-in views the packets' node tests cost more than
+    /// the walks they shorten save.)
+    pub fn render_in_packets(&self, frame: &mut Frame) {
+        let remaining = frame.passes_done..PASS_BLOCKS.len();
+        self.passes(frame, remaining, &|| false, Paint::Pixels, Walking::Packets);
     }
 
     /// Renders the next pass, painting each traced pixel's block of the pass, so the frame can
@@ -90,7 +102,7 @@ impl Renderer<'_> {
     /// the pass is then partly painted, and the frame is to be dropped.
     pub fn render_pass(&self, frame: &mut Frame, cancelled: &(dyn Fn() -> bool + Sync)) -> bool {
         let next = frame.passes_done..(frame.passes_done + 1).min(PASS_BLOCKS.len());
-        self.passes(frame, next, cancelled, Paint::Blocks)
+        self.passes(frame, next, cancelled, Paint::Blocks, Walking::Singly)
     }
 
     /// Renders the passes `passes`, band by band; see [`Renderer::render_pass`].
@@ -100,6 +112,7 @@ impl Renderer<'_> {
         passes: Range<usize>,
         cancelled: &(dyn Fn() -> bool + Sync),
         paint: Paint,
+        walking: Walking,
     ) -> bool {
         let width = frame.width as usize;
         let rows = BAND as usize * width;
@@ -128,6 +141,7 @@ impl Renderer<'_> {
                     width: frame.width,
                     height: frame.height,
                     paint,
+                    walking,
                 };
                 let band = Band {
                     renderer: self,
@@ -158,7 +172,7 @@ impl Renderer<'_> {
         &self,
         out: &mut BandOut<'_>,
         passes: Range<usize>,
-        sample: impl Fn(&Ray, Option<Clearance>) -> Sample,
+        sample: impl Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32,
         cancelled: &(dyn Fn() -> bool + Sync),
     ) -> Option<FrameStats> {
         let y_end = (out.y0 + BAND).min(out.height);
@@ -217,7 +231,7 @@ impl WithNumbers for Band<'_, '_, '_, '_> {
     type Output = Option<FrameStats>;
     fn with<N: Numbers>(self) -> Self::Output {
         let shader = self.shader;
-        let sample = |r: &Ray, c| shader.sample::<N>(r, c);
+        let sample = |r: &Ray, c, counting: &mut Counting<'_>| shader.sample::<N>(r, c, counting);
         self.renderer
             .band(self.out, self.passes, sample, self.cancelled)
     }
@@ -231,7 +245,7 @@ struct Tiles<'r, 'o, 'b, F> {
     totals: FrameStats,
 }
 
-impl<F: Fn(&Ray, Option<Clearance>) -> Sample> Tiles<'_, '_, '_, F> {
+impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_, F> {
     /// Whether pixels take several samples: their rays then reach past the pixels' centres,
     /// outside the tile's beam, which is not used.
     fn sub_pixel(&self) -> bool {
@@ -240,17 +254,17 @@ impl<F: Fn(&Ray, Option<Clearance>) -> Sample> Tiles<'_, '_, '_, F> {
 
     /// Traces pixel `(x, y)` with several samples (see [`pixel::shade`]) and paints it.
     fn trace_samples(&mut self, x: u32, y: u32, block: u32) {
-        let mut stats = PixelStats::default();
-        let (renderer, sample, totals) = (self.renderer, &self.sample, &mut self.totals);
+        let (renderer, sample) = (self.renderer, &self.sample);
+        let mut counting = Counting::new(&mut self.totals);
         let effects = &renderer.shader.lighting.effects;
         let (rgb, taken) = pixel::shade(&renderer.camera, (x, y), effects, |ray| {
-            let traced = sample(ray, None);
-            totals.add(&traced);
-            stats += PixelStats::of(&traced);
-            traced
+            sample(ray, None, &mut counting)
         });
-        totals.effects.add_pixel(taken);
-        stats.samples = taken;
+        let stats = PixelStats {
+            samples: taken,
+            ..counting.pixel
+        };
+        self.totals.effects.add_pixel(taken);
         self.out.paint(x, y, block, rgb, stats);
     }
 
@@ -263,7 +277,7 @@ impl<F: Fn(&Ray, Option<Clearance>) -> Sample> Tiles<'_, '_, '_, F> {
     }
 
     /// Traces the pixels `columns x rows` that pass `pass` (of blocks `block`) traces and no
-    /// earlier pass did, and paints them.
+    /// earlier pass did, and paints them: behind a beam in `f64`, in packets of neighbours.
     fn trace(
         &mut self,
         pass: usize,
@@ -272,23 +286,60 @@ impl<F: Fn(&Ray, Option<Clearance>) -> Sample> Tiles<'_, '_, '_, F> {
         rows: &[u32],
         beam: Option<Clearance>,
     ) {
+        let traced_before =
+            |x: u32, y: u32| pass > 0 && x.is_multiple_of(2 * block) && y.is_multiple_of(2 * block);
+        let packs = self.out.walking == Walking::Packets && self.renderer.arith == Arith::F64;
+        let packed = beam.filter(|_| packs);
+        if let Some(beam) = packed {
+            // Packets of neighbours: the pixels of a few columns, row by row.
+            for columns in columns.chunks(PACKET_COLUMNS) {
+                let pixels = rows
+                    .iter()
+                    .flat_map(|&y| columns.iter().map(move |&x| (x, y)));
+                let pixels: Vec<(u32, u32)> =
+                    pixels.filter(|&(x, y)| !traced_before(x, y)).collect();
+                for packet in pixels.chunks(LANES) {
+                    self.trace_packet(packet, block, beam);
+                }
+            }
+            return;
+        }
         for &y in rows {
             for &x in columns {
-                let traced_before = pass > 0 && x % (2 * block) == 0 && y % (2 * block) == 0;
-                if traced_before {
+                if traced_before(x, y) {
                     continue;
                 }
                 if self.sub_pixel() {
                     self.trace_samples(x, y, block);
                     continue;
                 }
-                let sample = (self.sample)(&self.renderer.camera.ray(x, y), beam);
-                self.totals.add(&sample);
-                self.totals.effects.add_pixel(1);
-                self.out
-                    .paint(x, y, block, sample.rgb, PixelStats::of(&sample));
+                let ray = self.renderer.camera.ray(x, y);
+                self.trace_pixel((x, y), &ray, block, beam);
             }
         }
+    }
+
+    /// Traces the pixels of one packet (at most [`LANES`]) behind the tile's `beam`.
+    fn trace_packet(&mut self, pixels: &[(u32, u32)], block: u32, beam: Clearance) {
+        let camera = &self.renderer.camera;
+        let rays: Vec<Ray> = pixels.iter().map(|&(x, y)| camera.ray(x, y)).collect();
+        let cleared = clear_packet(self.renderer.shader.terrain, &rays, Some(beam));
+        self.totals.primary.block += cleared.tests;
+        for (l, (&pixel, ray)) in pixels.iter().zip(&rays).enumerate() {
+            self.trace_pixel(pixel, ray, block, cleared.lanes[l]);
+        }
+    }
+
+    /// Traces pixel `(x, y)`'s ray behind `beam` and paints it.
+    fn trace_pixel(&mut self, (x, y): (u32, u32), ray: &Ray, block: u32, beam: Option<Clearance>) {
+        let mut counting = Counting::new(&mut self.totals);
+        let rgb = (self.sample)(ray, beam, &mut counting);
+        let stats = PixelStats {
+            samples: 1,
+            ..counting.pixel
+        };
+        self.totals.effects.add_pixel(1);
+        self.out.paint(x, y, block, rgb, stats);
     }
 }
 
@@ -301,6 +352,15 @@ enum Paint {
     Pixels,
 }
 
+/// How camera rays are walked.
+#[derive(Clone, Copy, PartialEq)]
+enum Walking {
+    /// In packets of neighbours where they can be ([`clear_packet`]).
+    Packets,
+    /// Each on its own.
+    Singly,
+}
+
 /// The rows of one band of the frame.
 struct BandOut<'a> {
     pixels: &'a mut [u32],
@@ -309,6 +369,7 @@ struct BandOut<'a> {
     width: u32,
     height: u32,
     paint: Paint,
+    walking: Walking,
 }
 
 impl BandOut<'_> {

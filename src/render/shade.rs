@@ -6,13 +6,14 @@ use super::gamma;
 use super::normals;
 use super::ramp::HeightSpan;
 use super::scene::{Lighting, Normals};
-use crate::arith::{run, Arith, Generic, Numbers};
+use super::tally::{Counting, Tally};
+use crate::arith::{with_numbers, Arith, Generic, Numbers, WithNumbers};
 use crate::geometry::gradient;
 use crate::heightfield::Terrain;
 use crate::traverse::{Clearance, Counters, Found, Hit, Method, Occlusion, Scalar, Start, Tracer};
 use crate::Ray;
 use glam::DVec3;
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 
 /// Why a shadow ray was not cast although the scene has shadows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,9 +30,10 @@ pub enum ShadowSkip {
 }
 
 /// What became of a pixel's shadow.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Shadow {
     /// No primary hit, or the scene has no shadows: nothing to decide.
+    #[default]
     NotAsked,
     /// Left out where it cannot change the pixel, for this reason.
     Skipped(ShadowSkip),
@@ -48,8 +50,8 @@ pub enum Shadow {
 /// decision on it was made exactly after intervals left it unsettled (see [`Sample::redone`]).
 pub(super) type Cast = (Shadow, Counters, bool);
 
-/// One traced pixel.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// One traced sample, recorded on its own (see [`Tally`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Sample {
     /// 0x00RRGGBB.
     pub rgb: u32,
@@ -118,78 +120,119 @@ pub struct Shader<'a> {
 impl Shader<'_> {
     /// Traces and shades one primary ray with the numbers `N` of an arithmetic (see
     /// [`with_numbers`](crate::arith::with_numbers)), behind a beam that cleared the way to
-    /// its [`Clearance`] if given.
+    /// its [`Clearance`] if given; counts its rays into `counting` and returns its colour
+    /// (0x00RRGGBB).
     #[inline(always)]
-    pub fn sample<N: Numbers>(&self, ray: &Ray, beam: Option<Clearance>) -> Sample {
+    pub fn sample<N: Numbers>(
+        &self,
+        ray: &Ray,
+        beam: Option<Clearance>,
+        counting: &mut Counting<'_>,
+    ) -> u32 {
+        if !N::REDOES {
+            return self.sample_into::<N, _>(ray, beam, None, counting);
+        }
+        // Recorded apart first: a run the intervals leave unsettled counts nothing.
+        let mut own = Sample::default();
+        let rgb = self.sample_into::<N, _>(ray, beam, None, &mut own);
+        own.count_into(counting);
+        rgb
+    }
+
+    /// [`Shader::sample`] recorded on its own: its colour, shadow and each kind of ray's
+    /// queries.
+    pub fn recorded<N: Numbers>(&self, ray: &Ray, beam: Option<Clearance>) -> Sample {
+        self.record::<N>(ray, beam, None)
+    }
+
+    /// [`Shader::recorded`] in arithmetic `arith`, with the primary ray's hit (its `t` to the
+    /// nearest `f64` of the traversal's, the point shaded, the cell and triangle; no exact
+    /// `t`): what the viewer's probe shows of the very rays the renderer traces for a pixel.
+    pub fn traced(&self, ray: &Ray, arith: Arith) -> (Sample, Option<Hit>) {
+        /// One sample, recorded, with the numbers of an arithmetic.
+        struct Recorded<'s, 'a> {
+            shader: &'s Shader<'a>,
+            ray: &'s Ray,
+            hit: &'s Cell<Option<Hit>>,
+        }
+        impl WithNumbers for Recorded<'_, '_> {
+            type Output = Sample;
+            fn with<N: Numbers>(self) -> Sample {
+                self.shader.record::<N>(self.ray, None, Some(self.hit))
+            }
+        }
+        let hit = Cell::new(None);
+        let recorded = Recorded {
+            shader: self,
+            ray,
+            hit: &hit,
+        };
+        let (sample, _) = with_numbers(arith, recorded);
+        (sample, hit.take())
+    }
+
+    /// [`Shader::recorded`], its hit kept in `keep` if given.
+    fn record<N: Numbers>(
+        &self,
+        ray: &Ray,
+        beam: Option<Clearance>,
+        keep: Option<&Cell<Option<Hit>>>,
+    ) -> Sample {
+        let mut sample = Sample::default();
+        let rgb = self.sample_into::<N, _>(ray, beam, keep, &mut sample);
+        Sample { rgb, ..sample }
+    }
+
+    /// One sample's rays with the numbers `N`, counted into `tally`, its hit kept in `keep`
+    /// if given; its colour.
+    #[inline(always)]
+    fn sample_into<N: Numbers, T: Tally>(
+        &self,
+        ray: &Ray,
+        beam: Option<Clearance>,
+        keep: Option<&Cell<Option<Hit>>>,
+        tally: &mut T,
+    ) -> u32 {
         let pixel = Pixel {
             shader: self,
             ray,
             beam,
-            hit: None,
+            keep,
+            tally: RefCell::new(tally),
         };
         let ran = N::run(&pixel);
-        Sample {
-            redone: ran.output.redone || ran.redone,
-            ..ran.output
+        if ran.redone {
+            pixel.tally.borrow_mut().redone();
         }
+        ran.output
     }
 
-    /// [`Shader::sample`] in arithmetic `arith`, with the primary ray's hit (its `t` to the
-    /// nearest `f64` of the traversal's, the point shaded, the cell and triangle; no exact
-    /// `t`): what the viewer's probe shows of the very rays the renderer traces for a pixel.
-    pub fn traced(&self, ray: &Ray, arith: Arith) -> (Sample, Option<Hit>) {
-        let hit = Cell::new(None);
-        let pixel = Pixel {
-            shader: self,
-            ray,
-            beam: None,
-            hit: Some(&hit),
-        };
-        let (ran, _) = run(arith, &pixel);
-        let sample = Sample {
-            redone: ran.output.redone || ran.redone,
-            ..ran.output
-        };
-        (sample, hit.take())
-    }
-
-    /// One pixel's rays in arithmetic `S` alone, its hit kept in `keep` if given.
+    /// One sample's rays in arithmetic `S` alone, counted into `tally`, its hit kept in `keep`
+    /// if given; its colour.
     #[inline(always)]
     fn traced_in<S: Scalar>(
         &self,
         ray: &Ray,
         beam: Option<Clearance>,
         keep: Option<&Cell<Option<Hit>>>,
-    ) -> Sample {
+        tally: &mut impl Tally,
+    ) -> u32 {
         let primary = Tracer::new(self.terrain, self.method).trace::<S>(ray, beam);
+        tally.primary(&primary.counters, primary.hit.is_some());
         if let Some(water) = &self.lighting.effects.water {
             let field = self.terrain.field();
             let terrain_t = primary.hit.as_ref().map(|found| found.t.to_f64());
             if let Some(t) = water.crossing(ray.origin(), ray.dir(), terrain_t, field) {
                 let water = self.water_pixel::<S>(water, ray, t);
-                return Sample {
-                    rgb: water.rgb,
-                    hit: terrain_t.is_some(),
-                    shadow: Shadow::NotAsked,
-                    primary: primary.counters,
-                    secondary: water.counters,
-                    sky: SkyRays::default(),
-                    reflection: water.reflection,
-                    redone: water.redone,
-                };
+                tally.water(water.reflection, &water.counters);
+                if water.redone {
+                    tally.redone();
+                }
+                return water.rgb;
             }
         }
         let Some(found) = primary.hit else {
-            return Sample {
-                rgb: self.sky_rgb(ray),
-                hit: false,
-                shadow: Shadow::NotAsked,
-                primary: primary.counters,
-                secondary: Counters::default(),
-                sky: SkyRays::default(),
-                reflection: Reflection::NotWater,
-                redone: false,
-            };
+            return self.sky_rgb(ray);
         };
         // Shading needs the point only in `f64`. Arithmetics that round shade the point they
         // computed; for the others, `t` to the nearest `f64` is as good and much cheaper than
@@ -202,7 +245,15 @@ impl Shader<'_> {
             DVec3::from(found.point(&o, &d).map(|c| c.to_f64()))
         };
         let facing = self.facing(found.cell, found.triangle, p);
-        let (shadow, secondary, redone) = self.shadow::<S>(&found, ray, p, facing);
+        let mut redone = false;
+        let shadow = if self.lighting.shadows {
+            let (shadow, counters, exactly) = self.shadow::<S>(&found, ray, p, facing);
+            tally.shadow(shadow, &counters);
+            redone |= exactly;
+            shadow
+        } else {
+            Shadow::NotAsked
+        };
         if let Some(keep) = keep {
             keep.set(Some(Hit {
                 t,
@@ -212,23 +263,18 @@ impl Shader<'_> {
                 triangle: found.triangle,
             }));
         }
-        let (rgb, sky) = if self.lighting.effects.sky_light {
+        let rgb = if self.lighting.effects.sky_light {
             let (light, sky) = self.sky_light(&found, ray, p);
-            (self.lit_rgb(ray, p, t, facing, shadow, light), sky)
+            tally.sky(&sky);
+            redone |= sky.redone;
+            self.lit_rgb(ray, p, t, facing, shadow, light)
         } else {
-            let rgb = self.surface_rgb(ray, p, t, facing, shadow);
-            (rgb, SkyRays::default())
+            self.surface_rgb(ray, p, t, facing, shadow)
         };
-        Sample {
-            rgb,
-            hit: true,
-            shadow,
-            primary: primary.counters,
-            secondary,
-            sky,
-            reflection: Reflection::NotWater,
-            redone: redone || sky.redone,
+        if redone {
+            tally.redone();
         }
+        rgb
     }
 
     /// How the surface at `p` on triangle `triangle` of `cell` faces the sun: the cosine of
@@ -304,12 +350,9 @@ impl Shader<'_> {
     }
 
     /// Decides whether a shadow ray of the hit `found`, shaded at `p`, can change the pixel,
-    /// and casts it if so.
+    /// and casts it if so (in a scene with shadows).
     fn shadow<S: Scalar>(&self, found: &Found<S>, ray: &Ray, p: DVec3, facing: f64) -> Cast {
         let skip = |why| (Shadow::Skipped(why), Counters::default(), false);
-        if !self.lighting.shadows {
-            return (Shadow::NotAsked, Counters::default(), false);
-        }
         if self.culling.facing_away && facing <= 0.0 {
             return skip(ShadowSkip::FacingAway);
         }
@@ -445,20 +488,25 @@ impl Shader<'_> {
     }
 }
 
-/// One pixel's rays, in whichever arithmetic [`run`] picks.
-struct Pixel<'s, 'a> {
+/// One sample's rays, in whichever arithmetic its [`Numbers`] run, counted into a tally.
+struct Pixel<'s, 'a, 'c, T> {
     shader: &'s Shader<'a>,
     ray: &'s Ray,
     beam: Option<Clearance>,
     /// Where to keep the primary ray's hit, if anywhere.
-    hit: Option<&'s Cell<Option<Hit>>>,
+    keep: Option<&'s Cell<Option<Hit>>>,
+    tally: RefCell<&'c mut T>,
 }
 
-impl Generic for Pixel<'_, '_> {
-    type Output = Sample;
+impl<T: Tally> Generic for Pixel<'_, '_, '_, T> {
+    type Output = u32;
     #[inline(always)]
-    fn run<S: Scalar>(&self) -> Sample {
-        self.shader.traced_in::<S>(self.ray, self.beam, self.hit)
+    fn run<S: Scalar>(&self) -> u32 {
+        let mut tally = self.tally.borrow_mut();
+        // (A run again in rationals after intervals left a decision unsettled starts afresh.)
+        tally.restart();
+        self.shader
+            .traced_in::<S>(self.ray, self.beam, self.keep, &mut **tally)
     }
 }
 

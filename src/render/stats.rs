@@ -2,7 +2,7 @@
 //! primary ray and as hit/miss ratios, and a compact per-pixel record for heat maps.
 
 use super::effects::EffectStats;
-use super::shade::{Sample, Shadow, ShadowSkip};
+use super::shade::Sample;
 use crate::traverse::{Counters, HitMiss};
 use serde_json::{json, Value};
 use std::ops::AddAssign;
@@ -23,21 +23,28 @@ pub struct PixelStats {
 }
 
 impl PixelStats {
-    /// The queries of a traced pixel's rays, saturating at `u32::MAX`.
+    /// The queries of a traced sample's rays, saturating at `u32::MAX`.
     pub fn of(sample: &Sample) -> PixelStats {
-        let total = |f: fn(&Counters) -> HitMiss| {
-            (f(&sample.primary).total()
-                + f(&sample.secondary).total()
-                + f(&sample.sky.counters).total())
-            .min(u64::from(u32::MAX)) as u32
-        };
-        PixelStats {
-            blocks: total(|c| c.block),
-            runs: total(|c| c.run),
-            cells: total(|c| c.cell),
-            triangles: total(|c| c.triangle),
+        let mut stats = PixelStats {
             samples: 1,
-        }
+            ..PixelStats::default()
+        };
+        stats.add_queries(&sample.primary);
+        stats.add_queries(&sample.secondary);
+        stats.add_queries(&sample.sky.counters);
+        stats
+    }
+
+    /// Adds a ray's queries, saturating at `u32::MAX`.
+    #[inline(always)]
+    pub fn add_queries(&mut self, counters: &Counters) {
+        let add = |to: &mut u32, queries: HitMiss| {
+            *to = to.saturating_add(queries.total().min(u64::from(u32::MAX)) as u32);
+        };
+        add(&mut self.blocks, counters.block);
+        add(&mut self.runs, counters.run);
+        add(&mut self.cells, counters.cell);
+        add(&mut self.triangles, counters.triangle);
     }
 }
 
@@ -89,27 +96,9 @@ pub struct FrameStats {
 }
 
 impl FrameStats {
-    /// Counts one traced pixel.
+    /// Counts one traced sample.
     pub fn add(&mut self, sample: &Sample) {
-        self.primary_rays += 1;
-        self.primary_hits += u64::from(sample.hit);
-        self.redone += u64::from(sample.redone);
-        self.primary += sample.primary;
-        self.shadow += sample.secondary;
-        match sample.shadow {
-            Shadow::NotAsked => {}
-            Shadow::Cast { shadowed } => {
-                self.shadow_rays += 1;
-                self.shadowed += u64::from(shadowed);
-            }
-            Shadow::Skipped(ShadowSkip::FacingAway) => self.skipped.facing_away += 1,
-            Shadow::Skipped(ShadowSkip::NoShadowPossible) => self.skipped.no_shadow_possible += 1,
-            Shadow::Skipped(ShadowSkip::AboveTerrain) => self.skipped.above_terrain += 1,
-            Shadow::Skipped(ShadowSkip::HorizonClear) => self.skipped.horizon_clear += 1,
-            Shadow::Soft(soft) => self.effects.add_soft(&soft),
-        }
-        self.effects.add_sky(&sample.sky);
-        self.effects.add_reflection(sample.reflection);
+        sample.count_into(self);
     }
 
     /// Primary and shadow queries together.

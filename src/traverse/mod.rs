@@ -24,6 +24,7 @@ mod exact_start;
 mod frame;
 mod mipmap;
 mod options;
+mod packet;
 mod runs;
 mod search;
 mod tracer;
@@ -36,6 +37,7 @@ use exact_mode::{exact_t, f64_ray, point_over, trace_certified, walk_cleared, F6
 pub use exact_start::PlanePoint;
 pub use options::{Hit, Method, Trace, TraceOptions};
 use options::{Query, WalkOptions};
+pub use packet::{clear_packet, clear_packet_on, PacketClearance, SimdPath, LANES, SIMD_VARIABLE};
 pub use tracer::{occluded_from_hit, Occlusion, Start, Tracer};
 // The number layer, re-exported: every traversal is generic over these.
 pub use crate::arith::{
@@ -68,10 +70,59 @@ pub fn occluded(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
     ask(terrain, ray, options, Query::Shadow)
 }
 
+/// The first hits of `rays`, as [`trace`] answers each: with [`TraceOptions::packets`],
+/// neighbours in the slice walk the mipmap together in packets of [`LANES`] (where the
+/// arithmetic is `f64`, the method hierarchical and no cells are listed), the packet's node
+/// tests counted with its first ray's queries.
+pub fn trace_packets(terrain: &Terrain, rays: &[Ray], options: &TraceOptions) -> Vec<Trace> {
+    let scaled: Vec<(Ray, i32)> = rays.iter().map(Ray::at_unit_scale).collect();
+    let packs = options.packets
+        && options.arith == Arith::F64
+        && options.method.is_hierarchical()
+        && !options.record_cells;
+    let mut traces = Vec::with_capacity(rays.len());
+    for packet in scaled.chunks(LANES) {
+        let lanes: Vec<Ray> = packet.iter().map(|(ray, _)| *ray).collect();
+        let cleared = if packs {
+            clear_packet(terrain, &lanes, None)
+        } else {
+            PacketClearance::default()
+        };
+        for (l, &(ray, k)) in packet.iter().enumerate() {
+            let mut trace = ask_behind(
+                terrain,
+                (&ray, k),
+                options,
+                Query::FirstHit,
+                cleared.lanes[l],
+            );
+            if l == 0 {
+                trace.counters.block += cleared.tests;
+            }
+            traces.push(trace);
+        }
+    }
+    traces
+}
+
 /// Answers `query` for `ray`, its direction scaled to near unit length by a power of two (the
 /// same ray, with `t` scaled back).
 fn ask(terrain: &Terrain, ray: &Ray, options: &TraceOptions, query: Query) -> Trace {
+    if options.packets && query == Query::FirstHit {
+        return trace_packets(terrain, std::slice::from_ref(ray), options).remove(0);
+    }
     let (scaled, k) = ray.at_unit_scale();
+    ask_behind(terrain, (&scaled, k), options, query, None)
+}
+
+/// [`ask`] for the ray `scaled` (the ray scaled by `2^k`), behind `beam` if given.
+fn ask_behind(
+    terrain: &Terrain,
+    (scaled, k): (&Ray, i32),
+    options: &TraceOptions,
+    query: Query,
+    beam: Option<Clearance>,
+) -> Trace {
     let mut tracer = Tracer::new(terrain, options.method);
     if options.record_cells {
         tracer = tracer.recording_cells();
@@ -79,8 +130,9 @@ fn ask(terrain: &Terrain, ray: &Ray, options: &TraceOptions, query: Query) -> Tr
     let ask = Ask {
         terrain,
         tracer,
-        ray: &scaled,
+        ray: scaled,
         query,
+        beam,
     };
     let (ran, rational) = crate::arith::run(options.arith, &ask);
     let mut trace = ran.output;
@@ -105,6 +157,7 @@ struct Ask<'a> {
     tracer: Tracer<'a>,
     ray: &'a Ray,
     query: Query,
+    beam: Option<Clearance>,
 }
 
 impl Generic for Ask<'_> {
@@ -112,7 +165,7 @@ impl Generic for Ask<'_> {
     fn run<S: Scalar>(&self) -> Trace {
         let ray = self.ray;
         let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
-        let answer = self.tracer.ask(&o, &d, ray.dir(), self.query);
+        let answer = self.tracer.ask(&o, &d, ray.dir(), self.query, self.beam);
         let hit = answer.hit.and_then(|found| {
             let cell = [found.cell.0, found.cell.1];
             let hit = |t: f64, t_exact, point| Hit {

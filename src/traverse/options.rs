@@ -89,15 +89,19 @@ pub struct TraceOptions {
     pub arith: Arith,
     /// List the cells the walk covered, in order.
     pub record_cells: bool,
+    /// Walk rays in packets where they can ([`trace_packets`](super::trace_packets)): the
+    /// answers are the same, the work is shared.
+    pub packets: bool,
 }
 
 impl TraceOptions {
-    /// Options without cell recording.
+    /// Options without cell recording, one ray at a time.
     pub fn new(method: Method, arith: Arith) -> Self {
         TraceOptions {
             method,
             arith,
             record_cells: false,
+            packets: false,
         }
     }
 }

@@ -92,15 +92,21 @@ impl<'a> Tracer<'a> {
         trace_scalar(self.terrain, &o, &d, ray.dir(), walk)
     }
 
-    /// Answers `query` for the ray `o + t*d` given in `S` (`dir` is `d` as given).
+    /// Answers `query` for the ray `o + t*d` given in `S` (`dir` is `d` as given), behind
+    /// `beam` if given (see [`Tracer::trace`]).
     pub(super) fn ask<S: Scalar>(
         &self,
         o: &[S; 3],
         d: &[S; 3],
         dir: [f64; 3],
         query: Query,
+        beam: Option<Clearance>,
     ) -> ScalarTrace<S> {
-        trace_scalar(self.terrain, o, d, dir, self.walk(query))
+        let walk = WalkOptions {
+            beam,
+            ..self.walk(query)
+        };
+        trace_scalar(self.terrain, o, d, dir, walk)
     }
 
     /// Whether a ray from `from` in direction `dir` touches the surface at some `t > 0`, in

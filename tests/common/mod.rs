@@ -17,11 +17,14 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 
 pub const METHODS: [Method; 4] = Method::ALL;
 
+/// Options that list the cells a walk covers; where a test leaves them out, `f64` rays walk in
+/// packets (single-ray packets here), unless `HEIGHTRAY_PACKETS=off`.
 pub fn options(method: Method, arith: Arith) -> TraceOptions {
     TraceOptions {
         method,
         arith,
         record_cells: true,
+        packets: std::env::var("HEIGHTRAY_PACKETS").map_or(true, |v| v != "off"),
     }
 }
 

@@ -5,6 +5,29 @@
 use heightray::{Heightfield, Ray};
 use proptest::prelude::*;
 
+/// A small deterministic generator (xorshift64*), for tests that draw many values outside
+/// proptest.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+
+    /// A number in `0..n` (0 for `n` 0).
+    pub fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+
+    /// A number in `[lo, hi)`.
+    pub fn within(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 fn z_scale(maxval: u32) -> BoxedStrategy<f64> {
     let m = f64::from(maxval);
     prop_oneof![Just(m), Just(m / 4.0), Just(1.0), Just(0.0), 0.01f64..100.0].boxed()

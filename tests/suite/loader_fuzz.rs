@@ -4,27 +4,13 @@
 //! The unbounded, coverage-guided fuzz target is in tests/fuzz (README, 'Testing').
 
 use crate::common::files::tiff;
+use crate::common::random::Rng;
 use heightray::heightfield::{load_bytes_with, ColourEncoding, LoadOptions, NoDataValue};
 use image::{ImageBuffer, ImageFormat, Luma, Rgb};
 use std::io::Cursor;
 use std::ops::ControlFlow;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use tiff::encoder::colortype::{Gray16, Gray32Float, GrayI16};
-
-/// A small deterministic generator (xorshift64*).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
 
 fn png(image: image::DynamicImage) -> Vec<u8> {
     let mut bytes = Cursor::new(Vec::new());

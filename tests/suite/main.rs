@@ -22,6 +22,7 @@ mod hard_cases;
 mod holes;
 mod loader_fuzz;
 mod mosaics;
+mod packets;
 mod ramps;
 mod recorded_cells;
 mod render;

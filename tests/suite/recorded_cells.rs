@@ -22,13 +22,21 @@ fn recording_cells_changes_no_answer() {
             for method in Method::ALL {
                 for arith in ariths {
                     let listed = trace(&family.terrain, ray, &options(method, arith));
+                    // (Packets count their node tests in place of the walk's block tests:
+                    // their answer is compared, their counters are not.)
                     let quiet = TraceOptions {
                         record_cells: false,
+                        packets: false,
                         ..options(method, arith)
                     };
                     let plain = trace(&family.terrain, ray, &quiet);
+                    let packed = TraceOptions {
+                        packets: true,
+                        ..quiet
+                    };
                     let at = format!("{} {method} {arith} {ray:?}", family.name);
                     assert_eq!(listed.hit, plain.hit, "{at}");
+                    assert_eq!(trace(&family.terrain, ray, &packed).hit, plain.hit, "{at}");
                     if arith != Arith::Exact {
                         assert_eq!(listed.counters, plain.counters, "{at}");
                     }

@@ -9,7 +9,6 @@ use super::sampling::{mix, point};
 use super::Effects;
 use crate::render::camera::Camera;
 use crate::render::gamma;
-use crate::render::shade::Sample;
 use crate::Ray;
 
 /// Samples every adaptive pixel takes before it may stop; also the batch it adds at a time.
@@ -58,18 +57,18 @@ pub fn per_sample(effects: &Effects) -> Effects {
     }
 }
 
-/// Shades pixel `(x, y)` with the samples `effects` asks for, each traced by `trace`;
-/// returns the pixel's colour (0x00RRGGBB) and the samples taken.
+/// Shades pixel `(x, y)` with the samples `effects` asks for, each traced by `trace` (which
+/// gives its colour); returns the pixel's colour (0x00RRGGBB) and the samples taken.
 pub fn shade(
     camera: &Camera,
     (x, y): (u32, u32),
     effects: &Effects,
-    mut trace: impl FnMut(&Ray) -> Sample,
+    mut trace: impl FnMut(&Ray) -> u32,
 ) -> (u32, u32) {
     let mut estimate = Estimate::default();
     for index in 0..effects.samples.max(1) {
         let (px, py) = position(x, y, index);
-        let may_stop = estimate.add(trace(&camera.ray_at(px, py)).rgb);
+        let may_stop = estimate.add(trace(&camera.ray_at(px, py)));
         if effects.adaptive && may_stop {
             break;
         }

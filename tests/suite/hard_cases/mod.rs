@@ -13,10 +13,10 @@
 //!
 //! The cases, by what makes them hard: [`vertices_and_lines`] (rays through lattice points,
 //! vertices, along grid lines and cell diagonals), [`planes_and_plateaus`] (rays in or just
-//! above a triangle's plane) and [`extreme_directions`] (near-vertical, very long, shallow,
-//! signed-zero and far-from-unit directions, tiny slopes); and, apart, the cases that also
-//! hold a walk to a query budget, [`query_budgets`] (rays under the surface, blocks and runs
-//! of blocks skipped whole).
+//! above a triangle's plane), [`extreme_directions`] (near-vertical, very long and shallow
+//! rays) and [`scales`] (signed zeros, far-from-unit directions, tiny slopes); and, apart,
+//! the cases that also hold a walk to a query budget, [`query_budgets`] (rays under the
+//! surface, blocks and runs of blocks skipped whole).
 //!
 //! Two tests hold the walks on extreme slopes: the run walk of a path
 //! with a slope below about 2^-63 must still cover its cells (exact mode included), and the
@@ -66,6 +66,7 @@ use Verdict::*;
 mod extreme_directions;
 mod planes_and_plateaus;
 mod query_budgets;
+mod scales;
 mod vertices_and_lines;
 
 /// `|t - t_exact| / max(|t_exact|, 1)`.

@@ -161,13 +161,16 @@ fn sun_seen(terrain: &Terrain, elevation_deg: f64, angle_deg: f64, xs: &[f64]) -
     lighting.effects.sun_rays = 256;
     let shader = shader(terrain, lighting);
     xs.iter()
-        .map(
-            |&x| match shader.sample::<Plain<f64>>(&down_at(x, 16.3), None).shadow {
+        .map(|&x| {
+            match shader
+                .recorded::<Plain<f64>>(&down_at(x, 16.3), None)
+                .shadow
+            {
                 Shadow::Soft(soft) => soft.visible(),
                 Shadow::Cast { shadowed } => f64::from(u8::from(!shadowed)),
                 Shadow::Skipped(_) | Shadow::NotAsked => 1.0,
-            },
-        )
+            }
+        })
         .collect()
 }
 

@@ -280,12 +280,12 @@ fn shadow_ray_tests_decided_exactly_give_the_rational_pixel() {
     for py in 0..512 {
         for px in 0..512 {
             let ray = scene.camera.ray(px, py);
-            let sample = shader.sample::<Settling>(&ray, None);
+            let sample = shader.recorded::<Settling>(&ray, None);
             if !sample.redone {
                 continue;
             }
             again += 1;
-            let rational = shader.sample::<Plain<Exact>>(&ray, None);
+            let rational = shader.recorded::<Plain<Exact>>(&ray, None);
             assert_eq!(
                 (sample.rgb, sample.shadow, sample.primary, sample.secondary),
                 (
@@ -340,4 +340,80 @@ fn a_sun_in_the_slope_plane_shadows_it_exactly() {
     let (cast, shadowed) = shadows([1.0, 0.0, 1.0 + 1e-12]);
     assert!(cast > 500, "{cast} shadow rays");
     assert_eq!(shadowed, 0, "shadowed, sun tilted");
+}
+
+/// A frame counts its pixels' rays straight into its totals and heat-map queries: the same
+/// figures as each pixel's sample recorded on its own ([`Shader::traced`]) and added up, with
+/// shadow rays, sky-light rays and water's reflected rays, in `f64` and exact arithmetic (where a pixel traced again
+/// in rationals counts only that trace). The run walk traces every pixel without a beam, as
+/// a recorded sample is traced.
+#[test]
+fn a_frame_counts_what_its_samples_record() {
+    let scene = builtin_scene("valley513", 40);
+    let terrain = Terrain::new(scene.field.clone());
+    let sky = Effects {
+        sky_light: true,
+        sky_rays: 4,
+        ..Effects::default()
+    };
+    // A lake over the valley floor: its pixels cast reflected rays instead of shadow rays.
+    let water = Effects {
+        water: Some(heightray::render::effects::Water {
+            level: 30.0,
+            colour: [0.05, 0.2, 0.3],
+        }),
+        ..Effects::default()
+    };
+    for (effects, arith) in [
+        (Effects::default(), Arith::F64),
+        (Effects::default(), Arith::Exact),
+        (sky, Arith::F64),
+        (sky, Arith::Exact),
+        (water, Arith::F64),
+        (water, Arith::Exact),
+    ] {
+        let lighting = Lighting {
+            effects,
+            ..scene.lighting
+        };
+        let camera = scene.camera;
+        let frame = render_by(
+            Method::Runs,
+            &terrain,
+            camera,
+            lighting,
+            arith,
+            Culling::default(),
+            1,
+        );
+        let shader = Shader {
+            terrain: &terrain,
+            lighting,
+            method: Method::Runs,
+            culling: Culling::default(),
+        };
+        let mut totals = heightray::render::FrameStats::default();
+        let (width, height) = camera.size();
+        for y in 0..height {
+            for x in 0..width {
+                let (sample, _) = shader.traced(&camera.ray(x, y), arith);
+                let at = (y * width + x) as usize;
+                assert_eq!(sample.rgb, frame.pixels[at], "({x}, {y}) {arith}");
+                let stats = heightray::render::PixelStats::of(&sample);
+                assert_eq!(stats, frame.stats[at], "({x}, {y}) {arith}");
+                totals.add(&sample);
+                totals.effects.add_pixel(1);
+            }
+        }
+        assert_eq!(
+            totals, frame.totals,
+            "{arith} sky light {}",
+            effects.sky_light
+        );
+        // Shadow rays and (with sky light) sky rays were counted.
+        assert!(totals.shadow_rays > 100, "{arith}: {totals:?}");
+        assert_eq!(totals.effects.sky.rays > 0, effects.sky_light, "{arith}");
+        let reflected = totals.effects.water.rays;
+        assert_eq!(reflected > 0, effects.water.is_some(), "{arith}");
+    }
 }
