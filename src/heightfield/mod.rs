@@ -286,6 +286,24 @@ impl Heightfield {
         })
     }
 
+    /// The surface height at `(i + fx, j + fy)`, on the triangle of cell `(i, j)` that holds
+    /// it (the cell split along the diagonal from `P00` to `P11`).
+    pub fn surface_z(&self, (i, j): (usize, usize), (fx, fy): (f64, f64)) -> f64 {
+        let [z00, z10, z01, z11] = [
+            self.z(i, j),
+            self.z(i + 1, j),
+            self.z(i, j + 1),
+            self.z(i + 1, j + 1),
+        ];
+        if fx >= fy {
+            // Triangle P00, P10, P11.
+            z00 + fx * (z10 - z00) + fy * (z11 - z10)
+        } else {
+            // Triangle P00, P11, P01.
+            z00 + fy * (z01 - z00) + fx * (z11 - z01)
+        }
+    }
+
     /// Samples along x.
     pub fn width(&self) -> usize {
         self.width

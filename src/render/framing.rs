@@ -180,15 +180,7 @@ pub fn surface_z(terrain: &Terrain, x: f64, y: f64) -> f64 {
     // The last row and column of samples belong to the cells before them.
     let i = (x.floor() as usize).min(field.width() - 2);
     let j = (y.floor() as usize).min(field.height() - 2);
-    let (fx, fy) = (x - i as f64, y - j as f64);
-    let [z00, z10, z01, z11] = terrain.corner_heights(i, j);
-    if fx >= fy {
-        // Triangle P00, P10, P11.
-        z00 + fx * (z10 - z00) + fy * (z11 - z10)
-    } else {
-        // Triangle P00, P11, P01.
-        z00 + fy * (z01 - z00) + fx * (z11 - z01)
-    }
+    field.surface_z((i, j), (x - i as f64, y - j as f64))
 }
 
 /// The nearest point to `point` in the map's box and not below its surface: a target in the

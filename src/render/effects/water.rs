@@ -73,7 +73,14 @@ impl Water {
         }
         // (The far edges belong to the last cells.)
         let cell = |v: f64, cells: usize| (v as usize).min(cells - 1);
-        (!field.is_hole_cell(cell(x, cells.0), cell(y, cells.1))).then_some(t)
+        let (i, j) = (cell(x, cells.0), cell(y, cells.1));
+        if field.is_hole_cell(i, j) {
+            return None;
+        }
+        // A ray that came in under the surface through the map's side crosses the level
+        // beneath dry land, where there is no water to see.
+        let under_land = field.surface_z((i, j), (x - i as f64, y - j as f64)) >= self.level;
+        (!under_land).then_some(t)
     }
 }
 
@@ -205,6 +212,16 @@ mod tests {
         assert_eq!(
             water.crossing([0.0, 1.0, 5.0], [1.0, 0.0, 1.0], None, &large),
             None
+        );
+        // Land 3 high everywhere: a ray in through the map's side at height 2.5 crosses the
+        // level at x = 1 under the surface, with no terrain hit, and sees no water.
+        let high = Heightfield::from_fn(9, 9, 1, 3.0, |_, _| 1).unwrap();
+        let shallow = [1.0, 0.0, -0.125];
+        assert_eq!(water.crossing([-3.0, 1.0, 2.5], shallow, None, &high), None);
+        // The same ray over the flat map at height 0 meets the water there.
+        assert_eq!(
+            water.crossing([-3.0, 1.0, 2.5], shallow, None, &large),
+            Some(4.0)
         );
     }
 }

@@ -359,7 +359,7 @@ fn a_frame_counts_what_its_samples_record() {
     // A lake over the valley floor: its pixels cast reflected rays instead of shadow rays.
     let water = Effects {
         water: Some(heightray::render::effects::Water {
-            level: 30.0,
+            level: 50.0,
             colour: [0.05, 0.2, 0.3],
         }),
         ..Effects::default()
