@@ -234,19 +234,24 @@ mod tests {
     use super::*;
     use crate::heightfield::Heightfield;
 
+    /// A `w x h` terrain of random samples below 200 (heights below 100) from `seed`, and the
+    /// generator, which goes on from there.
+    fn random_terrain(w: usize, h: usize, mut state: u64) -> (Terrain, impl FnMut() -> u64) {
+        let mut next = move || {
+            state = super::super::sampling::mix(state);
+            state
+        };
+        let samples: Vec<u16> = (0..w * h).map(|_| (next() % 200) as u16).collect();
+        let field = Heightfield::from_fn(w, h, 255, 127.5, |x, y| samples[y * w + x]);
+        (Terrain::new(field.expect("a valid size")), next)
+    }
+
     /// A random field and random points on it: no sample rises above the bound's slope from
     /// the point (the bound against brute force over every sample).
     #[test]
     fn bound_holds_over_every_sample() {
         let (w, h) = (40usize, 33usize);
-        let mut state = 12345u64;
-        let mut next = || {
-            state = super::super::sampling::mix(state);
-            state
-        };
-        let samples: Vec<u16> = (0..w * h).map(|_| (next() % 200) as u16).collect();
-        let field = Heightfield::from_fn(w, h, 255, 127.5, |x, y| samples[y * w + x]).unwrap();
-        let terrain = Terrain::new(field);
+        let (terrain, mut next) = random_terrain(w, h, 12345);
         for _ in 0..200 {
             let (x, y) = (
                 (next() % 10_000) as f64 / 10_000.0 * (w - 1) as f64,
@@ -276,14 +281,7 @@ mod tests {
     #[test]
     fn sector_bound_holds_over_every_sample_in_the_sector() {
         let (w, h) = (30usize, 27usize);
-        let mut state = 777u64;
-        let mut next = || {
-            state = super::super::sampling::mix(state);
-            state
-        };
-        let samples: Vec<u16> = (0..w * h).map(|_| (next() % 200) as u16).collect();
-        let field = Heightfield::from_fn(w, h, 255, 127.5, |x, y| samples[y * w + x]).unwrap();
-        let terrain = Terrain::new(field);
+        let (terrain, mut next) = random_terrain(w, h, 777);
         let unit = |n: u64| (n % 100_000) as f64 / 100_000.0;
         for _ in 0..100 {
             let (x, y) = (unit(next()) * (w - 1) as f64, unit(next()) * (h - 1) as f64);
