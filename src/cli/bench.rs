@@ -26,9 +26,10 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
         args.threads.iter().all(|&t| t > 0),
         "--threads counts must be at least 1"
     );
-    let tracers = args.methods.len() * args.ariths.len() + usize::from(args.embree);
+    // Embree: its triangles by single rays and two packet widths, its grid.
+    let tracers = args.methods.len() * args.ariths.len() + 4 * usize::from(args.embree);
     let configs = tracers * args.threads.len() * ROUNDS;
-    let mut measured = Vec::new();
+    let (mut measured, mut notes) = (Vec::new(), Vec::new());
     if args.sizes.is_empty() {
         let scenes = scenes_or_builtins(&args.scenes)?;
         let size = args.size.unwrap_or(256);
@@ -38,7 +39,7 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
             bar.set_message(name.clone());
             let scene = scene_at_size(source, size)?;
             let terrain = Terrain::new(scene.field.clone());
-            let (rows, references) = measure(args, &scene, &terrain, &bar)?;
+            let (rows, references) = measure(args, &scene, &terrain, &bar, &mut notes)?;
             measured.push(TerrainReport::new(name, &terrain, &rows, &references));
         }
         bar.finish_and_clear();
@@ -50,7 +51,7 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
             let scene = sized_scene(samples, size)?;
             let terrain = fastest_build(&scene);
             bar.set_message(format!("{samples}x{samples}"));
-            let (rows, references) = measure(args, &scene, &terrain, &bar)?;
+            let (rows, references) = measure(args, &scene, &terrain, &bar, &mut notes)?;
             let label = format!("valley landscape (seed {SEED}) at {samples}x{samples}");
             measured.push(TerrainReport::new(label, &terrain, &rows, &references));
         }
@@ -60,10 +61,14 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
         command: std::env::args().collect::<Vec<_>>().join(" "),
         machine: Machine::this(),
         terrains: measured,
+        notes,
     };
     let out = &mut std::io::stdout().lock();
     for terrain in &report.terrains {
         print_table(out, terrain)?;
+    }
+    for note in &report.notes {
+        writeln!(out, "{note}")?;
     }
     if let Err(message) = SimdPath::requested() {
         eprintln!("heightray: {message}");
@@ -195,28 +200,61 @@ struct Built {
     bytes: usize,
 }
 
-/// Embree's scenes of the terrain, its triangles and its grid, when asked for.
+/// Embree's scenes of the terrain when asked for: its triangles traced by single rays and by
+/// packets of 8 and 16 where this build and processor trace them natively (`notes` says
+/// where not), and its grid by single rays.
 #[cfg(feature = "embree")]
-fn references(args: &SpeedArgs, terrain: &Terrain) -> anyhow::Result<Vec<Built>> {
-    use heightray::bench::embree::{EmbreeScene, Geometry};
-    let geometries = if args.embree {
-        [Geometry::Triangles, Geometry::Grid].as_slice()
-    } else {
-        &[]
-    };
-    let build = |&geometry| -> anyhow::Result<Built> {
-        let scene = EmbreeScene::build(terrain, geometry)?;
-        Ok(Built {
-            build: scene.build_time(),
-            bytes: scene.bytes(),
-            tracer: Box::new(scene),
-        })
-    };
-    geometries.iter().map(build).collect()
+fn references(
+    args: &SpeedArgs,
+    terrain: &Terrain,
+    notes: &mut Vec<String>,
+) -> anyhow::Result<Vec<Built>> {
+    use heightray::bench::embree::{Api, EmbreeScene, EmbreeTracer, Geometry};
+    use std::sync::Arc;
+    let mut built = Vec::new();
+    if !args.embree {
+        return Ok(built);
+    }
+    for geometry in [Geometry::Triangles, Geometry::Grid] {
+        let scene = Arc::new(EmbreeScene::build(terrain, geometry)?);
+        let note = format!("Embree {}", scene.version());
+        if !notes.contains(&note) {
+            notes.push(note);
+        }
+        let apis = match geometry {
+            Geometry::Triangles => [Api::Single, Api::Packets8, Api::Packets16].as_slice(),
+            Geometry::Grid => &[Api::Single],
+        };
+        for &api in apis {
+            if api != Api::Single && !scene.native_packets(api.width()) {
+                let note = format!(
+                    "Embree's {}-wide packets: not native in this build of Embree on this processor (rtcGetDeviceProperty), not measured",
+                    api.width()
+                );
+                if !notes.contains(&note) {
+                    notes.push(note);
+                }
+                continue;
+            }
+            built.push(Built {
+                build: scene.build_time(),
+                bytes: scene.bytes(),
+                tracer: Box::new(EmbreeTracer {
+                    scene: scene.clone(),
+                    api,
+                }),
+            });
+        }
+    }
+    Ok(built)
 }
 
 #[cfg(not(feature = "embree"))]
-fn references(args: &SpeedArgs, _terrain: &Terrain) -> anyhow::Result<Vec<Built>> {
+fn references(
+    args: &SpeedArgs,
+    _terrain: &Terrain,
+    _notes: &mut Vec<String>,
+) -> anyhow::Result<Vec<Built>> {
     anyhow::ensure!(!args.embree, WITHOUT_EMBREE);
     Ok(Vec::new())
 }
@@ -228,8 +266,9 @@ fn measure(
     scene: &Scene,
     terrain: &Terrain,
     bar: &ProgressBar,
+    notes: &mut Vec<String>,
 ) -> anyhow::Result<(Vec<ThroughputRow>, Vec<ReferenceBuild>)> {
-    let built = references(args, terrain)?;
+    let built = references(args, terrain, notes)?;
     let tracers: Vec<&dyn Reference> = built.iter().map(|b| &*b.tracer).collect();
     let rows = throughput(
         scene,

@@ -15,6 +15,9 @@ pub struct SpeedReport {
     pub command: String,
     pub machine: Machine,
     pub terrains: Vec<TerrainReport>,
+    /// What the run says of itself beside the tables: Embree's version, and which of its
+    /// packet widths were not measured and why.
+    pub notes: Vec<String>,
 }
 
 /// The machine the figures were measured on.
@@ -51,6 +54,25 @@ pub struct TerrainReport {
     pub rows: Vec<RowReport>,
     /// Figures of the reference tracers that are not frame times.
     pub references: Vec<ReferenceReport>,
+    /// Each of heightray's rows against each reference tracer's at the same thread count.
+    pub versus_references: Vec<Versus>,
+}
+
+/// A row of heightray's against a reference tracer's row at the same thread count.
+#[derive(Serialize)]
+pub struct Versus {
+    pub method: String,
+    pub arith: String,
+    pub threads: usize,
+    pub reference: String,
+    /// heightray's primary (camera) rays per second over the reference's: above 1, heightray
+    /// is faster.
+    pub camera_x: f64,
+    /// heightray's shadow rays per second over the reference's, where both were measured.
+    pub shadow_x: Option<f64>,
+    /// heightray's time for the frame with shadows over the reference's: below 1, heightray
+    /// is faster.
+    pub frame_time_x: f64,
 }
 
 /// One configuration: a tracer at a thread count.
@@ -188,13 +210,40 @@ impl TerrainReport {
             pixels,
             primary_hits: [r.hits.0, r.hits.1],
         };
+        let rows: Vec<RowReport> = rows.iter().map(row_report).collect();
+        let versus_references = versus(&rows, references);
         TerrainReport {
             label,
             samples: [field.width(), field.height()],
-            rows: rows.iter().map(row_report).collect(),
+            rows,
             references: references.iter().map(reference_report).collect(),
+            versus_references,
         }
     }
+}
+
+/// Every heightray row (named by a method) against every reference row (named by one of
+/// `references`) at the same thread count.
+fn versus(rows: &[RowReport], references: &[ReferenceBuild]) -> Vec<Versus> {
+    let is_reference = |row: &RowReport| references.iter().any(|r| r.name == row.method);
+    let (theirs, ours): (Vec<&RowReport>, Vec<&RowReport>) =
+        rows.iter().partition(|r| is_reference(r));
+    let mut pairs = Vec::new();
+    for row in ours {
+        for other in theirs.iter().filter(|o| o.threads == row.threads) {
+            let shadow = row.shadow_mrays_per_s.zip(other.shadow_mrays_per_s);
+            pairs.push(Versus {
+                method: row.method.clone(),
+                arith: row.arith.clone(),
+                threads: row.threads,
+                reference: other.method.clone(),
+                camera_x: row.primary_mrays_per_s / other.primary_mrays_per_s,
+                shadow_x: shadow.map(|(ours, theirs)| ours / theirs),
+                frame_time_x: row.frame_with_shadows_ms / other.frame_with_shadows_ms,
+            });
+        }
+    }
+    pairs
 }
 
 /// Ratio columns: two decimals, `-` where there is none.
@@ -231,11 +280,47 @@ pub fn print_table(out: &mut impl Write, terrain: &TerrainReport) -> io::Result<
     if !terrain.references.is_empty() {
         writeln!(out, "(embree: Embree 3 on the terrain's triangles, or on its grid, in f32, built on one thread; its bytes/sample are all it holds, vertices included, where heightray's are what it holds beyond the 2-byte samples)")?;
     }
+    print_versus(out, terrain)?;
     for r in &terrain.references {
         writeln!(out, "({}: its frame with shadows differs from the mipmap's in f64 in {} of {} pixels by more than {LEVELS_APART} levels in a channel; primary hits: mipmap {}, {} {})",
             r.name, r.differing_pixels, r.pixels, r.primary_hits[0], r.name, r.primary_hits[1])?;
     }
     Ok(())
+}
+
+/// heightray's rows against the reference tracers': one line per row, in each column its
+/// ratio to every reference in turn.
+fn print_versus(out: &mut impl Write, terrain: &TerrainReport) -> io::Result<()> {
+    if terrain.versus_references.is_empty() {
+        return Ok(());
+    }
+    let names: Vec<&str> = terrain.references.iter().map(|r| r.name.as_str()).collect();
+    let names = names.join(" / ");
+    writeln!(out, "\nheightray against {names}, at the same thread count: rays per second x theirs (above 1: heightray is faster), frame time x theirs (below 1: heightray is faster)")?;
+    writeln!(out, "| method | arith | threads | camera rays/s x theirs | shadow rays/s x theirs | frame with shadows time x theirs |")?;
+    writeln!(out, "|---|---|---:|---:|---:|---:|")?;
+    let mut lines = terrain
+        .versus_references
+        .chunk_by(|a, b| (&a.method, &a.arith, a.threads) == (&b.method, &b.arith, b.threads));
+    lines.try_for_each(|line| {
+        let cells = |cell: &dyn Fn(&Versus) -> Option<f64>| {
+            let each = terrain.references.iter().map(|r| {
+                let versus = line.iter().find(|v| v.reference == r.name);
+                ratio(versus.and_then(cell))
+            });
+            each.collect::<Vec<_>>().join(" / ")
+        };
+        writeln!(
+            out,
+            "| {} | {} | {} | {} | {} | {} |",
+            line[0].method,
+            line[0].arith,
+            line[0].threads,
+            cells(&|v| Some(v.camera_x)),
+            cells(&|v| v.shadow_x),
+            cells(&|v| Some(v.frame_time_x)),
+        )
+    })
 }
 
 /// How each tracer's time per primary ray grows with the terrain size (one thread) beside

@@ -1,6 +1,7 @@
 //! The part of Embree 3's C API (`rtcore.h`, 3.13) the comparison uses, declared by hand: a
-//! dozen functions and the single-ray structures, laid out as the header lays them out for
-//! `RTC_MAX_INSTANCE_LEVEL_COUNT` 1 and `RTC_MIN_WIDTH` 0 (Debian's `libembree-dev` build).
+//! score of functions, the single-ray structures and the 8- and 16-wide packets, laid out as
+//! the header lays them out for `RTC_MAX_INSTANCE_LEVEL_COUNT` 1 and `RTC_MIN_WIDTH` 0
+//! (Debian's `libembree-dev` build).
 
 use std::ffi::{c_char, c_void};
 
@@ -20,6 +21,13 @@ pub const FORMAT_GRID: u32 = 0xA001;
 pub const GRID_MAX_SIDE: usize = 32767;
 pub const ERROR_NONE: u32 = 0;
 pub const INVALID_GEOMETRY_ID: u32 = u32::MAX;
+/// `RTC_DEVICE_PROPERTY_VERSION`: the version as one number, 31305 for 3.13.5.
+pub const DEVICE_PROPERTY_VERSION: u32 = 0;
+/// `RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED`; the 16-wide one follows it.
+pub const DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED: u32 = 33;
+pub const DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED: u32 = 34;
+/// `RTC_INTERSECT_CONTEXT_FLAG_COHERENT`: the rays of a call are coherent.
+const INTERSECT_CONTEXT_FLAG_COHERENT: u32 = 1;
 
 /// `RTCGrid`: a `width` x `height` block of the vertex buffer, rows `stride` vertices apart.
 #[repr(C)]
@@ -44,6 +52,14 @@ impl IntersectContext {
             flags: 0,
             filter: std::ptr::null(),
             inst_id: [INVALID_GEOMETRY_ID],
+        }
+    }
+
+    /// A context for coherent rays (`RTC_INTERSECT_CONTEXT_FLAG_COHERENT`).
+    pub fn coherent() -> Self {
+        IntersectContext {
+            flags: INTERSECT_CONTEXT_FLAG_COHERENT,
+            ..IntersectContext::new()
         }
     }
 }
@@ -82,6 +98,113 @@ pub struct RayHit {
     pub hit: Hit,
 }
 
+/// `RTCRay8` and `RTCRay16`: `N` rays, one array per field. 64-byte aligned, as the 16-wide
+/// packet must be (the 8-wide needs 32): every field array of either is a multiple of 32
+/// bytes, so the fields sit where the header puts them.
+#[repr(C, align(64))]
+#[derive(Clone, Copy)]
+pub struct RayN<const N: usize> {
+    pub org: [[f32; N]; 3],
+    pub tnear: [f32; N],
+    pub dir: [[f32; N]; 3],
+    pub time: [f32; N],
+    pub tfar: [f32; N],
+    pub mask: [u32; N],
+    pub id: [u32; N],
+    pub flags: [u32; N],
+}
+
+/// `RTCHit8` and `RTCHit16`.
+#[repr(C, align(64))]
+#[derive(Clone, Copy)]
+pub struct HitN<const N: usize> {
+    pub ng: [[f32; N]; 3],
+    pub u: [f32; N],
+    pub v: [f32; N],
+    pub prim_id: [u32; N],
+    pub geom_id: [u32; N],
+    pub inst_id: [[u32; N]; 1],
+}
+
+/// `RTCRayHit8` and `RTCRayHit16`.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct RayHitN<const N: usize> {
+    pub ray: RayN<N>,
+    pub hit: HitN<N>,
+}
+
+/// A packet's valid mask: -1 for a lane to trace, 0 for one to leave alone, aligned as its
+/// packet.
+#[repr(C, align(64))]
+#[derive(Clone, Copy)]
+pub struct Valid<const N: usize>(pub [i32; N]);
+
+/// The packet calls of one width.
+pub trait Packet<const N: usize> {
+    /// `rtcIntersect8` or `rtcIntersect16`.
+    ///
+    /// # Safety
+    /// A committed scene.
+    unsafe fn intersect(
+        valid: &Valid<N>,
+        scene: Scene,
+        context: &mut IntersectContext,
+        rayhit: &mut RayHitN<N>,
+    );
+    /// `rtcOccluded8` or `rtcOccluded16`.
+    ///
+    /// # Safety
+    /// A committed scene.
+    unsafe fn occluded(
+        valid: &Valid<N>,
+        scene: Scene,
+        context: &mut IntersectContext,
+        ray: &mut RayN<N>,
+    );
+}
+
+/// The packet width `N` as a type, to pick its calls.
+pub struct Width<const N: usize>;
+
+impl Packet<8> for Width<8> {
+    unsafe fn intersect(
+        valid: &Valid<8>,
+        scene: Scene,
+        context: &mut IntersectContext,
+        rayhit: &mut RayHitN<8>,
+    ) {
+        rtcIntersect8(valid.0.as_ptr(), scene, context, rayhit);
+    }
+    unsafe fn occluded(
+        valid: &Valid<8>,
+        scene: Scene,
+        context: &mut IntersectContext,
+        ray: &mut RayN<8>,
+    ) {
+        rtcOccluded8(valid.0.as_ptr(), scene, context, ray);
+    }
+}
+
+impl Packet<16> for Width<16> {
+    unsafe fn intersect(
+        valid: &Valid<16>,
+        scene: Scene,
+        context: &mut IntersectContext,
+        rayhit: &mut RayHitN<16>,
+    ) {
+        rtcIntersect16(valid.0.as_ptr(), scene, context, rayhit);
+    }
+    unsafe fn occluded(
+        valid: &Valid<16>,
+        scene: Scene,
+        context: &mut IntersectContext,
+        ray: &mut RayN<16>,
+    ) {
+        rtcOccluded16(valid.0.as_ptr(), scene, context, ray);
+    }
+}
+
 /// `RTCMemoryMonitorFunction`: told of every allocation (`bytes` > 0) and release (< 0).
 pub type MemoryMonitor = extern "C" fn(user: *mut c_void, bytes: isize, post: bool) -> bool;
 
@@ -90,6 +213,7 @@ extern "C" {
     pub fn rtcNewDevice(config: *const c_char) -> Device;
     pub fn rtcReleaseDevice(device: Device);
     pub fn rtcGetDeviceError(device: Device) -> u32;
+    pub fn rtcGetDeviceProperty(device: Device, property: u32) -> isize;
     pub fn rtcSetDeviceMemoryMonitorFunction(device: Device, f: MemoryMonitor, user: *mut c_void);
     pub fn rtcNewScene(device: Device) -> Scene;
     pub fn rtcReleaseScene(scene: Scene);
@@ -108,6 +232,30 @@ extern "C" {
     ) -> *mut c_void;
     pub fn rtcIntersect1(scene: Scene, context: *mut IntersectContext, rayhit: *mut RayHit);
     pub fn rtcOccluded1(scene: Scene, context: *mut IntersectContext, ray: *mut Ray);
+    fn rtcIntersect8(
+        valid: *const i32,
+        scene: Scene,
+        context: *mut IntersectContext,
+        rayhit: *mut RayHitN<8>,
+    );
+    fn rtcIntersect16(
+        valid: *const i32,
+        scene: Scene,
+        context: *mut IntersectContext,
+        rayhit: *mut RayHitN<16>,
+    );
+    fn rtcOccluded8(
+        valid: *const i32,
+        scene: Scene,
+        context: *mut IntersectContext,
+        ray: *mut RayN<8>,
+    );
+    fn rtcOccluded16(
+        valid: *const i32,
+        scene: Scene,
+        context: *mut IntersectContext,
+        ray: *mut RayN<16>,
+    );
 }
 
 #[cfg(test)]
@@ -127,5 +275,24 @@ mod tests {
         assert_eq!(size_of::<IntersectContext>(), 24);
         assert_eq!(size_of::<Grid>(), 12);
         assert_eq!(offset_of!(IntersectContext, inst_id), 16);
+    }
+
+    /// `RTCRayHit8` and `RTCRayHit16`: twelve and eight arrays of `N` four-byte fields, the
+    /// hit right after the ray, 32- and 64-byte aligned at least.
+    #[test]
+    fn packets_are_laid_out_as_the_header_says() {
+        assert_eq!(size_of::<RayN<8>>(), 12 * 8 * 4);
+        assert_eq!(size_of::<HitN<8>>(), 8 * 8 * 4);
+        assert_eq!(offset_of!(RayHitN<8>, hit), 384);
+        assert_eq!(size_of::<RayHitN<8>>(), 640);
+        assert_eq!(size_of::<RayHitN<16>>(), 1280);
+        assert_eq!(offset_of!(RayHitN<16>, hit), 768);
+        assert_eq!(offset_of!(RayN<8>, tnear), 96);
+        assert_eq!(offset_of!(RayN<8>, tfar), 256);
+        assert_eq!(offset_of!(RayN<16>, flags), 704);
+        assert_eq!(offset_of!(HitN<16>, prim_id), 320);
+        assert_eq!(offset_of!(HitN<8>, inst_id), 224);
+        assert!(align_of::<RayHitN<8>>() >= 32 && align_of::<RayHitN<16>>() >= 64);
+        assert!(align_of::<Valid<8>>() >= 32 && align_of::<Valid<16>>() >= 64);
     }
 }
