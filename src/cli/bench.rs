@@ -23,16 +23,17 @@ use std::time::{Duration, Instant};
 
 pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
     anyhow::ensure!(
-        args.threads.iter().all(|&t| t > 0),
+        args.frames.threads.iter().all(|&t| t > 0),
         "--threads counts must be at least 1"
     );
     // Embree: its triangles by single rays and two packet widths, its grid.
-    let tracers = args.methods.len() * args.ariths.len() + 4 * usize::from(args.embree);
-    let configs = tracers * args.threads.len() * ROUNDS;
+    let tracers =
+        args.frames.methods.len() * args.frames.ariths.len() + 4 * usize::from(args.embree);
+    let configs = tracers * args.frames.threads.len() * ROUNDS;
     let (mut measured, mut notes) = (Vec::new(), Vec::new());
-    if args.sizes.is_empty() {
-        let scenes = scenes_or_builtins(&args.scenes)?;
-        let size = args.size.unwrap_or(256);
+    if args.frames.sizes.is_empty() {
+        let scenes = scenes_or_builtins(&args.frames.scenes)?;
+        let size = args.frames.size.unwrap_or(256);
         let bar = progress_bar(configs * scenes.len());
         for source in &scenes {
             let name = source.path.display().to_string();
@@ -44,9 +45,9 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
         }
         bar.finish_and_clear();
     } else {
-        let size = args.size.unwrap_or(512);
-        let bar = progress_bar(configs * args.sizes.len());
-        for &samples in &args.sizes {
+        let size = args.frames.size.unwrap_or(512);
+        let bar = progress_bar(configs * args.frames.sizes.len());
+        for &samples in &args.frames.sizes {
             bar.set_message(format!("generating {samples}x{samples}"));
             let scene = sized_scene(samples, size)?;
             let terrain = fastest_build(&scene);
@@ -78,7 +79,7 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
         "SIMD path of the packet walk (`render --packets on`): {} (forced with {SIMD_VARIABLE}=scalar|avx2|avx512)",
         SimdPath::active()
     )?;
-    if report.terrains.len() > 1 && !args.sizes.is_empty() {
+    if report.terrains.len() > 1 && !args.frames.sizes.is_empty() {
         print_growth(out, &report.terrains)?;
     }
     if let Some(path) = &args.out {
@@ -273,9 +274,9 @@ fn measure(
     let rows = throughput(
         scene,
         terrain,
-        &args.methods,
-        &args.ariths,
-        &args.threads,
+        &args.frames.methods,
+        &args.frames.ariths,
+        &args.frames.threads,
         &tracers,
         &mut || bar.inc(1),
     )?;

@@ -2,6 +2,7 @@
 
 mod accuracy;
 mod bench;
+mod bench_compare;
 mod bench_effects;
 mod generate;
 mod loading;
@@ -41,7 +42,8 @@ pub enum Command {
     /// Trace rays against a height field and print one JSON object per ray.
     Trace(TraceArgs),
     /// Benchmarks: `speed` (rays per second of whole frames), `accuracy` (time against error),
-    /// `textbook` (the mipmap walk against the textbook walk without its guarantees).
+    /// `textbook` (the mipmap walk against the textbook walk without its guarantees),
+    /// `effects` (what each effect costs), `compare` (two binaries' `speed` in turn).
     #[command(subcommand)]
     Bench(BenchCommand),
     /// Write a generated landscape (16-bit grayscale PNG) of the built-in generator.
@@ -100,6 +102,9 @@ pub enum BenchCommand {
     /// alone and all together in one run, as ratios to the plain frame; and how samples per
     /// pixel converge to a supersampled reference.
     Effects(EffectsArgs),
+    /// Two heightray binaries measure the same `bench speed` frames in turn, round after
+    /// round: each row's rays per second and frame time, new over old, with their spread.
+    Compare(CompareArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -126,6 +131,21 @@ pub struct EffectsArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct SpeedArgs {
+    #[command(flatten)]
+    pub frames: SpeedFrames,
+    /// Also measure Embree 3 on the terrain's triangles (single rays, and packets of 8 and 16
+    /// where native) and on its grid, same view, same run (needs a build with `--features
+    /// embree`, which links libembree3).
+    #[arg(long)]
+    pub embree: bool,
+    /// Also write every figure as JSON here (the tables on stdout are made from the same data).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// The frames `bench speed` measures: which terrains and view, traced how.
+#[derive(clap::Args, Debug)]
+pub struct SpeedFrames {
     /// Scene files (default: the built-in scenes).
     #[arg(long, value_delimiter = ',', conflicts_with = "sizes")]
     pub scenes: Vec<PathBuf>,
@@ -146,11 +166,24 @@ pub struct SpeedArgs {
     /// Thread counts, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "1,2")]
     pub threads: Vec<usize>,
-    /// Also measure Embree 3 on the terrain's triangles, same view, same run (needs a build
-    /// with `--features embree`, which links libembree3).
-    #[arg(long)]
-    pub embree: bool,
-    /// Also write every figure as JSON here (the tables on stdout are made from the same data).
+}
+
+#[derive(clap::Args, Debug)]
+pub struct CompareArgs {
+    /// The heightray binary to compare against (an older build, say).
+    #[arg(long, value_name = "BIN")]
+    pub baseline: PathBuf,
+    /// The heightray binary compared with it (default: this one).
+    #[arg(long, value_name = "BIN")]
+    pub candidate: Option<PathBuf>,
+    /// Runs of `bench speed` by each binary, alternating: baseline, candidate, baseline...
+    #[arg(long, default_value_t = 5)]
+    pub rounds: usize,
+    /// The configuration both binaries measure, as `bench speed` takes it (its flags must be
+    /// ones the baseline knows).
+    #[command(flatten)]
+    pub frames: SpeedFrames,
+    /// Also write every figure as JSON here.
     #[arg(long)]
     pub out: Option<PathBuf>,
 }
@@ -304,6 +337,7 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Bench(BenchCommand::Accuracy(args)) => accuracy::run(&args),
         Command::Bench(BenchCommand::Textbook(args)) => bench::textbook(&args),
         Command::Bench(BenchCommand::Effects(args)) => bench_effects::run(&args),
+        Command::Bench(BenchCommand::Compare(args)) => bench_compare::run(&args),
     }
 }
 

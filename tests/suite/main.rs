@@ -9,6 +9,7 @@ mod common;
 mod bad_input;
 mod beams;
 mod cli_bench;
+mod cli_compare;
 mod cli_paths;
 mod cli_render;
 mod cli_trace;

@@ -78,7 +78,8 @@ impl EmbreeScene {
             let mut pixels = Vec::with_capacity((width * rows) as usize);
             let (mut lanes, mut rays) = (Vec::with_capacity(N), Vec::with_capacity(N));
             for x0 in (0..width).step_by(TILE_WIDTH as usize) {
-                (lanes.clear(), rays.clear());
+                lanes.clear();
+                rays.clear();
                 for y in y0..y1 {
                     for x in x0..(x0 + TILE_WIDTH).min(width) {
                         lanes.push((x, y));
