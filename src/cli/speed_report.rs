@@ -383,3 +383,83 @@ pub fn print_growth<W: Write>(out: &mut W, terrains: &[TerrainReport]) -> io::Re
     };
     lines(out, &queries)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(
+        method: &str,
+        threads: usize,
+        camera: f64,
+        shadow: Option<f64>,
+        frame: f64,
+    ) -> RowReport {
+        RowReport {
+            method: method.into(),
+            arith: "f64".into(),
+            threads,
+            build_ms: 0.0,
+            bytes_per_sample: 0.0,
+            primary_rays: 100,
+            shadow_rays: 50,
+            primary_mrays_per_s: camera,
+            shadow_mrays_per_s: shadow,
+            frame_ms: frame / 2.0,
+            frame_with_shadows_ms: frame,
+            time_x_f64: None,
+            threads_x_one: None,
+            queries_per_primary_ray: None,
+        }
+    }
+
+    fn reference(name: &str) -> ReferenceBuild {
+        ReferenceBuild {
+            name: name.into(),
+            build: Duration::ZERO,
+            bytes: 0,
+            differing: 0,
+            hits: (0, 0),
+        }
+    }
+
+    /// Each of heightray's rows against each reference's row at its thread count: rays per
+    /// second ours over theirs, frame time ours over theirs, no shadow ratio where either
+    /// shadow rate is missing.
+    #[test]
+    fn heightray_is_set_against_every_reference_at_the_same_thread_count() {
+        let rows = [
+            row("mipmap", 1, 3.0, Some(2.0), 100.0),
+            row("mipmap", 2, 6.0, None, 50.0),
+            row("embree triangles", 1, 2.0, Some(4.0), 125.0),
+            row("embree triangles 8-wide", 1, 4.0, Some(1.0), 80.0),
+            row("embree triangles", 2, 3.0, Some(4.0), 40.0),
+        ];
+        let references = [
+            reference("embree triangles"),
+            reference("embree triangles 8-wide"),
+        ];
+        let pairs = versus(&rows, &references);
+        let got: Vec<_> = pairs
+            .iter()
+            .map(|v| {
+                (
+                    v.threads,
+                    v.reference.as_str(),
+                    v.camera_x,
+                    v.shadow_x,
+                    v.frame_time_x,
+                )
+            })
+            .collect();
+        assert_eq!(
+            got,
+            [
+                (1, "embree triangles", 1.5, Some(0.5), 0.8),
+                (1, "embree triangles 8-wide", 0.75, Some(2.0), 1.25),
+                (2, "embree triangles", 2.0, None, 1.25),
+            ]
+        );
+        assert!(pairs.iter().all(|v| v.method == "mipmap"));
+    }
+}

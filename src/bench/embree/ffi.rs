@@ -167,43 +167,48 @@ pub trait Packet<const N: usize> {
 /// The packet width `N` as a type, to pick its calls.
 pub struct Width<const N: usize>;
 
-impl Packet<8> for Width<8> {
-    unsafe fn intersect(
-        valid: &Valid<8>,
-        scene: Scene,
-        context: &mut IntersectContext,
-        rayhit: &mut RayHitN<8>,
-    ) {
-        rtcIntersect8(valid.0.as_ptr(), scene, context, rayhit);
-    }
-    unsafe fn occluded(
-        valid: &Valid<8>,
-        scene: Scene,
-        context: &mut IntersectContext,
-        ray: &mut RayN<8>,
-    ) {
-        rtcOccluded8(valid.0.as_ptr(), scene, context, ray);
-    }
+/// Embree's calls of one packet width, and `Packet<N>` for `Width<N>` made of them.
+macro_rules! packet_calls {
+    ($n:literal, $intersect:ident, $occluded:ident) => {
+        #[link(name = "embree3")]
+        extern "C" {
+            fn $intersect(
+                valid: *const i32,
+                scene: Scene,
+                context: *mut IntersectContext,
+                rayhit: *mut RayHitN<$n>,
+            );
+            fn $occluded(
+                valid: *const i32,
+                scene: Scene,
+                context: *mut IntersectContext,
+                ray: *mut RayN<$n>,
+            );
+        }
+
+        impl Packet<$n> for Width<$n> {
+            unsafe fn intersect(
+                valid: &Valid<$n>,
+                scene: Scene,
+                context: &mut IntersectContext,
+                rayhit: &mut RayHitN<$n>,
+            ) {
+                $intersect(valid.0.as_ptr(), scene, context, rayhit);
+            }
+            unsafe fn occluded(
+                valid: &Valid<$n>,
+                scene: Scene,
+                context: &mut IntersectContext,
+                ray: &mut RayN<$n>,
+            ) {
+                $occluded(valid.0.as_ptr(), scene, context, ray);
+            }
+        }
+    };
 }
 
-impl Packet<16> for Width<16> {
-    unsafe fn intersect(
-        valid: &Valid<16>,
-        scene: Scene,
-        context: &mut IntersectContext,
-        rayhit: &mut RayHitN<16>,
-    ) {
-        rtcIntersect16(valid.0.as_ptr(), scene, context, rayhit);
-    }
-    unsafe fn occluded(
-        valid: &Valid<16>,
-        scene: Scene,
-        context: &mut IntersectContext,
-        ray: &mut RayN<16>,
-    ) {
-        rtcOccluded16(valid.0.as_ptr(), scene, context, ray);
-    }
-}
+packet_calls!(8, rtcIntersect8, rtcOccluded8);
+packet_calls!(16, rtcIntersect16, rtcOccluded16);
 
 /// `RTCMemoryMonitorFunction`: told of every allocation (`bytes` > 0) and release (< 0).
 pub type MemoryMonitor = extern "C" fn(user: *mut c_void, bytes: isize, post: bool) -> bool;
@@ -232,30 +237,6 @@ extern "C" {
     ) -> *mut c_void;
     pub fn rtcIntersect1(scene: Scene, context: *mut IntersectContext, rayhit: *mut RayHit);
     pub fn rtcOccluded1(scene: Scene, context: *mut IntersectContext, ray: *mut Ray);
-    fn rtcIntersect8(
-        valid: *const i32,
-        scene: Scene,
-        context: *mut IntersectContext,
-        rayhit: *mut RayHitN<8>,
-    );
-    fn rtcIntersect16(
-        valid: *const i32,
-        scene: Scene,
-        context: *mut IntersectContext,
-        rayhit: *mut RayHitN<16>,
-    );
-    fn rtcOccluded8(
-        valid: *const i32,
-        scene: Scene,
-        context: *mut IntersectContext,
-        ray: *mut RayN<8>,
-    );
-    fn rtcOccluded16(
-        valid: *const i32,
-        scene: Scene,
-        context: *mut IntersectContext,
-        ray: *mut RayN<16>,
-    );
 }
 
 #[cfg(test)]
