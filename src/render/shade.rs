@@ -541,6 +541,6 @@ pub(super) fn zenith() -> DVec3 {
 
 /// Linear colour to 0x00RRGGBB with a display gamma of 2.2.
 fn pack(c: DVec3) -> u32 {
-    let channel = |v: f64| u32::from(gamma::byte(v));
-    (channel(c.x) << 16) | (channel(c.y) << 8) | channel(c.z)
+    let [r, g, b] = gamma::bytes(c.to_array()).map(u32::from);
+    (r << 16) | (g << 8) | b
 }
