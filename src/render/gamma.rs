@@ -71,6 +71,13 @@ pub fn bytes(c: [f64; 3]) -> [u8; 3] {
     c.map(|v| tables.byte(v))
 }
 
+/// A linear colour as 0x00RRGGBB.
+#[inline(always)]
+pub fn pack(c: [f64; 3]) -> u32 {
+    let [r, g, b] = bytes(c).map(u32::from);
+    (r << 16) | (g << 8) | b
+}
+
 impl Tables {
     /// The display byte of linear value `v`.
     #[inline(always)]

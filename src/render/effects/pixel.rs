@@ -114,7 +114,6 @@ impl Estimate {
     /// The samples' mean, 0x00RRGGBB (black before any).
     pub fn rgb(&self) -> u32 {
         let n = f64::from(self.taken.max(1));
-        let [r, g, b] = gamma::bytes(self.sum.map(|s| s / n)).map(u32::from);
-        (r << 16) | (g << 8) | b
+        gamma::pack(self.sum.map(|s| s / n))
     }
 }
