@@ -352,34 +352,36 @@ struct RayIn<'a, S> {
 
 impl<S: Scalar> WithWalk for RayIn<'_, S> {
     type Output = ScalarTrace<S>;
-    /// [`trace_scalar`] along walk `W`, the cells it reaches listed if the options ask.
     #[inline(always)]
     fn with<W: Walk>(self) -> ScalarTrace<S> {
-        if self.walk_options.record_cells {
-            return trace_recorded::<S, W>(self);
-        }
-        trace_walk::<S, Unrecorded, W>(self)
+        trace_walk::<S, W>(&self)
     }
+}
+
+/// [`trace_scalar`] along walk `W`, the cells it reaches listed if the options ask.
+fn trace_walk<S: Scalar, W: Walk>(ray: &RayIn<'_, S>) -> ScalarTrace<S> {
+    if ray.walk_options.record_cells {
+        return trace_recorded::<S, W>(ray);
+    }
+    trace_logged::<S, Unrecorded, W>(ray.terrain, ray.o, ray.d, ray.dir_f64, ray.walk_options)
 }
 
 /// [`trace_walk`] listing the cells.
 // (Out of line: the renderer's rays list none.)
 #[inline(never)]
-fn trace_recorded<S: Scalar, W: Walk>(ray: RayIn<'_, S>) -> ScalarTrace<S> {
-    trace_walk::<S, Recorded, W>(ray)
+fn trace_recorded<S: Scalar, W: Walk>(ray: &RayIn<'_, S>) -> ScalarTrace<S> {
+    trace_logged::<S, Recorded, W>(ray.terrain, ray.o, ray.d, ray.dir_f64, ray.walk_options)
 }
 
-/// [`trace_scalar`] along walk `W`, noting the cells it reaches in a `C`: the same walks
-/// whatever `C` is.
+/// [`trace_walk`] noting the cells it reaches in a `C`: the same walks whatever `C` is.
 #[inline(always)]
-fn trace_walk<S: Scalar, C: CellLog, W: Walk>(ray: RayIn<'_, S>) -> ScalarTrace<S> {
-    let RayIn {
-        terrain,
-        o,
-        d,
-        dir_f64,
-        walk_options,
-    } = ray;
+fn trace_logged<S: Scalar, C: CellLog, W: Walk>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+) -> ScalarTrace<S> {
     // (Once per ray: for rationals each component's enclosure is a fraction's subtraction.)
     let near = f64_ray(o, d);
     let certified =
