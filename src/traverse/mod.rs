@@ -354,23 +354,42 @@ impl<S: Scalar> WithWalk for RayIn<'_, S> {
     type Output = ScalarTrace<S>;
     #[inline(always)]
     fn with<W: Walk>(self) -> ScalarTrace<S> {
-        trace_walk::<S, W>(&self)
+        let RayIn {
+            terrain,
+            o,
+            d,
+            dir_f64,
+            walk_options,
+        } = self;
+        trace_walk::<S, W>(terrain, o, d, dir_f64, walk_options)
     }
 }
 
 /// [`trace_scalar`] along walk `W`, the cells it reaches listed if the options ask.
-fn trace_walk<S: Scalar, W: Walk>(ray: &RayIn<'_, S>) -> ScalarTrace<S> {
-    if ray.walk_options.record_cells {
-        return trace_recorded::<S, W>(ray);
+fn trace_walk<S: Scalar, W: Walk>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+) -> ScalarTrace<S> {
+    if walk_options.record_cells {
+        return trace_recorded::<S, W>(terrain, o, d, dir_f64, walk_options);
     }
-    trace_logged::<S, Unrecorded, W>(ray.terrain, ray.o, ray.d, ray.dir_f64, ray.walk_options)
+    trace_logged::<S, Unrecorded, W>(terrain, o, d, dir_f64, walk_options)
 }
 
 /// [`trace_walk`] listing the cells.
 // (Out of line: the renderer's rays list none.)
 #[inline(never)]
-fn trace_recorded<S: Scalar, W: Walk>(ray: &RayIn<'_, S>) -> ScalarTrace<S> {
-    trace_logged::<S, Recorded, W>(ray.terrain, ray.o, ray.d, ray.dir_f64, ray.walk_options)
+fn trace_recorded<S: Scalar, W: Walk>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+) -> ScalarTrace<S> {
+    trace_logged::<S, Recorded, W>(terrain, o, d, dir_f64, walk_options)
 }
 
 /// [`trace_walk`] noting the cells it reaches in a `C`: the same walks whatever `C` is.
