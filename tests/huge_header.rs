@@ -3,7 +3,7 @@
 //! them together.
 
 // (It uses a few of the shared functions; the suite uses the rest.)
-#[allow(dead_code)]
+#[allow(dead_code, unused_imports)]
 mod common;
 #[path = "common/recording.rs"]
 mod recording;

@@ -12,9 +12,29 @@ fn byte_by_formula(v: f64) -> u8 {
     (v.clamp(0.0, 1.0).powf(1.0 / 2.2) * 255.0 + 0.5) as u8
 }
 
-/// `THRESHOLDS[k - 1]`: the least `v` in [0, 1] whose byte is at least `k`.
-static THRESHOLDS: LazyLock<[f64; 255]> = LazyLock::new(|| {
-    std::array::from_fn(|index| {
+/// Buckets start at this value (below it every byte is 0: the first threshold is near 1e-6).
+const LOWEST: f64 = 1.0 / (1u64 << 24) as f64;
+
+/// A bucket is a value's bits from the exponent to the 8 leading fraction bits.
+const BUCKET_SHIFT: u32 = 44;
+
+/// Buckets from `LOWEST` up to 1, 1 included.
+const BUCKETS: usize = bucket(1.0) + 1;
+
+const fn bucket(v: f64) -> usize {
+    ((v.to_bits() - LOWEST.to_bits()) >> BUCKET_SHIFT) as usize
+}
+
+/// The two tables, built together on first use.
+struct Tables {
+    /// `thresholds[k - 1]`: the least `v` in [0, 1] whose byte is at least `k`.
+    thresholds: [f64; 255],
+    /// The byte at the start of each bucket.
+    bucket_start: [u8; BUCKETS],
+}
+
+static TABLES: LazyLock<Tables> = LazyLock::new(|| {
+    let thresholds = std::array::from_fn(|index| {
         let k = index as u8 + 1;
         // Non-negative floats order like their bits: bisect on those.
         let (mut below, mut at) = (0u64, 1f64.to_bits());
@@ -27,42 +47,51 @@ static THRESHOLDS: LazyLock<[f64; 255]> = LazyLock::new(|| {
             }
         }
         f64::from_bits(at)
-    })
+    });
+    let bucket_start = std::array::from_fn(|n| {
+        let start = f64::from_bits(LOWEST.to_bits() + ((n as u64) << BUCKET_SHIFT));
+        byte_by_thresholds(&thresholds, start)
+    });
+    Tables {
+        thresholds,
+        bucket_start,
+    }
 });
 
 /// The byte by counting thresholds (a binary search).
-fn byte_by_thresholds(v: f64) -> u8 {
-    THRESHOLDS.partition_point(|&threshold| v >= threshold) as u8
+fn byte_by_thresholds(thresholds: &[f64; 255], v: f64) -> u8 {
+    thresholds.partition_point(|&threshold| v >= threshold) as u8
 }
 
-/// Buckets start at this value (below it every byte is 0: the first threshold is near 1e-6).
-const LOWEST: f64 = 1.0 / (1u64 << 24) as f64;
-
-/// A bucket is a value's bits from the exponent to the 8 leading fraction bits.
-const BUCKET_SHIFT: u32 = 44;
-
-fn bucket(v: f64) -> usize {
-    ((v.to_bits() - LOWEST.to_bits()) >> BUCKET_SHIFT) as usize
+/// The display bytes of a linear colour's three channels, each clamped to [0, 1] (NaN gives
+/// 0).
+#[inline(always)]
+pub fn bytes(c: [f64; 3]) -> [u8; 3] {
+    let tables = &*TABLES;
+    c.map(|v| tables.byte(v))
 }
 
-/// The byte at the start of each bucket from `LOWEST` up to 1.
-static BUCKET_START: LazyLock<Vec<u8>> = LazyLock::new(|| {
-    (0..=bucket(1.0) as u64)
-        .map(|n| byte_by_thresholds(f64::from_bits(LOWEST.to_bits() + (n << BUCKET_SHIFT))))
-        .collect()
-});
+/// A linear colour as 0x00RRGGBB.
+#[inline(always)]
+pub fn pack(c: [f64; 3]) -> u32 {
+    let [r, g, b] = bytes(c).map(u32::from);
+    (r << 16) | (g << 8) | b
+}
 
-/// The display byte of linear value `v` (clamped to [0, 1]; NaN gives 0).
-pub fn byte(v: f64) -> u8 {
-    if v >= 1.0 {
-        return 255;
+impl Tables {
+    /// The display byte of linear value `v`.
+    #[inline(always)]
+    fn byte(&self, v: f64) -> u8 {
+        if v >= 1.0 {
+            return 255;
+        }
+        if v.is_nan() || v < LOWEST {
+            return 0;
+        }
+        let start = self.bucket_start[bucket(v)];
+        let next = self.thresholds.get(usize::from(start));
+        start + u8::from(next.is_some_and(|&threshold| v >= threshold))
     }
-    if v.is_nan() || v < LOWEST {
-        return 0;
-    }
-    let start = BUCKET_START[bucket(v)];
-    let next = THRESHOLDS.get(usize::from(start));
-    start + u8::from(next.is_some_and(|&threshold| v >= threshold))
 }
 
 /// The linear value whose display byte is `b` by the formula (`(b / 255)^2.2`).
@@ -81,7 +110,7 @@ mod tests {
     fn the_table_gives_the_formulas_bytes() {
         let mut values: Vec<f64> = (0..=100_000).map(|i| f64::from(i) / 100_000.0).collect();
         // Either side of every threshold, and outside the range.
-        for &t in THRESHOLDS.iter() {
+        for &t in TABLES.thresholds.iter() {
             values.extend([t, t.next_down(), t.next_up()]);
         }
         values.extend([-1.0, 2.0, f64::INFINITY, f64::NEG_INFINITY, 1e-300]);
@@ -91,15 +120,17 @@ mod tests {
             values.extend([start, start.next_down()]);
         }
         for v in values {
-            assert_eq!(byte(v), byte_by_formula(v), "v = {v:e}");
+            assert_eq!(TABLES.byte(v), byte_by_formula(v), "v = {v:e}");
+            let formula = [v, 0.5, -v].map(byte_by_formula);
+            assert_eq!(bytes([v, 0.5, -v]), formula, "v = {v:e}");
         }
-        assert_eq!(byte(f64::NAN), 0);
+        assert_eq!(bytes([f64::NAN; 3]), [0; 3]);
     }
 
     #[test]
     fn every_byte_comes_back_from_its_linear_value() {
         for b in 0..=255u8 {
-            assert_eq!(byte(linear(b)), b);
+            assert_eq!(bytes([linear(b); 3]), [b; 3]);
         }
     }
 }

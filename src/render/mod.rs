@@ -7,6 +7,7 @@ mod passes;
 mod ramp;
 mod scene;
 mod shade;
+mod sky_gradient;
 mod stats;
 pub mod sun_position;
 mod tally;

@@ -106,7 +106,7 @@ impl Ramp {
     /// The colour at height `z` as display bytes `[r, g, b]`, unshaded: what a legend shows.
     pub fn display_rgb(self, z: f64, span: HeightSpan) -> [u8; 3] {
         let c = self.colour(z, span);
-        [c.x, c.y, c.z].map(gamma::byte)
+        gamma::bytes(c.to_array())
     }
 
     /// The colour at `e`, from the lowest (0) to the highest (1) height it covers.

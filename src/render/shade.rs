@@ -6,6 +6,7 @@ use super::gamma;
 use super::normals;
 use super::ramp::HeightSpan;
 use super::scene::{Lighting, Normals};
+use super::sky_gradient::{horizon, night_sky_colour, sky_colour, NIGHT_HORIZON};
 use super::tally::{Counting, Tally};
 use crate::arith::{with_numbers, Arith, Generic, Numbers, WithNumbers};
 use crate::geometry::gradient;
@@ -341,12 +342,12 @@ impl Shader<'_> {
             let clear = (-self.lighting.fog * distance).exp();
             colour = colour * clear + self.haze() * (1.0 - clear);
         }
-        pack(colour)
+        gamma::pack(colour.to_array())
     }
 
     /// The colour of a ray that misses the terrain.
     pub fn sky_rgb(&self, ray: &Ray) -> u32 {
-        pack(self.sky(self.world_dir(ray.dir()).into()))
+        gamma::pack(self.sky(self.world_dir(ray.dir()).into()).to_array())
     }
 
     /// Decides whether a shadow ray of the hit `found`, shaded at `p`, can change the pixel,
@@ -508,39 +509,4 @@ impl<T: Tally> Generic for Pixel<'_, '_, '_, T> {
         self.shader
             .traced_in::<S>(self.ray, self.beam, self.keep, &mut **tally)
     }
-}
-
-/// The sky's colour towards `dir`: from the horizon's up to the zenith's, by the square root
-/// of the sine of the elevation.
-pub(super) fn sky_colour(dir: DVec3) -> DVec3 {
-    let d = dir.normalize_or(DVec3::Z);
-    horizon().lerp(zenith(), d.z.clamp(0.0, 1.0).sqrt())
-}
-
-/// The night sky's colour towards `dir`, graded as the day's.
-fn night_sky_colour(dir: DVec3) -> DVec3 {
-    let d = dir.normalize_or(DVec3::Z);
-    NIGHT_HORIZON.lerp(NIGHT_ZENITH, d.z.clamp(0.0, 1.0).sqrt())
-}
-
-/// The night sky's colour at the horizon: a faint glow.
-const NIGHT_HORIZON: DVec3 = DVec3::new(0.012, 0.016, 0.035);
-
-/// The night sky's colour at the zenith.
-const NIGHT_ZENITH: DVec3 = DVec3::new(0.002, 0.003, 0.010);
-
-/// The sky's colour at the horizon.
-pub(super) fn horizon() -> DVec3 {
-    DVec3::new(0.78, 0.85, 0.93)
-}
-
-/// The sky's colour at the zenith.
-pub(super) fn zenith() -> DVec3 {
-    DVec3::new(0.28, 0.46, 0.82)
-}
-
-/// Linear colour to 0x00RRGGBB with a display gamma of 2.2.
-fn pack(c: DVec3) -> u32 {
-    let channel = |v: f64| u32::from(gamma::byte(v));
-    (channel(c.x) << 16) | (channel(c.y) << 8) | channel(c.z)
 }

@@ -5,6 +5,7 @@
 //! hit cast again in rationals from the exact hit point when intervals cannot settle it (its
 //! single unsettled triangle tests are decided in [`exact_start`](super::exact_start)).
 
+use super::cell_log::CellLog;
 use super::walks::Walk;
 use super::*;
 use crate::arith::dyadic::Dyadic;
@@ -110,19 +111,16 @@ pub(super) fn point_over(ray: &Ray, above: &Dyadic, closing: &Dyadic) -> [Dyadic
 }
 
 /// A ray in an arithmetic without rounding, answered from an `f64` walk alone (see
-/// [`certified::certify`]): `None` where that cannot answer (the path crosses no blocks, a
-/// walk must list its cells, or two triangles are hit at the same `t`, which the exact walk's
+/// [`certified::certify`]), its cells noted in a `C`: `None` where that cannot answer (the
+/// path crosses no blocks, or two triangles are hit at the same `t`, which the exact walk's
 /// order of cells decides).
-pub(super) fn trace_certified<S: Scalar, W: Walk>(
+pub(super) fn trace_certified<S: Scalar, C: CellLog, W: Walk>(
     terrain: &Terrain,
     o: &[S; 3],
     d: &[S; 3],
     near: F64Ray,
     options: &WalkOptions,
 ) -> Option<ScalarTrace<S>> {
-    if options.record_cells {
-        return None;
-    }
     let dir = near.2;
     let mut counters = Counters::default();
     let Some(frame) = clip_near(terrain, &near, dir) else {
@@ -139,29 +137,30 @@ pub(super) fn trace_certified<S: Scalar, W: Walk>(
         return Some(ScalarTrace::missed(counters));
     };
     let near_ray = Approximation::along(frame, near, start);
-    let mut search = new_search::<S, W>(terrain, o, d, dir, Some(near), options, counters);
+    let mut search = new_search::<S, C, W>(terrain, o, d, dir, Some(near), options, counters);
     // Ends by itself or at the answer; both are fine here.
-    let _ = certified::certify::<S, W>(&near_ray, &mut search);
+    let _ = certified::certify::<S, C, W>(&near_ray, &mut search);
     if search.tied && options.query == Query::FirstHit {
         return None;
     }
     Some(ScalarTrace {
         hit: search.found,
         counters: search.counters,
-        cells: Vec::new(),
+        cells: search.cells.into_cells(),
         decided_exactly: search.decided_exactly,
     })
 }
 
 /// The mipmap walk in an arithmetic without rounding, where an `f64` walk clears the way
 /// (see [`mipmap::clear_way`]): the exact walk follows only the stretches the `f64` walk
-/// could not clear. `false` where it cannot help (the ray is not near enough an `f64` ray).
-pub(super) fn walk_cleared<S: Scalar>(
+/// could not clear (the cells it reaches noted, as the exact walk's everywhere). `false` where
+/// it cannot help (the ray is not near enough an `f64` ray).
+pub(super) fn walk_cleared<S: Scalar, C: CellLog>(
     terrain: &Terrain,
     near: (F64Ray, Option<(f64, u32)>),
     dir_f64: [f64; 3],
     frame: &Frame<S>,
-    search: &mut Search<'_, S>,
+    search: &mut Search<'_, S, C>,
 ) -> bool {
     let Some(near) = approximation(terrain, near, dir_f64) else {
         return false;

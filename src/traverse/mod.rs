@@ -15,6 +15,7 @@
 
 mod approximation;
 mod beam;
+mod cell_log;
 mod certified;
 mod counters;
 mod dda;
@@ -48,6 +49,7 @@ use crate::arith::{unsettled, Generic};
 use crate::geometry::{clip_to_box, plane_crossing, times_power_of_two, CertainMiss, Ray};
 use crate::heightfield::Terrain;
 use approximation::Approximation;
+use cell_log::{CellLog, Recorded, Unrecorded};
 use frame::Frame;
 use num_rational::BigRational;
 pub use search::Found;
@@ -72,14 +74,11 @@ pub fn occluded(terrain: &Terrain, ray: &Ray, options: &TraceOptions) -> Trace {
 
 /// The first hits of `rays`, as [`trace`] answers each: with [`TraceOptions::packets`],
 /// neighbours in the slice walk the mipmap together in packets of [`LANES`] (where the
-/// arithmetic is `f64`, the method hierarchical and no cells are listed), the packet's node
-/// tests counted with its first ray's queries.
+/// arithmetic is `f64` and the method hierarchical), the packet's node tests counted with its
+/// first ray's queries.
 pub fn trace_packets(terrain: &Terrain, rays: &[Ray], options: &TraceOptions) -> Vec<Trace> {
     let scaled: Vec<(Ray, i32)> = rays.iter().map(Ray::at_unit_scale).collect();
-    let packs = options.packets
-        && options.arith == Arith::F64
-        && options.method.is_hierarchical()
-        && !options.record_cells;
+    let packs = options.packets && options.arith == Arith::F64 && options.method.is_hierarchical();
     let mut traces = Vec::with_capacity(rays.len());
     for packet in scaled.chunks(LANES) {
         let lanes: Vec<Ray> = packet.iter().map(|(ray, _)| *ray).collect();
@@ -366,8 +365,36 @@ impl<S: Scalar> WithWalk for RayIn<'_, S> {
     }
 }
 
-/// [`trace_scalar`] along walk `W`.
+/// [`trace_scalar`] along walk `W`, the cells it reaches listed if the options ask.
 fn trace_walk<S: Scalar, W: Walk>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+) -> ScalarTrace<S> {
+    if walk_options.record_cells {
+        return trace_recorded::<S, W>(terrain, o, d, dir_f64, walk_options);
+    }
+    trace_logged::<S, Unrecorded, W>(terrain, o, d, dir_f64, walk_options)
+}
+
+/// [`trace_walk`] listing the cells.
+// (Out of line: the renderer's rays list none.)
+#[inline(never)]
+fn trace_recorded<S: Scalar, W: Walk>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+) -> ScalarTrace<S> {
+    trace_logged::<S, Recorded, W>(terrain, o, d, dir_f64, walk_options)
+}
+
+/// [`trace_walk`] noting the cells it reaches in a `C`: the same walks whatever `C` is.
+#[inline(always)]
+fn trace_logged<S: Scalar, C: CellLog, W: Walk>(
     terrain: &Terrain,
     o: &[S; 3],
     d: &[S; 3],
@@ -377,7 +404,7 @@ fn trace_walk<S: Scalar, W: Walk>(
     // (Once per ray: for rationals each component's enclosure is a fraction's subtraction.)
     let near = f64_ray(o, d);
     let certified =
-        near.and_then(|near| trace_certified::<S, W>(terrain, o, d, near, &walk_options));
+        near.and_then(|near| trace_certified::<S, C, W>(terrain, o, d, near, &walk_options));
     if let Some(answer) = certified {
         return answer;
     }
@@ -393,12 +420,10 @@ fn trace_walk<S: Scalar, W: Walk>(
     let Some(frame) = after_beam(frame, start) else {
         return ScalarTrace::missed(counters);
     };
-    let mut search = new_search::<S, W>(terrain, o, d, dir_f64, near, &walk_options, counters);
+    let mut search = new_search::<S, C, W>(terrain, o, d, dir_f64, near, &walk_options, counters);
     search.widen_by(search::slack(&o[2], &d[2], &frame.t1));
-    // (A walk asked to list its cells walks them all.)
     let cleared = W::CLEARS_WAY
         && S::EXACT
-        && !walk_options.record_cells
         && near
             .is_some_and(|near| walk_cleared(terrain, (near, start), dir_f64, &frame, &mut search));
     if !cleared {
@@ -409,7 +434,7 @@ fn trace_walk<S: Scalar, W: Walk>(
     ScalarTrace {
         hit: search.found,
         counters: search.counters,
-        cells: search.cells.unwrap_or_default(),
+        cells: search.cells.into_cells(),
         decided_exactly: search.decided_exactly,
     }
 }
@@ -418,7 +443,7 @@ fn trace_walk<S: Scalar, W: Walk>(
 // (Inlined by hand: called once per ray, but `Search` is large, and out of line its
 // construction costs every ray.)
 #[inline(always)]
-fn new_search<'a, S: Scalar, W: Walk>(
+fn new_search<'a, S: Scalar, C: CellLog, W: Walk>(
     terrain: &'a Terrain,
     o: &'a [S; 3],
     d: &'a [S; 3],
@@ -426,7 +451,7 @@ fn new_search<'a, S: Scalar, W: Walk>(
     near: Option<F64Ray>,
     options: &WalkOptions,
     counters: Counters,
-) -> Search<'a, S> {
+) -> Search<'a, S, C> {
     Search {
         terrain,
         ray: LazyRaySpace::new(o, d, dir_f64),
@@ -442,7 +467,7 @@ fn new_search<'a, S: Scalar, W: Walk>(
         counters,
         found: None,
         tied: false,
-        cells: options.record_cells.then(Vec::new),
+        cells: C::default(),
         start_triangle: options.start_triangle,
         // (`S::EXACT` is asked here as well as where the start is used, which compiles it out
         // of the rounding arithmetics, `f64` included.)

@@ -53,7 +53,7 @@ pub(crate) struct WalkOptions {
     pub method: Method,
     /// What the ray asks.
     pub query: Query,
-    /// List the cells the walk covered, in order.
+    /// List the cells the walk reaches (see [`TraceOptions::record_cells`]).
     pub record_cells: bool,
     /// A triangle `(cell, k)` the ray starts on and leaves at once (it touches it only at
     /// `t = 0`), not to be tested: a shadow ray's own triangle.
@@ -87,7 +87,8 @@ pub struct TraceOptions {
     pub method: Method,
     /// The arithmetic traced in.
     pub arith: Arith,
-    /// List the cells the walk covered, in order.
+    /// List the cells the walk reaches at the cell level, in order ([`Trace::cells`]): the
+    /// walk, its answer and its counters are the same either way.
     pub record_cells: bool,
     /// Walk rays in packets where they can ([`trace_packets`](super::trace_packets)): the
     /// answers are the same, the work is shared.
@@ -129,7 +130,10 @@ pub struct Trace {
     pub hit: Option<Hit>,
     /// The queries the ray made.
     pub counters: Counters,
-    /// Cells covered, in order (when asked for).
+    /// The cells the walk reached at the cell level, in order (when asked for): along the
+    /// path, skipping the blocks a hierarchy skips; where an `f64` walk certifies an exact
+    /// answer, the cells along its own path and the neighbours it tested for the exact path,
+    /// each within rounding of the path.
     pub cells: Vec<[usize; 2]>,
 }
 

@@ -1,6 +1,7 @@
 //! What happens to each span a walk reaches: the run test, the cell tests, the triangle
 //! tests, and keeping the first hit.
 
+use super::cell_log::CellLog;
 use super::counters::Counters;
 use super::exact_start::PlanePoint;
 use super::frame::{Frame, Span};
@@ -97,7 +98,7 @@ impl<'a, S: Scalar> LazyRaySpace<'a, S> {
 }
 
 /// Searches the spans of one walk for the first hit (or any hit, for shadow queries).
-pub struct Search<'a, S> {
+pub struct Search<'a, S, C> {
     pub terrain: &'a Terrain,
     pub ray: LazyRaySpace<'a, S>,
     /// For arithmetics without rounding: settles most misses in `f64`.
@@ -120,8 +121,8 @@ pub struct Search<'a, S> {
     /// Two hits on different triangles were found at the same `t`: which one is the answer
     /// then depends on the order the cells were visited in.
     pub tied: bool,
-    /// Cells the walk covered, in order, when asked for.
-    pub cells: Option<Vec<[usize; 2]>>,
+    /// Where the cells the walk reaches are noted.
+    pub cells: C,
     /// The triangle the ray starts on and leaves at once: not tested.
     pub start_triangle: Option<((usize, usize), u8)>,
     /// A shadow ray's exact start, for the triangle tests intervals cannot settle.
@@ -144,13 +145,13 @@ pub fn slack<S: Scalar>(oz: &S, dz: &S, t_max: &S) -> f64 {
     8.0 * S::rounding_error(size)
 }
 
-impl<S: Scalar> Search<'_, S> {
+impl<S: Scalar, C: CellLog> Search<'_, S, C> {
     /// Visits one span of the walk of `frame`; breaks when the answer is known.
     pub fn span(&mut self, frame: &Frame<S>, span: Span<S>) -> ControlFlow<()> {
         self.stop_before(&span.t_lo)?;
         if self.run_test && !self.run_may_hit(frame, &span) {
-            if let Some(cells) = &mut self.cells {
-                cells.extend(span_cells(frame, &span).map(|(i, j)| [i, j]));
+            if C::RECORDS {
+                span_cells(frame, &span).for_each(|cell| self.cells.reached(cell));
             }
             return ControlFlow::Continue(());
         }
@@ -175,11 +176,10 @@ impl<S: Scalar> Search<'_, S> {
         ControlFlow::Continue(())
     }
 
-    /// Records cell `(i, j)` as reached, when cells are recorded.
+    /// Notes cell `(i, j)` as reached.
+    #[inline(always)]
     pub fn reached(&mut self, i: usize, j: usize) {
-        if let Some(cells) = &mut self.cells {
-            cells.push([i, j]);
-        }
+        self.cells.reached((i, j));
     }
 
     /// The cell test: the ray's lowest height over `[t_lo, t_hi]` against the cell's highest
@@ -361,7 +361,7 @@ impl<S: Scalar> Search<'_, S> {
     }
 }
 
-impl<S: Scalar> Search<'_, S> {
+impl<S: Scalar, C: CellLog> Search<'_, S, C> {
     /// Tests triangle `k` of `cell` for a shadow ray whose start is known exactly: a hit that
     /// counts, or none. A test the intervals cannot settle is decided exactly on its own.
     // (Out of line, so that the interval walk's triangle loop stays small.)

@@ -3,6 +3,7 @@
 //! take the walk from there.
 
 use super::approximation::Approximation;
+use super::cell_log::CellLog;
 use super::certified::Certifying;
 use super::frame::{Frame, Span};
 use super::mipmap::{self, Part};
@@ -21,16 +22,16 @@ pub(super) trait Walk {
     const TESTS_RUNS: bool = false;
     /// Walks the path of `f`, handing what it reaches to `search`, until it breaks; `level`:
     /// where a hierarchical walk starts when the caller knows better (see [`mipmap::walk`]).
-    fn walk<S: Scalar>(
+    fn walk<S: Scalar, C: CellLog>(
         f: &Frame<S>,
         level: Option<u32>,
-        search: &mut Search<'_, S>,
+        search: &mut Search<'_, S, C>,
     ) -> ControlFlow<()>;
     /// The same walk in `f64` along an `f64` ray near an exact one, for the exact ray's
     /// answer (see [`certify`](super::certified::certify)).
-    fn certify<S: Scalar>(
+    fn certify<S: Scalar, C: CellLog>(
         ray: &Approximation,
-        certifying: &mut Certifying<'_, '_, S>,
+        certifying: &mut Certifying<'_, '_, S, C>,
     ) -> ControlFlow<()>;
     /// Walks every cell the path covers, culling nothing: the hierarchies then have nothing
     /// to skip, and their cells are the run walk's.
@@ -50,32 +51,32 @@ pub(super) struct Cells;
 
 impl Walk for Blocks {
     const CLEARS_WAY: bool = true;
-    fn walk<S: Scalar>(
+    fn walk<S: Scalar, C: CellLog>(
         f: &Frame<S>,
         level: Option<u32>,
-        search: &mut Search<'_, S>,
+        search: &mut Search<'_, S, C>,
     ) -> ControlFlow<()> {
         mipmap::walk(f, search, level)
     }
-    fn certify<S: Scalar>(
+    fn certify<S: Scalar, C: CellLog>(
         ray: &Approximation,
-        certifying: &mut Certifying<'_, '_, S>,
+        certifying: &mut Certifying<'_, '_, S, C>,
     ) -> ControlFlow<()> {
         certifying.blocks(ray, false)
     }
 }
 
 impl Walk for BlockRuns {
-    fn walk<S: Scalar>(
+    fn walk<S: Scalar, C: CellLog>(
         f: &Frame<S>,
         level: Option<u32>,
-        search: &mut Search<'_, S>,
+        search: &mut Search<'_, S, C>,
     ) -> ControlFlow<()> {
         mipmap::walk_runs(f, search, level)
     }
-    fn certify<S: Scalar>(
+    fn certify<S: Scalar, C: CellLog>(
         ray: &Approximation,
-        certifying: &mut Certifying<'_, '_, S>,
+        certifying: &mut Certifying<'_, '_, S, C>,
     ) -> ControlFlow<()> {
         certifying.blocks(ray, true)
     }
@@ -83,32 +84,32 @@ impl Walk for BlockRuns {
 
 impl Walk for Runs {
     const TESTS_RUNS: bool = true;
-    fn walk<S: Scalar>(
+    fn walk<S: Scalar, C: CellLog>(
         f: &Frame<S>,
         _level: Option<u32>,
-        search: &mut Search<'_, S>,
+        search: &mut Search<'_, S, C>,
     ) -> ControlFlow<()> {
         runs::walk(f, search)
     }
-    fn certify<S: Scalar>(
+    fn certify<S: Scalar, C: CellLog>(
         ray: &Approximation,
-        certifying: &mut Certifying<'_, '_, S>,
+        certifying: &mut Certifying<'_, '_, S, C>,
     ) -> ControlFlow<()> {
         certifying.runs(ray)
     }
 }
 
 impl Walk for Cells {
-    fn walk<S: Scalar>(
+    fn walk<S: Scalar, C: CellLog>(
         f: &Frame<S>,
         _level: Option<u32>,
-        search: &mut Search<'_, S>,
+        search: &mut Search<'_, S, C>,
     ) -> ControlFlow<()> {
         dda::walk(f, search)
     }
-    fn certify<S: Scalar>(
+    fn certify<S: Scalar, C: CellLog>(
         ray: &Approximation,
-        certifying: &mut Certifying<'_, '_, S>,
+        certifying: &mut Certifying<'_, '_, S, C>,
     ) -> ControlFlow<()> {
         certifying.cells(ray)
     }

@@ -9,7 +9,7 @@ pub mod reference;
 pub mod scenes;
 pub mod top_down;
 
-use heightray::traverse::covered_cells;
+use heightray::traverse::{covered_cells, HitMiss};
 use heightray::{trace, Arith, Hit, Method, Ray, Terrain, Trace, TraceOptions};
 use num_traits::ToPrimitive;
 use reference::{Answer, ExactHit};
@@ -17,8 +17,8 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 
 pub const METHODS: [Method; 4] = Method::ALL;
 
-/// Options that list the cells a walk covers; where a test leaves them out, `f64` rays walk in
-/// packets (single-ray packets here), unless `HEIGHTRAY_PACKETS=off`.
+/// Options that list the cells a walk covers, `f64` rays of the hierarchies walking in packets
+/// (single-ray packets here) unless `HEIGHTRAY_PACKETS=off`.
 pub fn options(method: Method, arith: Arith) -> TraceOptions {
     TraceOptions {
         method,
@@ -96,17 +96,37 @@ fn try_covered(
     })
 }
 
-/// Checks one ray in exact mode, for every method, against the reference: the hit (exact t,
-/// cell, triangle), `covered_cells`, the recorded cells (a prefix of the covered list) and
-/// every query counter. Returns one line per disagreement.
+/// Checks one ray in exact mode, for every method, against the reference (see
+/// [`check_exact_against`]). Returns one line per disagreement.
 pub fn check_exact(terrain: &Terrain, ray: &Ray) -> Vec<String> {
     let answer = reference::solve(terrain.field(), ray);
     check_exact_against(terrain, ray, &answer)
 }
 
+/// Checks one ray in exact mode, for every method, against the reference's `answer`:
+/// - the hit: exact t, cell, triangle, and `t` and the point the nearest `f64`s of the exact
+///   values;
+/// - listing the cells changes nothing: the answer and every counter are the same without;
+/// - `covered_cells` are the reference's covered cells;
+/// - the bbox query is the reference's (or, for an oblique ray that passes within rounding of
+///   the box, a hit: the `f64` walk clips it to the box grown by its rounding), and a triangle
+///   query hits if and only if the ray does (a first-hit walk stops only at a hit);
+/// - every recorded cell lies within rounding of the path ([`reference::passes_near`], a
+///   millionth of the grid's size) or next to a covered cell (a neighbour the `f64` walk
+///   tested where the exact path might stray into it: a path of a subnormal slope might
+///   stray a whole row), the hit's cell among them;
+/// - where the ray is not oblique (along a row or column, or vertical) the walk is made in
+///   exact arithmetic alone: the run walk and the DDA record a prefix of the covered cells and
+///   count exactly the reference's queries ([`reference::counters`]), and the hierarchies
+///   record some of the covered cells in their order. Along an oblique path an `f64` walk
+///   certifies the answer (or clears the way for the exact walk), testing the cells the exact
+///   path may stray into besides its own: its queries are its own, and its cells lie near
+///   the path rather than on it (and may list a cell more than once).
 pub fn check_exact_against(terrain: &Terrain, ray: &Ray, answer: &Answer) -> Vec<String> {
     let mut problems = Vec::new();
     let expected_cells = answer.cell_list();
+    let field = terrain.field();
+    let delta = reference::qi((field.width() + field.height()) as i64) / reference::qi(1_000_000);
     for method in METHODS {
         let mut problem = |what: String| problems.push(format!("{method}: {what}"));
         match try_trace(terrain, ray, &options(method, Arith::Exact)) {
@@ -139,53 +159,25 @@ pub fn check_exact_against(terrain: &Terrain, ray: &Ray, answer: &Answer) -> Vec
                         ));
                     }
                 }
-                // Without cells to list, an f64 walk answers (or clears the way for the
-                // exact walk): the same answer.
-                let certified = TraceOptions {
+                let quiet = TraceOptions {
                     record_cells: false,
                     ..options(method, Arith::Exact)
                 };
-                match try_trace(terrain, ray, &certified) {
+                match try_trace(terrain, ray, &quiet) {
                     Err(e) => problem(e),
-                    Ok(fast) if fast.hit != got.hit => problem(format!(
-                        "from the f64 walk: {}, listing cells: {}",
-                        describe_hit(&fast.hit),
-                        describe_hit(&got.hit)
-                    )),
+                    Ok(plain) if (&plain.hit, &plain.counters) != (&got.hit, &got.counters) => {
+                        problem(format!(
+                            "without cells listed: {} {:?}, listing them: {} {:?}",
+                            describe_hit(&plain.hit),
+                            plain.counters,
+                            describe_hit(&got.hit),
+                            got.counters
+                        ))
+                    }
                     Ok(_) => {}
                 }
-                if method.is_hierarchical() {
-                    // A hierarchy skips whole blocks (or runs of them) and may revisit the
-                    // cells where two of its parts meet: the cells it reached, in order of
-                    // first visit, are some of the covered cells in their order; the queries
-                    // are its own.
-                    if !is_ordered_subset(&got.cells, &expected_cells) {
-                        problem(format!(
-                            "recorded cells {:?} are not covered cells {:?} in order",
-                            got.cells, expected_cells
-                        ));
-                    }
-                    let bbox = reference::counters(answer, false).bbox;
-                    if got.counters.bbox != bbox {
-                        problem(format!(
-                            "bbox queries {:?}, expected {bbox:?}",
-                            got.counters.bbox
-                        ));
-                    }
-                } else {
-                    if !expected_cells.starts_with(&got.cells) {
-                        problem(format!(
-                            "recorded cells {:?} are not a prefix of the covered cells {:?}",
-                            got.cells, expected_cells
-                        ));
-                    }
-                    let counters = reference::counters(answer, method == Method::Runs);
-                    if got.counters != counters {
-                        problem(format!(
-                            "counters {:?}, expected {:?}",
-                            got.counters, counters
-                        ));
-                    }
+                for problem_found in cells_and_queries(&got, answer, method, &delta) {
+                    problem(problem_found);
                 }
             }
         }
@@ -196,6 +188,79 @@ pub fn check_exact_against(terrain: &Terrain, ray: &Ray, answer: &Answer) -> Vec
             )),
             Ok(_) => {}
         }
+    }
+    problems
+}
+
+/// What [`check_exact_against`] holds of the cells a walk of `method` recorded and the
+/// queries it counted.
+fn cells_and_queries(
+    got: &Trace,
+    answer: &Answer,
+    method: Method,
+    delta: &reference::Q,
+) -> Vec<String> {
+    let mut problems = Vec::new();
+    let expected_cells = answer.cell_list();
+    let bbox = reference::counters(answer, false).bbox;
+    let grown_box_hit = answer.is_oblique()
+        && reference::passes_near_box(answer, delta)
+        && got.counters.bbox == HitMiss { hit: 1, miss: 0 };
+    if got.counters.bbox != bbox && !grown_box_hit {
+        problems.push(format!(
+            "bbox queries {:?}, expected {bbox:?}",
+            got.counters.bbox
+        ));
+    }
+    if (got.counters.triangle.hit > 0) != answer.hit.is_some() {
+        problems.push(format!(
+            "triangle queries {:?} for {}",
+            got.counters.triangle,
+            describe_exact(&answer.hit)
+        ));
+    }
+    let next_to_covered = |[i, j]: [usize; 2]| {
+        (expected_cells.iter()).any(|&[ci, cj]| ci.abs_diff(i) <= 1 && cj.abs_diff(j) <= 1)
+    };
+    let far: Vec<_> = (got.cells.iter())
+        .filter(|&&cell| !reference::passes_near(answer, cell, delta) && !next_to_covered(cell))
+        .collect();
+    if !far.is_empty() {
+        problems.push(format!("recorded cells {far:?} lie off the path"));
+    }
+    if let Some(hit) = answer.hit.as_ref().filter(|h| !got.cells.contains(&h.cell)) {
+        problems.push(format!(
+            "the hit's cell {:?} is not among the recorded cells {:?}",
+            hit.cell, got.cells
+        ));
+    }
+    if answer.is_oblique() {
+        return problems;
+    }
+    if method.is_hierarchical() {
+        // A hierarchy skips whole blocks (or runs of them) and may revisit the cells where
+        // two of its parts meet: the cells it reached, in order of first visit, are some of
+        // the covered cells in their order.
+        if !is_ordered_subset(&got.cells, &expected_cells) {
+            problems.push(format!(
+                "recorded cells {:?} are not covered cells {:?} in order",
+                got.cells, expected_cells
+            ));
+        }
+        return problems;
+    }
+    if !expected_cells.starts_with(&got.cells) {
+        problems.push(format!(
+            "recorded cells {:?} are not a prefix of the covered cells {:?}",
+            got.cells, expected_cells
+        ));
+    }
+    let counters = reference::counters(answer, method == Method::Runs);
+    if got.counters != counters {
+        problems.push(format!(
+            "counters {:?}, expected {:?}",
+            got.counters, counters
+        ));
     }
     problems
 }

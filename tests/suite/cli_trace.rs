@@ -168,10 +168,15 @@ fn cells_flag_lists_walked_cells_in_order() {
         );
         let lines = json_lines(&heightray(&args));
         let cells = cells_of(&lines[0]["cells"]);
-        assert!(
-            covered.starts_with(&cells),
-            "{method}: {cells:?} is not a prefix of {covered:?}"
-        );
+        // The run walk and the DDA list the cells up to the hit; the hierarchies leave out
+        // those of the blocks they skip.
+        let in_order = if matches!(method, "mipmap" | "hruns") {
+            let mut rest = covered.iter();
+            cells.iter().all(|c| rest.any(|k| k == c))
+        } else {
+            covered.starts_with(&cells)
+        };
+        assert!(in_order, "{method}: {cells:?} are not {covered:?} in order");
         assert!(
             cells.contains(&[1, 1]),
             "{method}: the hit cell is missing from {cells:?}"

@@ -1,6 +1,6 @@
-//! Exact mode against the brute-force reference of tests/common/reference.rs: for every
-//! method, the hit (exact t, cell, triangle), `covered_cells`, the recorded cells and every
-//! query counter must match the contract exactly.
+//! Exact mode against the brute-force reference of tests/common/reference/: for every
+//! method, the hit (exact t, cell, triangle) and `covered_cells` must match the contract
+//! exactly, and the recorded cells and query counters as `common::check_exact_against` says.
 
 use crate::common;
 

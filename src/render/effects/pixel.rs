@@ -114,7 +114,6 @@ impl Estimate {
     /// The samples' mean, 0x00RRGGBB (black before any).
     pub fn rgb(&self) -> u32 {
         let n = f64::from(self.taken.max(1));
-        let channel = |s: f64| u32::from(gamma::byte(s / n));
-        (channel(self.sum[0]) << 16) | (channel(self.sum[1]) << 8) | channel(self.sum[2])
+        gamma::pack(self.sum.map(|s| s / n))
     }
 }

@@ -5,7 +5,8 @@
 
 use super::horizon::{climbs_above, sector_of, slope_bound, Sector};
 use super::sampling::{cosine_hemisphere, point, seed_of};
-use crate::render::shade::{horizon, sky_colour, zenith, Shader};
+use crate::render::shade::Shader;
+use crate::render::sky_gradient::{horizon, sky_colour, zenith};
 use crate::traverse::{Counters, Found, Scalar, Tracer};
 use crate::Ray;
 use glam::DVec3;

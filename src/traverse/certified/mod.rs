@@ -15,6 +15,10 @@
 //! step by step (whose rounding grows along the path). The mipmap walks its blocks; the DDA is
 //! the same walk without a level above the cells; the run walk goes row by row ([`runs`]).
 //!
+//! Recording cells, the walk notes the cells it reaches at the cell level along its own path
+//! (passed or tested) and every neighbour it considers for the exact path: each lies within
+//! rounding of the exact path, though not always on it, nor in the exact walk's order.
+//!
 //! Which of two triangles hit at the same `t` is the answer depends on the order the cells
 //! are visited in, which a neighbour tested out of the exact walk's order could change: such a
 //! tie is left to the caller ([`Search::tied`]).
@@ -22,6 +26,7 @@
 mod runs;
 
 use super::approximation::{Approximation, Bounds};
+use super::cell_log::CellLog;
 use super::mipmap::{descend, descend_runs, run_sample, BlockRun, Part};
 use super::walks::Walk;
 use crate::arith::scalar::Scalar;
@@ -33,9 +38,9 @@ use std::ops::ControlFlow;
 /// Searches the exact ray near `ray` for its answer, walking `W` only in `f64`; breaks when
 /// the answer is known. The path must cross blocks ([`super::mipmap::has_blocks`]: a path
 /// along a row or a point is left to the exact walk).
-pub fn certify<S: Scalar, W: Walk>(
+pub fn certify<S: Scalar, C: CellLog, W: Walk>(
     ray: &Approximation,
-    search: &mut Search<'_, S>,
+    search: &mut Search<'_, S, C>,
 ) -> ControlFlow<()> {
     let mut certifying = Certifying {
         bounds: Bounds::new(ray, search.terrain),
@@ -47,7 +52,7 @@ pub fn certify<S: Scalar, W: Walk>(
     W::certify(ray, &mut certifying)
 }
 
-impl<S: Scalar> Certifying<'_, '_, S> {
+impl<S: Scalar, C: CellLog> Certifying<'_, '_, S, C> {
     /// The block walk in `f64` (the hierarchical run walk if `runs`), from the ray's first
     /// level.
     pub(in crate::traverse) fn blocks(
@@ -80,9 +85,9 @@ impl<S: Scalar> Certifying<'_, '_, S> {
 const RECENT: usize = 4;
 
 /// Follows an `f64` walk, testing the triangles of the cells the exact ray may touch.
-pub(in crate::traverse) struct Certifying<'s, 'a, S> {
+pub(in crate::traverse) struct Certifying<'s, 'a, S, C> {
     bounds: Bounds,
-    search: &'s mut Search<'a, S>,
+    search: &'s mut Search<'a, S, C>,
     /// A `t` the first hit found so far certainly lies before (infinite while none is).
     found_before: f64,
     /// The frame cells whose triangles were tested last, in a ring.
@@ -107,7 +112,7 @@ fn before<S: Scalar>(found: &Found<S>) -> f64 {
     }
 }
 
-impl<S: Scalar> Follower<f64> for Certifying<'_, '_, S> {
+impl<S: Scalar, C: CellLog> Follower<f64> for Certifying<'_, '_, S, C> {
     fn stop_before(&mut self, t: &f64) -> ControlFlow<()> {
         self.past_hit(*t)
     }
@@ -132,7 +137,9 @@ impl<S: Scalar> Follower<f64> for Certifying<'_, '_, S> {
     fn span(&mut self, _f: &Frame<f64>, _span: Span<f64>) -> ControlFlow<()> {
         unreachable!("the certifying walks hand over cells, never spans")
     }
-    fn passed(&mut self, _cell: (usize, usize)) {}
+    fn passed(&mut self, cell: (usize, usize)) {
+        self.search.cells.reached(cell);
+    }
     fn moves_away(&self) -> bool {
         self.bounds.moves_away()
     }
@@ -142,7 +149,7 @@ impl<S: Scalar> Follower<f64> for Certifying<'_, '_, S> {
     }
 }
 
-impl<S: Scalar> Certifying<'_, '_, S> {
+impl<S: Scalar, C: CellLog> Certifying<'_, '_, S, C> {
     /// Breaks when the first hit found lies before `t`: nothing from `t` on can come first.
     fn past_hit(&self, t: f64) -> ControlFlow<()> {
         if self.found_before < t {
@@ -217,6 +224,7 @@ impl<S: Scalar> Certifying<'_, '_, S> {
             return ControlFlow::Continue(());
         }
         let cell = f.cell(uv.0, uv.1);
+        self.search.cells.reached(cell);
         let (terrain, counters) = (self.search.terrain, &mut self.search.counters);
         if own || self.bounds.cell_may_hit(terrain, cell, window, counters) {
             self.test(cell, uv)?;

@@ -12,14 +12,15 @@
 
 use super::Certifying;
 use crate::arith::scalar::Scalar;
+use crate::traverse::cell_log::CellLog;
 use crate::traverse::frame::Frame;
 use crate::traverse::search::run_highest;
 use std::ops::ControlFlow;
 
 /// Walks the path run by run; breaks when the answer is known.
-pub(super) fn walk<S: Scalar>(
+pub(super) fn walk<S: Scalar, C: CellLog>(
     f: &Frame<f64>,
-    certifying: &mut Certifying<'_, '_, S>,
+    certifying: &mut Certifying<'_, '_, S, C>,
 ) -> ControlFlow<()> {
     // (The segment grown to cover the exact one may start, or lie wholly, a rounding outside
     // the grid: that bit belongs to the first row and column.)
@@ -60,9 +61,9 @@ pub(super) fn walk<S: Scalar>(
 }
 
 /// The run of frame row `row` over columns `cols`, while the walk's `t` runs over `window`.
-fn run<S: Scalar>(
+fn run<S: Scalar, C: CellLog>(
     f: &Frame<f64>,
-    certifying: &mut Certifying<'_, '_, S>,
+    certifying: &mut Certifying<'_, '_, S, C>,
     row: i64,
     (first, last): (i64, i64),
     (t_lo, t_hi): (f64, f64),
@@ -71,6 +72,9 @@ fn run<S: Scalar>(
     let highest = run_highest(terrain, f, (first, last), (row, row));
     let counter = &mut certifying.search.counters.run;
     if !certifying.bounds.may_reach(highest, (t_lo, t_hi), counter) {
+        if C::RECORDS {
+            (first..=last).for_each(|cu| certifying.search.cells.reached(f.cell(cu, row)));
+        }
         return ControlFlow::Continue(());
     }
     // The cell's part of the run: between the column's grid lines, the run's ends at the
@@ -87,11 +91,14 @@ fn run<S: Scalar>(
         };
         certifying.past_hit(from)?;
         let counters = &mut certifying.search.counters;
+        let cell = f.cell(cu, row);
         if certifying
             .bounds
-            .may_hit(terrain, 0, f.cell(cu, row), (from, to), counters)
+            .may_hit(terrain, 0, cell, (from, to), counters)
         {
             certifying.candidates(f, (cu, row), (from, to))?;
+        } else {
+            certifying.search.cells.reached(cell);
         }
     }
     ControlFlow::Continue(())
@@ -100,9 +107,9 @@ fn run<S: Scalar>(
 /// The walk's path left the grid at `t` (into frame cell `uv`, outside it) before its end,
 /// the segment having been grown to cover the exact one: the exact path may still be in the
 /// grid's last cells.
-fn left_grid<S: Scalar>(
+fn left_grid<S: Scalar, C: CellLog>(
     f: &Frame<f64>,
-    certifying: &mut Certifying<'_, '_, S>,
+    certifying: &mut Certifying<'_, '_, S, C>,
     uv: (i64, i64),
     t: f64,
 ) -> ControlFlow<()> {

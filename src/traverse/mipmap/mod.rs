@@ -28,6 +28,7 @@ mod stretches;
 pub(super) use run_levels::{descend_runs, run_sample, BlockRun};
 pub use stretches::clear_way;
 
+use super::cell_log::CellLog;
 use super::degenerate::is_point;
 use super::frame::{Frame, Span};
 use super::runs;
@@ -66,9 +67,9 @@ pub(super) struct Part<'a, S> {
 /// path starts next to the surface (on it, or just before a cell an `f64` walk found may be
 /// hit), where every block around the start would fail its test, or the level of blocks a
 /// beam around the ray found may be touched.
-pub fn walk<S: Scalar>(
+pub fn walk<S: Scalar, C: CellLog>(
     f: &Frame<S>,
-    search: &mut Search<'_, S>,
+    search: &mut Search<'_, S, C>,
     level: Option<u32>,
 ) -> ControlFlow<()> {
     walk_with(f, search, level, |f, top, k, search| {
@@ -79,9 +80,9 @@ pub fn walk<S: Scalar>(
 /// The hierarchical run walk ([`descend_runs`]), started as [`walk`] starts the block walk.
 // (Out of line: inlined beside the block walk into the trace, it would slow the block walk.)
 #[inline(never)]
-pub fn walk_runs<S: Scalar>(
+pub fn walk_runs<S: Scalar, C: CellLog>(
     f: &Frame<S>,
-    search: &mut Search<'_, S>,
+    search: &mut Search<'_, S, C>,
     level: Option<u32>,
 ) -> ControlFlow<()> {
     walk_with(f, search, level, |f, top, k, search| {
@@ -92,11 +93,11 @@ pub fn walk_runs<S: Scalar>(
 /// Starts a hierarchical walk (`descend` from its start level), or the run walk where the
 /// path crosses no blocks.
 #[inline(always)]
-fn walk_with<'a, S: Scalar>(
+fn walk_with<'a, S: Scalar, C: CellLog>(
     f: &Frame<S>,
-    search: &mut Search<'a, S>,
+    search: &mut Search<'a, S, C>,
     level: Option<u32>,
-    descend: impl FnOnce(&Frame<S>, u32, u32, &mut Search<'a, S>) -> ControlFlow<()>,
+    descend: impl FnOnce(&Frame<S>, u32, u32, &mut Search<'a, S, C>) -> ControlFlow<()>,
 ) -> ControlFlow<()> {
     if !has_blocks(f) {
         return runs::walk(f, search);
@@ -294,7 +295,7 @@ impl<'a, S: Scalar> Part<'a, S> {
     }
 }
 
-impl<S: Scalar> Follower<S> for Search<'_, S> {
+impl<S: Scalar, C: CellLog> Follower<S> for Search<'_, S, C> {
     fn stop_before(&mut self, t: &S) -> ControlFlow<()> {
         Search::stop_before(self, t)
     }

@@ -3,13 +3,16 @@
 //!
 //! For every ray of every case:
 //! - exact mode, every method, must equal the brute-force reference of
-//!   tests/common/reference.rs exactly: hit or miss, exact t, cell, triangle, covered cells,
-//!   recorded cells and counters (`common::check_exact_against`); the reference's answer is
-//!   also checked against the expectation written in the comment;
+//!   tests/common/reference/ exactly: hit or miss, exact t, cell, triangle, covered cells,
+//!   and the recorded cells and counters as `common::check_exact_against` holds them; the
+//!   reference's answer is also checked against the expectation written in the comment;
 //! - `f64` and bounded rationals (bound 2^16 and 2^24), every method, must find the same first
 //!   hit as exact: same cell and triangle and `|t - t_exact| <= 1e-9 * max(|t_exact|, 1)`, or
 //!   both miss. Where an arithmetic cannot, the comment says why, with its numbers, and the
-//!   test asserts exactly what it does instead (a [`Verdict`] per arithmetic).
+//!   test asserts exactly what it does instead (a [`Verdict`] per arithmetic), each derived
+//!   from the rounding the comment works out (and the test asserts). How many rays of a family
+//!   a rounded arithmetic misses, where no rule says, is a characterization snapshot
+//!   (`snapshots::`), not a case's assertion.
 //!
 //! The cases, by what makes them hard: [`vertices_and_lines`] (rays through lattice points,
 //! vertices, along grid lines and cell diagonals), [`planes_and_plateaus`] (rays in or just

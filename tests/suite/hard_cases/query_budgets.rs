@@ -3,6 +3,7 @@
 //! triangles tested, the cells and runs of blocks skipped whole).
 
 use super::*;
+use heightray::TraceOptions;
 
 /// A ray under the surface: the grid's edge does not close the terrain off, so a ray can pass
 /// into it from the side, under the surface, and touch it only where it comes up through it
@@ -26,8 +27,13 @@ fn ray_under_the_surface_from_the_grids_edge() {
     assert_rounded_agree(&field, &r, &answer);
     for arith in [Arith::F32, F64] {
         for method in METHODS {
-            let got = try_trace(&field, &r, &options(method, arith))
-                .unwrap_or_else(|e| panic!("{}: {e}", describe(&r)));
+            // (The walk's own run tests: no packet clears the way first.)
+            let walking = TraceOptions {
+                packets: false,
+                ..options(method, arith)
+            };
+            let got =
+                try_trace(&field, &r, &walking).unwrap_or_else(|e| panic!("{}: {e}", describe(&r)));
             assert_eq!(
                 got.counters.triangle.total(),
                 2,
@@ -92,8 +98,13 @@ fn runs_of_coarse_blocks_are_skipped_whole() {
     assert_rounded_agree(&field, &r, &answer);
     for arith in [Arith::F32, F64, Arith::Exact] {
         let runs = |method| {
-            let got = try_trace(&field, &r, &options(method, arith))
-                .unwrap_or_else(|e| panic!("{}: {e}", describe(&r)));
+            // (The walk's own run tests: no packet clears the way first.)
+            let walking = TraceOptions {
+                packets: false,
+                ..options(method, arith)
+            };
+            let got =
+                try_trace(&field, &r, &walking).unwrap_or_else(|e| panic!("{}: {e}", describe(&r)));
             let hit = got.hit.expect("a hit");
             assert_eq!((hit.cell, hit.triangle), ([249, 63], 0), "{method} {arith}");
             got.counters.run

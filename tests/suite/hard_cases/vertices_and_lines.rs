@@ -11,13 +11,15 @@ use super::*;
 /// Expected: exact mode (every method) equals the reference on all 360 rays. f64 and
 /// rational:2^24 find the same first hit on all of them.
 ///
-/// rational:2^16 cannot on 6 rays (one answer per method, every method alike): right cell and
-/// triangle, but t off by more than 1e-9 relative (up to 1.2e-8). All 6 climb or descend
-/// (dz != 0): the triangle test shears by dy/dx = 17/41 and dz/dx = 1/5248 (or -1/2624), and
-/// its edge functions multiply sheared coordinates with denominators 41 and 5248, whose
-/// product is beyond 2^16 and gets rounded. Level rays have no such products: their 2^16
-/// traces round nothing at all (asserted: zero rounding events on all 120). Asserted: exactly
-/// 6 rays, rational:2^16 only, verdict `TOff`, dz != 0, error below 2e-8.
+/// rational:2^16 cannot on some rays (every method alike): right cell and triangle, but t off
+/// by more than 1e-9 relative (up to 1.2e-8). Each climbs or descends (dz != 0): the triangle
+/// test shears by dy/dx = 17/41 and dz/dx = 1/5248 (or -1/2624), and its edge functions
+/// multiply sheared coordinates with denominators 41 and 5248, whose product is beyond 2^16
+/// and gets rounded. Level rays have no such products: their 2^16 traces round nothing at all
+/// (asserted: zero rounding events on all 120). Asserted: rational:2^16 only, every method on
+/// each such ray, verdict `TOff`, dz != 0, error below 2e-8. How many rays it is (6, as
+/// rounding falls today) is a characterization, recorded in `snapshots::` (24 answers of
+/// `lattice slope 17/41 / rational:65536`).
 #[test]
 fn lattice_point_slope_17_41() {
     let family = families::lattice_slope(17, 41);
@@ -25,10 +27,13 @@ fn lattice_point_slope_17_41() {
     let results = run_family(&family);
     let d = family_disagreements(&results);
     let text = list(&family, &d);
-    assert_eq!(d.len(), 6 * METHODS.len(), "disagreements:\n  {text}");
     let mut rays: Vec<usize> = d.iter().map(|(n, _)| *n).collect();
     rays.dedup();
-    assert_eq!(rays.len(), 6, "disagreements:\n  {text}");
+    assert_eq!(
+        d.len(),
+        rays.len() * METHODS.len(),
+        "disagreements:\n  {text}"
+    );
     for (n, r) in &d {
         assert_eq!((r.arith, r.verdict), (R16, TOff), "{text}");
         assert_ne!(family.rays[*n].dir()[2], 0.0, "a level ray: {text}");
