@@ -17,6 +17,9 @@ use crate::arith::{Scalar, SimdPath};
 /// The corners `[P00, P10, P01, P11]` in ray space: x, y and z, a lane per corner.
 type Images = [[f64; 4]; 3];
 
+/// The corners' heights in ray space, a lane per corner.
+type Heights = [f64; 4];
+
 /// The six edge functions in lanes, `[u0, v0, w0, u1, v1, w1]` of `T0` and `T1`, and two lanes
 /// of padding.
 type Edges = [f64; 8];
@@ -52,7 +55,7 @@ impl<S: Scalar> RaySpace<S> {
             let at = 3 * usize::from(k);
             let [a, b, c] = triangle_corners(k);
             let [u, v, w] = [0, 1, 2].map(|n| S::from_f64(e[at + n]));
-            let heights_in_space = [q[2][a], q[2][b], q[2][c]].map(S::from_f64);
+            let heights_in_space = [q[a], q[b], q[c]].map(S::from_f64);
             let coplanar = || {
                 let cell = CellTriangles::new(self, i, j, heights.map(S::from_f64));
                 cell.intersect(self, k)
@@ -83,7 +86,8 @@ fn settle(q: &Images, e: &mut Edges, mut doubt: u32) {
     }
 }
 
-/// The ray-space images and edge functions in plain steps (which the compiler may vectorise).
+/// The ray-space heights and edge functions in plain steps (which the compiler may
+/// vectorise).
 #[inline(always)]
 fn portable(
     [kx, ky, kz]: [usize; 3],
@@ -91,7 +95,7 @@ fn portable(
     origin: &[f64; 3],
     cell: (usize, usize),
     heights: [f64; 4],
-) -> (Images, Edges) {
+) -> (Heights, Edges) {
     let p = corners(cell, heights);
     let mut q = [[0.0; 4]; 3];
     for n in 0..4 {
@@ -114,14 +118,14 @@ fn portable(
         doubt |= u32::from(e[n].abs() <= bound || e[n].is_nan()) << n;
     }
     settle(&q, &mut e, doubt);
-    (q, e)
+    (q[2], e)
 }
 
 #[cfg(target_arch = "x86_64")]
 mod x86 {
     //! The lanes in explicit AVX2 and AVX-512 instructions, step for step the portable ones.
 
-    use super::{corners, settle, Edges, Images, DET2_ABSOLUTE, DET2_RELATIVE};
+    use super::{corners, settle, Edges, Heights, Images, DET2_ABSOLUTE, DET2_RELATIVE};
     use std::arch::x86_64::*;
 
     /// The corners moved into ray space, a lane per corner: x, y and z.
@@ -146,16 +150,24 @@ mod x86 {
         ]
     }
 
-    /// Stores the images.
+    /// Stores four lanes.
     #[inline]
     #[target_feature(enable = "avx2")]
-    fn store(q: [__m256d; 3]) -> Images {
-        let mut out = [[0.0; 4]; 3];
-        for (row, lanes) in out.iter_mut().zip(q) {
-            // SAFETY: each row holds four values: one register.
-            unsafe { _mm256_storeu_pd(row.as_mut_ptr(), lanes) };
-        }
+    fn store(lanes: __m256d) -> [f64; 4] {
+        let mut out = [0.0; 4];
+        // SAFETY: four values: one register.
+        unsafe { _mm256_storeu_pd(out.as_mut_ptr(), lanes) };
         out
+    }
+
+    /// Settles the lanes in `doubt` (rare: the images are stored for it only then).
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    fn settle_lanes(q: [__m256d; 3], e: &mut Edges, doubt: u32) {
+        if doubt != 0 {
+            let images: Images = [store(q[0]), store(q[1]), store(q[2])];
+            settle(&images, e, doubt);
+        }
     }
 
     /// `A.x * B.y - A.y * B.x` for the corners picked into `ax`, `ay`, `bx`, `by`, and the
@@ -184,7 +196,7 @@ mod x86 {
         origin: &[f64; 3],
         cell: (usize, usize),
         heights: [f64; 4],
-    ) -> (Images, Edges) {
+    ) -> (Heights, Edges) {
         let [qx, qy, qz] = images(axes, shear, origin, cell, heights);
         // Lanes `(A, B)` of T0: (3, 1), (0, 3), (1, 0); of T1: (2, 3), (0, 2), (3, 0) (the
         // fourth lane repeats the third).
@@ -204,15 +216,14 @@ mod x86 {
             _mm256_permute4x64_pd::<B1>(qx),
             _mm256_permute4x64_pd::<B1>(qy),
         );
-        let q = store([qx, qy, qz]);
         let mut e = [0.0; 8];
         // SAFETY: eight values: two registers.
         unsafe {
             _mm256_storeu_pd(e.as_mut_ptr(), e0);
             _mm256_storeu_pd(e.as_mut_ptr().add(3), e1);
         }
-        settle(&q, &mut e, d0 | (d1 << 3));
-        (q, e)
+        settle_lanes([qx, qy, qz], &mut e, d0 | (d1 << 3));
+        (store(qz), e)
     }
 
     /// The images four lanes to a register, the six edge functions in one register.
@@ -224,7 +235,7 @@ mod x86 {
         origin: &[f64; 3],
         cell: (usize, usize),
         heights: [f64; 4],
-    ) -> (Images, Edges) {
+    ) -> (Heights, Edges) {
         let [qx, qy, qz] = images(axes, shear, origin, cell, heights);
         let (x, y) = (_mm512_castpd256_pd512(qx), _mm512_castpd256_pd512(qy));
         // The corners `(A, B)` of the six lanes (the last two repeat the first).
@@ -240,11 +251,10 @@ mod x86 {
             _mm512_set1_pd(DET2_ABSOLUTE),
         );
         let sure = _mm512_cmp_pd_mask::<_CMP_GT_OQ>(_mm512_abs_pd(value), bound);
-        let q = store([qx, qy, qz]);
         let mut e = [0.0; 8];
         // SAFETY: eight values: one register.
         unsafe { _mm512_storeu_pd(e.as_mut_ptr(), value) };
-        settle(&q, &mut e, !u32::from(sure) & 0b11_1111);
-        (q, e)
+        settle_lanes([qx, qy, qz], &mut e, !u32::from(sure) & 0b11_1111);
+        (store(qz), e)
     }
 }
