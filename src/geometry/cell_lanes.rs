@@ -24,6 +24,17 @@ type Heights = [f64; 4];
 /// of padding.
 type Edges = [f64; 8];
 
+/// What the lanes take: the ray in ray space (its axes, shear and origin) and the cell (its
+/// indices and corner heights).
+#[derive(Clone, Copy)]
+struct Input<'a> {
+    axes: [usize; 3],
+    shear: &'a [f64; 3],
+    origin: &'a [f64; 3],
+    cell: (usize, usize),
+    heights: [f64; 4],
+}
+
 /// The corners `(A, B)` of each edge function `A.x * B.y - A.y * B.x`, lane by lane: for the
 /// corners `[a, b, c]` of a triangle, `u` takes `(c, b)`, `v` `(a, c)` and `w` `(b, a)`.
 const EDGE_CORNERS: [(usize, usize); 6] = [(3, 1), (0, 3), (1, 0), (2, 3), (0, 2), (3, 0)];
@@ -41,15 +52,20 @@ impl<S: Scalar> RaySpace<S> {
     ) -> Option<[Option<TriangleHit<S>>; 2]> {
         let shear = S::as_f64s(&self.shear)?;
         let origin = S::as_f64s(self.origin())?;
+        let input = Input {
+            axes: self.axes,
+            shear,
+            origin,
+            cell: (i, j),
+            heights,
+        };
         let (q, e) = match path {
             // SAFETY: the caller picks a path the processor has the instructions of.
             #[cfg(target_arch = "x86_64")]
-            SimdPath::Avx512 => unsafe {
-                x86::lanes_avx512(self.axes, shear, origin, (i, j), heights)
-            },
+            SimdPath::Avx512 => unsafe { x86::lanes_avx512(input) },
             #[cfg(target_arch = "x86_64")]
-            SimdPath::Avx2 => unsafe { x86::lanes_avx2(self.axes, shear, origin, (i, j), heights) },
-            _ => portable(self.axes, shear, origin, (i, j), heights),
+            SimdPath::Avx2 => unsafe { x86::lanes_avx2(input) },
+            _ => portable(input),
         };
         Some([0u8, 1].map(|k| {
             let at = 3 * usize::from(k);
@@ -66,12 +82,18 @@ impl<S: Scalar> RaySpace<S> {
     }
 }
 
-/// The cell's corners `[P00, P10, P01, P11]` as points: x, y and z, a lane per corner.
+/// The cell's corners `[P00, P10, P01, P11]` and the ray's origin, with their coordinates in
+/// the order of ray space's axes (a lane per corner), before the shear.
 #[inline(always)]
-fn corners((i, j): (usize, usize), heights: [f64; 4]) -> Images {
+fn placed(input: Input<'_>) -> (Images, [f64; 3]) {
+    let (i, j) = input.cell;
     let (x0, y0) = (i as i64 as f64, j as i64 as f64);
     let (x1, y1) = ((i as i64 + 1) as f64, (j as i64 + 1) as f64);
-    [[x0, x1, x0, x1], [y0, y0, y1, y1], heights]
+    let p = [[x0, x1, x0, x1], [y0, y0, y1, y1], input.heights];
+    (
+        input.axes.map(|k| p[k]),
+        input.axes.map(|k| input.origin[k]),
+    )
 }
 
 /// Settles the edge functions the rounded lanes leave in doubt (`doubt`: a bit per lane), by
@@ -89,21 +111,11 @@ fn settle(q: &Images, e: &mut Edges, mut doubt: u32) {
 /// The ray-space heights and edge functions in plain steps (which the compiler may
 /// vectorise).
 #[inline(always)]
-fn portable(
-    [kx, ky, kz]: [usize; 3],
-    shear: &[f64; 3],
-    origin: &[f64; 3],
-    cell: (usize, usize),
-    heights: [f64; 4],
-) -> (Heights, Edges) {
-    let p = corners(cell, heights);
+fn portable(input: Input<'_>) -> (Heights, Edges) {
+    let ((p, o), shear) = (placed(input), input.shear);
     let mut q = [[0.0; 4]; 3];
     for n in 0..4 {
-        let (x, y, z) = (
-            p[kx][n] - origin[kx],
-            p[ky][n] - origin[ky],
-            p[kz][n] - origin[kz],
-        );
+        let (x, y, z) = (p[0][n] - o[0], p[1][n] - o[1], p[2][n] - o[2]);
         q[0][n] = x - shear[0] * z;
         q[1][n] = y - shear[1] * z;
         q[2][n] = shear[2] * z;
@@ -125,24 +137,18 @@ fn portable(
 mod x86 {
     //! The lanes in explicit AVX2 and AVX-512 instructions, step for step the portable ones.
 
-    use super::{corners, settle, Edges, Heights, Images, DET2_ABSOLUTE, DET2_RELATIVE};
+    use super::{placed, settle, Edges, Heights, Images, Input, DET2_ABSOLUTE, DET2_RELATIVE};
     use std::arch::x86_64::*;
 
     /// The corners moved into ray space, a lane per corner: x, y and z.
     #[inline]
     #[target_feature(enable = "avx2")]
-    fn images(
-        [kx, ky, kz]: [usize; 3],
-        shear: &[f64; 3],
-        origin: &[f64; 3],
-        cell: (usize, usize),
-        heights: [f64; 4],
-    ) -> [__m256d; 3] {
-        let p = corners(cell, heights);
+    fn images(input: Input<'_>) -> [__m256d; 3] {
+        let ((p, o), shear) = (placed(input), input.shear);
         // SAFETY: each corner row holds four values: one register.
         let load = |k: usize| unsafe { _mm256_loadu_pd(p[k].as_ptr()) };
-        let rel = |k: usize| _mm256_sub_pd(load(k), _mm256_set1_pd(origin[k]));
-        let (x, y, z) = (rel(kx), rel(ky), rel(kz));
+        let rel = |k: usize| _mm256_sub_pd(load(k), _mm256_set1_pd(o[k]));
+        let (x, y, z) = (rel(0), rel(1), rel(2));
         [
             _mm256_sub_pd(x, _mm256_mul_pd(_mm256_set1_pd(shear[0]), z)),
             _mm256_sub_pd(y, _mm256_mul_pd(_mm256_set1_pd(shear[1]), z)),
@@ -190,14 +196,8 @@ mod x86 {
     /// The images and edge functions, four lanes to a register.
     #[inline]
     #[target_feature(enable = "avx2")]
-    pub(super) fn lanes_avx2(
-        axes: [usize; 3],
-        shear: &[f64; 3],
-        origin: &[f64; 3],
-        cell: (usize, usize),
-        heights: [f64; 4],
-    ) -> (Heights, Edges) {
-        let [qx, qy, qz] = images(axes, shear, origin, cell, heights);
+    pub(super) fn lanes_avx2(input: Input<'_>) -> (Heights, Edges) {
+        let [qx, qy, qz] = images(input);
         // Lanes `(A, B)` of T0: (3, 1), (0, 3), (1, 0); of T1: (2, 3), (0, 2), (3, 0) (the
         // fourth lane repeats the third).
         const A0: i32 = 3 | (1 << 4) | (1 << 6);
@@ -229,14 +229,8 @@ mod x86 {
     /// The images four lanes to a register, the six edge functions in one register.
     #[inline]
     #[target_feature(enable = "avx512f,avx2")]
-    pub(super) fn lanes_avx512(
-        axes: [usize; 3],
-        shear: &[f64; 3],
-        origin: &[f64; 3],
-        cell: (usize, usize),
-        heights: [f64; 4],
-    ) -> (Heights, Edges) {
-        let [qx, qy, qz] = images(axes, shear, origin, cell, heights);
+    pub(super) fn lanes_avx512(input: Input<'_>) -> (Heights, Edges) {
+        let [qx, qy, qz] = images(input);
         let (x, y) = (_mm512_castpd256_pd512(qx), _mm512_castpd256_pd512(qy));
         // The corners `(A, B)` of the six lanes (the last two repeat the first).
         let a = _mm512_setr_epi64(3, 0, 1, 2, 0, 3, 3, 3);
