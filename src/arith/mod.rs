@@ -14,12 +14,14 @@ mod interval;
 mod rational;
 mod rounding;
 pub mod scalar;
+mod simd;
 
 pub use dispatch::{run, with_numbers, Generic, Numbers, Plain, Ran, Settling, WithNumbers};
 pub use exact::Exact;
 pub use interval::{settled, unsettled, Interval};
 pub use rational::{with_bound, Rational, RationalEvents, DEFAULT_BOUND};
 pub use scalar::Scalar;
+pub use simd::{SimdPath, SIMD_VARIABLE};
 
 use std::fmt;
 use std::str::FromStr;

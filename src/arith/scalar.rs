@@ -91,6 +91,12 @@ pub trait Scalar:
         None
     }
 
+    /// The values themselves where this arithmetic is `f64` (for kernels written for `f64`
+    /// lanes); `None` in the others.
+    fn as_f64s<const N: usize>(_values: &[Self; N]) -> Option<&[f64; N]> {
+        None
+    }
+
     /// The exact value as a fraction, for arithmetics that have one.
     fn to_exact(&self) -> Option<BigRational> {
         None
@@ -173,6 +179,13 @@ fn with_sign(value: f64, sign: Ordering) -> f64 {
     }
 }
 
+/// The band around zero in which the rounded `f64` value of `a*b - c*d`, `p - q` with
+/// `p = fl(ab)` and `q = fl(cd)`, may have the wrong sign: `DET2_RELATIVE * (|p| + |q|) +
+/// DET2_ABSOLUTE` (a lane kernel computing the same steps asks exactly where this does).
+pub const DET2_RELATIVE: f64 = 3.4e-16;
+/// See [`DET2_RELATIVE`].
+pub const DET2_ABSOLUTE: f64 = 1e-300;
+
 /// `a*b - c*d` in `f64` with the exact sign: rounded where the error bound allows, decided
 /// exactly inside it (rare).
 #[inline]
@@ -181,7 +194,7 @@ fn det2_f64(a: &f64, b: &f64, c: &f64, d: &f64) -> f64 {
     let value = p - q;
     // Error of fl(fl(ab) - fl(cd)) is below 3u(|ab| + |cd|) with u = 2^-53; outside that
     // band the sign is certain.
-    let bound = 3.4e-16 * (p.abs() + q.abs()) + 1e-300;
+    let bound = DET2_RELATIVE * (p.abs() + q.abs()) + DET2_ABSOLUTE;
     if value.abs() > bound {
         value
     } else {
@@ -215,7 +228,7 @@ fn det2_f32(a: &f32, b: &f32, c: &f32, d: &f32) -> f32 {
 /// lattice crossings (room for a recurrence's drift over a million steps) and exact-sign
 /// determinant.
 macro_rules! float_scalar {
-    ($float:ty, $tolerance:expr, $det2:path) => {
+    ($float:ty, $tolerance:expr, $det2:path, $as_f64s:expr) => {
         impl Scalar for $float {
             fn from_f64(x: f64) -> Self {
                 x as $float
@@ -264,6 +277,10 @@ macro_rules! float_scalar {
             fn past_rounding(self) -> Self {
                 self + 8.0 * <$float>::EPSILON * self.abs()
             }
+            #[inline(always)]
+            fn as_f64s<const N: usize>(values: &[Self; N]) -> Option<&[f64; N]> {
+                $as_f64s(values)
+            }
         }
     };
 }
@@ -272,8 +289,8 @@ macro_rules! float_scalar {
 /// [`Scalar::nearly_equal`].
 pub const F64_TOLERANCE: f64 = 1e-9;
 
-float_scalar!(f64, F64_TOLERANCE, det2_f64);
-float_scalar!(f32, 1e-4, det2_f32);
+float_scalar!(f64, F64_TOLERANCE, det2_f64, Some);
+float_scalar!(f32, 1e-4, det2_f32, |_| None);
 
 #[cfg(test)]
 mod tests {

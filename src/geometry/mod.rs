@@ -19,6 +19,7 @@
 //!   order (the cells the projected path touches, in order of first contact), `T0` before
 //!   `T1`.
 
+mod cell_lanes;
 mod certain_miss;
 mod clip;
 mod ray;

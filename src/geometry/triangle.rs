@@ -16,8 +16,8 @@ use std::ops::{Add, Mul, Sub};
 /// A ray prepared for many triangle tests: the axis permutation and shear of Woop et al.
 #[derive(Clone, Debug)]
 pub struct RaySpace<S> {
-    axes: [usize; 3],
-    shear: [S; 3],
+    pub(super) axes: [usize; 3],
+    pub(super) shear: [S; 3],
     origin: [S; 3],
     dir: [S; 3],
 }
@@ -93,27 +93,43 @@ impl<S: Scalar> RaySpace<S> {
     /// images are `q`. Hits at `t >= 0` only.
     pub fn intersect(&self, p: [&[S; 3]; 3], q: [&[S; 3]; 3]) -> Option<TriangleHit<S>> {
         let [a, b, c] = q;
-        // Compute edge functions, signs exact. Two of opposite signs already tell a miss (the
-        // comparisons are the ones the full test makes first, so none more is asked of an
-        // arithmetic that may not settle it).
-        let zero = S::zero();
+        // Compute edge functions, signs exact (the third only where the first two leave the
+        // answer open, so none more is asked of an arithmetic that may not settle it).
         let u = S::det2(&c[0], &b[1], &c[1], &b[0]);
         let v = S::det2(&a[0], &c[1], &a[1], &c[0]);
+        let w = || S::det2(&b[0], &a[1], &b[1], &a[0]);
+        let heights = [&a[2], &b[2], &c[2]];
+        self.decide([u, v], w, heights, || self.intersect_coplanar(p))
+    }
+
+    /// The test from a triangle's edge functions `u`, `v` and `w` (in ray space, against the
+    /// corners `c`-`b`, `a`-`c`, `b`-`a`) and its corners' ray-space heights; `coplanar`
+    /// answers for a ray in the triangle's plane (all three zero).
+    #[inline(always)]
+    pub(super) fn decide(
+        &self,
+        [u, v]: [S; 2],
+        w: impl FnOnce() -> S,
+        [az, bz, cz]: [&S; 3],
+        coplanar: impl FnOnce() -> Option<TriangleHit<S>>,
+    ) -> Option<TriangleHit<S>> {
+        // Two of opposite signs already tell a miss.
+        let zero = S::zero();
         if (u < zero && v > zero) || (u > zero && v < zero) {
             return None;
         }
-        let w = S::det2(&b[0], &a[1], &b[1], &a[0]);
+        let w = w();
         let any_negative = u < zero || v < zero || w < zero;
         let any_positive = u > zero || v > zero || w > zero;
         if any_negative && any_positive {
             return None;
         }
         if !any_negative && !any_positive {
-            return self.intersect_coplanar(p);
+            return coplanar();
         }
         // Interpolate the hit distance; det and t_scaled share a sign when t >= 0.
         let det = u.clone() + v.clone() + w.clone();
-        let t_scaled = u * a[2].clone() + v * b[2].clone() + w * c[2].clone();
+        let t_scaled = u * az.clone() + v * bz.clone() + w * cz.clone();
         if t_scaled.is_negative() != det.is_negative() && !t_scaled.is_zero() {
             return None;
         }

@@ -97,9 +97,14 @@ impl Terrain {
         }
     }
     /// Heights `[z00, z10, z01, z11]` of the corners of cell `(i, j)`.
+    // (One index for the four samples, as `cell_sample_range` reads them: this is read for
+    // every cell whose triangles are tested.)
+    #[inline]
     pub fn corner_heights(&self, i: usize, j: usize) -> [f64; 4] {
-        let f = &self.field;
-        [f.z(i, j), f.z(i + 1, j), f.z(i, j + 1), f.z(i + 1, j + 1)]
+        let (f, w) = (&self.field, self.field.width());
+        let below = j * w + i;
+        let s = &f.samples()[below..below + w + 2];
+        [s[0], s[1], s[w], s[w + 1]].map(|sample| f.height_of(sample))
     }
     /// Lowest and highest sample of cell `(i, j)`.
     #[inline]

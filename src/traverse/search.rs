@@ -8,7 +8,7 @@ use super::frame::{Frame, Span};
 use super::mipmap::{run_sample, BlockRun, Part};
 use super::Query;
 use crate::arith::scalar::{max, min, Scalar};
-use crate::arith::settled;
+use crate::arith::{settled, SimdPath};
 use crate::geometry::{CellTriangles, Certain, CertainMiss, RaySpace, TriangleHit};
 use crate::heightfield::Terrain;
 use std::cell::OnceCell;
@@ -288,6 +288,19 @@ impl<S: Scalar, C: CellLog> Search<'_, S, C> {
         let heights = self.terrain.corner_heights(i, j);
         let start = self.start_triangle;
         let tested = |triangle| start != Some(((i, j), triangle));
+        // In `f64`, both triangles at once in SIMD lanes, with the scalar test's answers.
+        let lanes = self
+            .ray
+            .get()
+            .cell_in_lanes(SimdPath::active(), (i, j), heights);
+        if let Some(hits) = lanes {
+            for (triangle, hit) in (0..2).zip(hits) {
+                if tested(triangle) {
+                    self.keep((i, j), triangle, hit)?;
+                }
+            }
+            return ControlFlow::Continue(());
+        }
         // What the `f64` filter settles: a certain miss (`Some(None)`), or a certain hit and
         // an enclosure of its `t` (`Some(Some(t))`).
         let certain: [Option<Option<S>>; 2] = match &self.certain_miss {
@@ -330,32 +343,47 @@ impl<S: Scalar, C: CellLog> Search<'_, S, C> {
                     None => cell.intersect(self.ray.get(), triangle),
                 },
             };
-            let counts = hit.as_ref().is_some_and(|hit| self.counts(hit));
-            if !self.counters.triangle.record(counts) {
-                continue;
-            }
-            let Some(hit) = hit else { continue };
-            // (A walk may reach a cell twice where its parts meet: the same triangle's hit is
-            // the same, and comparing it with itself would be a tie intervals cannot settle.)
-            let other = |f: &Found<S>| (f.cell, f.triangle) != ((i, j), triangle);
-            let earlier = self
-                .found
-                .as_ref()
-                .is_none_or(|f| other(f) && hit.t_first < f.t);
-            self.tied |= !earlier
-                && self.found.as_ref().is_some_and(|f| {
-                    other(f) && f.t.partial_cmp(&hit.t_first) == Some(Ordering::Equal)
-                });
-            if earlier {
-                self.found = Some(Found {
-                    t: hit.t_first,
-                    cell: (i, j),
-                    triangle,
-                });
-            }
-            if self.query == Query::Shadow {
-                return ControlFlow::Break(());
-            }
+            self.keep((i, j), triangle, hit)?;
+        }
+        ControlFlow::Continue(())
+    }
+
+    /// Counts the test of `triangle` of `cell` and keeps its hit if it is the first so far;
+    /// breaks a shadow query at a hit that counts.
+    #[inline(always)]
+    fn keep(
+        &mut self,
+        cell: (usize, usize),
+        triangle: u8,
+        hit: Option<TriangleHit<S>>,
+    ) -> ControlFlow<()> {
+        let counts = hit.as_ref().is_some_and(|hit| self.counts(hit));
+        if !self.counters.triangle.record(counts) {
+            return ControlFlow::Continue(());
+        }
+        let Some(hit) = hit else {
+            return ControlFlow::Continue(());
+        };
+        // (A walk may reach a cell twice where its parts meet: the same triangle's hit is
+        // the same, and comparing it with itself would be a tie intervals cannot settle.)
+        let other = |f: &Found<S>| (f.cell, f.triangle) != (cell, triangle);
+        let earlier = self
+            .found
+            .as_ref()
+            .is_none_or(|f| other(f) && hit.t_first < f.t);
+        self.tied |= !earlier
+            && self.found.as_ref().is_some_and(|f| {
+                other(f) && f.t.partial_cmp(&hit.t_first) == Some(Ordering::Equal)
+            });
+        if earlier {
+            self.found = Some(Found {
+                t: hit.t_first,
+                cell,
+                triangle,
+            });
+        }
+        if self.query == Query::Shadow {
+            return ControlFlow::Break(());
         }
         ControlFlow::Continue(())
     }

@@ -8,6 +8,7 @@ mod common;
 
 mod bad_input;
 mod beams;
+mod cell_lanes;
 mod cli_bench;
 mod cli_compare;
 mod cli_paths;

@@ -24,7 +24,7 @@ mod walk;
 #[cfg(target_arch = "x86_64")]
 mod x86;
 
-pub use dispatch::{SimdPath, SIMD_VARIABLE};
+pub use crate::arith::{SimdPath, SIMD_VARIABLE};
 
 use super::counters::HitMiss;
 use super::Clearance;
