@@ -249,6 +249,9 @@ pub struct EffectsSection {
     /// Sky-light rays per point (default 16).
     #[serde(default)]
     pub sky_rays: Option<u32>,
+    /// How far sky-light rays look for terrain, in world units (default 64).
+    #[serde(default)]
+    pub sky_distance: Option<f64>,
 }
 
 /// A scene file's `[overlay]` section: an image (PNG, JPEG or TIFF) draped over the map.

@@ -393,7 +393,24 @@ impl Shader<'_> {
         p: DVec3,
         dir: [f64; 3],
     ) -> Occlusion {
+        self.occluded_within(found, ray, p, dir, None)
+    }
+
+    /// [`Shader::occluded`] asking only up to `t_max` along the ray, if given (see
+    /// [`Tracer::within`]).
+    pub(super) fn occluded_within<S: Scalar>(
+        &self,
+        found: &Found<S>,
+        ray: &Ray,
+        p: DVec3,
+        dir: [f64; 3],
+        t_max: Option<f64>,
+    ) -> Occlusion {
         let tracer = Tracer::new(self.terrain, self.method);
+        let tracer = match t_max {
+            Some(t) => tracer.within(t),
+            None => tracer,
+        };
         let skip_above = self.culling.above_terrain;
         match self.lighting.normals {
             // Smooth shading: from the curved surface the shading describes, which its own flat

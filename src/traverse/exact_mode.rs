@@ -120,7 +120,8 @@ pub(super) fn trace_certified<S: Scalar, W: Walk>(
     near: F64Ray,
     options: &WalkOptions,
 ) -> Option<ScalarTrace<S>> {
-    if options.record_cells {
+    // (Its `f64` walk knows no reach: the exact walk answers a ray with one.)
+    if options.record_cells || options.reach.is_some() {
         return None;
     }
     let dir = near.2;

@@ -75,6 +75,12 @@ const ROOM: f64 = 1e-9;
 /// lies below the surface (a start no bound describes). `o` is a point on or above the
 /// surface inside the map, as a shadow ray's start.
 pub fn slope_bound(terrain: &Terrain, o: DVec3, sector: Option<Sector>) -> f64 {
+    slope_bound_within(terrain, o, sector, f64::INFINITY)
+}
+
+/// [`slope_bound`] over the points of the surface no further than `reach` from `o`
+/// horizontally (grid units): a ray that asks only so far is clear if it climbs above it.
+pub fn slope_bound_within(terrain: &Terrain, o: DVec3, sector: Option<Sector>, reach: f64) -> f64 {
     let (cell, near) = match near_rise(terrain, o, sector.as_ref()) {
         Some(near) => near,
         None => return f64::INFINITY,
@@ -88,6 +94,7 @@ pub fn slope_bound(terrain: &Terrain, o: DVec3, sector: Option<Sector>) -> f64 {
         near,
         cells: (cells_x, cells_y),
         sector,
+        reach,
         best: 0.0,
     };
     let top = terrain.mipmap().top();
@@ -170,6 +177,8 @@ struct Search<'a> {
     near: f64,
     cells: (usize, usize),
     sector: Option<Sector>,
+    /// Blocks further than this from `o` horizontally are left out.
+    reach: f64,
     best: f64,
 }
 
@@ -194,6 +203,9 @@ impl Search<'_> {
         let dx = (x0 as f64 - self.o.x).max(self.o.x - x1 as f64).max(0.0);
         let dy = (y0 as f64 - self.o.y).max(self.o.y - y1 as f64).max(0.0);
         let distance = dx.hypot(dy);
+        if distance > self.reach {
+            return;
+        }
         if let Some(sector) = self.sector.filter(|_| distance > 0.0) {
             let (x0, y0, x1, y1) = (x0 as f64, y0 as f64, x1 as f64, y1 as f64);
             let o = DVec2::new(self.o.x, self.o.y);

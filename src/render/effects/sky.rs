@@ -3,7 +3,7 @@
 //! in place of the constant ambient term. A direction that climbs more steeply than the
 //! terrain can rise around the point is open without a walk.
 
-use super::horizon::{climbs_above, sector_of, slope_bound, Sector};
+use super::horizon::{climbs_above, sector_of, slope_bound_within, Sector};
 use super::sampling::{cosine_hemisphere, point, seed_of};
 use crate::render::shade::{horizon, sky_colour, zenith, Shader};
 use crate::traverse::{Counters, Found, Scalar, Tracer};
@@ -73,12 +73,16 @@ impl Shader<'_> {
     ) -> (DVec3, SkyRays) {
         let normal = self.normal(found.cell, found.triangle, p);
         let start = self.occlusion_start(found.cell, found.triangle, p);
+        let distance = self.lighting.effects.sky_distance;
+        // A world unit horizontally spans at most this many grid units.
+        let scale = self.terrain.world_from_grid().unwrap_or([1.0; 3]);
+        let reach = distance / scale[0].min(scale[1]);
         // Each sector's bound, found when a direction in it first asks.
         let mut bounds = [None; SECTORS];
         let mut bound = |dir: DVec3| {
             let k = sector_of(dir, SECTORS);
             *bounds[k].get_or_insert_with(|| {
-                slope_bound(self.terrain, start, Some(Sector::nth(k, SECTORS)))
+                slope_bound_within(self.terrain, start, Some(Sector::nth(k, SECTORS)), reach)
             })
         };
         let rays = self.lighting.effects.sky_rays;
@@ -96,7 +100,10 @@ impl Shader<'_> {
             let culled =
                 self.culling.horizon_clear && grid.z > 0.0 && climbs_above(grid, bound(grid));
             let open = culled || {
-                let answer = self.occluded(found, ray, p, grid.into());
+                // (The ray's `t` runs along the unit grid direction.)
+                let across = (grid.x * scale[0]).hypot(grid.y * scale[1]);
+                let t_max = (distance / across).is_finite().then(|| distance / across);
+                let answer = self.occluded_within(found, ray, p, grid.into(), t_max);
                 if answer.occluded.is_some() {
                     sky.cast += 1;
                     sky.counters += answer.counters;
