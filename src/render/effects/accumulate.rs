@@ -81,12 +81,14 @@ impl Accumulation {
 }
 
 impl Renderer<'_> {
-    /// Renders the frame in rounds of samples (see [`Renderer::accumulate`]) to the end.
+    /// Renders the frame in rounds of samples to the end, each pixel's batch of a round taken
+    /// at once (the terrain its rays cross is then still in the caches): the image of
+    /// [`Renderer::accumulate`]'s rounds of one sample, whose decisions wait for a batch too.
     pub fn render_in_rounds(&self, frame: &mut Frame) {
         let effects = &self.shader.lighting.effects;
         let mut sums = Accumulation::new(frame.width, frame.height, effects.samples.max(1));
         while !sums.complete() {
-            self.accumulate(&mut sums, frame, &|| false);
+            self.add_round(&mut sums, frame, &|| false, FIRST_BATCH);
         }
         for taking in &sums.pixels {
             frame.totals.effects.add_pixel(taking.estimate.taken);
@@ -103,8 +105,23 @@ impl Renderer<'_> {
         frame: &mut Frame,
         cancelled: &(dyn Fn() -> bool + Sync),
     ) -> bool {
+        self.add_round(sums, frame, cancelled, 1)
+    }
+
+    /// [`Renderer::accumulate`] adding up to `count` samples to each pixel, up to the end of
+    /// the current batch.
+    fn add_round(
+        &self,
+        sums: &mut Accumulation,
+        frame: &mut Frame,
+        cancelled: &(dyn Fn() -> bool + Sync),
+        count: u32,
+    ) -> bool {
         let width = frame.width as usize;
-        let index = sums.done;
+        let first = sums.done;
+        let total = self.shader.lighting.effects.samples.max(1);
+        let batch_end = (first / FIRST_BATCH + 1) * FIRST_BATCH;
+        let end = (first + count).min(batch_end).min(total);
         let shader = Shader {
             lighting: Lighting {
                 effects: pixel::per_sample(&self.shader.lighting.effects),
@@ -113,7 +130,7 @@ impl Renderer<'_> {
             ..self.shader
         };
         let effects = &self.shader.lighting.effects;
-        let last = index + 1 >= effects.samples.max(1);
+        let last = end >= total;
         let rows = frame
             .pixels
             .par_chunks_mut(width)
@@ -131,20 +148,21 @@ impl Renderer<'_> {
                     if taking.done {
                         continue;
                     }
-                    let (px, py) = position(x as u32, y as u32, index);
-                    let (sample, _) = shader.traced(&self.camera.ray_at(px, py), self.arith);
-                    totals.add(&sample);
-                    let at_batch_end = taking.estimate.add(sample.rgb);
-                    if let Some(agrees) = at_batch_end {
-                        taking.agrees = agrees;
+                    for index in first..end {
+                        let (px, py) = position(x as u32, y as u32, index);
+                        let (sample, _) = shader.traced(&self.camera.ray_at(px, py), self.arith);
+                        totals.add(&sample);
+                        if let Some(agrees) = taking.estimate.add(sample.rgb) {
+                            taking.agrees = agrees;
+                        }
+                        let mut traced = PixelStats::of(&sample);
+                        if index > 0 {
+                            traced += *stat;
+                            traced.samples = index + 1;
+                        }
+                        *stat = traced;
                     }
                     *pixel = taking.estimate.rgb();
-                    let mut traced = PixelStats::of(&sample);
-                    if index > 0 {
-                        traced += *stat;
-                        traced.samples = index + 1;
-                    }
-                    *stat = traced;
                     if last {
                         taking.done = true;
                         stopped += 1;
@@ -162,7 +180,7 @@ impl Renderer<'_> {
             sums.active -= stopped;
         }
         frame.totals += totals;
-        sums.done += 1;
+        sums.done = end;
         if effects.adaptive && !last && sums.done.is_multiple_of(FIRST_BATCH) {
             sums.settle();
         }

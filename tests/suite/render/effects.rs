@@ -469,9 +469,17 @@ fn samples_converge_to_the_supersampled_image() {
     assert!(error < errors[1], "{error} against {errors:?}");
 }
 
+/// Rounds of one sample, as the viewer adds them, end with `render`'s image: uniform, and
+/// adaptive (which `render` takes a batch per pixel at a time).
 #[test]
 fn samples_added_in_rounds_give_the_rendered_image() {
-    let scene = effects_scene(5, false);
+    for (samples, adaptive) in [(5, false), (10, true)] {
+        samples_in_rounds(samples, adaptive);
+    }
+}
+
+fn samples_in_rounds(samples: u32, adaptive: bool) {
+    let scene = effects_scene(samples, adaptive);
     let terrain = Terrain::new(scene.field.clone());
     let rendered = render_by(
         Method::Mipmap,
@@ -489,12 +497,18 @@ fn samples_added_in_rounds_give_the_rendered_image() {
     };
     let (w, h) = scene.camera.size();
     let mut frame = Frame::new(w, h);
-    let mut sums = heightray::render::effects::Accumulation::new(w, h, 5);
+    let mut sums = heightray::render::effects::Accumulation::new(w, h, samples);
     while !sums.complete() {
         assert!(renderer.accumulate(&mut sums, &mut frame, &|| false));
     }
-    assert_eq!(sums.done, 5);
-    assert_eq!(frame.pixels, rendered.pixels);
+    assert_eq!(frame.pixels, rendered.pixels, "{samples} samples");
+    assert_eq!(frame.totals.primary_rays, rendered.totals.primary_rays);
+    if adaptive {
+        assert!(sums.done < samples || sums.active == 0);
+        assert!(rendered.totals.primary_rays < u64::from(samples * w * h));
+    } else {
+        assert_eq!(sums.done, samples);
+    }
 }
 
 #[test]
