@@ -120,7 +120,10 @@ pub fn level_within(terrain: &Terrain, o: DVec3, reach: f64) -> bool {
         let cell = |x: f64| (x.floor().max(0.0) as usize).min(n - 1) >> k;
         cell(c - reach)..=cell(c + reach)
     };
-    let (xs, ys) = (cells(o.x, field.width() - 1), cells(o.y, field.height() - 1));
+    let (xs, ys) = (
+        cells(o.x, field.width() - 1),
+        cells(o.y, field.height() - 1),
+    );
     ys.flat_map(|bj| xs.clone().map(move |bi| (bi, bj)))
         .all(|(bi, bj)| field.height_of(terrain.block_max_sample(k, bi, bj)) <= o.z)
 }
