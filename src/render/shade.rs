@@ -368,7 +368,7 @@ impl Shader<'_> {
         if self.culling.no_shadow_possible && climbs_steeper {
             return skip(ShadowSkip::NoShadowPossible);
         }
-        let occlusion = self.occluded(found, ray, p, sun);
+        let occlusion = self.occluded(found, ray, p, sun, None);
         match occlusion.occluded {
             Some(shadowed) => (
                 Shadow::Cast { shadowed },
@@ -385,20 +385,9 @@ impl Shader<'_> {
 
     /// Whether a ray from the hit `found` of `ray` (shaded at `p`) towards `dir` touches the
     /// surface: the occlusion ray of shadows, soft shadows and sky light (not traced where it
-    /// starts above the terrain and rises, and that rule is on).
+    /// starts above the terrain and rises, and that rule is on), asking only up to `t_max`
+    /// along the ray if given (see [`Tracer::within`]).
     pub(super) fn occluded<S: Scalar>(
-        &self,
-        found: &Found<S>,
-        ray: &Ray,
-        p: DVec3,
-        dir: [f64; 3],
-    ) -> Occlusion {
-        self.occluded_within(found, ray, p, dir, None)
-    }
-
-    /// [`Shader::occluded`] asking only up to `t_max` along the ray, if given (see
-    /// [`Tracer::within`]).
-    pub(super) fn occluded_within<S: Scalar>(
         &self,
         found: &Found<S>,
         ray: &Ray,

@@ -34,11 +34,12 @@ pub const WIDEST_SUN_DEG: f64 = 20.0;
 pub struct Effects {
     /// The sun's angular diameter in degrees: 0 casts today's hard shadows.
     pub sun_angle_deg: f64,
-    /// Directions towards the sun's disc per shaded point (soft shadows only).
+    /// Directions towards the sun's disc per pixel, shared out among its samples (soft
+    /// shadows only).
     pub sun_rays: u32,
     /// Light from the sky dome instead of the constant ambient term.
     pub sky_light: bool,
-    /// Sky-light rays per shaded point.
+    /// Sky-light rays per pixel, shared out among its samples (see [`pixel::per_sample`]).
     pub sky_rays: u32,
     /// How far a sky-light ray looks for terrain in its way, horizontally, in world units
     /// (cells along y): the light of a sky hidden only by far ridges is kept, as a terrain

@@ -109,7 +109,7 @@ impl Shader<'_> {
                 // (The ray's `t` runs along the unit grid direction.)
                 let across = (grid.x * scale[0]).hypot(grid.y * scale[1]);
                 let t_max = (distance / across).is_finite().then(|| distance / across);
-                let answer = self.occluded_within(found, ray, p, grid.into(), t_max);
+                let answer = self.occluded(found, ray, p, grid.into(), t_max);
                 if answer.occluded.is_some() {
                     sky.cast += 1;
                     sky.counters += answer.counters;
