@@ -1,7 +1,7 @@
 //! What each effect costs, and how several samples per pixel converge: frames of one scene
 //! with each effect alone and all together, and images against a supersampled reference.
 
-use crate::render::effects::{pixel, Effects};
+use crate::render::effects::{pixel, Effects, Water};
 use crate::render::{Culling, Frame, FrameStats, Renderer, Scene, Shader};
 use crate::traverse::Method;
 use crate::Terrain;
@@ -76,13 +76,19 @@ pub fn frame_with(scene: &Scene, terrain: &Terrain, effects: Effects, label: &st
 }
 
 /// Each effect alone and all together, after the plain frame: soft shadows of a sun
-/// `sun_angle_deg` wide, sky light, `samples` per pixel uniform and adaptive.
-pub fn configurations(base: Effects, sun_angle_deg: f64, samples: u32) -> Vec<(String, Effects)> {
+/// `sun_angle_deg` wide, sky light, `samples` per pixel uniform and adaptive, and `water`.
+pub fn configurations(
+    base: Effects,
+    sun_angle_deg: f64,
+    samples: u32,
+    water: Water,
+) -> Vec<(String, Effects)> {
     let plain = Effects {
         sun_angle_deg: 0.0,
         sky_light: false,
         samples: 1,
         adaptive: false,
+        water: None,
         ..base
     };
     let soft = Effects {
@@ -110,6 +116,13 @@ pub fn configurations(base: Effects, sun_angle_deg: f64, samples: u32) -> Vec<(S
         (format!("{samples} samples"), uniform),
         (format!("{samples} samples adaptive"), adaptive),
         ("all (adaptive)".into(), all),
+        (
+            format!("water at {:.1}", water.level),
+            Effects {
+                water: Some(water),
+                ..plain
+            },
+        ),
     ]
 }
 

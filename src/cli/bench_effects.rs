@@ -5,7 +5,8 @@ use super::bench::{scene_at_size, scenes_or_builtins};
 use super::EffectsArgs;
 use anyhow::Context;
 use heightray::bench::{block_average, configurations, frame_with, rms_error, EffectRow};
-use heightray::render::effects::{Effects, MOST_RAYS};
+use heightray::render::effects::{Effects, Water, MOST_RAYS};
+use heightray::render::WaterSection;
 use heightray::Terrain;
 use serde_json::json;
 use std::io::Write;
@@ -36,7 +37,8 @@ pub fn run(args: &EffectsArgs) -> anyhow::Result<ExitCode> {
         let scene = scene_at_size(&source, args.size)?;
         let terrain = Terrain::new(scene.field.clone());
         let base = scene.lighting.effects;
-        let rows: Vec<EffectRow> = configurations(base, args.sun_angle_deg, args.samples)
+        let water = base.water.map_or_else(|| low_water(&scene), Ok)?;
+        let rows: Vec<EffectRow> = configurations(base, args.sun_angle_deg, args.samples, water)
             .into_iter()
             .map(|(label, effects)| pool.install(|| frame_with(&scene, &terrain, effects, &label)))
             .collect();
@@ -62,10 +64,20 @@ pub fn run(args: &EffectsArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// The scene's water, or where it has none a lake a fifth of the way up its heights.
+fn low_water(scene: &heightray::render::Scene) -> anyhow::Result<Water> {
+    let (lo, hi) = Terrain::new(scene.field.clone()).z_range();
+    let section = WaterSection {
+        level: lo + (hi - lo) / 5.0,
+        colour: None,
+    };
+    section.validate(&scene.field).map_err(anyhow::Error::msg)
+}
+
 /// The costs table: time and rays per pixel by kind, as ratios to the first (plain) row.
 fn print_costs(out: &mut impl Write, rows: &[EffectRow]) -> anyhow::Result<()> {
-    writeln!(out, "| frame | ms | x plain | camera rays/px | shadow rays/px | soft rays/px | sky rays/px | soft culled | sky culled |")?;
-    writeln!(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|")?;
+    writeln!(out, "| frame | ms | x plain | camera rays/px | shadow rays/px | soft rays/px | sky rays/px | water rays/px | soft culled | sky culled |")?;
+    writeln!(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")?;
     let plain = rows.first().map_or(1.0, |r| r.time.as_secs_f64());
     let percent = |share: Option<f64>| share.map_or("-".into(), |s| format!("{:.0}%", 100.0 * s));
     for row in rows {
@@ -73,7 +85,7 @@ fn print_costs(out: &mut impl Write, rows: &[EffectRow]) -> anyhow::Result<()> {
         let per = |n: u64| n as f64 / px;
         writeln!(
             out,
-            "| {} | {:.0} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} |",
+            "| {} | {:.0} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} |",
             row.label,
             row.time.as_secs_f64() * 1e3,
             row.time.as_secs_f64() / plain,
@@ -81,6 +93,7 @@ fn print_costs(out: &mut impl Write, rows: &[EffectRow]) -> anyhow::Result<()> {
             per(t.shadow_rays),
             per(t.effects.soft.rays),
             per(t.effects.sky.rays),
+            per(t.effects.water.rays),
             percent(row.soft_culled()),
             percent(row.sky_culled()),
         )?;

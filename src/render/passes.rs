@@ -84,6 +84,9 @@ impl Renderer<'_> {
     /// for the other's last band. Each pixel is painted alone: a coarse pass's blocks would not
     /// be seen, and painting them would cost a share of every frame.
     pub fn render(&self, frame: &mut Frame) {
+        if self.adaptive() {
+            return self.render_in_rounds(frame);
+        }
         let remaining = frame.passes_done..PASS_BLOCKS.len();
         self.passes(frame, remaining, &|| false, Paint::Pixels, Walking::Singly);
     }
@@ -93,8 +96,18 @@ impl Renderer<'_> {
     /// image. (Not the default: on the built-in views the packets' node tests cost more than
     /// the walks they shorten save.)
     pub fn render_in_packets(&self, frame: &mut Frame) {
+        if self.adaptive() {
+            return self.render_in_rounds(frame);
+        }
         let remaining = frame.passes_done..PASS_BLOCKS.len();
         self.passes(frame, remaining, &|| false, Paint::Pixels, Walking::Packets);
+    }
+
+    /// Whether pixels take adaptive samples: they are then traced in rounds over the whole
+    /// frame, each settled by its neighbours' estimates.
+    fn adaptive(&self) -> bool {
+        let effects = &self.shader.lighting.effects;
+        effects.adaptive && effects.samples > 1
     }
 
     /// Renders the next pass, painting each traced pixel's block of the pass, so the frame can
@@ -257,7 +270,8 @@ impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_,
         let (renderer, sample) = (self.renderer, &self.sample);
         let mut counting = Counting::new(&mut self.totals);
         let effects = &renderer.shader.lighting.effects;
-        let (rgb, taken) = pixel::shade(&renderer.camera, (x, y), effects, |ray| {
+        let taken = effects.samples;
+        let rgb = pixel::shade(&renderer.camera, (x, y), effects, |ray| {
             sample(ray, None, &mut counting)
         });
         let stats = PixelStats {

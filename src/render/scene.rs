@@ -246,9 +246,12 @@ pub struct EffectsSection {
     /// Light from the sky dome instead of the constant ambient term (default off).
     #[serde(default)]
     pub sky_light: bool,
-    /// Sky-light rays per point (default 16).
+    /// Sky-light rays per pixel, shared out among its samples (default 16).
     #[serde(default)]
     pub sky_rays: Option<u32>,
+    /// How far sky-light rays look for terrain, in world units (default 64).
+    #[serde(default)]
+    pub sky_distance: Option<f64>,
 }
 
 /// A scene file's `[overlay]` section: an image (PNG, JPEG or TIFF) draped over the map.

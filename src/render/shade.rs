@@ -369,7 +369,7 @@ impl Shader<'_> {
         if self.culling.no_shadow_possible && climbs_steeper {
             return skip(ShadowSkip::NoShadowPossible);
         }
-        let occlusion = self.occluded(found, ray, p, sun);
+        let occlusion = self.occluded(found, ray, p, sun, None);
         match occlusion.occluded {
             Some(shadowed) => (
                 Shadow::Cast { shadowed },
@@ -386,15 +386,21 @@ impl Shader<'_> {
 
     /// Whether a ray from the hit `found` of `ray` (shaded at `p`) towards `dir` touches the
     /// surface: the occlusion ray of shadows, soft shadows and sky light (not traced where it
-    /// starts above the terrain and rises, and that rule is on).
+    /// starts above the terrain and rises, and that rule is on), asking only up to `t_max`
+    /// along the ray if given (see [`Tracer::within`]).
     pub(super) fn occluded<S: Scalar>(
         &self,
         found: &Found<S>,
         ray: &Ray,
         p: DVec3,
         dir: [f64; 3],
+        t_max: Option<f64>,
     ) -> Occlusion {
         let tracer = Tracer::new(self.terrain, self.method);
+        let tracer = match t_max {
+            Some(t) => tracer.within(t),
+            None => tracer,
+        };
         let skip_above = self.culling.above_terrain;
         match self.lighting.normals {
             // Smooth shading: from the curved surface the shading describes, which its own flat

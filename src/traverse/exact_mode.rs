@@ -121,6 +121,10 @@ pub(super) fn trace_certified<S: Scalar, C: CellLog, W: Walk>(
     near: F64Ray,
     options: &WalkOptions,
 ) -> Option<ScalarTrace<S>> {
+    // (Its `f64` walk knows no reach: the exact walk answers a ray with one.)
+    if options.reach.is_some() {
+        return None;
+    }
     let dir = near.2;
     let mut counters = Counters::default();
     let Some(frame) = clip_near(terrain, &near, dir) else {

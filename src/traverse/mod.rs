@@ -416,14 +416,15 @@ fn trace_logged<S: Scalar, C: CellLog, W: Walk>(
     };
     counters.bbox.record(true);
     let start = beam_start::<S>(&walk_options);
-    // (The beam cleared the whole segment.)
-    let Some(frame) = after_beam(frame, start) else {
+    // (The beam cleared the whole segment, or it lies beyond the reach.)
+    let Some(frame) = after_beam(frame, start).and_then(|f| within_reach(f, &walk_options)) else {
         return ScalarTrace::missed(counters);
     };
     let mut search = new_search::<S, C, W>(terrain, o, d, dir_f64, near, &walk_options, counters);
     search.widen_by(search::slack(&o[2], &d[2], &frame.t1));
     let cleared = W::CLEARS_WAY
         && S::EXACT
+        && walk_options.reach.is_none()
         && near
             .is_some_and(|near| walk_cleared(terrain, (near, start), dir_f64, &frame, &mut search));
     if !cleared {
@@ -495,6 +496,15 @@ fn first_level(options: &WalkOptions, start: Option<(f64, u32)>) -> Option<u32> 
         _ if options.query == Query::Shadow => Some(0),
         Some((_, level)) => Some(level),
         None => None,
+    }
+}
+
+/// The part of the segment up to [`WalkOptions::reach`] (all of it without one), ended at
+/// exactly that `t` in the walk's arithmetic; `None` if the segment starts beyond it.
+fn within_reach<S: Scalar>(frame: Frame<S>, options: &WalkOptions) -> Option<Frame<S>> {
+    match options.reach {
+        Some(to) => frame.stretch(f64::NEG_INFINITY, to),
+        None => Some(frame),
     }
 }
 

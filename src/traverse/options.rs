@@ -64,6 +64,9 @@ pub(crate) struct WalkOptions {
     /// For a shadow ray in intervals: its start, exactly (the hit point it starts at). A
     /// triangle test the intervals cannot settle is then decided exactly on its own.
     pub exact_start: Option<PlanePoint>,
+    /// The walk ends at this `t` (an occlusion ray asking only so far, see
+    /// [`Tracer::within`](super::Tracer::within)).
+    pub reach: Option<f64>,
 }
 
 impl WalkOptions {
@@ -76,6 +79,7 @@ impl WalkOptions {
             start_triangle: None,
             beam: None,
             exact_start: None,
+            reach: None,
         }
     }
 }

@@ -17,6 +17,8 @@ pub struct Tracer<'a> {
     pub(super) terrain: &'a Terrain,
     method: Method,
     record_cells: bool,
+    /// Occlusion rays look no further than this `t` (see [`Tracer::within`]).
+    reach: Option<f64>,
 }
 
 /// Where an occlusion ray ([`Tracer::occluded`]) starts.
@@ -68,6 +70,16 @@ impl<'a> Tracer<'a> {
             terrain,
             method,
             record_cells: false,
+            reach: None,
+        }
+    }
+
+    /// The same tracer, its occlusion rays asking only whether the surface lies in the way
+    /// up to `t_max` (inclusive; in the arithmetic's own `t`, from the ray's start).
+    pub fn within(self, t_max: f64) -> Self {
+        Tracer {
+            reach: Some(t_max),
+            ..self
         }
     }
 
@@ -161,6 +173,7 @@ impl<'a> Tracer<'a> {
         let walk = WalkOptions {
             start_triangle: start_triangle.map(|hit| (hit.cell, hit.triangle)),
             exact_start,
+            reach: self.reach,
             ..self.walk(Query::Shadow)
         };
         let answer = trace_scalar(self.terrain, &origin, &dir.map(S::from_f64), dir, walk);

@@ -45,7 +45,7 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
          height = {height}\n\n\
          [sun]\ndirection = [{sx:?}, {sy:?}, {sz:?}]\nintensity = {:?}\nambient = {:?}\n\
          angle_deg = {:?}\nrays = {}\n\n\
-         [effects]\nshadows = {}\nfog = {:?}\nsky_light = {}\nsky_rays = {}\n\n\
+         [effects]\nshadows = {}\nfog = {:?}\nsky_light = {}\nsky_rays = {}\nsky_distance = {:?}\n\n\
          [shading]\nnormals = \"{}\"\nramp = \"{}\"\n\n\
          [render]\nmethod = \"{}\"\narith = \"{}\"\nsamples = {}\nadaptive = {}\n{}{}",
         orbit.yaw_deg,
@@ -60,6 +60,7 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
         lighting.fog,
         effects.sky_light,
         effects.sky_rays,
+        effects.sky_distance,
         format!("{:?}", lighting.normals).to_lowercase(),
         format!("{:?}", lighting.ramp).to_lowercase(),
         model.settings.method,

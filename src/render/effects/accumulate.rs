@@ -1,20 +1,32 @@
-//! Samples per pixel added one round at a time, for a view that refines while its camera
-//! rests: round `k` traces sample `k` of every pixel still taking samples (the position and
-//! effect rays [`pixel::shade`] gives it, and its stopping rule when adaptive), so after the
-//! last round the image is the one `render` makes, bit for bit.
+//! Samples per pixel added one round at a time: round `k` traces sample `k` of every pixel
+//! still taking samples (the position and effect rays [`pixel::shade`] gives it). Adaptive
+//! pixels are settled between rounds, after every batch of [`FIRST_BATCH`], from the whole
+//! frame's estimates of the round before ([`pixel::refines`]): the decisions depend on no
+//! thread or row order, so the viewer, which shows the frame after each round, ends with the
+//! image `render` makes, bit for bit.
 
-use super::pixel::{self, position, Estimate};
+use super::pixel::{self, position, Estimate, FIRST_BATCH};
 use crate::render::passes::{Frame, Renderer};
 use crate::render::scene::Lighting;
 use crate::render::shade::Shader;
 use crate::render::stats::PixelStats;
 use rayon::prelude::*;
 
+/// One pixel's samples so far.
+#[derive(Clone, Copy, Debug, Default)]
+struct Taking {
+    estimate: Estimate,
+    /// Whether its own samples agree (as of the last full batch).
+    agrees: bool,
+    /// Whether it stopped taking samples.
+    done: bool,
+}
+
 /// The running estimates of a frame's pixels.
 #[derive(Clone, Debug)]
 pub struct Accumulation {
-    /// Each pixel's samples, and whether it stopped taking more.
-    pixels: Vec<(Estimate, bool)>,
+    pixels: Vec<Taking>,
+    width: usize,
     /// Rounds added.
     pub done: u32,
     /// Rounds asked (the scene's samples per pixel).
@@ -28,7 +40,8 @@ impl Accumulation {
     pub fn new(width: u32, height: u32, total: u32) -> Accumulation {
         let n = width as usize * height as usize;
         Accumulation {
-            pixels: vec![(Estimate::default(), false); n],
+            pixels: vec![Taking::default(); n],
+            width: width as usize,
             done: 0,
             total,
             active: n,
@@ -39,9 +52,50 @@ impl Accumulation {
     pub fn complete(&self) -> bool {
         self.done >= self.total || self.active == 0
     }
+
+    /// Stops every active pixel that [`pixel::refines`] leaves alone, judged on the means
+    /// as they are now.
+    fn settle(&mut self) {
+        let width = self.width;
+        let height = self.pixels.len() / width.max(1);
+        let means: Vec<u32> = self.pixels.iter().map(|p| p.estimate.rgb()).collect();
+        let mean = |x: usize, y: usize, dx: isize, dy: isize| {
+            let (nx, ny) = (x.checked_add_signed(dx), y.checked_add_signed(dy));
+            match (nx, ny) {
+                (Some(nx), Some(ny)) if nx < width && ny < height => Some(means[ny * width + nx]),
+                _ => None,
+            }
+        };
+        for (at, taking) in self.pixels.iter_mut().enumerate() {
+            if taking.done {
+                continue;
+            }
+            let (x, y) = (at % width, at / width);
+            let edge = pixel::refines(means[at], |dx, dy| mean(x, y, dx, dy));
+            if taking.agrees && !edge {
+                taking.done = true;
+                self.active -= 1;
+            }
+        }
+    }
 }
 
 impl Renderer<'_> {
+    /// Renders the frame in rounds of samples to the end, each pixel's batch of a round taken
+    /// at once (the terrain its rays cross is then still in the caches): the image of
+    /// [`Renderer::accumulate`]'s rounds of one sample, whose decisions wait for a batch too.
+    pub fn render_in_rounds(&self, frame: &mut Frame) {
+        let effects = &self.shader.lighting.effects;
+        let mut sums = Accumulation::new(frame.width, frame.height, effects.samples.max(1));
+        while !sums.complete() {
+            self.add_round(&mut sums, frame, &|| false, FIRST_BATCH);
+        }
+        for taking in &sums.pixels {
+            frame.totals.effects.add_pixel(taking.estimate.taken);
+        }
+        frame.passes_done = crate::render::passes::PASS_BLOCKS.len();
+    }
+
     /// Adds the next round of samples to `sums` and paints their mean into `frame` (on the
     /// current rayon pool). Returns false when `cancelled` turned true (asked before each
     /// row): the round is then partly added, and both are to be dropped.
@@ -51,8 +105,23 @@ impl Renderer<'_> {
         frame: &mut Frame,
         cancelled: &(dyn Fn() -> bool + Sync),
     ) -> bool {
+        self.add_round(sums, frame, cancelled, 1)
+    }
+
+    /// [`Renderer::accumulate`] adding up to `count` samples to each pixel, up to the end of
+    /// the current batch.
+    fn add_round(
+        &self,
+        sums: &mut Accumulation,
+        frame: &mut Frame,
+        cancelled: &(dyn Fn() -> bool + Sync),
+        count: u32,
+    ) -> bool {
         let width = frame.width as usize;
-        let index = sums.done;
+        let first = sums.done;
+        let total = self.shader.lighting.effects.samples.max(1);
+        let batch_end = (first / FIRST_BATCH + 1) * FIRST_BATCH;
+        let end = (first + count).min(batch_end).min(total);
         let shader = Shader {
             lighting: Lighting {
                 effects: pixel::per_sample(&self.shader.lighting.effects),
@@ -61,37 +130,41 @@ impl Renderer<'_> {
             ..self.shader
         };
         let effects = &self.shader.lighting.effects;
-        let last = index + 1 >= effects.samples.max(1);
+        let last = end >= total;
         let rows = frame
             .pixels
             .par_chunks_mut(width)
             .zip(frame.stats.par_chunks_mut(width))
             .zip(sums.pixels.par_chunks_mut(width))
             .enumerate()
-            .map(|(y, ((pixels, stats), estimates))| {
+            .map(|(y, ((pixels, stats), takings))| {
                 if cancelled() {
                     return None;
                 }
                 let mut totals = crate::render::FrameStats::default();
                 let mut stopped = 0;
-                let row = pixels.iter_mut().zip(stats).zip(estimates).enumerate();
-                for (x, ((pixel, stat), (estimate, done))) in row {
-                    if *done {
+                let row = pixels.iter_mut().zip(stats).zip(takings).enumerate();
+                for (x, ((pixel, stat), taking)) in row {
+                    if taking.done {
                         continue;
                     }
-                    let (px, py) = position(x as u32, y as u32, index);
-                    let (sample, _) = shader.traced(&self.camera.ray_at(px, py), self.arith);
-                    totals.add(&sample);
-                    let may_stop = estimate.add(sample.rgb);
-                    *pixel = estimate.rgb();
-                    let mut traced = PixelStats::of(&sample);
-                    if index > 0 {
-                        traced += *stat;
-                        traced.samples = index + 1;
+                    for index in first..end {
+                        let (px, py) = position(x as u32, y as u32, index);
+                        let (sample, _) = shader.traced(&self.camera.ray_at(px, py), self.arith);
+                        totals.add(&sample);
+                        if let Some(agrees) = taking.estimate.add(sample.rgb) {
+                            taking.agrees = agrees;
+                        }
+                        let mut traced = PixelStats::of(&sample);
+                        if index > 0 {
+                            traced += *stat;
+                            traced.samples = index + 1;
+                        }
+                        *stat = traced;
                     }
-                    *stat = traced;
-                    if last || (effects.adaptive && may_stop) {
-                        *done = true;
+                    *pixel = taking.estimate.rgb();
+                    if last {
+                        taking.done = true;
                         stopped += 1;
                     }
                 }
@@ -107,7 +180,10 @@ impl Renderer<'_> {
             sums.active -= stopped;
         }
         frame.totals += totals;
-        sums.done += 1;
+        sums.done = end;
+        if effects.adaptive && !last && sums.done.is_multiple_of(FIRST_BATCH) {
+            sums.settle();
+        }
         true
     }
 }

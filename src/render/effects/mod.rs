@@ -34,12 +34,17 @@ pub const WIDEST_SUN_DEG: f64 = 20.0;
 pub struct Effects {
     /// The sun's angular diameter in degrees: 0 casts today's hard shadows.
     pub sun_angle_deg: f64,
-    /// Directions towards the sun's disc per shaded point (soft shadows only).
+    /// Directions towards the sun's disc per pixel, shared out among its samples (soft
+    /// shadows only).
     pub sun_rays: u32,
     /// Light from the sky dome instead of the constant ambient term.
     pub sky_light: bool,
-    /// Sky-light rays per shaded point.
+    /// Sky-light rays per pixel, shared out among its samples (see [`pixel::per_sample`]).
     pub sky_rays: u32,
+    /// How far a sky-light ray looks for terrain in its way, horizontally, in world units
+    /// (cells along y): the light of a sky hidden only by far ridges is kept, as a terrain
+    /// picture's ambient shading does.
+    pub sky_distance: f64,
     /// Camera rays per pixel (at most; see `adaptive`).
     pub samples: u32,
     /// A pixel stops taking samples once they agree (see [`pixel`]).
@@ -55,6 +60,7 @@ impl Default for Effects {
             sun_rays: DEFAULT_RAYS,
             sky_light: false,
             sky_rays: DEFAULT_RAYS,
+            sky_distance: DEFAULT_SKY_DISTANCE,
             samples: 1,
             adaptive: false,
             water: None,
@@ -64,6 +70,11 @@ impl Default for Effects {
 
 /// Rays towards the sun's disc or the sky when the scene does not say.
 pub const DEFAULT_RAYS: u32 = 16;
+
+/// How far sky-light rays look when the scene does not say, in world units: the valleys and
+/// gullies that shade a terrain picture are narrower; the distant ridges beyond darken a
+/// whole slope alike.
+pub const DEFAULT_SKY_DISTANCE: f64 = 64.0;
 
 impl Effects {
     /// The effects of a scene file's sections, or which key is out of range.
@@ -83,11 +94,19 @@ impl Effects {
             n @ 1..=MOST_RAYS => Ok(n),
             n => Err(format!("{key} must be from 1 to {MOST_RAYS}, got {n}")),
         };
+        let sky_distance = effects.sky_distance.unwrap_or(DEFAULT_SKY_DISTANCE);
+        if sky_distance.is_nan() || sky_distance <= 0.0 {
+            return Err(format!(
+                "[effects] sky_distance must be a distance above 0 (world units; inf looks \
+                 across the whole map), got {sky_distance}"
+            ));
+        }
         Ok(Effects {
             sun_angle_deg: angle,
             sun_rays: count("[sun] rays", sun.rays)?,
             sky_light: effects.sky_light,
             sky_rays: count("[effects] sky_rays", effects.sky_rays)?,
+            sky_distance,
             samples: count("[render] samples", Some(render.samples))?,
             adaptive: render.adaptive,
             water: None,

@@ -1,9 +1,10 @@
 //! Several camera rays per pixel: stratified positions over the pixel (a low-discrepancy
 //! sequence rotated per pixel by a hash of its position, so a pixel's samples are the same on
 //! every thread and in every pass), box-filtered in linear light. Adaptive sampling takes a
-//! first batch, then more batches only while the samples' mean is not yet known to within a
-//! display byte. The decision is the pixel's own ([`Estimate`]), so a view that adds one
-//! sample of every pixel at a time stops each pixel where `render` does.
+//! first batch everywhere, then more batches where a pixel's own samples do not yet pin its
+//! mean to a display byte ([`Estimate`]) or where its neighbours say an edge is near
+//! ([`refines`]): a pixel whose first samples all missed an edge is found by the pixels
+//! beside it. The rounds are in [`Accumulation`](super::Accumulation).
 
 use super::sampling::{mix, point};
 use super::Effects;
@@ -14,19 +15,31 @@ use crate::Ray;
 /// Samples every adaptive pixel takes before it may stop; also the batch it adds at a time.
 pub const FIRST_BATCH: u32 = 4;
 
-/// Half-width of the confidence interval allowed on each channel's mean, in display bytes.
+/// The error allowed on each channel's mean, in display bytes.
 const TOLERANCE: f64 = 1.0;
 
-/// Student's t at 95% two-sided for the degrees of freedom of a pixel's samples (n - 1,
-/// looked up from 3 on; 2.0 from 30 on).
-fn student_t(dof: u32) -> f64 {
-    const T: [f64; 8] = [3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228];
-    match dof {
-        0..=2 => 4.303,
-        3..=10 => T[dof as usize - 3],
-        11..=29 => 2.1,
-        _ => 2.0,
-    }
+/// How far a pixel's mean may stray from the line through two opposite neighbours' means, in
+/// display bytes, before an edge is taken to run near it.
+const EDGE_STEP: i32 = 2;
+
+/// The four lines through a pixel and two opposite neighbours: across, down and diagonally.
+const LINES: [(isize, isize); 4] = [(1, 0), (0, 1), (1, 1), (1, -1)];
+
+/// Whether a pixel of mean `own` (0x00RRGGBB) takes more samples for its neighbours' sake:
+/// on some line through it, its mean strays by more than [`EDGE_STEP`] on a channel from the
+/// midpoint of the neighbours' means (`neighbour(dx, dy)`, `None` off the frame, which counts
+/// as `own`). A smooth ramp of shading passes; an edge that crosses the pixel, or one beside
+/// it the pixel's first samples missed, does not.
+pub fn refines(own: u32, neighbour: impl Fn(isize, isize) -> Option<u32>) -> bool {
+    let byte = |rgb: u32, shift: u32| i32::from((rgb >> shift) as u8);
+    LINES.iter().any(|&(dx, dy)| {
+        let a = neighbour(dx, dy).unwrap_or(own);
+        let b = neighbour(-dx, -dy).unwrap_or(own);
+        [16, 8, 0].into_iter().any(|shift| {
+            let stray = byte(a, shift) + byte(b, shift) - 2 * byte(own, shift);
+            stray.abs() > 2 * EDGE_STEP
+        })
+    })
 }
 
 /// The purpose a pixel's positions are seeded with.
@@ -40,16 +53,11 @@ pub fn position(x: u32, y: u32, index: u32) -> (f64, f64) {
 }
 
 /// The effects each sample of a pixel is shaded with: the rays towards the sun's disc and
-/// the sky shared out among the pixel's samples (each takes `ceil(rays / samples)`), so the
-/// pixel as a whole still takes at least the rays the scene asks for; adaptive pixels share
-/// them out among the first batch, which must not agree only for lack of rays.
+/// the sky shared out among the pixel's samples (each takes `ceil(rays / samples)`), so a
+/// pixel that takes every sample takes at least the rays the scene asks for; an adaptive
+/// pixel whose few rays disagree takes more samples, as one whose positions do.
 pub fn per_sample(effects: &Effects) -> Effects {
-    let least = if effects.adaptive {
-        effects.samples.min(FIRST_BATCH)
-    } else {
-        effects.samples
-    };
-    let share = |rays: u32| rays.div_ceil(least.max(1));
+    let share = |rays: u32| rays.div_ceil(effects.samples.max(1));
     Effects {
         sun_rays: share(effects.sun_rays),
         sky_rays: share(effects.sky_rays),
@@ -57,58 +65,54 @@ pub fn per_sample(effects: &Effects) -> Effects {
     }
 }
 
-/// Shades pixel `(x, y)` with the samples `effects` asks for, each traced by `trace` (which
-/// gives its colour); returns the pixel's colour (0x00RRGGBB) and the samples taken.
+/// Shades pixel `(x, y)` with every sample `effects` asks for, each traced by `trace` (which
+/// gives its colour); returns the pixel's colour (0x00RRGGBB).
 pub fn shade(
     camera: &Camera,
     (x, y): (u32, u32),
     effects: &Effects,
     mut trace: impl FnMut(&Ray) -> u32,
-) -> (u32, u32) {
+) -> u32 {
     let mut estimate = Estimate::default();
     for index in 0..effects.samples.max(1) {
         let (px, py) = position(x, y, index);
-        let may_stop = estimate.add(trace(&camera.ray_at(px, py)));
-        if effects.adaptive && may_stop {
-            break;
-        }
+        estimate.add(trace(&camera.ray_at(px, py)));
     }
-    (estimate.rgb(), estimate.taken)
+    estimate.rgb()
 }
 
-/// A pixel's samples so far: their sum in linear light, and their display bytes' moments.
+/// A pixel's samples so far: their sum in linear light, and their display bytes summed in
+/// two halves (see [`Estimate::add`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Estimate {
     sum: [f64; 3],
-    bytes: [f64; 3],
-    squares: [f64; 3],
+    halves: [[f64; 3]; 2],
     /// Samples added.
     pub taken: u32,
 }
 
 impl Estimate {
-    /// Adds a sample (0x00RRGGBB); true where an adaptive pixel may stop here: at the end of
-    /// a batch whose samples pin every channel's mean to within [`TOLERANCE`] bytes at 95%
-    /// confidence (Student's t on the samples' own spread).
-    pub fn add(&mut self, rgb: u32) -> bool {
+    /// Adds a sample (0x00RRGGBB); at the end of a batch, whether the samples agree: the
+    /// means of its two halves (the first two samples of each batch, and the last two) lie
+    /// within twice [`TOLERANCE`] display bytes on every channel. Each half is stratified
+    /// over the pixel as the whole is, so their difference is about twice the error of the
+    /// whole's mean, however much the samples themselves spread: a ramp across the pixel
+    /// passes at once, an edge the halves see differently does not. (A spread test that
+    /// takes the samples as independent asks for samples a stratified set does not need.)
+    pub fn add(&mut self, rgb: u32) -> Option<bool> {
+        let half = usize::from(self.taken % FIRST_BATCH >= FIRST_BATCH / 2);
         let channels = [16, 8, 0].map(|shift| (rgb >> shift) as u8);
         for (k, c) in channels.into_iter().enumerate() {
             self.sum[k] += gamma::linear(c);
-            let c = f64::from(c);
-            self.bytes[k] += c;
-            self.squares[k] += c * c;
+            self.halves[half][k] += f64::from(c);
         }
         self.taken += 1;
-        let n = self.taken;
-        if !n.is_multiple_of(FIRST_BATCH) {
-            return false;
+        if !self.taken.is_multiple_of(FIRST_BATCH) {
+            return None;
         }
-        let count = f64::from(n);
-        (0..3).all(|k| {
-            let mean = self.bytes[k] / count;
-            let variance = ((self.squares[k] - count * mean * mean) / (count - 1.0)).max(0.0);
-            student_t(n - 1) * (variance / count).sqrt() <= TOLERANCE
-        })
+        let each = f64::from(self.taken / 2);
+        let [a, b] = self.halves;
+        Some((0..3).all(|k| (a[k] - b[k]).abs() / each <= 2.0 * TOLERANCE))
     }
 
     /// The samples' mean, 0x00RRGGBB (black before any).

@@ -1,9 +1,11 @@
 //! Sky light: the sky dome in the scene's sky colours lights a point through the directions
-//! its hemisphere leaves open, drawn with the cosine's density (a stratified set per point),
-//! in place of the constant ambient term. A direction that climbs more steeply than the
-//! terrain can rise around the point is open without a walk.
+//! its hemisphere leaves open within the sky distance, drawn with the cosine's density (a
+//! stratified set per point), in place of the constant ambient term. A point with no terrain
+//! above it within the distance needs no rays; where a point has more rays than sectors of
+//! azimuth, a direction that climbs more steeply than the terrain within the distance can
+//! rise in its sector is open without a walk.
 
-use super::horizon::{climbs_above, sector_of, slope_bound, Sector};
+use super::horizon::{climbs_above, level_within, sector_of, slope_bound_within, Sector};
 use super::sampling::{cosine_hemisphere, point, seed_of};
 use crate::render::shade::Shader;
 use crate::render::sky_gradient::{horizon, sky_colour, zenith};
@@ -74,15 +76,24 @@ impl Shader<'_> {
     ) -> (DVec3, SkyRays) {
         let normal = self.normal(found.cell, found.triangle, p);
         let start = self.occlusion_start(found.cell, found.triangle, p);
+        let distance = self.lighting.effects.sky_distance;
+        // A world unit horizontally spans at most this many grid units.
+        let scale = self.terrain.world_from_grid().unwrap_or([1.0; 3]);
+        let reach = distance / scale[0].min(scale[1]);
+        let rays = self.lighting.effects.sky_rays;
+        let culling = self.culling.horizon_clear;
+        // Nothing above the point within reach: every rising ray is open.
+        let level = culling && level_within(self.terrain, start, reach);
+        // A sector's bound costs a few walks: worth it where its sector holds several rays.
+        let by_sector = culling && !level && rays > SECTORS as u32;
         // Each sector's bound, found when a direction in it first asks.
         let mut bounds = [None; SECTORS];
         let mut bound = |dir: DVec3| {
             let k = sector_of(dir, SECTORS);
             *bounds[k].get_or_insert_with(|| {
-                slope_bound(self.terrain, start, Some(Sector::nth(k, SECTORS)))
+                slope_bound_within(self.terrain, start, Some(Sector::nth(k, SECTORS)), reach)
             })
         };
-        let rays = self.lighting.effects.sky_rays;
         let seed = seed_of(ray.origin(), ray.dir(), PURPOSE);
         let mut sky = SkyRays {
             of: rays as u16,
@@ -94,10 +105,12 @@ impl Shader<'_> {
             let dir = cosine_hemisphere(normal, u, v);
             // (Traced and bounded in grid coordinates; coloured by the world direction.)
             let grid = self.grid_dir(dir);
-            let culled =
-                self.culling.horizon_clear && grid.z > 0.0 && climbs_above(grid, bound(grid));
+            let culled = grid.z > 0.0 && (level || (by_sector && climbs_above(grid, bound(grid))));
             let open = culled || {
-                let answer = self.occluded(found, ray, p, grid.into());
+                // (The ray's `t` runs along the unit grid direction.)
+                let across = (grid.x * scale[0]).hypot(grid.y * scale[1]);
+                let t_max = (distance / across).is_finite().then(|| distance / across);
+                let answer = self.occluded(found, ray, p, grid.into(), t_max);
                 if answer.occluded.is_some() {
                     sky.cast += 1;
                     sky.counters += answer.counters;

@@ -104,7 +104,7 @@ impl Shader<'_> {
                 soft.clear += 1;
                 continue;
             }
-            let answer = self.occluded(found, ray, p, dir.into());
+            let answer = self.occluded(found, ray, p, dir.into(), None);
             // (Not traced: it starts above the terrain and rises.)
             let Some(occluded) = answer.occluded else {
                 soft.clear += 1;

@@ -2,7 +2,7 @@
 //! ambient term, shadows, fog, normals, the ramp and the effects.
 
 use super::{EffectsSection, Normals, ShadingSection, SunSection};
-use crate::render::effects::{Effects, DEFAULT_RAYS};
+use crate::render::effects::{Effects, DEFAULT_RAYS, DEFAULT_SKY_DISTANCE};
 use crate::render::ramp::Ramp;
 
 /// Lighting and effects, validated.
@@ -77,6 +77,7 @@ impl Lighting {
                 sun_rays: sun.rays.unwrap_or(DEFAULT_RAYS),
                 sky_light: effects.sky_light,
                 sky_rays: effects.sky_rays.unwrap_or(DEFAULT_RAYS),
+                sky_distance: effects.sky_distance.unwrap_or(DEFAULT_SKY_DISTANCE),
                 ..Effects::default()
             },
         }

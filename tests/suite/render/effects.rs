@@ -24,13 +24,15 @@ fn down_at(x: f64, y: f64) -> Ray {
     Ray::new([x, y, 500.0], [0.0, 0.0, -1.0]).unwrap()
 }
 
-/// Lighting with sky light of `rays` rays per point and no sun.
+/// Lighting with sky light of `rays` rays per point, looking for terrain without end, and
+/// no sun.
 fn sky_only(rays: u32) -> Lighting {
     let mut lighting = lighting([0.0, 0.0, 1.0], false);
     lighting.intensity = 0.0;
     lighting.effects = Effects {
         sky_light: true,
         sky_rays: rays,
+        sky_distance: f64::INFINITY,
         ..Effects::default()
     };
     lighting
@@ -87,9 +89,9 @@ fn valley_height(y: f64) -> f64 {
 }
 
 /// The cosine-weighted sky fraction at floor point `(x, 32)` by brute force: the horizon's
-/// elevation in each of 4096 azimuths by marching the analytic surface to the map's edge in
-/// steps of 1/64, then the mean of `cos^2(horizon)`.
-fn valley_sky_fraction(x: f64) -> f64 {
+/// elevation in each of 4096 azimuths by marching the analytic surface to the map's edge, or
+/// `reach` away, in steps of 1/64, then the mean of `cos^2(horizon)`.
+fn valley_sky_fraction(x: f64, reach: f64) -> f64 {
     let azimuths = 4096;
     (0..azimuths)
         .map(|k| {
@@ -99,7 +101,8 @@ fn valley_sky_fraction(x: f64) -> f64 {
             let mut r = 1.0 / 64.0;
             loop {
                 let (qx, qy) = (x + r * dx, 32.0 + r * dy);
-                if !(0.0..=256.0).contains(&qx) || !(0.0..=64.0).contains(&qy) {
+                let inside = (0.0..=256.0).contains(&qx) && (0.0..=64.0).contains(&qy);
+                if !inside || r > reach {
                     break;
                 }
                 tan_horizon = tan_horizon.max(valley_height(qy) / r);
@@ -111,12 +114,15 @@ fn valley_sky_fraction(x: f64) -> f64 {
         / f64::from(azimuths)
 }
 
-#[test]
-fn a_v_valley_floor_sees_the_sky_fraction_of_its_horizon() {
+/// The valley's floor seen with sky rays that look `reach` far: the mean open share at 16
+/// floor points and the brute-force fraction, and the Monte Carlo bound between them.
+fn valley_floor_sky(reach: f64) -> (f64, f64, f64) {
     let field = Heightfield::from_fn(257, 65, 255, 255.0, |_, y| valley_height(y as f64) as u16);
     let terrain = Terrain::new(field.unwrap());
     let rays = 1024;
-    let shader = shader(&terrain, sky_only(rays));
+    let mut lighting = sky_only(rays);
+    lighting.effects.sky_distance = reach;
+    let shader = shader(&terrain, lighting);
     let xs: Vec<f64> = (0..16).map(|k| 120.0 + f64::from(k) * 1.07).collect();
     let measured = xs
         .iter()
@@ -129,16 +135,39 @@ fn a_v_valley_floor_sees_the_sky_fraction_of_its_horizon() {
         })
         .sum::<f64>()
         / xs.len() as f64;
-    let reference = xs.iter().map(|&x| valley_sky_fraction(x)).sum::<f64>() / xs.len() as f64;
+    let reference = xs
+        .iter()
+        .map(|&x| valley_sky_fraction(x, reach))
+        .sum::<f64>()
+        / xs.len() as f64;
+    // Open or not per ray: the standard error of N independent rays is sqrt(v (1 - v) / N).
+    let n = f64::from(rays) * xs.len() as f64;
+    let bound = 4.0 * (reference * (1.0 - reference) / n).sqrt();
+    (measured, reference, bound)
+}
+
+#[test]
+fn a_v_valley_floor_sees_the_sky_fraction_of_its_horizon() {
+    let (measured, reference, bound) = valley_floor_sky(f64::INFINITY);
     // An infinitely long valley of infinite 45-degree walls would give cos(45) = 0.7071; the
     // finite walls let more sky in.
     assert!(
         reference > std::f64::consts::FRAC_1_SQRT_2 && reference < 0.9,
         "{reference}"
     );
-    // Open or not per ray: the standard error of N independent rays is sqrt(v (1 - v) / N).
-    let n = f64::from(rays) * xs.len() as f64;
-    let bound = 4.0 * (reference * (1.0 - reference) / n).sqrt();
+    assert!(
+        (measured - reference).abs() <= bound,
+        "{measured} against {reference} (bound {bound})"
+    );
+}
+
+/// Sky rays that look 10 cells far see the walls' lower part only: the horizon of the
+/// surface within 10 cells, by brute force; more sky than the whole walls leave.
+#[test]
+fn sky_rays_look_only_as_far_as_the_sky_distance() {
+    let (measured, reference, bound) = valley_floor_sky(10.0);
+    let (_, whole, _) = valley_floor_sky(f64::INFINITY);
+    assert!(reference > whole + 0.05, "{reference} against {whole}");
     assert!(
         (measured - reference).abs() <= bound,
         "{measured} against {reference} (bound {bound})"
@@ -266,7 +295,8 @@ fn cones_settled_as_blocked_are_blocked_in_every_arithmetic() {
     }
 }
 
-/// small49's scene with soft shadows, sky light and `samples` samples per pixel.
+/// small49's scene with soft shadows, sky light looking 12 cells far and `samples` samples
+/// per pixel.
 fn effects_scene(samples: u32, adaptive: bool) -> Scene {
     let mut scene = builtin_scene("small49", 32);
     scene.lighting.effects = Effects {
@@ -274,6 +304,7 @@ fn effects_scene(samples: u32, adaptive: bool) -> Scene {
         sun_rays: 8,
         sky_light: true,
         sky_rays: 8,
+        sky_distance: 12.0,
         samples,
         adaptive,
         water: None,
@@ -438,9 +469,17 @@ fn samples_converge_to_the_supersampled_image() {
     assert!(error < errors[1], "{error} against {errors:?}");
 }
 
+/// Rounds of one sample, as the viewer adds them, end with `render`'s image: uniform, and
+/// adaptive (which `render` takes a batch per pixel at a time).
 #[test]
 fn samples_added_in_rounds_give_the_rendered_image() {
-    let scene = effects_scene(5, false);
+    for (samples, adaptive) in [(5, false), (10, true)] {
+        samples_in_rounds(samples, adaptive);
+    }
+}
+
+fn samples_in_rounds(samples: u32, adaptive: bool) {
+    let scene = effects_scene(samples, adaptive);
     let terrain = Terrain::new(scene.field.clone());
     let rendered = render_by(
         Method::Mipmap,
@@ -458,12 +497,17 @@ fn samples_added_in_rounds_give_the_rendered_image() {
     };
     let (w, h) = scene.camera.size();
     let mut frame = Frame::new(w, h);
-    let mut sums = heightray::render::effects::Accumulation::new(w, h, 5);
+    let mut sums = heightray::render::effects::Accumulation::new(w, h, samples);
     while !sums.complete() {
         assert!(renderer.accumulate(&mut sums, &mut frame, &|| false));
     }
-    assert_eq!(sums.done, 5);
-    assert_eq!(frame.pixels, rendered.pixels);
+    assert_eq!(frame.pixels, rendered.pixels, "{samples} samples");
+    assert_eq!(frame.totals.primary_rays, rendered.totals.primary_rays);
+    if adaptive {
+        assert!(rendered.totals.primary_rays < u64::from(samples * w * h));
+    } else {
+        assert_eq!(sums.done, samples);
+    }
 }
 
 #[test]
@@ -472,7 +516,7 @@ fn effect_keys_are_read_and_checked() {
         |sections: &str| load_scene_text("effects.toml", &format!("{SMALL_SCENE}\n{sections}"));
     let scene = with(
         "[sun]\ndirection = [1.0, 0.0, 1.0]\nangle_deg = 0.53\nrays = 32\n\
-         [effects]\nsky_light = true\nsky_rays = 8\n[render]\nsamples = 16\nadaptive = true\n",
+         [effects]\nsky_light = true\nsky_rays = 8\nsky_distance = 20.5\n[render]\nsamples = 16\nadaptive = true\n",
     )
     .unwrap();
     let expected = Effects {
@@ -480,6 +524,7 @@ fn effect_keys_are_read_and_checked() {
         sun_rays: 32,
         sky_light: true,
         sky_rays: 8,
+        sky_distance: 20.5,
         samples: 16,
         adaptive: true,
         water: None,
@@ -496,7 +541,9 @@ fn effect_keys_are_read_and_checked() {
         ),
         ("[effects]\nsky_rays = 0\n", "sky_rays"),
         ("[render]\nsamples = 5000\n", "samples"),
-        ("[effects]\nsky_distance = 5\n", "sky_distance"),
+        ("[effects]\nsky_distance = 0.0\n", "sky_distance"),
+        ("[effects]\nsky_distance = nan\n", "sky_distance"),
+        ("[effects]\nsky_reach = 5.0\n", "sky_reach"),
     ] {
         let error = with(sections).unwrap_err();
         assert!(error.contains(key), "{error}");
