@@ -288,11 +288,16 @@ impl<S: Scalar, C: CellLog> Search<'_, S, C> {
         let heights = self.terrain.corner_heights(i, j);
         let start = self.start_triangle;
         let tested = |triangle| start != Some(((i, j), triangle));
-        // In `f64`, both triangles at once in SIMD lanes, with the scalar test's answers.
-        let lanes = self
-            .ray
-            .get()
-            .cell_in_lanes(SimdPath::active(), (i, j), heights);
+        // In `f64`, both triangles at once in SIMD lanes, with the scalar test's answers. (The
+        // other arithmetics build the ray space only where the filter below leaves a cell open.)
+        let in_f64 = S::as_f64s::<0>(&[]).is_some();
+        let lanes = in_f64
+            .then(|| {
+                self.ray
+                    .get()
+                    .cell_in_lanes(SimdPath::active(), (i, j), heights)
+            })
+            .flatten();
         if let Some(hits) = lanes {
             for (triangle, hit) in (0..2).zip(hits) {
                 if tested(triangle) {
