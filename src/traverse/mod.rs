@@ -268,7 +268,8 @@ fn clip<S: Scalar>(
     d: &[S; 3],
     dir_f64: [f64; 3],
 ) -> Option<Frame<S>> {
-    clip_grown(terrain, o, d, dir_f64, [0.0; 3])
+    let (lo, hi) = terrain.bounds();
+    clip_to(terrain, o, d, dir_f64, lo.map(S::from_f64), hi.map(S::from_f64))
 }
 
 /// The ray clipped to the terrain's box grown by `grow` on every side.
@@ -279,19 +280,29 @@ fn clip_grown<S: Scalar>(
     dir_f64: [f64; 3],
     grow: [f64; 3],
 ) -> Option<Frame<S>> {
-    let field = terrain.field();
-    let (w, h) = (field.width(), field.height());
-    let (z_lo, z_hi) = terrain.z_range();
+    let (lo, hi) = terrain.bounds();
     // Rounded outwards: the grown box contains every point within `grow` of the box.
-    let outwards = |x: f64, by: f64, step: fn(f64) -> f64| if by > 0.0 { step(x) } else { x };
-    let (lo, hi) = ([0.0, 0.0, z_lo], [(w - 1) as f64, (h - 1) as f64, z_hi]);
-    let lo = [0, 1, 2].map(|k| S::from_f64(outwards(lo[k] - grow[k], grow[k], f64::next_down)));
-    let hi = [0, 1, 2].map(|k| S::from_f64(outwards(hi[k] + grow[k], grow[k], f64::next_up)));
+    let lo = [0, 1, 2].map(|k| S::from_f64((lo[k] - grow[k]).next_down()));
+    let hi = [0, 1, 2].map(|k| S::from_f64((hi[k] + grow[k]).next_up()));
+    clip_to(terrain, o, d, dir_f64, lo, hi)
+}
+
+/// The ray clipped to the box `[lo, hi]` around the terrain.
+#[inline(always)]
+fn clip_to<S: Scalar>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    lo: [S; 3],
+    hi: [S; 3],
+) -> Option<Frame<S>> {
     let mut clipped = clip_to_box(o, d, &lo, &hi)?;
     // Floats lengthen the segment by their own rounding, so that the last cells before a box
     // face (flat ground at the lowest height) are not cut off.
     clipped.t1 = clipped.t1.past_rounding();
-    Some(Frame::new(o, d, dir_f64, clipped, (w, h)))
+    let field = terrain.field();
+    Some(Frame::new(o, d, dir_f64, clipped, (field.width(), field.height())))
 }
 
 /// The answer for one ray, in the arithmetic it was traced in.
