@@ -421,16 +421,16 @@ fn trace_logged<S: Scalar, C: CellLog, W: Walk>(
     }
     let mut counters = Counters::default();
     let frame = clip(terrain, o, d, dir_f64);
-    let Some(frame) = frame else {
+    let Some(mut frame) = frame else {
         counters.bbox.record(false);
         return ScalarTrace::missed(counters);
     };
     counters.bbox.record(true);
     let start = beam_start::<S>(&walk_options);
     // (The beam cleared the whole segment, or it lies beyond the reach.)
-    let Some(frame) = after_beam(frame, start).and_then(|f| within_reach(f, &walk_options)) else {
+    if !after_beam(&mut frame, start) || !within_reach(&mut frame, &walk_options) {
         return ScalarTrace::missed(counters);
-    };
+    }
     let mut search = new_search::<S, C, W>(terrain, o, d, dir_f64, near, &walk_options, counters);
     search.widen_by(search::slack(&o[2], &d[2], &frame.t1));
     let cleared = W::CLEARS_WAY
@@ -510,20 +510,20 @@ fn first_level(options: &WalkOptions, start: Option<(f64, u32)>) -> Option<u32> 
     }
 }
 
-/// The part of the segment up to [`WalkOptions::reach`] (all of it without one), ended at
-/// exactly that `t` in the walk's arithmetic; `None` if the segment starts beyond it.
-fn within_reach<S: Scalar>(frame: Frame<S>, options: &WalkOptions) -> Option<Frame<S>> {
+/// Cuts the segment at [`WalkOptions::reach`] (keeps all of it without one), ended at exactly
+/// that `t` in the walk's arithmetic; `false` if the segment starts beyond it.
+fn within_reach<S: Scalar>(frame: &mut Frame<S>, options: &WalkOptions) -> bool {
     match options.reach {
-        Some(to) => frame.stretch(f64::NEG_INFINITY, to),
-        None => Some(frame),
+        Some(to) => frame.keep(f64::NEG_INFINITY, to),
+        None => true,
     }
 }
 
-/// The part of the segment from [`beam_start`]'s `t` on (all of it without a beam); `None` if
-/// the beam cleared it all.
-fn after_beam<S: Scalar>(frame: Frame<S>, start: Option<(f64, u32)>) -> Option<Frame<S>> {
+/// Cuts the segment at [`beam_start`]'s `t` (keeps all of it without a beam); `false` if the
+/// beam cleared it all.
+fn after_beam<S: Scalar>(frame: &mut Frame<S>, start: Option<(f64, u32)>) -> bool {
     match start {
-        Some((from, _)) => frame.stretch(from, f64::INFINITY),
-        None => Some(frame),
+        Some((from, _)) => frame.keep(from, f64::INFINITY),
+        None => true,
     }
 }
