@@ -269,7 +269,14 @@ fn clip<S: Scalar>(
     dir_f64: [f64; 3],
 ) -> Option<Frame<S>> {
     let (lo, hi) = terrain.bounds();
-    clip_to(terrain, o, d, dir_f64, lo.map(S::from_f64), hi.map(S::from_f64))
+    clip_to(
+        terrain,
+        o,
+        d,
+        dir_f64,
+        lo.map(S::from_f64),
+        hi.map(S::from_f64),
+    )
 }
 
 /// The ray clipped to the terrain's box grown by `grow` on every side.
@@ -302,7 +309,13 @@ fn clip_to<S: Scalar>(
     // face (flat ground at the lowest height) are not cut off.
     clipped.t1 = clipped.t1.past_rounding();
     let field = terrain.field();
-    Some(Frame::new(o, d, dir_f64, clipped, (field.width(), field.height())))
+    Some(Frame::new(
+        o,
+        d,
+        dir_f64,
+        clipped,
+        (field.width(), field.height()),
+    ))
 }
 
 /// The answer for one ray, in the arithmetic it was traced in.
