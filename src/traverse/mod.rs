@@ -279,7 +279,7 @@ fn clip<S: Scalar>(
     )
 }
 
-/// The ray clipped to the terrain's box grown by `grow` on every side.
+/// The ray clipped to the terrain's box grown by `grow` (positive) on every side.
 fn clip_grown<S: Scalar>(
     terrain: &Terrain,
     o: &[S; 3],
