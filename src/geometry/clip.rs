@@ -98,6 +98,21 @@ mod tests {
         // Starting inside: t0 = 0 at the origin, no entry face.
         let inside = clip_to_box(&[1.0, 1.0, 0.5], &[0.0, 0.0, -1.0], &lo, &hi).unwrap();
         assert_eq!((inside.t0, inside.t1, inside.entry_face), (0.0, 0.5, None));
+        // Travelling towards -x and -z: in through the top face, out through the bottom
+        // (`t` = (1 - 3)/-1 = 2 and (0 - 3)/-1 = 3), the x faces crossed at 1 and 5.
+        let down = clip_to_box(&[5.0, 1.0, 3.0], &[-1.0, 0.0, -1.0], &lo, &hi).unwrap();
+        assert_eq!((down.t0, down.t1), (2.0, 3.0));
+        assert_eq!(
+            (down.entry_face, down.exit_face),
+            (Some((2, 1.0)), Some((2, 0.0)))
+        );
+        // In through x = 4 at t = 1, out through z = 0 at t = 0.5/0.125 = 4.
+        let shallow = clip_to_box(&[5.0, 1.0, 0.5], &[-1.0, 0.0, -0.125], &lo, &hi).unwrap();
+        assert_eq!((shallow.t0, shallow.t1), (1.0, 4.0));
+        assert_eq!(
+            (shallow.entry_face, shallow.exit_face),
+            (Some((0, 4.0)), Some((2, 0.0)))
+        );
         // Pointing away.
         assert_eq!(
             range(clip_to_box(&[5.0, 1.0, 0.5], &[1.0, 0.0, 0.0], &lo, &hi)),
