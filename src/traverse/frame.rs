@@ -1,10 +1,12 @@
 //! The octant frame: every ray is walked as if its projection went towards +u and +v with
 //! slope `dv/du` in `[0, 1]`, by mirroring axes (negation, exact in every arithmetic) and
-//! exchanging x and y. Cells are named by frame indices `(cu, cv)` until they are reported.
+//! exchanging x and y. Cells are named by frame indices `(cu, cv)` until they are reported. A
+//! ray comes into its frame clipped to the terrain's box ([`clip`]).
 
 use super::search::Follower;
 use crate::arith::scalar::Scalar;
-use crate::geometry::Clipped;
+use crate::geometry::{clip_to_box, Clipped};
+use crate::heightfield::Terrain;
 
 /// A span of cells the walk reached, in visiting order: one row of cells (`rows == 1`), or
 /// two rows walked side by side column by column when the path runs along the grid line
@@ -205,4 +207,61 @@ impl<S: Scalar> Frame<S> {
         span.rows = (last - first + 1) as u8;
         follower.span(self, span)
     }
+}
+
+/// The ray clipped to the terrain's box, in the octant frame.
+pub(super) fn clip<S: Scalar>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+) -> Option<Frame<S>> {
+    let (lo, hi) = terrain.bounds();
+    clip_to(
+        terrain,
+        o,
+        d,
+        dir_f64,
+        lo.map(S::from_f64),
+        hi.map(S::from_f64),
+    )
+}
+
+/// The ray clipped to the terrain's box grown by `grow` (positive) on every side.
+pub(super) fn clip_grown<S: Scalar>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    grow: [f64; 3],
+) -> Option<Frame<S>> {
+    let (lo, hi) = terrain.bounds();
+    // Rounded outwards: the grown box contains every point within `grow` of the box.
+    let lo = [0, 1, 2].map(|k| S::from_f64((lo[k] - grow[k]).next_down()));
+    let hi = [0, 1, 2].map(|k| S::from_f64((hi[k] + grow[k]).next_up()));
+    clip_to(terrain, o, d, dir_f64, lo, hi)
+}
+
+/// The ray clipped to the box `[lo, hi]` around the terrain.
+#[inline(always)]
+fn clip_to<S: Scalar>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    lo: [S; 3],
+    hi: [S; 3],
+) -> Option<Frame<S>> {
+    let mut clipped = clip_to_box(o, d, &lo, &hi)?;
+    // Floats lengthen the segment by their own rounding, so that the last cells before a box
+    // face (flat ground at the lowest height) are not cut off.
+    clipped.t1 = clipped.t1.past_rounding();
+    let field = terrain.field();
+    Some(Frame::new(
+        o,
+        d,
+        dir_f64,
+        clipped,
+        (field.width(), field.height()),
+    ))
 }

@@ -46,11 +46,11 @@ pub use crate::arith::{
 };
 use crate::arith::{unsettled, Generic};
 
-use crate::geometry::{clip_to_box, plane_crossing, times_power_of_two, CertainMiss, Ray};
+use crate::geometry::{plane_crossing, times_power_of_two, CertainMiss, Ray};
 use crate::heightfield::Terrain;
 use approximation::Approximation;
 use cell_log::{CellLog, Recorded, Unrecorded};
-use frame::Frame;
+use frame::{clip, clip_grown, Frame};
 use num_rational::BigRational;
 pub use search::Found;
 use search::{LazyRaySpace, Search};
@@ -259,63 +259,6 @@ pub fn prepare(terrain: &Terrain, method: Method) -> (Duration, usize) {
         // The cell test reads the four corner samples: nothing to build.
         Method::Dda => (terrain.build_time(), 0),
     }
-}
-
-/// The ray clipped to the terrain's box, in the octant frame.
-fn clip<S: Scalar>(
-    terrain: &Terrain,
-    o: &[S; 3],
-    d: &[S; 3],
-    dir_f64: [f64; 3],
-) -> Option<Frame<S>> {
-    let (lo, hi) = terrain.bounds();
-    clip_to(
-        terrain,
-        o,
-        d,
-        dir_f64,
-        lo.map(S::from_f64),
-        hi.map(S::from_f64),
-    )
-}
-
-/// The ray clipped to the terrain's box grown by `grow` (positive) on every side.
-fn clip_grown<S: Scalar>(
-    terrain: &Terrain,
-    o: &[S; 3],
-    d: &[S; 3],
-    dir_f64: [f64; 3],
-    grow: [f64; 3],
-) -> Option<Frame<S>> {
-    let (lo, hi) = terrain.bounds();
-    // Rounded outwards: the grown box contains every point within `grow` of the box.
-    let lo = [0, 1, 2].map(|k| S::from_f64((lo[k] - grow[k]).next_down()));
-    let hi = [0, 1, 2].map(|k| S::from_f64((hi[k] + grow[k]).next_up()));
-    clip_to(terrain, o, d, dir_f64, lo, hi)
-}
-
-/// The ray clipped to the box `[lo, hi]` around the terrain.
-#[inline(always)]
-fn clip_to<S: Scalar>(
-    terrain: &Terrain,
-    o: &[S; 3],
-    d: &[S; 3],
-    dir_f64: [f64; 3],
-    lo: [S; 3],
-    hi: [S; 3],
-) -> Option<Frame<S>> {
-    let mut clipped = clip_to_box(o, d, &lo, &hi)?;
-    // Floats lengthen the segment by their own rounding, so that the last cells before a box
-    // face (flat ground at the lowest height) are not cut off.
-    clipped.t1 = clipped.t1.past_rounding();
-    let field = terrain.field();
-    Some(Frame::new(
-        o,
-        d,
-        dir_f64,
-        clipped,
-        (field.width(), field.height()),
-    ))
 }
 
 /// The answer for one ray, in the arithmetic it was traced in.
