@@ -6,11 +6,13 @@
 //! image `render` makes, bit for bit.
 
 use super::pixel::{self, position, Estimate, FIRST_BATCH};
+use super::time::nanos_since;
 use crate::render::passes::{Frame, Renderer};
 use crate::render::scene::Lighting;
 use crate::render::shade::Shader;
 use crate::render::stats::PixelStats;
 use rayon::prelude::*;
+use std::time::Instant;
 
 /// One pixel's samples so far.
 #[derive(Clone, Copy, Debug, Default)]
@@ -141,6 +143,7 @@ impl Renderer<'_> {
                 if cancelled() {
                     return None;
                 }
+                let row_start = Instant::now();
                 let mut totals = crate::render::FrameStats::default();
                 let mut stopped = 0;
                 let row = pixels.iter_mut().zip(stats).zip(takings).enumerate();
@@ -148,7 +151,12 @@ impl Renderer<'_> {
                     if taking.done {
                         continue;
                     }
+                    // The samples after a pixel's first, where this round holds both.
+                    let mut later = None;
                     for index in first..end {
+                        if index == 1 && first == 0 {
+                            later = Some(Instant::now());
+                        }
                         let (px, py) = position(x as u32, y as u32, index);
                         let (sample, _) = shader.traced(&self.camera.ray_at(px, py), self.arith);
                         totals.add(&sample);
@@ -162,11 +170,17 @@ impl Renderer<'_> {
                         }
                         *stat = traced;
                     }
+                    totals.time.later_samples += later.map_or(0, nanos_since);
                     *pixel = taking.estimate.rgb();
                     if last {
                         taking.done = true;
                         stopped += 1;
                     }
+                }
+                let row_time = nanos_since(row_start);
+                totals.time.traced += row_time;
+                if first > 0 {
+                    totals.time.later_samples += row_time;
                 }
                 Some((totals, stopped))
             })
