@@ -87,15 +87,46 @@ impl Renderer<'_> {
     /// at once (the terrain its rays cross is then still in the caches): the image of
     /// [`Renderer::accumulate`]'s rounds of one sample, whose decisions wait for a batch too.
     pub fn render_in_rounds(&self, frame: &mut Frame) {
+        self.render_in_rounds_until(frame, &|| false);
+    }
+
+    /// The image [`Renderer::render`] makes, adaptive samples or not, asking `cancelled`
+    /// before each row or band; false when it said yes (the frame is then to be dropped).
+    pub fn render_cancellable(
+        &self,
+        frame: &mut Frame,
+        cancelled: &(dyn Fn() -> bool + Sync),
+    ) -> bool {
+        let effects = &self.shader.lighting.effects;
+        if effects.adaptive && effects.samples > 1 {
+            return self.render_in_rounds_until(frame, cancelled);
+        }
+        while !frame.complete() {
+            if !self.render_pass(frame, cancelled) {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// [`Renderer::render_in_rounds`], cancellable as [`Renderer::render_cancellable`].
+    fn render_in_rounds_until(
+        &self,
+        frame: &mut Frame,
+        cancelled: &(dyn Fn() -> bool + Sync),
+    ) -> bool {
         let effects = &self.shader.lighting.effects;
         let mut sums = Accumulation::new(frame.width, frame.height, effects.samples.max(1));
         while !sums.complete() {
-            self.add_round(&mut sums, frame, &|| false, FIRST_BATCH);
+            if !self.add_round(&mut sums, frame, cancelled, FIRST_BATCH) {
+                return false;
+            }
         }
         for taking in &sums.pixels {
             frame.totals.effects.add_pixel(taking.estimate.taken);
         }
         frame.passes_done = crate::render::passes::PASS_BLOCKS.len();
+        true
     }
 
     /// Adds the next round of samples to `sums` and paints their mean into `frame` (on the
