@@ -568,27 +568,21 @@ fn effects_compared_with_exact_count_what_render_shows() {
     };
     let ariths = [Arith::F32, Arith::F64, Arith::Exact];
     let rows = view_pixel_differences(&view, &ariths, &|| false, &mut |_| {}).unwrap();
+    let renderer = |arith| Renderer {
+        shader: shader(&terrain, scene.lighting),
+        camera: scene.camera,
+        arith,
+    };
+    let (w, h) = scene.camera.size();
     let render = |arith| {
-        let culling = Culling::default();
-        render_by(
-            Method::Mipmap,
-            &terrain,
-            scene.camera,
-            scene.lighting,
-            arith,
-            culling,
-            2,
-        )
+        let mut frame = Frame::new(w, h);
+        renderer(arith).render(&mut frame);
+        frame
     };
     let exact = render(Arith::Exact);
     // The comparison's own renders are `render`'s images, cancellable.
-    let renderer = Renderer {
-        shader: shader(&terrain, scene.lighting),
-        camera: scene.camera,
-        arith: Arith::Exact,
-    };
-    let mut cancellable = Frame::new(exact.width, exact.height);
-    assert!(renderer.render_cancellable(&mut cancellable, &|| false));
+    let mut cancellable = Frame::new(w, h);
+    assert!(renderer(Arith::Exact).render_cancellable(&mut cancellable, &|| false));
     assert_eq!(cancellable.pixels, exact.pixels);
     for row in rows {
         let frame = render(row.arith);
