@@ -19,14 +19,17 @@ pub struct Clipped<S> {
 }
 
 /// Clips `o + t*d` (t >= 0) to the closed box `[lo, hi]`, or `None` if it never meets it.
+#[inline]
 pub fn clip_to_box<S: Scalar>(
     o: &[S; 3],
     d: &[S; 3],
     lo: &[S; 3],
     hi: &[S; 3],
 ) -> Option<Clipped<S>> {
-    let mut enter = (S::zero(), None);
-    let mut exit: Option<(S, Option<(usize, S)>)> = None;
+    // The faces are named by axis until the end: each slab's crossings are compared, and only
+    // the two faces that fix the segment are taken.
+    let (mut t0, mut entry) = (S::zero(), None);
+    let mut exit: Option<(S, usize)> = None;
     for axis in 0..3 {
         if d[axis].is_zero() {
             // Parallel to this slab: inside it for every t, or never.
@@ -35,29 +38,39 @@ pub fn clip_to_box<S: Scalar>(
             }
             continue;
         }
-        let (near, far) = if d[axis].is_negative() {
-            (&hi[axis], &lo[axis])
-        } else {
-            (&lo[axis], &hi[axis])
-        };
+        let (near, far) = near_far(d, lo, hi, axis);
         let t_near = (near.clone() - o[axis].clone()) / d[axis].clone();
         let t_far = (far.clone() - o[axis].clone()) / d[axis].clone();
-        if t_near > enter.0 {
-            enter = (t_near, Some((axis, near.clone())));
+        if t_near > t0 {
+            (t0, entry) = (t_near, Some(axis));
         }
         if exit.as_ref().is_none_or(|(t, _)| t_far < *t) {
-            exit = Some((t_far, Some((axis, far.clone()))));
+            exit = Some((t_far, axis));
         }
     }
     // A box is bounded, so some axis has a non-zero direction component (rays are validated).
-    let (t1, exit_face) = exit?;
-    let (t0, entry_face) = enter;
-    (t0 <= t1).then_some(Clipped {
+    let (t1, exit) = exit?;
+    (t0 <= t1).then(|| Clipped {
         t0,
         t1,
-        entry_face,
-        exit_face,
+        entry_face: entry.map(|axis| (axis, near_far(d, lo, hi, axis).0.clone())),
+        exit_face: Some((exit, near_far(d, lo, hi, exit).1.clone())),
     })
+}
+
+/// The faces of the slab of `axis` the ray crosses first and last.
+#[inline(always)]
+fn near_far<'a, S: Scalar>(
+    d: &[S; 3],
+    lo: &'a [S; 3],
+    hi: &'a [S; 3],
+    axis: usize,
+) -> (&'a S, &'a S) {
+    if d[axis].is_negative() {
+        (&hi[axis], &lo[axis])
+    } else {
+        (&lo[axis], &hi[axis])
+    }
 }
 
 #[cfg(test)]

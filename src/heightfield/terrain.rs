@@ -12,9 +12,10 @@ pub struct Terrain {
     field: Heightfield,
     mipmap: Mipmap,
     lines: OnceLock<Lines>,
-    min_sample: u16,
-    max_sample: u16,
     max_slope: f64,
+    /// The box every ray is clipped to, `(lowest corner, highest corner)`: cells in x and y,
+    /// the height range in z (kept: every ray asks for it).
+    bounds: ([f64; 3], [f64; 3]),
     /// Whether walks fetch ahead (the map is larger than the caches).
     fetch_ahead: bool,
     /// World coordinates per grid coordinate, where cells are not square.
@@ -31,15 +32,16 @@ impl Terrain {
         let top = mipmap.top();
         let (min_sample, max_sample) = (mipmap.lowest(top, 0, 0), mipmap.highest(top, 0, 0));
         let max_slope = max_slope(&field);
+        let (z_lo, z_hi) = (field.height_of(min_sample), field.height_of(max_sample));
+        let (w, h) = ((field.width() - 1) as f64, (field.height() - 1) as f64);
         Terrain {
             max_slope,
+            bounds: ([0.0, 0.0, z_lo], [w, h, z_hi]),
             world_from_grid: world_from_grid(&field),
             fetch_ahead: field.samples().len() * 2 >= FETCH_AHEAD_BYTES,
             field,
             mipmap,
             lines: OnceLock::new(),
-            min_sample,
-            max_sample,
             build_time: start.elapsed(),
         }
     }
@@ -143,10 +145,12 @@ impl Terrain {
     }
     /// Lowest and highest height of the field.
     pub fn z_range(&self) -> (f64, f64) {
-        (
-            self.field.height_of(self.min_sample),
-            self.field.height_of(self.max_sample),
-        )
+        (self.bounds.0[2], self.bounds.1[2])
+    }
+    /// The box that holds the surface: `[0, W-1] x [0, H-1] x` the height range, as its
+    /// lowest and highest corners.
+    pub fn bounds(&self) -> &([f64; 3], [f64; 3]) {
+        &self.bounds
     }
     /// The steepest gradient of any triangle (height per unit of horizontal distance): no
     /// path on the surface climbs faster, which bounds where shadows can fall.

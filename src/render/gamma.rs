@@ -73,9 +73,11 @@ pub fn bytes(c: [f64; 3]) -> [u8; 3] {
 
 /// A linear colour as 0x00RRGGBB.
 #[inline(always)]
-pub fn pack(c: [f64; 3]) -> u32 {
-    let [r, g, b] = bytes(c).map(u32::from);
-    (r << 16) | (g << 8) | b
+pub fn pack([r, g, b]: [f64; 3]) -> u32 {
+    // (Channel by channel, not by `map`: the map is not inlined, and this runs per pixel.)
+    let tables = &*TABLES;
+    let byte = |v: f64| u32::from(tables.byte(v));
+    (byte(r) << 16) | (byte(g) << 8) | byte(b)
 }
 
 impl Tables {

@@ -127,7 +127,7 @@ pub(super) fn trace_certified<S: Scalar, C: CellLog, W: Walk>(
     }
     let dir = near.2;
     let mut counters = Counters::default();
-    let Some(frame) = clip_near(terrain, &near, dir) else {
+    let Some(mut frame) = clip_near(terrain, &near, dir) else {
         counters.bbox.record(false);
         return Some(ScalarTrace::missed(counters));
     };
@@ -137,9 +137,9 @@ pub(super) fn trace_certified<S: Scalar, C: CellLog, W: Walk>(
     }
     let start = beam_start::<S>(options);
     // (The beam cleared the whole segment.)
-    let Some(frame) = after_beam(frame, start) else {
+    if !after_beam(&mut frame, start) {
         return Some(ScalarTrace::missed(counters));
-    };
+    }
     let near_ray = Approximation::along(frame, near, start);
     let mut search = new_search::<S, C, W>(terrain, o, d, dir, Some(near), options, counters);
     // Ends by itself or at the answer; both are fine here.
@@ -247,7 +247,9 @@ fn approximation(
     (near, start): (F64Ray, Option<(f64, u32)>),
     dir_f64: [f64; 3],
 ) -> Option<Approximation> {
-    let frame = clip_near(terrain, &near, dir_f64)?;
-    let frame = after_beam(frame, start)?;
+    let mut frame = clip_near(terrain, &near, dir_f64)?;
+    if !after_beam(&mut frame, start) {
+        return None;
+    }
     Some(Approximation::along(frame, near, start))
 }

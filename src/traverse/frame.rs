@@ -49,6 +49,8 @@ pub struct Frame<S> {
 impl<S: Scalar> Frame<S> {
     /// `o`, `d` in the ray's arithmetic; `d_f64` chooses the octant identically in all of them;
     /// `(t0, t1)` is the clip range; `size` is the sample grid's (W, H).
+    // (Inlined by hand: once per ray, and its result is large.)
+    #[inline(always)]
     pub fn new(
         o: &[S; 3],
         d: &[S; 3],
@@ -127,37 +129,42 @@ impl<S: Scalar> Frame<S> {
     }
 
     /// The same path from `t` on (`t` within the segment).
-    pub fn starting_at(mut self, t: S) -> Self {
+    fn start_at(&mut self, t: S) {
         self.us = self.ou.clone() + self.du.clone() * t.clone();
         self.vs = self.ov.clone() + self.dv.clone() * t.clone();
         self.t0 = t;
-        self
     }
 
     /// The same path up to `t` (`t` within the segment).
-    pub fn ending_at(mut self, t: S) -> Self {
+    fn end_at(&mut self, t: S) {
         self.ue = self.ou.clone() + self.du.clone() * t.clone();
         self.ve = self.ov.clone() + self.dv.clone() * t.clone();
         self.t1 = t;
-        self
     }
 
     /// The part of the path from `from` to `to`, given in `f64` with room for the rounding of
     /// the segment's ends (an end beyond the segment's keeps the segment's); `None` if the
     /// part lies wholly outside the segment.
     pub fn stretch(&self, from: f64, to: f64) -> Option<Self> {
+        let mut part = self.clone();
+        part.keep(from, to).then_some(part)
+    }
+
+    /// [`Frame::stretch`] in place: `false` (the frame left as it was) if the part lies
+    /// wholly outside the segment.
+    // (In place: a frame is large, and each ray's is cut once or twice before its walk.)
+    pub fn keep(&mut self, from: f64, to: f64) -> bool {
         let (t0, t1) = (self.t0.to_f64(), self.t1.to_f64());
         if to < t0 || from > t1 {
-            return None;
+            return false;
         }
-        let mut part = self.clone();
         if from > t0 {
-            part = part.starting_at(S::from_f64(from));
+            self.start_at(S::from_f64(from));
         }
         if to < t1 {
-            part = part.ending_at(S::from_f64(to));
+            self.end_at(S::from_f64(to));
         }
-        Some(part)
+        true
     }
 
     /// The original cell `(i, j)` of frame cell `(cu, cv)` (which must be valid).

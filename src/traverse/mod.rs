@@ -268,10 +268,18 @@ fn clip<S: Scalar>(
     d: &[S; 3],
     dir_f64: [f64; 3],
 ) -> Option<Frame<S>> {
-    clip_grown(terrain, o, d, dir_f64, [0.0; 3])
+    let (lo, hi) = terrain.bounds();
+    clip_to(
+        terrain,
+        o,
+        d,
+        dir_f64,
+        lo.map(S::from_f64),
+        hi.map(S::from_f64),
+    )
 }
 
-/// The ray clipped to the terrain's box grown by `grow` on every side.
+/// The ray clipped to the terrain's box grown by `grow` (positive) on every side.
 fn clip_grown<S: Scalar>(
     terrain: &Terrain,
     o: &[S; 3],
@@ -279,19 +287,35 @@ fn clip_grown<S: Scalar>(
     dir_f64: [f64; 3],
     grow: [f64; 3],
 ) -> Option<Frame<S>> {
-    let field = terrain.field();
-    let (w, h) = (field.width(), field.height());
-    let (z_lo, z_hi) = terrain.z_range();
+    let (lo, hi) = terrain.bounds();
     // Rounded outwards: the grown box contains every point within `grow` of the box.
-    let outwards = |x: f64, by: f64, step: fn(f64) -> f64| if by > 0.0 { step(x) } else { x };
-    let (lo, hi) = ([0.0, 0.0, z_lo], [(w - 1) as f64, (h - 1) as f64, z_hi]);
-    let lo = [0, 1, 2].map(|k| S::from_f64(outwards(lo[k] - grow[k], grow[k], f64::next_down)));
-    let hi = [0, 1, 2].map(|k| S::from_f64(outwards(hi[k] + grow[k], grow[k], f64::next_up)));
+    let lo = [0, 1, 2].map(|k| S::from_f64((lo[k] - grow[k]).next_down()));
+    let hi = [0, 1, 2].map(|k| S::from_f64((hi[k] + grow[k]).next_up()));
+    clip_to(terrain, o, d, dir_f64, lo, hi)
+}
+
+/// The ray clipped to the box `[lo, hi]` around the terrain.
+#[inline(always)]
+fn clip_to<S: Scalar>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    lo: [S; 3],
+    hi: [S; 3],
+) -> Option<Frame<S>> {
     let mut clipped = clip_to_box(o, d, &lo, &hi)?;
     // Floats lengthen the segment by their own rounding, so that the last cells before a box
     // face (flat ground at the lowest height) are not cut off.
     clipped.t1 = clipped.t1.past_rounding();
-    Some(Frame::new(o, d, dir_f64, clipped, (w, h)))
+    let field = terrain.field();
+    Some(Frame::new(
+        o,
+        d,
+        dir_f64,
+        clipped,
+        (field.width(), field.height()),
+    ))
 }
 
 /// The answer for one ray, in the arithmetic it was traced in.
@@ -410,16 +434,16 @@ fn trace_logged<S: Scalar, C: CellLog, W: Walk>(
     }
     let mut counters = Counters::default();
     let frame = clip(terrain, o, d, dir_f64);
-    let Some(frame) = frame else {
+    let Some(mut frame) = frame else {
         counters.bbox.record(false);
         return ScalarTrace::missed(counters);
     };
     counters.bbox.record(true);
     let start = beam_start::<S>(&walk_options);
     // (The beam cleared the whole segment, or it lies beyond the reach.)
-    let Some(frame) = after_beam(frame, start).and_then(|f| within_reach(f, &walk_options)) else {
+    if !after_beam(&mut frame, start) || !within_reach(&mut frame, &walk_options) {
         return ScalarTrace::missed(counters);
-    };
+    }
     let mut search = new_search::<S, C, W>(terrain, o, d, dir_f64, near, &walk_options, counters);
     search.widen_by(search::slack(&o[2], &d[2], &frame.t1));
     let cleared = W::CLEARS_WAY
@@ -499,20 +523,20 @@ fn first_level(options: &WalkOptions, start: Option<(f64, u32)>) -> Option<u32> 
     }
 }
 
-/// The part of the segment up to [`WalkOptions::reach`] (all of it without one), ended at
-/// exactly that `t` in the walk's arithmetic; `None` if the segment starts beyond it.
-fn within_reach<S: Scalar>(frame: Frame<S>, options: &WalkOptions) -> Option<Frame<S>> {
+/// Cuts the segment at [`WalkOptions::reach`] (keeps all of it without one), ended at exactly
+/// that `t` in the walk's arithmetic; `false` if the segment starts beyond it.
+fn within_reach<S: Scalar>(frame: &mut Frame<S>, options: &WalkOptions) -> bool {
     match options.reach {
-        Some(to) => frame.stretch(f64::NEG_INFINITY, to),
-        None => Some(frame),
+        Some(to) => frame.keep(f64::NEG_INFINITY, to),
+        None => true,
     }
 }
 
-/// The part of the segment from [`beam_start`]'s `t` on (all of it without a beam); `None` if
-/// the beam cleared it all.
-fn after_beam<S: Scalar>(frame: Frame<S>, start: Option<(f64, u32)>) -> Option<Frame<S>> {
+/// Cuts the segment at [`beam_start`]'s `t` (keeps all of it without a beam); `false` if the
+/// beam cleared it all.
+fn after_beam<S: Scalar>(frame: &mut Frame<S>, start: Option<(f64, u32)>) -> bool {
     match start {
-        Some((from, _)) => frame.stretch(from, f64::INFINITY),
-        None => Some(frame),
+        Some((from, _)) => frame.keep(from, f64::INFINITY),
+        None => true,
     }
 }
