@@ -41,6 +41,12 @@ impl EffectRow {
             .then(|| 1.0 - (e.soft.rays + e.soft.probes) as f64 / possible as f64)
     }
 
+    /// The share of reflected rays left out (`None` where no water shows).
+    pub fn water_culled(&self) -> Option<f64> {
+        let water = &self.totals.effects.water;
+        (water.points > 0).then(|| water.culled as f64 / water.points as f64)
+    }
+
     /// The share of sky rays left out (`None` without sky light).
     pub fn sky_culled(&self) -> Option<f64> {
         let sky = &self.totals.effects.sky;

@@ -4,7 +4,7 @@ use super::bench::{progress_bar, scene_at_size, scenes_or_builtins};
 use super::AccuracyArgs;
 use anyhow::Context;
 use heightray::bench::{accuracy, hard_cases, pixel_differences, plot, scene_sets, AccuracyRow};
-use heightray::render::PixelRow;
+use heightray::render::{PixelRow, Scene};
 use heightray::traverse::{Arith, Method};
 use heightray::Terrain;
 use std::fmt::Write as _;
@@ -31,8 +31,9 @@ pub fn run(args: &AccuracyArgs) -> anyhow::Result<ExitCode> {
     sets.extend(hard_cases(args.per_set)?);
 
     let configs = args.methods.len() * ariths.len();
-    let bar =
-        progress_bar(configs * sets.len() + loaded.len() * args.methods.len() * (ariths.len() + 1));
+    // Each scene's renders with every method, and with effects in the first method.
+    let renders = loaded.len() * (args.methods.len() + 1) * (ariths.len() + 1);
+    let bar = progress_bar(configs * sets.len() + renders);
     let mut rows: Vec<AccuracyRow> = Vec::new();
     for set in &sets {
         bar.set_message(set.name.clone());
@@ -45,6 +46,13 @@ pub fn run(args: &AccuracyArgs) -> anyhow::Result<ExitCode> {
         pixels.push((
             name.clone(),
             pixel_differences(scene, &terrain, &args.methods, &ariths, &mut || bar.inc(1)),
+        ));
+        // Effect rays walk as shadow rays do, in every method: the first stands for all.
+        let lit = with_soft_shadows_and_sky(scene);
+        let first = &args.methods[..1.min(args.methods.len())];
+        pixels.push((
+            format!("{name} with soft shadows and sky light"),
+            pixel_differences(&lit, &terrain, first, &ariths, &mut || bar.inc(1)),
         ));
     }
     bar.finish_and_clear();
@@ -140,15 +148,16 @@ fn report(args: &AccuracyArgs, rows: &[AccuracyRow], pixels: &[(String, Vec<Pixe
         }
     }
     for (name, rows) in pixels {
-        let _ = writeln!(out, "\n### {name}: pixels that differ from the exact render\n\n| method | arith | pixels differing | frame ms (all threads) |\n|---|---|---:|---:|");
+        let _ = writeln!(out, "\n### {name}: pixels that differ from the exact render\n\n| method | arith | pixels differing | largest difference (display bytes) | frame ms (all threads) |\n|---|---|---:|---:|---:|");
         for row in rows {
             let _ = writeln!(
                 out,
-                "| {} | {} | {} of {} | {:.1} |",
+                "| {} | {} | {} of {} | {} | {:.1} |",
                 row.method,
                 row.arith,
                 row.differing,
                 row.pixels,
+                row.largest_difference,
                 row.time.as_secs_f64() * 1e3
             );
         }
@@ -164,4 +173,13 @@ fn distinct_ariths(rows: &[AccuracyRow]) -> Vec<Arith> {
         }
     }
     ariths
+}
+
+/// `scene` with a real sun's disc (0.53 degrees) and sky light, at the default rays: the
+/// effects whose rays start on the surface.
+fn with_soft_shadows_and_sky(scene: &Scene) -> Scene {
+    let mut lit = scene.clone();
+    lit.lighting.effects.sun_angle_deg = 0.53;
+    lit.lighting.effects.sky_light = true;
+    lit
 }

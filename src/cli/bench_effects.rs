@@ -64,20 +64,35 @@ pub fn run(args: &EffectsArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// The scene's water, or where it has none a lake a fifth of the way up its heights.
+/// The share of the map's samples the water of a scene without any floods.
+const FLOODED: f64 = 0.4;
+
+/// The scene's water, or where it has none a lake over the lowest [`FLOODED`] of the map's
+/// samples: low enough to leave the relief standing, wide enough to show in the frame.
 fn low_water(scene: &heightray::render::Scene) -> anyhow::Result<Water> {
-    let (lo, hi) = Terrain::new(scene.field.clone()).z_range();
+    let field = &scene.field;
+    // (A map has at least 2 x 2 samples.)
+    let mut heights: Vec<f64> = (0..field.height())
+        .flat_map(|j| (0..field.width()).map(move |i| field.z(i, j)))
+        .collect();
+    heights.sort_by(f64::total_cmp);
+    let level = heights[((heights.len() - 1) as f64 * FLOODED) as usize];
     let section = WaterSection {
-        level: lo + (hi - lo) / 5.0,
+        level,
         colour: None,
     };
-    section.validate(&scene.field).map_err(anyhow::Error::msg)
+    // (The level is a height `z`; the section's is in the map's units.)
+    let water = section.validate(field).map_err(anyhow::Error::msg)?;
+    Ok(Water { level, ..water })
 }
 
 /// The costs table: time and rays per pixel by kind, as ratios to the first (plain) row.
 fn print_costs(out: &mut impl Write, rows: &[EffectRow]) -> anyhow::Result<()> {
-    writeln!(out, "| frame | ms | x plain | camera rays/px | shadow rays/px | soft rays/px | sky rays/px | water rays/px | soft culled | sky culled |")?;
-    writeln!(out, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")?;
+    writeln!(out, "| frame | ms | x plain | camera rays/px | shadow rays/px | soft rays/px | sky rays/px | water rays/px | soft culled | sky culled | water culled |")?;
+    writeln!(
+        out,
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    )?;
     let plain = rows.first().map_or(1.0, |r| r.time.as_secs_f64());
     let percent = |share: Option<f64>| share.map_or("-".into(), |s| format!("{:.0}%", 100.0 * s));
     for row in rows {
@@ -85,7 +100,7 @@ fn print_costs(out: &mut impl Write, rows: &[EffectRow]) -> anyhow::Result<()> {
         let per = |n: u64| n as f64 / px;
         writeln!(
             out,
-            "| {} | {:.0} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} |",
+            "| {} | {:.0} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} |",
             row.label,
             row.time.as_secs_f64() * 1e3,
             row.time.as_secs_f64() / plain,
@@ -96,6 +111,7 @@ fn print_costs(out: &mut impl Write, rows: &[EffectRow]) -> anyhow::Result<()> {
             per(t.effects.water.rays),
             percent(row.soft_culled()),
             percent(row.sky_culled()),
+            percent(row.water_culled()),
         )?;
     }
     Ok(())
@@ -105,6 +121,7 @@ fn row_json(row: &EffectRow) -> serde_json::Value {
     json!({
         "frame": row.label, "ms": row.time.as_secs_f64() * 1e3,
         "soft_culled": row.soft_culled(), "sky_culled": row.sky_culled(),
+        "water_culled": row.water_culled(),
         "stats": row.totals.to_json(),
     })
 }

@@ -28,4 +28,6 @@ pub use scene::{
 pub use shade::{Culling, Sample, Shader, Shadow, ShadowSkip};
 pub use stats::{FrameStats, PixelStats};
 pub use tally::{Counting, Tally};
-pub use versus_exact::{differing_pixels, view_pixel_differences, PixelRow, View};
+pub use versus_exact::{
+    differing_pixels, largest_difference, view_pixel_differences, PixelRow, View,
+};

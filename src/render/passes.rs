@@ -3,7 +3,7 @@
 //! threads. A caller-supplied check lets a newer camera cancel the work between bands.
 
 use super::camera::Camera;
-use super::effects::pixel;
+use super::effects::{nanos_since, pixel};
 use super::scene::Lighting;
 use super::shade::Shader;
 use super::stats::{FrameStats, PixelStats};
@@ -13,6 +13,7 @@ use crate::traverse::{clear_packet, Clearance, LANES};
 use crate::Ray;
 use rayon::prelude::*;
 use std::ops::Range;
+use std::time::Instant;
 
 /// Block size of each pass: pass `k` traces the pixels on the `PASS_BLOCKS[k]` lattice that no
 /// coarser pass traced, and paints each as a block of that size.
@@ -163,7 +164,12 @@ impl Renderer<'_> {
                     passes: passes.clone(),
                     cancelled,
                 };
-                with_numbers(self.arith, band).0
+                let start = Instant::now();
+                let totals = with_numbers(self.arith, band).0;
+                totals.map(|mut totals| {
+                    totals.time.traced += nanos_since(start);
+                    totals
+                })
             })
             .collect();
         if bands.iter().any(Option::is_none) {
@@ -271,7 +277,7 @@ impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_,
         let mut counting = Counting::new(&mut self.totals);
         let effects = &renderer.shader.lighting.effects;
         let taken = effects.samples;
-        let rgb = pixel::shade(&renderer.camera, (x, y), effects, |ray| {
+        let (rgb, later) = pixel::shade(&renderer.camera, (x, y), effects, |ray| {
             sample(ray, None, &mut counting)
         });
         let stats = PixelStats {
@@ -279,6 +285,7 @@ impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_,
             ..counting.pixel
         };
         self.totals.effects.add_pixel(taken);
+        self.totals.time.later_samples += later;
         self.out.paint(x, y, block, rgb, stats);
     }
 

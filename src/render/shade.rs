@@ -1,7 +1,7 @@
 //! From a ray to a colour: the primary ray, the shadow ray only where it can change the pixel,
 //! Lambert shading with an elevation ramp, sky and fog.
 
-use super::effects::{Reflection, SkyRays, SoftShadow};
+use super::effects::{nanos_since, EffectTime, Reflection, SkyRays, SoftShadow};
 use super::gamma;
 use super::normals;
 use super::ramp::HeightSpan;
@@ -15,6 +15,7 @@ use crate::traverse::{Clearance, Counters, Found, Hit, Method, Occlusion, Scalar
 use crate::Ray;
 use glam::DVec3;
 use std::cell::{Cell, RefCell};
+use std::time::Instant;
 
 /// Why a shadow ray was not cast although the scene has shadows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -72,6 +73,8 @@ pub struct Sample {
     /// the pixel again in rationals, or cast only its shadow ray again, or decided one of the
     /// shadow ray's triangle tests on its own.
     pub redone: bool,
+    /// The time its effects took.
+    pub time: EffectTime,
 }
 
 /// Which shadow rays to leave out where they cannot change the pixel (all on by default;
@@ -224,11 +227,16 @@ impl Shader<'_> {
             let field = self.terrain.field();
             let terrain_t = primary.hit.as_ref().map(|found| found.t.to_f64());
             if let Some(t) = water.crossing(ray.origin(), ray.dir(), terrain_t, field) {
+                let start = Instant::now();
                 let water = self.water_pixel::<S>(water, ray, t);
                 tally.water(water.reflection, &water.counters);
                 if water.redone {
                     tally.redone();
                 }
+                tally.time(&EffectTime {
+                    water: nanos_since(start),
+                    ..EffectTime::default()
+                });
                 return water.rgb;
             }
         }
@@ -247,10 +255,15 @@ impl Shader<'_> {
         };
         let facing = self.facing(found.cell, found.triangle, p);
         let mut redone = false;
+        // Effects are timed as they run; hard shadows are not, so a plain frame reads no clock.
+        let mut time = EffectTime::default();
+        let soft = self.lighting.effects.sun_angle_deg > 0.0;
         let shadow = if self.lighting.shadows {
+            let start = soft.then(Instant::now);
             let (shadow, counters, exactly) = self.shadow::<S>(&found, ray, p, facing);
             tally.shadow(shadow, &counters);
             redone |= exactly;
+            time.soft = start.map_or(0, nanos_since);
             shadow
         } else {
             Shadow::NotAsked
@@ -265,15 +278,20 @@ impl Shader<'_> {
             }));
         }
         let rgb = if self.lighting.effects.sky_light {
+            let start = Instant::now();
             let (light, sky) = self.sky_light(&found, ray, p);
             tally.sky(&sky);
             redone |= sky.redone;
+            time.sky = nanos_since(start);
             self.lit_rgb(ray, p, t, facing, shadow, light)
         } else {
             self.surface_rgb(ray, p, t, facing, shadow)
         };
         if redone {
             tally.redone();
+        }
+        if time != EffectTime::default() {
+            tally.time(&time);
         }
         rgb
     }

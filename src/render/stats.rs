@@ -1,7 +1,7 @@
 //! Statistics of a frame: the query counters ([`crate::traverse::Counters`]) summed, per
 //! primary ray and as hit/miss ratios, and a compact per-pixel record for heat maps.
 
-use super::effects::EffectStats;
+use super::effects::{EffectStats, EffectTime};
 use super::shade::Sample;
 use crate::traverse::{Counters, HitMiss};
 use serde_json::{json, Value};
@@ -71,8 +71,9 @@ pub struct Skipped {
     pub horizon_clear: u64,
 }
 
-/// Totals of a frame (or of any set of pixels).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// Totals of a frame (or of any set of pixels). Two frames' totals are equal when they
+/// counted the same rays, however long those took.
+#[derive(Clone, Copy, Debug, Default)]
 pub struct FrameStats {
     /// Primary rays traced (one per pixel).
     pub primary_rays: u64,
@@ -93,7 +94,38 @@ pub struct FrameStats {
     /// Pixels with a decision exact mode made again exactly after intervals left it unsettled
     /// (see [`Sample::redone`]).
     pub redone: u64,
+    /// The thread time the frame and its effects took (measured, so not compared).
+    pub time: EffectTime,
 }
+
+impl PartialEq for FrameStats {
+    fn eq(&self, b: &FrameStats) -> bool {
+        // (Destructured, so that a field added later is compared or left out on purpose.)
+        let FrameStats {
+            primary_rays,
+            primary_hits,
+            shadow_rays,
+            shadowed,
+            skipped,
+            primary,
+            shadow,
+            effects,
+            redone,
+            time: _,
+        } = *self;
+        (primary_rays, primary_hits, shadow_rays, shadowed, redone)
+            == (
+                b.primary_rays,
+                b.primary_hits,
+                b.shadow_rays,
+                b.shadowed,
+                b.redone,
+            )
+            && (skipped, primary, shadow, effects) == (b.skipped, b.primary, b.shadow, b.effects)
+    }
+}
+
+impl Eq for FrameStats {}
 
 impl FrameStats {
     /// Counts one traced sample.
@@ -124,6 +156,7 @@ impl FrameStats {
                 "horizon_clear": self.skipped.horizon_clear,
             },
             "effects": self.effects.to_json(self.primary_rays),
+            "thread_time_ms": self.time.to_json(),
             "queries": {"bbox": q.bbox, "block": q.block, "run": q.run, "cell": q.cell, "triangle": q.triangle, "beam": q.beam},
             "primary_queries": self.primary,
             "shadow_queries": self.shadow,
@@ -202,5 +235,6 @@ impl AddAssign for FrameStats {
         self.primary += rhs.primary;
         self.shadow += rhs.shadow;
         self.redone += rhs.redone;
+        self.time += rhs.time;
     }
 }

@@ -5,7 +5,7 @@
 //! A frame's pixels then carry no counters of their own: only their colour and heat-map
 //! queries leave the shader.
 
-use super::effects::{Reflection, SkyRays};
+use super::effects::{EffectTime, Reflection, SkyRays};
 use super::shade::{Sample, Shadow, ShadowSkip};
 use super::stats::{FrameStats, PixelStats};
 use crate::traverse::Counters;
@@ -27,6 +27,8 @@ pub trait Tally {
     fn water(&mut self, reflection: Reflection, counters: &Counters);
     /// A decision on it was made again exactly ([`Sample::redone`]); noted once per sample.
     fn redone(&mut self);
+    /// The time its effects took (a frame with effects only).
+    fn time(&mut self, time: &EffectTime);
 }
 
 /// Counts straight into the statistics of a frame (or a band of it) and of one pixel.
@@ -73,6 +75,10 @@ impl Tally for Counting<'_> {
     fn redone(&mut self) {
         self.frame.redone();
     }
+    #[inline(always)]
+    fn time(&mut self, time: &EffectTime) {
+        self.frame.time += *time;
+    }
 }
 
 impl Tally for FrameStats {
@@ -112,6 +118,10 @@ impl Tally for FrameStats {
     fn redone(&mut self) {
         self.redone += 1;
     }
+    #[inline(always)]
+    fn time(&mut self, time: &EffectTime) {
+        self.time += *time;
+    }
 }
 
 impl Tally for Sample {
@@ -133,6 +143,9 @@ impl Tally for Sample {
     fn redone(&mut self) {
         self.redone = true;
     }
+    fn time(&mut self, time: &EffectTime) {
+        self.time += *time;
+    }
 }
 
 impl Sample {
@@ -150,6 +163,9 @@ impl Sample {
         }
         if self.redone {
             tally.redone();
+        }
+        if self.time != EffectTime::default() {
+            tally.time(&self.time);
         }
     }
 }

@@ -18,6 +18,8 @@ pub struct PixelRow {
     pub arith: Arith,
     /// Pixels whose colour differs from the exact render's.
     pub differing: u64,
+    /// The largest difference of a colour channel from the exact render's, in display bytes.
+    pub largest_difference: u8,
     /// Pixels in the frame.
     pub pixels: u64,
     /// Wall time of the frame (all threads of the pool), the fastest of its renders.
@@ -61,14 +63,7 @@ pub fn view_pixel_differences(
         let (w, h) = view.camera.size();
         let measured = fastest_cancellable(TIMING_BUDGET, || {
             let mut frame = Frame::new(w, h);
-            let (complete, time) = timed(|| {
-                while !frame.complete() {
-                    if !renderer.render_pass(&mut frame, cancelled) {
-                        return false;
-                    }
-                }
-                true
-            });
+            let (complete, time) = timed(|| renderer.render_cancellable(&mut frame, cancelled));
             complete.then_some((frame.pixels, time))
         })?;
         Some((measured.out, measured.fastest))
@@ -77,6 +72,7 @@ pub fn view_pixel_differences(
         method: view.method,
         arith,
         differing: differing_pixels(pixels, exact).count() as u64,
+        largest_difference: largest_difference(pixels, exact),
         pixels: pixels.len() as u64,
         time,
     };
@@ -107,4 +103,13 @@ pub fn differing_pixels<'a>(
         .enumerate()
         .filter(|(_, (a, b))| a != b)
         .map(|(k, _)| k)
+}
+
+/// The largest difference of a colour channel between two renders of one view, in display
+/// bytes (0 where they are equal).
+pub fn largest_difference(pixels: &[u32], exact: &[u32]) -> u8 {
+    let channels = |rgb: u32| [16, 8, 0].map(|shift| (rgb >> shift) as u8);
+    let pairs = pixels.iter().zip(exact);
+    let per_pixel = pairs.flat_map(|(&a, &b)| channels(a).into_iter().zip(channels(b)));
+    per_pixel.map(|(a, b)| a.abs_diff(b)).max().unwrap_or(0)
 }

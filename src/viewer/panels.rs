@@ -448,6 +448,9 @@ fn sampling_ui(ui: &mut Ui, model: &mut Model) {
         );
         named(model, "adaptive", adaptive);
     }
+    if let Some(latest) = &model.latest {
+        super::stats_ui::effect_shares(ui, &latest.frame.totals);
+    }
 }
 
 /// The real sun's angular diameter, in degrees.

@@ -48,7 +48,6 @@ pub fn statistics_ui(ui: &mut Ui, model: &mut Model) {
         };
         ui.add(bar.text(format!("{done} / {asked} samples{still}")));
     }
-    effect_shares(ui, &frame.totals);
     let pass_ms: Vec<String> = latest
         .pass_times
         .iter()
@@ -204,24 +203,59 @@ fn latency_ui(ui: &mut Ui, model: &Model) {
     }
 }
 
-/// Each kind of ray's share of the frame's rays, where effects cast any.
-fn effect_shares(ui: &mut egui::Ui, totals: &crate::render::FrameStats) {
+/// Each kind of ray's share of the frame's rays and of its thread time, where effects cast
+/// any or took time.
+pub(super) fn effect_shares(ui: &mut egui::Ui, totals: &crate::render::FrameStats) {
     let effects = &totals.effects;
     let kinds = [
         ("camera", totals.primary_rays),
         ("shadow", totals.shadow_rays),
         ("soft shadow", effects.soft.rays + effects.soft.probes),
         ("sky", effects.sky.rays),
+        ("water", effects.water.rays),
     ];
     let all: u64 = kinds.iter().map(|(_, n)| n).sum();
-    if effects.soft.rays + effects.sky.rays == 0 || all == 0 {
+    let percent = |share: f64| format!("{:.0}%", 100.0 * share);
+    let effect_rays = effects.soft.rays + effects.sky.rays + effects.water.rays;
+    if effect_rays > 0 && all > 0 {
+        let shares: Vec<String> = kinds
+            .iter()
+            .filter(|(_, n)| *n > 0)
+            .map(|(kind, n)| format!("{kind} {}", percent(*n as f64 / all as f64)))
+            .collect();
+        ui.label(format!("rays: {}", shares.join(", ")));
+    }
+    if let Some(time) = totals
+        .time
+        .shares()
+        .filter(|t| t.camera < 1.0 || t.later_samples > 0.0)
+    {
+        let parts = [
+            ("camera and shading", time.camera),
+            ("soft shadow", time.soft),
+            ("sky", time.sky),
+            ("water", time.water),
+        ];
+        let shares: Vec<String> = parts
+            .iter()
+            .filter(|(_, share)| *share > 0.0)
+            .map(|(kind, share)| format!("{kind} {}", percent(*share)))
+            .collect();
+        let label = ui.label(format!("time: {}", shares.join(", ")));
+        label.on_hover_text(
+            "thread time, measured around each effect's part of every sample; camera and \
+             shading is the rest (camera rays, hard shadows, colours)",
+        );
+        if time.later_samples > 0.0 {
+            ui.label(format!(
+                "samples after each pixel's first: {} of the time (their effects included)",
+                percent(time.later_samples)
+            ));
+        }
+    }
+    if effect_rays == 0 {
         return;
     }
-    let shares: Vec<String> = kinds
-        .iter()
-        .map(|(kind, n)| format!("{kind} {:.0}%", 100.0 * *n as f64 / all as f64))
-        .collect();
-    ui.label(format!("rays: {}", shares.join(", ")));
     let culled = |asked: u64, cast: u64| 100.0 * (1.0 - cast as f64 / asked.max(1) as f64);
     ui.weak(format!(
         "left out: {:.0}% of sky rays (provably open), {:.0}% of soft-shadow directions at penumbra points, {} whole sun cones provably clear, {} provably blocked",

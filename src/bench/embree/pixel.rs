@@ -4,7 +4,7 @@
 //! the rays were traced.
 
 use super::EmbreeHit;
-use crate::render::effects::{Reflection, SkyRays};
+use crate::render::effects::{EffectTime, Reflection, SkyRays};
 use crate::render::{Frame, FrameStats, PixelStats, Sample, Shader, Shadow, ShadowSkip};
 use crate::traverse::Counters;
 use crate::Ray;
@@ -73,6 +73,7 @@ impl Pixel {
             sky: SkyRays::default(),
             reflection: Reflection::NotWater,
             redone: false,
+            time: EffectTime::default(),
         };
         let Some(surface) = &self.surface else {
             return missed;

@@ -6,11 +6,13 @@
 //! image `render` makes, bit for bit.
 
 use super::pixel::{self, position, Estimate, FIRST_BATCH};
+use super::time::nanos_since;
 use crate::render::passes::{Frame, Renderer};
 use crate::render::scene::Lighting;
 use crate::render::shade::Shader;
 use crate::render::stats::PixelStats;
 use rayon::prelude::*;
+use std::time::Instant;
 
 /// One pixel's samples so far.
 #[derive(Clone, Copy, Debug, Default)]
@@ -85,15 +87,46 @@ impl Renderer<'_> {
     /// at once (the terrain its rays cross is then still in the caches): the image of
     /// [`Renderer::accumulate`]'s rounds of one sample, whose decisions wait for a batch too.
     pub fn render_in_rounds(&self, frame: &mut Frame) {
+        self.render_in_rounds_until(frame, &|| false);
+    }
+
+    /// The image [`Renderer::render`] makes, adaptive samples or not, asking `cancelled`
+    /// before each row or band; false when it said yes (the frame is then to be dropped).
+    pub fn render_cancellable(
+        &self,
+        frame: &mut Frame,
+        cancelled: &(dyn Fn() -> bool + Sync),
+    ) -> bool {
+        let effects = &self.shader.lighting.effects;
+        if effects.adaptive && effects.samples > 1 {
+            return self.render_in_rounds_until(frame, cancelled);
+        }
+        while !frame.complete() {
+            if !self.render_pass(frame, cancelled) {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// [`Renderer::render_in_rounds`], cancellable as [`Renderer::render_cancellable`].
+    fn render_in_rounds_until(
+        &self,
+        frame: &mut Frame,
+        cancelled: &(dyn Fn() -> bool + Sync),
+    ) -> bool {
         let effects = &self.shader.lighting.effects;
         let mut sums = Accumulation::new(frame.width, frame.height, effects.samples.max(1));
         while !sums.complete() {
-            self.add_round(&mut sums, frame, &|| false, FIRST_BATCH);
+            if !self.add_round(&mut sums, frame, cancelled, FIRST_BATCH) {
+                return false;
+            }
         }
         for taking in &sums.pixels {
             frame.totals.effects.add_pixel(taking.estimate.taken);
         }
         frame.passes_done = crate::render::passes::PASS_BLOCKS.len();
+        true
     }
 
     /// Adds the next round of samples to `sums` and paints their mean into `frame` (on the
@@ -141,6 +174,7 @@ impl Renderer<'_> {
                 if cancelled() {
                     return None;
                 }
+                let row_start = Instant::now();
                 let mut totals = crate::render::FrameStats::default();
                 let mut stopped = 0;
                 let row = pixels.iter_mut().zip(stats).zip(takings).enumerate();
@@ -148,7 +182,12 @@ impl Renderer<'_> {
                     if taking.done {
                         continue;
                     }
+                    // The samples after a pixel's first, where this round holds both.
+                    let mut later = None;
                     for index in first..end {
+                        if index == 1 && first == 0 {
+                            later = Some(Instant::now());
+                        }
                         let (px, py) = position(x as u32, y as u32, index);
                         let (sample, _) = shader.traced(&self.camera.ray_at(px, py), self.arith);
                         totals.add(&sample);
@@ -162,11 +201,17 @@ impl Renderer<'_> {
                         }
                         *stat = traced;
                     }
+                    totals.time.later_samples += later.map_or(0, nanos_since);
                     *pixel = taking.estimate.rgb();
                     if last {
                         taking.done = true;
                         stopped += 1;
                     }
+                }
+                let row_time = nanos_since(row_start);
+                totals.time.traced += row_time;
+                if first > 0 {
+                    totals.time.later_samples += row_time;
                 }
                 Some((totals, stopped))
             })

@@ -12,6 +12,7 @@ mod sky;
 mod soft_shadow;
 mod stats;
 mod sun_cone;
+mod time;
 mod water;
 
 pub use accumulate::Accumulation;
@@ -19,6 +20,7 @@ pub use horizon::{climbs_above, slope_bound};
 pub use sky::{open_sky_mean, SkyRays};
 pub use soft_shadow::SoftShadow;
 pub use stats::{EffectStats, SampleStats, SkyStats, SoftStats, WaterStats};
+pub use time::{nanos_since, EffectTime, TimeShares};
 pub use water::{schlick, Reflection, Water, WaterPixel, NORMAL_REFLECTANCE};
 
 use super::scene::{EffectsSection, RenderSection, SunSection};

@@ -7,10 +7,12 @@
 //! beside it. The rounds are in [`Accumulation`](super::Accumulation).
 
 use super::sampling::{mix, point};
+use super::time::nanos_since;
 use super::Effects;
 use crate::render::camera::Camera;
 use crate::render::gamma;
 use crate::Ray;
+use std::time::Instant;
 
 /// Samples every adaptive pixel takes before it may stop; also the batch it adds at a time.
 pub const FIRST_BATCH: u32 = 4;
@@ -66,19 +68,22 @@ pub fn per_sample(effects: &Effects) -> Effects {
 }
 
 /// Shades pixel `(x, y)` with every sample `effects` asks for, each traced by `trace` (which
-/// gives its colour); returns the pixel's colour (0x00RRGGBB).
+/// gives its colour); returns the pixel's colour (0x00RRGGBB) and the nanoseconds its samples
+/// after the first took.
 pub fn shade(
     camera: &Camera,
     (x, y): (u32, u32),
     effects: &Effects,
     mut trace: impl FnMut(&Ray) -> u32,
-) -> u32 {
+) -> (u32, u64) {
     let mut estimate = Estimate::default();
+    let mut later = None;
     for index in 0..effects.samples.max(1) {
         let (px, py) = position(x, y, index);
         estimate.add(trace(&camera.ray_at(px, py)));
+        later.get_or_insert_with(Instant::now);
     }
-    estimate.rgb()
+    (estimate.rgb(), later.map_or(0, nanos_since))
 }
 
 /// A pixel's samples so far: their sum in linear light, and their display bytes summed in

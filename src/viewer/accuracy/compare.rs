@@ -1,8 +1,8 @@
 //! "Compare with exact": the frame on screen rendered again, at its own size, in exact
 //! arithmetic, and the pixels where the two differ (for the overlay and the count).
 
-use crate::render::differing_pixels;
-use crate::render::{Frame, PASS_BLOCKS};
+use crate::render::Frame;
+use crate::render::{differing_pixels, largest_difference};
 use crate::viewer::background::Step;
 use crate::viewer::worker::RenderedFrame;
 use crate::Arith;
@@ -21,6 +21,8 @@ pub struct Comparison {
     /// One flag per pixel of the frame, row-major.
     pub differs: Vec<bool>,
     pub differing: u64,
+    /// The largest difference of a colour channel, in display bytes.
+    pub largest: u8,
     pub pixels: u64,
     pub exact_time: Duration,
 }
@@ -36,17 +38,10 @@ pub fn run(job: CompareJob, step: &Step<'_, CompareJob, Arc<Comparison>>) {
     } else {
         let renderer = shown.job.renderer(Arith::Exact);
         let mut exact = Frame::new(width, height);
-        while !exact.complete() {
-            let status = format!(
-                "exact render: pass {} of {}",
-                exact.passes_done + 1,
-                PASS_BLOCKS.len()
-            );
-            let fraction = exact.passes_done as f32 / PASS_BLOCKS.len() as f32;
-            step.report(fraction, status, None, false);
-            if !renderer.render_pass(&mut exact, &|| step.cancelled()) {
-                return;
-            }
+        // The scene's samples, adaptive as the frame shown took them.
+        step.report(0.0, "exact render".into(), None, false);
+        if !renderer.render_cancellable(&mut exact, &|| step.cancelled()) {
+            return;
         }
         Some(exact)
     };
@@ -59,6 +54,9 @@ pub fn run(job: CompareJob, step: &Step<'_, CompareJob, Arc<Comparison>>) {
     let comparison = Comparison {
         generation: shown.generation,
         differing: differs.iter().filter(|&&d| d).count() as u64,
+        largest: exact.as_ref().map_or(0, |exact| {
+            largest_difference(&shown.frame.pixels, &exact.pixels)
+        }),
         pixels: differs.len() as u64,
         differs,
         exact_time: started.elapsed(),

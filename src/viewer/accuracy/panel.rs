@@ -202,9 +202,12 @@ fn compare_status_ui(ui: &mut Ui, state: &super::AccuracyState) {
         }
         CompareState::Done(c) if Some(c.generation) == state.shown_generation => {
             ui.label(
-                RichText::new(format!("{} of {} pixels differ", c.differing, c.pixels))
-                    .color(DIFFERING)
-                    .strong(),
+                RichText::new(format!(
+                    "{} of {} pixels differ, by up to {} in a colour byte",
+                    c.differing, c.pixels, c.largest
+                ))
+                .color(DIFFERING)
+                .strong(),
             );
             ui.weak(format!(
                 "the exact render took {:.1} s (all threads)",

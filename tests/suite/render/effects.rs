@@ -549,3 +549,53 @@ fn effect_keys_are_read_and_checked() {
         assert!(error.contains(key), "{error}");
     }
 }
+
+/// Effects against exact, as `bench accuracy` and the viewer measure them: each
+/// arithmetic's row counts the pixels whose colour differs from the exact render and the
+/// largest difference of a channel, as a byte-by-byte comparison of `Renderer::render`'s
+/// images finds (adaptive samples taken as `render` takes them, not uniformly).
+#[test]
+fn effects_compared_with_exact_count_what_render_shows() {
+    use heightray::render::{view_pixel_differences, View};
+    // (More samples than the first batch, so adaptive pixels stop at different counts.)
+    let scene = effects_scene(8, true);
+    let terrain = Terrain::new(scene.field.clone());
+    let view = View {
+        terrain: &terrain,
+        camera: scene.camera,
+        lighting: scene.lighting,
+        method: Method::Mipmap,
+    };
+    let ariths = [Arith::F32, Arith::F64, Arith::Exact];
+    let rows = view_pixel_differences(&view, &ariths, &|| false, &mut |_| {}).unwrap();
+    let renderer = |arith| Renderer {
+        shader: shader(&terrain, scene.lighting),
+        camera: scene.camera,
+        arith,
+    };
+    let (w, h) = scene.camera.size();
+    let render = |arith| {
+        let mut frame = Frame::new(w, h);
+        renderer(arith).render(&mut frame);
+        frame
+    };
+    let exact = render(Arith::Exact);
+    // The comparison's own renders are `render`'s images, cancellable.
+    let mut cancellable = Frame::new(w, h);
+    assert!(renderer(Arith::Exact).render_cancellable(&mut cancellable, &|| false));
+    assert_eq!(cancellable.pixels, exact.pixels);
+    for row in rows {
+        let frame = render(row.arith);
+        let pairs = frame.pixels.iter().zip(&exact.pixels);
+        let differing = pairs.clone().filter(|(a, b)| a != b).count() as u64;
+        let bytes = |rgb: u32| rgb.to_be_bytes();
+        let largest = pairs
+            .flat_map(|(a, b)| bytes(*a).into_iter().zip(bytes(*b)))
+            .map(|(a, b)| a.abs_diff(b))
+            .max()
+            .unwrap_or(0);
+        assert_eq!(row.differing, differing, "{}", row.arith);
+        assert_eq!(row.largest_difference, largest, "{}", row.arith);
+        assert_eq!(row.pixels, frame.pixels.len() as u64);
+    }
+}
