@@ -13,6 +13,7 @@ use heightray::{Arith, Heightfield, Method, Terrain};
 use std::path::{Path, PathBuf};
 
 mod effects;
+mod effects_frames;
 mod shadows;
 
 const ARITHS: [Arith; 4] = [
