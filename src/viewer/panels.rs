@@ -55,10 +55,10 @@ pub fn side_panel_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) 
         .resizable(false)
         .exact_size(width)
         .show_inside(ui, |ui| {
-            // A slider row is the slider, its value and its label (at most about 80 points):
+            // A slider row is the slider, its value and its label (at most about 100 points):
             // the slider takes what is left, so the row ends at the panel's edge.
             let indent = ui.spacing().indent;
-            ui.spacing_mut().slider_width = (ui.available_width() - indent - 150.0).max(50.0);
+            ui.spacing_mut().slider_width = (ui.available_width() - indent - 170.0).max(50.0);
             egui::ScrollArea::vertical()
                 .auto_shrink([false, false])
                 .show(ui, |ui| {
@@ -425,7 +425,7 @@ fn sampling_ui(ui: &mut Ui, model: &mut Model) {
     if effects.sun_angle_deg > 0.0 {
         let slider = Slider::new(&mut effects.sun_angle_deg, 0.1..=WIDEST_SUN_DEG)
             .logarithmic(true)
-            .text("sun's diameter (deg)");
+            .text("sun's diameter °");
         let slider = ui.add(slider);
         named(model, "sun_angle", slider);
     }
