@@ -131,3 +131,30 @@ impl Estimate {
         gamma::pack(self.sum.map(|s| s / n))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The batch's end, after adding `samples` (0x00RRGGBB) one after another.
+    fn agree(samples: &[u32]) -> Option<bool> {
+        let mut estimate = Estimate::default();
+        samples
+            .iter()
+            .map(|&rgb| estimate.add(rgb))
+            .last()
+            .flatten()
+    }
+
+    /// Two samples of one colour agree at the first batch; a byte apart on one channel they
+    /// do not. Later, the even and the odd samples are the halves: a step between them shows
+    /// however the samples pair up, and an alternation within each half cancels.
+    #[test]
+    fn halves_are_the_even_and_the_odd_samples() {
+        assert_eq!(agree(&[0x80_40_20, 0x80_40_20]), Some(true));
+        assert_eq!(agree(&[0x80_40_20, 0x80_41_20]), Some(false));
+        assert_eq!(agree(&[0x80_40_20]), None);
+        assert_eq!(agree(&[0x10, 0x11, 0x10, 0x11]), Some(false));
+        assert_eq!(agree(&[0x10, 0x11, 0x11, 0x10]), Some(true));
+    }
+}

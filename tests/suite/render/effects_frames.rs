@@ -80,7 +80,7 @@ fn each_effect_culling_rule_on_or_off_gives_the_same_image() {
 
 #[test]
 fn effects_give_the_same_image_on_one_thread_and_two() {
-    for scene in [effects_scene(4, true), effects_scene(3, false)] {
+    for scene in [effects_scene(8, true), effects_scene(3, false)] {
         let terrain = Terrain::new(scene.field.clone());
         let render = |threads| {
             render_by(
