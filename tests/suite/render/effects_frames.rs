@@ -80,7 +80,7 @@ fn each_effect_culling_rule_on_or_off_gives_the_same_image() {
 
 #[test]
 fn effects_give_the_same_image_on_one_thread_and_two() {
-    for scene in [effects_scene(4, true), effects_scene(3, false)] {
+    for scene in [effects_scene(8, true), effects_scene(3, false)] {
         let terrain = Terrain::new(scene.field.clone());
         let render = |threads| {
             render_by(
@@ -172,12 +172,13 @@ fn samples_converge_to_the_supersampled_image() {
         .map(|n| error_against(&render_at(size, n, false), &reference))
         .to_vec();
     assert!(errors[0] > errors[1] && errors[1] > errors[2], "{errors:?}");
-    // Adaptive: fewer camera rays than 16 everywhere, and better than 4 everywhere.
+    // Adaptive: the error of 16 samples everywhere (within 1%) with under three quarters
+    // of their camera rays.
     let adaptive = render_at(size, 16, true);
     let rays = adaptive.totals.primary_rays;
-    assert!(rays < u64::from(16 * size * size), "{rays}");
+    assert!(4 * rays < 3 * u64::from(16 * size * size), "{rays}");
     let error = error_against(&adaptive, &reference);
-    assert!(error < errors[1], "{error} against {errors:?}");
+    assert!(error <= 1.01 * errors[2], "{error} against {errors:?}");
 }
 
 /// Rounds of one sample, as the viewer adds them, end with `render`'s image: uniform, and
