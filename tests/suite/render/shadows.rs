@@ -48,6 +48,7 @@ fn no_shadow_rays_where_no_shadow_is_possible() {
         above_terrain: false,
         horizon_clear: false,
         cone_blocked: false,
+        sun_sweep: false,
     };
     let brute = render_by(
         Method::Runs,
@@ -95,11 +96,16 @@ fn each_culling_rule_on_or_off_gives_the_same_image() {
             ..Culling::default()
         },
         Culling {
+            sun_sweep: false,
+            ..Culling::default()
+        },
+        Culling {
             facing_away: false,
             no_shadow_possible: false,
             above_terrain: false,
             horizon_clear: false,
             cone_blocked: false,
+            sun_sweep: false,
         },
     ];
     for culling in rules {
