@@ -172,9 +172,11 @@ fn sweep_verdicts_agree_with_brute_force() {
                 }
             }
         }
-        // Low suns shadow part of every field: the sweep settles points both ways.
+        // Low suns shadow part of every field: the sweep settles points both ways, except in
+        // the shadow of ridges one sample wide, whose cells' lowest corners (all `L` is built
+        // from) lie on the ground.
         assert!(lit > 1000, "{name}: {lit} lit");
-        assert!(shadowed > 100, "{name}: {shadowed} shadowed");
+        assert_eq!(shadowed > 100, name != "axis ridges", "{name}: {shadowed} shadowed");
     }
 }
 
