@@ -13,8 +13,11 @@
 //!   corner, less `dz` (no bound where it may land off the map or on a hole), bounds it from
 //!   below: for every point `p` of `C` some `t > 0` has `h(p + t d) - t dz >= L(C)`.
 //!
-//! Bounds are kept per block of cells (the largest `U`, the least `L`), quantised to 16 bits
-//! over the height range (`U` rounded up, `L` down).
+//! The sweep runs over the aligned blocks of `2^k x 2^k` cells of one level of the mipmap
+//! instead of cells, with their highest and lowest samples as corners and `2^k` columns to a
+//! step (the same geometry, scaled): its bounds hold for every point of a block, so a look-up
+//! one column ahead of a point reads its block's. Bounds are quantised to 16 bits over the
+//! height range (`U` rounded up, `L` down).
 
 mod cache;
 mod verdict;
@@ -35,6 +38,8 @@ pub struct SunSweep {
     step: [f64; 3],
     /// Cells along x and y.
     cells: [usize; 2],
+    /// The mipmap level of the blocks.
+    level: u32,
     /// Cells per block side.
     block: usize,
     /// Blocks along x.
@@ -48,13 +53,13 @@ pub struct SunSweep {
     quantum: f64,
 }
 
-/// The block side for a map of `samples` samples: the bounds of 2x2 cells on small maps,
-/// 4x4 from a million samples on (0.25 bytes per sample).
-fn block_side(samples: usize) -> usize {
-    if samples <= 1 << 20 {
+/// The mipmap level whose blocks the sweep runs over for a map of `samples` samples: 4x4
+/// cells (0.25 bytes per sample), 8x8 from 16 million samples on (0.06).
+fn level(samples: usize) -> u32 {
+    if samples < 1 << 24 {
         2
     } else {
-        4
+        3
     }
 }
 
@@ -63,12 +68,14 @@ impl SunSweep {
     /// sweep bounds nothing: the sun on or below the horizon or straight overhead, or a map
     /// without a height range or cells.
     pub fn build(terrain: &Terrain, dir: [f64; 3]) -> Option<SunSweep> {
-        let block = block_side(terrain.field().samples().len());
-        SunSweep::build_in_blocks(terrain, dir, block)
+        SunSweep::build_on_level(terrain, dir, level(terrain.field().samples().len()))
     }
 
-    /// [`SunSweep::build`] with bounds kept per `block` x `block` cells.
-    pub fn build_in_blocks(terrain: &Terrain, dir: [f64; 3], block: usize) -> Option<SunSweep> {
+    /// [`SunSweep::build`] over the blocks of mipmap level `k` (at least 1; no higher than
+    /// the mipmap's top).
+    pub fn build_on_level(terrain: &Terrain, dir: [f64; 3], k: u32) -> Option<SunSweep> {
+        let k = k.clamp(1, terrain.mipmap().top().max(1));
+        let block = 1usize << k;
         let field = terrain.field();
         let cells = [field.width() - 1, field.height() - 1];
         let (z_lo, z_hi) = terrain.z_range();
@@ -76,7 +83,7 @@ impl SunSweep {
         let along = dir[axis].abs();
         let usable =
             dir[2] > 0.0 && along > 0.0 && z_hi > z_lo && dir.iter().all(|c| c.is_finite());
-        if !usable || cells[0] == 0 || cells[1] == 0 || block == 0 {
+        if !usable || cells[0] == 0 || cells[1] == 0 {
             return None;
         }
         let step = dir.map(|c| c / along);
@@ -86,6 +93,7 @@ impl SunSweep {
             axis,
             step,
             cells,
+            level: k,
             block,
             blocks_x: blocks[0],
             upper: vec![0; blocks[0] * blocks[1]],
@@ -107,63 +115,67 @@ impl SunSweep {
         (self.upper.len() + self.lower.len()) * std::mem::size_of::<u16>()
     }
 
-    /// Fills the blocks' bounds column by column from the sun's side.
+    /// Fills the blocks' bounds, block column by block column from the sun's side.
     fn sweep(&mut self, terrain: &Terrain) {
-        let (columns, rows) = (self.cells[self.axis], self.cells[1 - self.axis]);
+        let b = self.block;
+        let cells = [self.cells[self.axis], self.cells[1 - self.axis]];
+        let [columns, rows] = cells.map(|n| n.div_ceil(b));
+        // Blocks wholly on the map: a lower bound needs its landing blocks to be.
+        let [whole_columns, whole_rows] = cells.map(|n| n / b);
         let forward = self.step[self.axis] > 0.0;
-        let (dv, dz) = (self.step[1 - self.axis], self.step[2]);
-        // Rows a cell's step sweeps over (from its own row), and the rows it lands on.
+        let (dv, dz) = (self.step[1 - self.axis], self.step[2] * b as f64);
+        // Rows a block's step sweeps over (from its own row), and the rows it lands on.
         let swept = (dv.min(0.0).floor() as i64, dv.max(0.0).ceil() as i64);
         let lands = (dv.floor() as i64, dv.ceil() as i64);
         let in_rows = |v: i64| (0..rows as i64).contains(&v);
-        // The next column's (towards the sun).
-        let mut next: Option<Column> = None;
+        let whole = |v: i64| (0..whole_rows as i64).contains(&v);
+        // The next column's (towards the sun), and whether it lies wholly on the map.
+        let mut next: Option<(Column, bool)> = None;
         for k in 0..columns {
             let c = if forward { columns - 1 - k } else { k };
-            let mut column = Column::corners(terrain, self.axis, c, rows);
+            let mut column = Column::corners(terrain, self.axis, self.level, c, rows);
             for v in 0..rows {
                 let vi = v as i64;
                 let mut u = f64::NEG_INFINITY;
                 for w in (vi + swept.0..=vi + swept.1).filter(|&w| in_rows(w)) {
                     u = u.max(column.high[w as usize]);
-                    if let Some(next) = &next {
+                    if let Some((next, _)) = &next {
                         u = u.max(next.high[w as usize]);
                     }
                 }
-                if let Some(next) = &next {
+                let mut l = f64::NEG_INFINITY;
+                if let Some((next, next_whole)) = &next {
                     let landing = vi + lands.0..=vi + lands.1;
                     for w in landing.clone().filter(|&w| in_rows(w)) {
                         u = u.max(next.upper[w as usize] - dz);
                     }
-                    if landing.clone().all(in_rows) {
-                        let l = landing
+                    if *next_whole && landing.clone().all(whole) {
+                        let least = landing
                             .map(|w| next.lower[w as usize].max(next.low[w as usize]))
                             .fold(f64::INFINITY, f64::min);
-                        column.lower[v] = l - dz;
+                        l = least - dz;
                     }
                 }
                 column.upper[v] = u;
-                self.keep(cell(self.axis, c, v), u, column.lower[v]);
+                column.lower[v] = l;
+                let (i, j) = cell(self.axis, c, v);
+                self.keep(j * self.blocks_x + i, u, l);
             }
-            next = Some(column);
+            next = Some((column, c < whole_columns));
         }
     }
 
-    /// Folds cell `(i, j)`'s bounds into its block's.
-    fn keep(&mut self, (i, j): (usize, usize), upper: f64, lower: f64) {
-        let at = (j / self.block) * self.blocks_x + i / self.block;
-        let up = ((upper - self.z0) / self.quantum)
-            .ceil()
-            .clamp(0.0, f64::from(u16::MAX));
-        self.upper[at] = self.upper[at].max(up as u16);
+    /// Keeps block `at`'s bounds, quantised.
+    fn keep(&mut self, at: usize, upper: f64, lower: f64) {
+        let up = ((upper - self.z0) / self.quantum).ceil();
+        self.upper[at] = up.clamp(0.0, f64::from(u16::MAX)) as u16;
         // Code 0 bounds nothing: a bound below the lowest sample settles no point.
         let down = ((lower - self.z0) / self.quantum).floor();
-        let down = if down >= 1.0 {
+        self.lower[at] = if down >= 1.0 {
             down.min(f64::from(u16::MAX)) as u16
         } else {
             0
         };
-        self.lower[at] = self.lower[at].min(down);
     }
 
     /// The height of an upper bound's code.
@@ -180,7 +192,7 @@ impl SunSweep {
     }
 }
 
-/// The cell `(i, j)` of column `c` along `axis`, row `v` across it.
+/// The block `(bi, bj)` of column `c` along `axis`, row `v` across it.
 fn cell(axis: usize, c: usize, v: usize) -> (usize, usize) {
     if axis == 0 {
         (c, v)
@@ -189,30 +201,31 @@ fn cell(axis: usize, c: usize, v: usize) -> (usize, usize) {
     }
 }
 
-/// One column of cells across the sweep: their highest and lowest corners and bounds.
+/// One column of blocks across the sweep: their highest and lowest samples' heights and
+/// bounds.
 struct Column {
     high: Vec<f64>,
-    /// Negative infinity for a hole: no surface there.
+    /// Negative infinity on a map with holes: the surface may be missing anywhere.
     low: Vec<f64>,
     upper: Vec<f64>,
     lower: Vec<f64>,
 }
 
 impl Column {
-    /// Column `c` along `axis` of `rows` cells, its bounds not yet known.
-    fn corners(terrain: &Terrain, axis: usize, c: usize, rows: usize) -> Column {
+    /// Column `c` along `axis` of `rows` blocks of mipmap level `k`, its bounds not yet
+    /// known.
+    fn corners(terrain: &Terrain, axis: usize, k: u32, c: usize, rows: usize) -> Column {
         let field = terrain.field();
-        let holes = field.nodata_count() > 0;
+        let (mipmap, holes) = (terrain.mipmap(), field.nodata_count() > 0);
+        // (Heights grow with samples, as the terrain's height range takes them.)
         let (high, low) = (0..rows)
             .map(|v| {
-                let (i, j) = cell(axis, c, v);
-                // (Heights grow with samples, as the terrain's height range takes them.)
-                let (lowest, highest) = terrain.cell_sample_range(i, j);
-                let low = match holes && field.is_hole_cell(i, j) {
+                let (bi, bj) = cell(axis, c, v);
+                let low = match holes {
                     true => f64::NEG_INFINITY,
-                    false => field.height_of(lowest),
+                    false => field.height_of(mipmap.lowest(k, bi, bj)),
                 };
-                (field.height_of(highest), low)
+                (field.height_of(mipmap.highest(k, bi, bj)), low)
             })
             .unzip();
         Column {

