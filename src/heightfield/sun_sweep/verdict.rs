@@ -96,11 +96,15 @@ impl SunSweep {
         let Some((is, js)) = self.cells_over(span(x, x + sx), span(y, y + sy)) else {
             return false;
         };
-        let swept = js
-            .flat_map(|j| is.clone().map(move |i| (i, j)))
-            .all(|cell| rises_below(cell, 0) && rises_below(cell, 1));
-        if !swept || !rises_below(start.cell, start.triangle) {
+        if !rises_below(start.cell, start.triangle) {
             return false;
+        }
+        for j in js {
+            for i in is.clone() {
+                if !(rises_below((i, j), 0) && rises_below((i, j), 1)) {
+                    return false;
+                }
+            }
         }
         if start.on_plane {
             return true;
@@ -115,38 +119,48 @@ impl SunSweep {
         else {
             return false;
         };
-        below(start.cell, start.triangle)
-            && js
-                .flat_map(|j| is.clone().map(move |i| (i, j)))
-                .all(|cell| below(cell, 0) && below(cell, 1))
+        if !below(start.cell, start.triangle) {
+            return false;
+        }
+        for j in js {
+            for i in is.clone() {
+                if !(below((i, j), 0) && below((i, j), 1)) {
+                    return false;
+                }
+            }
+        }
+        true
     }
 
     /// The cells whose closed squares meet the box `xs` x `ys` (`None` where none does).
+    #[inline]
     fn cells_over(
         &self,
         xs: [f64; 2],
         ys: [f64; 2],
     ) -> Option<(RangeInclusive<usize>, RangeInclusive<usize>)> {
+        // (Truncation floors the clamped, non-negative ends: no call to `floor`.)
         let range = |[lo, hi]: [f64; 2], n: usize| {
-            let top = n as f64;
-            (hi >= 0.0 && lo <= top).then(|| {
-                let first = lo.max(0.0).floor().min(top - 1.0) as usize;
-                let last = hi.min(top - 1.0).floor().max(0.0) as usize;
-                first..=last
-            })
+            let top = (n - 1) as f64;
+            (hi >= 0.0 && lo <= n as f64)
+                .then(|| lo.clamp(0.0, top) as usize..=hi.clamp(0.0, top) as usize)
         };
         Some((range(xs, self.cells[0])?, range(ys, self.cells[1])?))
     }
 
     /// The blocks holding the cells that meet the box `xs` x `ys`.
+    #[inline]
     fn blocks(
         &self,
         xs: [f64; 2],
         ys: [f64; 2],
     ) -> Option<(RangeInclusive<usize>, RangeInclusive<usize>)> {
         let (is, js) = self.cells_over(xs, ys)?;
-        let b = self.block;
-        Some((is.start() / b..=is.end() / b, js.start() / b..=js.end() / b))
+        let k = self.level;
+        Some((
+            is.start() >> k..=is.end() >> k,
+            js.start() >> k..=js.end() >> k,
+        ))
     }
 
     /// `codes` of the blocks `bi` x `bj` folded by `pick` from `first`.
@@ -158,7 +172,12 @@ impl SunSweep {
         pick: fn(u16, u16) -> u16,
         first: u16,
     ) -> u16 {
-        bj.flat_map(|j| bi.clone().map(move |i| (i, j)))
-            .fold(first, |acc, (i, j)| pick(acc, codes[j * self.blocks_x + i]))
+        let mut acc = first;
+        for j in bj {
+            for i in bi.clone() {
+                acc = pick(acc, codes[j * self.blocks_x + i]);
+            }
+        }
+        acc
     }
 }
