@@ -10,6 +10,7 @@ use super::sky_gradient::{horizon, night_sky_colour, sky_colour, NIGHT_HORIZON};
 use super::tally::{Counting, Tally};
 use crate::arith::{with_numbers, Arith, Generic, Numbers, WithNumbers};
 use crate::geometry::gradient;
+use crate::heightfield::sun_sweep::{SweepStart, Verdict};
 use crate::heightfield::Terrain;
 use crate::traverse::{Clearance, Counters, Found, Hit, Method, Occlusion, Scalar, Start, Tracer};
 use crate::Ray;
@@ -29,6 +30,12 @@ pub enum ShadowSkip {
     /// Soft shadows: every direction towards the sun's disc climbs more steeply than the
     /// terrain can rise around the point (see [`crate::render::effects`]).
     HorizonClear,
+    /// The sun's sweep of the terrain shows nothing in the ray's way
+    /// ([`crate::heightfield::sun_sweep`]).
+    SunLit,
+    /// The sun's sweep of the terrain shows the ray passing below the surface further on: the
+    /// point is in shadow.
+    SunShadowed,
 }
 
 /// What became of a pixel's shadow.
@@ -46,6 +53,17 @@ pub enum Shadow {
     },
     /// Soft shadows: directions towards the sun's disc, some cast, the others provably clear.
     Soft(SoftShadow),
+}
+
+impl Shadow {
+    /// Whether the point is in the sun's hard shadow: a shadow ray found the surface, or the
+    /// sun's sweep showed it would.
+    pub fn in_shadow(self) -> bool {
+        matches!(
+            self,
+            Shadow::Cast { shadowed: true } | Shadow::Skipped(ShadowSkip::SunShadowed)
+        )
+    }
 }
 
 /// A pixel's shadow as cast: what became of it, the shadow ray's queries, and whether a
@@ -95,6 +113,9 @@ pub struct Culling {
     /// Leave out the soft-shadow rays of a cone provably blocked whole
     /// ([`SoftShadow::blocked`]).
     pub cone_blocked: bool,
+    /// Leave out hard shadow rays the sun's sweep of the terrain settles
+    /// ([`ShadowSkip::SunLit`], [`ShadowSkip::SunShadowed`]).
+    pub sun_sweep: bool,
 }
 
 impl Default for Culling {
@@ -105,6 +126,7 @@ impl Default for Culling {
             above_terrain: true,
             horizon_clear: true,
             cone_blocked: true,
+            sun_sweep: true,
         }
     }
 }
@@ -310,9 +332,9 @@ impl Shader<'_> {
     /// says, in shadow or not as `shadow` says.
     #[inline(always)]
     pub fn surface_rgb(&self, ray: &Ray, p: DVec3, t: f64, facing: f64, shadow: Shadow) -> u32 {
-        let lit = match shadow {
-            Shadow::Cast { shadowed: true } => 0.0,
-            _ => facing.max(0.0),
+        let lit = match shadow.in_shadow() {
+            true => 0.0,
+            false => facing.max(0.0),
         };
         let light = self.lighting.ambient + self.lighting.intensity * lit;
         let colour = self.albedo(p) * light;
@@ -331,7 +353,7 @@ impl Shader<'_> {
         ambient: DVec3,
     ) -> u32 {
         let lit = match shadow {
-            Shadow::Cast { shadowed: true } => 0.0,
+            _ if shadow.in_shadow() => 0.0,
             Shadow::Soft(soft) => facing.max(0.0) * soft.visible(),
             _ => facing.max(0.0),
         };
@@ -387,6 +409,13 @@ impl Shader<'_> {
         if self.culling.no_shadow_possible && climbs_steeper {
             return skip(ShadowSkip::NoShadowPossible);
         }
+        if self.culling.sun_sweep {
+            match self.sun_verdict::<S>(found, ray, p, sun) {
+                Verdict::Lit => return skip(ShadowSkip::SunLit),
+                Verdict::Shadowed => return skip(ShadowSkip::SunShadowed),
+                Verdict::Unknown => {}
+            }
+        }
         let occlusion = self.occluded(found, ray, p, sun, None);
         match occlusion.occluded {
             Some(shadowed) => (
@@ -400,6 +429,34 @@ impl Shader<'_> {
                 occlusion.exactly,
             ),
         }
+    }
+
+    /// What the sun's sweep of the terrain says of the hard shadow ray of the hit `found` of
+    /// `ray`, shaded at `p`, towards `sun` (grid coordinates), in arithmetic `S`: the walk
+    /// starts where [`Shader::occluded`] does, raised and rounded by `S`, which the sweep's
+    /// margins cover.
+    fn sun_verdict<S: Scalar>(
+        &self,
+        found: &Found<S>,
+        ray: &Ray,
+        p: DVec3,
+        sun: [f64; 3],
+    ) -> Verdict {
+        let start = self.occlusion_start(found.cell, found.triangle, p);
+        let t = found.t.to_f64().abs();
+        let (o, d) = (ray.origin(), ray.dir());
+        let largest = (0..3).fold(start.abs().max_element(), |m, k| {
+            m.max(o[k].abs() + t * d[k].abs())
+        });
+        let start = SweepStart {
+            point: start.to_array(),
+            cell: found.cell,
+            triangle: found.triangle,
+            on_plane: self.lighting.normals == Normals::Flat,
+            relative: (1e3 * S::rounding_error(1.0)).max(1e-9),
+            largest,
+        };
+        self.terrain.sun_verdict(sun, &start)
     }
 
     /// Whether a ray from the hit `found` of `ray` (shaded at `p`) towards `dir` touches the

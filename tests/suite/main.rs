@@ -29,6 +29,7 @@ mod ramps;
 mod recorded_cells;
 mod render;
 mod snapshots;
+mod sun_sweep;
 mod sun_time;
 mod terminator;
 mod true_scale;
