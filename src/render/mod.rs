@@ -7,6 +7,7 @@ mod passes;
 mod ramp;
 mod scene;
 mod shade;
+mod shadow;
 mod sky_gradient;
 mod stats;
 pub mod sun_position;
@@ -25,7 +26,8 @@ pub use scene::{
     OverlaySection, Scene, SceneError, SceneFile, ShadingSection, SunSection, WaterSection,
     DEFAULT_SIZE, DEFAULT_WATER_COLOUR,
 };
-pub use shade::{Culling, Sample, Shader, Shadow, ShadowSkip};
+pub use shade::{Culling, Sample, Shader};
+pub use shadow::{Shadow, ShadowSkip};
 pub use stats::{FrameStats, PixelStats};
 pub use tally::{Counting, Tally};
 pub use versus_exact::{

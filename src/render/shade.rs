@@ -1,74 +1,22 @@
 //! From a ray to a colour: the primary ray, the shadow ray only where it can change the pixel,
 //! Lambert shading with an elevation ramp, sky and fog.
 
-use super::effects::{nanos_since, EffectTime, Reflection, SkyRays, SoftShadow};
+use super::effects::{nanos_since, EffectTime, Reflection, SkyRays};
 use super::gamma;
 use super::normals;
 use super::ramp::HeightSpan;
 use super::scene::{Lighting, Normals};
+use super::shadow::Shadow;
 use super::sky_gradient::{horizon, night_sky_colour, sky_colour, NIGHT_HORIZON};
 use super::tally::{Counting, Tally};
 use crate::arith::{with_numbers, Arith, Generic, Numbers, WithNumbers};
 use crate::geometry::gradient;
-use crate::heightfield::sun_sweep::{SweepStart, Verdict};
 use crate::heightfield::Terrain;
-use crate::traverse::{Clearance, Counters, Found, Hit, Method, Occlusion, Scalar, Start, Tracer};
+use crate::traverse::{Clearance, Counters, Hit, Method, Scalar, Tracer};
 use crate::Ray;
 use glam::DVec3;
 use std::cell::{Cell, RefCell};
 use std::time::Instant;
-
-/// Why a shadow ray was not cast although the scene has shadows.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ShadowSkip {
-    /// The surface faces away from the sun: it is dark whatever a shadow ray says.
-    FacingAway,
-    /// The sun stands higher than the steepest slope anywhere: nothing can cast a shadow.
-    NoShadowPossible,
-    /// The shadow ray starts above the highest terrain and rises.
-    AboveTerrain,
-    /// Soft shadows: every direction towards the sun's disc climbs more steeply than the
-    /// terrain can rise around the point (see [`crate::render::effects`]).
-    HorizonClear,
-    /// The sun's sweep of the terrain shows nothing in the ray's way
-    /// ([`crate::heightfield::sun_sweep`]).
-    SunLit,
-    /// The sun's sweep of the terrain shows the ray passing below the surface further on: the
-    /// point is in shadow.
-    SunShadowed,
-}
-
-/// What became of a pixel's shadow.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Shadow {
-    /// No primary hit, or the scene has no shadows: nothing to decide.
-    #[default]
-    NotAsked,
-    /// Left out where it cannot change the pixel, for this reason.
-    Skipped(ShadowSkip),
-    /// Cast towards the sun.
-    Cast {
-        /// The shadow ray found the surface: the pixel is in shadow.
-        shadowed: bool,
-    },
-    /// Soft shadows: directions towards the sun's disc, some cast, the others provably clear.
-    Soft(SoftShadow),
-}
-
-impl Shadow {
-    /// Whether the point is in the sun's hard shadow: a shadow ray found the surface, or the
-    /// sun's sweep showed it would.
-    pub fn in_shadow(self) -> bool {
-        matches!(
-            self,
-            Shadow::Cast { shadowed: true } | Shadow::Skipped(ShadowSkip::SunShadowed)
-        )
-    }
-}
-
-/// A pixel's shadow as cast: what became of it, the shadow ray's queries, and whether a
-/// decision on it was made exactly after intervals left it unsettled (see [`Sample::redone`]).
-pub(super) type Cast = (Shadow, Counters, bool);
 
 /// One traced sample, recorded on its own (see [`Tally`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -390,123 +338,6 @@ impl Shader<'_> {
         gamma::pack(self.sky(self.world_dir(ray.dir()).into()).to_array())
     }
 
-    /// Decides whether a shadow ray of the hit `found`, shaded at `p`, can change the pixel,
-    /// and casts it if so (in a scene with shadows).
-    fn shadow<S: Scalar>(&self, found: &Found<S>, ray: &Ray, p: DVec3, facing: f64) -> Cast {
-        let skip = |why| (Shadow::Skipped(why), Counters::default(), false);
-        if self.culling.facing_away && facing <= 0.0 {
-            return skip(ShadowSkip::FacingAway);
-        }
-        if self.lighting.effects.sun_angle_deg > 0.0 {
-            return self.soft_shadow(found, ray, p);
-        }
-        let sun = self.grid_sun();
-        // The sun climbs strictly steeper than any triangle (with room for the rounding of
-        // max_slope), compared squared: no square root per shadow ray.
-        let steepest = self.terrain.max_slope() * (1.0 + 1e-9);
-        let climbs_steeper = sun[2] > 0.0
-            && sun[2] * sun[2] > steepest * steepest * (sun[0] * sun[0] + sun[1] * sun[1]);
-        if self.culling.no_shadow_possible && climbs_steeper {
-            return skip(ShadowSkip::NoShadowPossible);
-        }
-        if self.culling.sun_sweep {
-            match self.sun_verdict::<S>(found, ray, p, sun) {
-                Verdict::Lit => return skip(ShadowSkip::SunLit),
-                Verdict::Shadowed => return skip(ShadowSkip::SunShadowed),
-                Verdict::Unknown => {}
-            }
-        }
-        let occlusion = self.occluded(found, ray, p, sun, None);
-        match occlusion.occluded {
-            Some(shadowed) => (
-                Shadow::Cast { shadowed },
-                occlusion.counters,
-                occlusion.exactly,
-            ),
-            None => (
-                Shadow::Skipped(ShadowSkip::AboveTerrain),
-                Counters::default(),
-                occlusion.exactly,
-            ),
-        }
-    }
-
-    /// What the sun's sweep of the terrain says of the hard shadow ray of the hit `found` of
-    /// `ray`, shaded at `p`, towards `sun` (grid coordinates), in arithmetic `S`: the walk
-    /// starts where [`Shader::occluded`] does, raised and rounded by `S`, which the sweep's
-    /// margins cover.
-    fn sun_verdict<S: Scalar>(
-        &self,
-        found: &Found<S>,
-        ray: &Ray,
-        p: DVec3,
-        sun: [f64; 3],
-    ) -> Verdict {
-        let start = self.occlusion_start(found.cell, found.triangle, p);
-        let t = found.t.to_f64().abs();
-        let (o, d) = (ray.origin(), ray.dir());
-        let largest = (0..3).fold(start.abs().max_element(), |m, k| {
-            m.max(o[k].abs() + t * d[k].abs())
-        });
-        let start = SweepStart {
-            point: start.to_array(),
-            cell: found.cell,
-            triangle: found.triangle,
-            on_plane: self.lighting.normals == Normals::Flat,
-            relative: (1e3 * S::rounding_error(1.0)).max(1e-9),
-            largest,
-        };
-        self.terrain.sun_verdict(sun, &start)
-    }
-
-    /// Whether a ray from the hit `found` of `ray` (shaded at `p`) towards `dir` touches the
-    /// surface: the occlusion ray of shadows, soft shadows and sky light (not traced where it
-    /// starts above the terrain and rises, and that rule is on), asking only up to `t_max`
-    /// along the ray if given (see [`Tracer::within`]).
-    pub(super) fn occluded<S: Scalar>(
-        &self,
-        found: &Found<S>,
-        ray: &Ray,
-        p: DVec3,
-        dir: [f64; 3],
-        t_max: Option<f64>,
-    ) -> Occlusion {
-        let tracer = Tracer::new(self.terrain, self.method);
-        let tracer = match t_max {
-            Some(t) => tracer.within(t),
-            None => tracer,
-        };
-        let skip_above = self.culling.above_terrain;
-        match self.lighting.normals {
-            // Smooth shading: from the curved surface the shading describes, which its own flat
-            // triangle may cross (see `normals`), skipping that triangle.
-            Normals::Smooth => {
-                let start = normals::shadow_origin(self.terrain, found.cell, found.triangle, p);
-                let from = Start::Near {
-                    ray,
-                    hit: found,
-                    point: start.to_array(),
-                };
-                tracer.occluded(&from, dir, skip_above)
-            }
-            Normals::Flat => tracer.occluded(&Start::Hit { ray, hit: found }, dir, skip_above),
-        }
-    }
-
-    /// Where [`Shader::occluded`] starts its rays from the hit `found` shaded at `p`, in
-    /// `f64`, before raising.
-    pub(super) fn occlusion_start(
-        &self,
-        found_cell: (usize, usize),
-        triangle: u8,
-        p: DVec3,
-    ) -> DVec3 {
-        match self.lighting.normals {
-            Normals::Smooth => normals::shadow_origin(self.terrain, found_cell, triangle, p),
-            Normals::Flat => p,
-        }
-    }
-
     /// The (unnormalised) normal of the hit triangle's plane: `(-gx, -gy, 1)`.
     fn geometric_normal(&self, (i, j): (usize, usize), triangle: u8) -> DVec3 {
         let heights = self.terrain.corner_heights(i, j);
@@ -530,7 +361,7 @@ impl Shader<'_> {
     }
 
     /// The direction towards the sun in grid coordinates, where shadow rays are traced.
-    fn grid_sun(&self) -> [f64; 3] {
+    pub(super) fn grid_sun(&self) -> [f64; 3] {
         self.grid_dir(DVec3::from(self.lighting.sun)).into()
     }
 

@@ -6,7 +6,8 @@
 //! queries leave the shader.
 
 use super::effects::{EffectTime, Reflection, SkyRays};
-use super::shade::{Sample, Shadow, ShadowSkip};
+use super::shade::Sample;
+use super::shadow::{Shadow, ShadowSkip};
 use super::stats::{FrameStats, PixelStats};
 use crate::traverse::Counters;
 

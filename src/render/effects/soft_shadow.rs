@@ -8,7 +8,8 @@
 use super::horizon::{climbs_above, slope_bound, Sector};
 use super::sampling::{cone, point, seed_of};
 use super::sun_cone::{self, Cone};
-use crate::render::shade::{Cast, Shader, Shadow, ShadowSkip};
+use crate::render::shade::Shader;
+use crate::render::shadow::{Cast, Shadow, ShadowSkip};
 use crate::traverse::{Counters, Found, Scalar, Tracer};
 use crate::Ray;
 use glam::{DVec2, DVec3};
