@@ -59,7 +59,8 @@ impl Shadow {
 }
 
 /// A pixel's shadow as cast: what became of it, the shadow ray's queries, and whether a
-/// decision on it was made exactly after intervals left it unsettled (see [`Sample::redone`](super::Sample::redone)).
+/// decision on it was made exactly after intervals left it unsettled (see
+/// [`Sample::redone`](super::Sample::redone)).
 pub(super) type Cast = (Shadow, Counters, bool);
 
 impl Shader<'_> {
