@@ -35,11 +35,8 @@ pub struct ThroughputRow {
     pub threads: usize,
     /// Primary rays of a frame (one per pixel).
     pub primary_rays: u64,
-    /// Shadow rays of a frame with shadows: walked.
+    /// Shadow rays of a frame with shadows.
     pub shadow_rays: u64,
-    /// Shadow queries of a frame with shadows the sun's sweep of the terrain settled by a
-    /// look-up, without a ray.
-    pub shadow_settled: u64,
     /// The queries of the primary rays (frame without shadows).
     pub primary_queries: Counters,
     /// The frame without shadows.
@@ -53,17 +50,15 @@ impl ThroughputRow {
     pub fn primary_per_second(&self) -> f64 {
         self.primary_rays as f64 / self.primary_time.as_secs_f64()
     }
-    /// Shadow queries answered per second: the extra time shadows took (the sun's sweep
-    /// included), per shadow ray walked or query the sweep settled; `None` where there were
-    /// none, or the frame with shadows was not the slower one (shadows were lost in the
-    /// noise of the two times).
+    /// Shadow rays per second: the extra time shadows took, per shadow ray; `None` where
+    /// there were none, or the frame with shadows was not the slower one (shadows were lost
+    /// in the noise of the two times).
     pub fn shadow_per_second(&self) -> Option<f64> {
         let extra = self
             .total_time
             .saturating_sub(self.primary_time)
             .as_secs_f64();
-        let queries = self.shadow_rays + self.shadow_settled;
-        (queries > 0 && extra > 0.0).then(|| queries as f64 / extra)
+        (self.shadow_rays > 0 && extra > 0.0).then(|| self.shadow_rays as f64 / extra)
     }
 }
 
@@ -121,7 +116,6 @@ pub fn throughput(
             threads,
             primary_rays: plain.totals.primary_rays,
             shadow_rays: shadowed.totals.shadow_rays,
-            shadow_settled: shadowed.totals.skipped.sun_lit + shadowed.totals.skipped.sun_shadowed,
             primary_queries: plain.totals.primary,
             primary_time: plain.best,
             total_time: shadowed.best,
@@ -138,11 +132,7 @@ pub fn render_as(
     frame: &mut Frame,
 ) {
     match tracer {
-        Tracer::Heightray(..) => {
-            // Each frame sweeps the terrain for its sun again: the sweep is part of its time.
-            renderer.shader.terrain.forget_sun_sweep();
-            renderer.render(frame)
-        }
+        Tracer::Heightray(..) => renderer.render(frame),
         Tracer::Reference(k) => references[k].render(renderer, frame),
     }
 }
@@ -214,7 +204,6 @@ mod tests {
             threads: 1,
             primary_rays: 1000,
             shadow_rays,
-            shadow_settled: 0,
             primary_queries: Counters::default(),
             primary_time: Duration::from_millis(primary_ms),
             total_time: Duration::from_millis(total_ms),

@@ -52,9 +52,6 @@ pub struct TerrainReport {
     /// Samples per side: width, height.
     pub samples: [usize; 2],
     pub rows: Vec<RowReport>,
-    /// Bytes per sample of the sun's sweep of the last frame with shadows (beside the
-    /// methods' bytes per sample; 0 where no frame swept).
-    pub sweep_bytes_per_sample: f64,
     /// Figures of the reference tracers that are not frame times.
     pub references: Vec<ReferenceReport>,
     /// Each of heightray's rows against each reference tracer's at the same thread count.
@@ -71,8 +68,7 @@ pub struct Versus {
     /// heightray's primary (camera) rays per second over the reference's: above 1, heightray
     /// is faster.
     pub camera_x: f64,
-    /// heightray's shadow queries answered per second (rays walked and queries its sun's
-    /// sweep settled) over the reference's shadow rays per second, where both were measured.
+    /// heightray's shadow rays per second over the reference's, where both were measured.
     pub shadow_x: Option<f64>,
     /// heightray's time for the frame with shadows over the reference's: below 1, heightray
     /// is faster.
@@ -90,13 +86,9 @@ pub struct RowReport {
     /// reference tracer: everything it holds).
     pub bytes_per_sample: f64,
     pub primary_rays: u64,
-    /// Shadow rays walked.
     pub shadow_rays: u64,
-    /// Shadow queries the sun's sweep settled by a look-up, without a ray.
-    pub shadow_settled: u64,
     pub primary_mrays_per_s: f64,
-    /// Shadow queries answered (rays walked and queries settled) per second; `None` where
-    /// there were none or their time was lost in the noise.
+    /// `None` where there were no shadow rays or their time was lost in the noise.
     pub shadow_mrays_per_s: Option<f64>,
     pub frame_ms: f64,
     pub frame_with_shadows_ms: f64,
@@ -200,7 +192,6 @@ impl TerrainReport {
                 bytes_per_sample: bytes as f64 / samples,
                 primary_rays: row.primary_rays,
                 shadow_rays: row.shadow_rays,
-                shadow_settled: row.shadow_settled,
                 primary_mrays_per_s: row.primary_per_second() / 1e6,
                 shadow_mrays_per_s: row.shadow_per_second().map(|r| r / 1e6),
                 frame_ms: row.primary_time.as_secs_f64() * 1e3,
@@ -225,7 +216,6 @@ impl TerrainReport {
             label,
             samples: [field.width(), field.height()],
             rows,
-            sweep_bytes_per_sample: terrain.sun_sweep_bytes() as f64 / samples,
             references: references.iter().map(reference_report).collect(),
             versus_references,
         }
@@ -265,16 +255,12 @@ fn ratio(value: Option<f64>) -> String {
 pub fn print_table(out: &mut impl Write, terrain: &TerrainReport) -> io::Result<()> {
     let [w, h] = terrain.samples;
     writeln!(out, "\n{}: {w}x{h} samples", terrain.label)?;
-    writeln!(out, "| method | arith | threads | build ms | bytes/sample | primary Mrays/s | shadow queries M/s | walked | frame with shadows ms | time x f64 | 2 threads x 1 |")?;
-    writeln!(
-        out,
-        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
-    )?;
+    writeln!(out, "| method | arith | threads | build ms | bytes/sample | primary Mrays/s | shadow Mrays/s | frame with shadows ms | time x f64 | 2 threads x 1 |")?;
+    writeln!(out, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")?;
     for row in &terrain.rows {
-        let queries = row.shadow_rays + row.shadow_settled;
         writeln!(
             out,
-            "| {} | {} | {} | {:.1} | {:.2} | {:.3} | {} | {} | {:.1} | {} | {} |",
+            "| {} | {} | {} | {:.1} | {:.2} | {:.3} | {} | {:.1} | {} | {} |",
             row.method,
             row.arith,
             row.threads,
@@ -283,19 +269,14 @@ pub fn print_table(out: &mut impl Write, terrain: &TerrainReport) -> io::Result<
             row.primary_mrays_per_s,
             row.shadow_mrays_per_s
                 .map_or("-".into(), |r| format!("{r:.3}")),
-            match queries {
-                0 => "-".into(),
-                _ => format!("{:.1}%", 100.0 * row.shadow_rays as f64 / queries as f64),
-            },
             row.frame_with_shadows_ms,
             ratio(row.time_x_f64),
             ratio(row.threads_x_one),
         )?;
     }
     if terrain.rows.iter().any(|r| r.shadow_mrays_per_s.is_none()) {
-        writeln!(out, "(shadow queries M/s \"-\": no shadow rays, or the frame with shadows was not slower than the one without: shadows were lost in the noise of the two times)")?;
+        writeln!(out, "(shadow Mrays/s \"-\": no shadow rays, or the frame with shadows was not slower than the one without: shadows were lost in the noise of the two times)")?;
     }
-    writeln!(out, "(shadow queries: heightray's shadow rays walked plus the queries its sun's sweep settled by a look-up, swept anew inside each frame with shadows ({:.3} bytes per sample); walked: the share cast as rays; a reference tracer casts every one)", terrain.sweep_bytes_per_sample)?;
     if !terrain.references.is_empty() {
         writeln!(out, "(embree: Embree 3 on the terrain's triangles, or on its grid, in f32, built on one thread; its bytes/sample are all it holds, vertices included, where heightray's are what it holds beyond the 2-byte samples)")?;
     }
@@ -316,7 +297,7 @@ fn print_versus(out: &mut impl Write, terrain: &TerrainReport) -> io::Result<()>
     let names: Vec<&str> = terrain.references.iter().map(|r| r.name.as_str()).collect();
     let names = names.join(" / ");
     writeln!(out, "\nheightray against {names}, at the same thread count: rays per second x theirs (above 1: heightray is faster), frame time x theirs (below 1: heightray is faster)")?;
-    writeln!(out, "| method | arith | threads | camera rays/s x theirs | shadow queries/s x theirs | frame with shadows time x theirs |")?;
+    writeln!(out, "| method | arith | threads | camera rays/s x theirs | shadow rays/s x theirs | frame with shadows time x theirs |")?;
     writeln!(out, "|---|---|---:|---:|---:|---:|")?;
     let mut lines = terrain
         .versus_references
@@ -422,7 +403,6 @@ mod tests {
             bytes_per_sample: 0.0,
             primary_rays: 100,
             shadow_rays: 50,
-            shadow_settled: 0,
             primary_mrays_per_s: camera,
             shadow_mrays_per_s: shadow,
             frame_ms: frame / 2.0,

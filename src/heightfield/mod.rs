@@ -19,7 +19,6 @@ mod nodata;
 pub mod place;
 pub mod relief;
 mod summary;
-pub mod sun_sweep;
 mod terrain;
 
 pub use builtin::{Builtin, BUILTINS};

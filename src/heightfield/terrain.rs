@@ -1,7 +1,6 @@
 //! A height field with the acceleration data the traversals use.
 
 use super::fetch::FETCH_AHEAD_BYTES;
-use super::sun_sweep::{SweepCache, SweepStart, Verdict};
 use super::{CellMaxima, Heightfield, LineMaxima, Mipmap};
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
@@ -22,8 +21,6 @@ pub struct Terrain {
     /// World coordinates per grid coordinate, where cells are not square.
     world_from_grid: Option<[f64; 3]>,
     build_time: Duration,
-    /// The shadow bounds for the last sun shadow rays asked for (built on first use).
-    sun_sweep: SweepCache,
 }
 
 impl Terrain {
@@ -46,7 +43,6 @@ impl Terrain {
             mipmap,
             lines: OnceLock::new(),
             build_time: start.elapsed(),
-            sun_sweep: SweepCache::default(),
         }
     }
 
@@ -164,21 +160,6 @@ impl Terrain {
     /// Time spent building the acceleration data.
     pub fn build_time(&self) -> Duration {
         self.build_time
-    }
-    /// What the shadow bounds for a sun in direction `dir` (grid coordinates) say of the
-    /// shadow ray from `start`, sweeping them first for a sun other than the last one asked
-    /// for (see [`crate::heightfield::sun_sweep`]).
-    pub fn sun_verdict(&self, dir: [f64; 3], start: &SweepStart) -> Verdict {
-        self.sun_sweep.verdict(self, dir, start)
-    }
-    /// Drops the kept shadow bounds: the next shadow ray sweeps again (a benchmark's frame
-    /// pays for its sweep).
-    pub fn forget_sun_sweep(&self) {
-        self.sun_sweep.forget();
-    }
-    /// Bytes of the kept shadow bounds (0 before a frame with hard shadows swept them).
-    pub fn sun_sweep_bytes(&self) -> usize {
-        self.sun_sweep.bytes()
     }
     /// Bytes of acceleration data beyond the samples that every method uses (the mipmap).
     pub fn accel_bytes(&self) -> usize {

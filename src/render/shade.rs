@@ -61,9 +61,6 @@ pub struct Culling {
     /// Leave out the soft-shadow rays of a cone provably blocked whole
     /// ([`SoftShadow::blocked`]).
     pub cone_blocked: bool,
-    /// Leave out hard shadow rays the sun's sweep of the terrain settles
-    /// ([`ShadowSkip::SunLit`], [`ShadowSkip::SunShadowed`]).
-    pub sun_sweep: bool,
 }
 
 impl Default for Culling {
@@ -74,7 +71,6 @@ impl Default for Culling {
             above_terrain: true,
             horizon_clear: true,
             cone_blocked: true,
-            sun_sweep: true,
         }
     }
 }
@@ -280,9 +276,9 @@ impl Shader<'_> {
     /// says, in shadow or not as `shadow` says.
     #[inline(always)]
     pub fn surface_rgb(&self, ray: &Ray, p: DVec3, t: f64, facing: f64, shadow: Shadow) -> u32 {
-        let lit = match shadow.in_shadow() {
-            true => 0.0,
-            false => facing.max(0.0),
+        let lit = match shadow {
+            Shadow::Cast { shadowed: true } => 0.0,
+            _ => facing.max(0.0),
         };
         let light = self.lighting.ambient + self.lighting.intensity * lit;
         let colour = self.albedo(p) * light;
@@ -301,7 +297,7 @@ impl Shader<'_> {
         ambient: DVec3,
     ) -> u32 {
         let lit = match shadow {
-            _ if shadow.in_shadow() => 0.0,
+            Shadow::Cast { shadowed: true } => 0.0,
             Shadow::Soft(soft) => facing.max(0.0) * soft.visible(),
             _ => facing.max(0.0),
         };

@@ -5,7 +5,6 @@ use super::effects::SoftShadow;
 use super::normals;
 use super::scene::Normals;
 use super::shade::Shader;
-use crate::heightfield::sun_sweep::{SweepStart, Verdict};
 use crate::traverse::{Counters, Found, Occlusion, Scalar, Start, Tracer};
 use crate::Ray;
 use glam::DVec3;
@@ -22,12 +21,6 @@ pub enum ShadowSkip {
     /// Soft shadows: every direction towards the sun's disc climbs more steeply than the
     /// terrain can rise around the point (see [`crate::render::effects`]).
     HorizonClear,
-    /// The sun's sweep of the terrain shows nothing in the ray's way
-    /// ([`crate::heightfield::sun_sweep`]).
-    SunLit,
-    /// The sun's sweep of the terrain shows the ray passing below the surface further on: the
-    /// point is in shadow.
-    SunShadowed,
 }
 
 /// What became of a pixel's shadow.
@@ -45,17 +38,6 @@ pub enum Shadow {
     },
     /// Soft shadows: directions towards the sun's disc, some cast, the others provably clear.
     Soft(SoftShadow),
-}
-
-impl Shadow {
-    /// Whether the point is in the sun's hard shadow: a shadow ray found the surface, or the
-    /// sun's sweep showed it would.
-    pub fn in_shadow(self) -> bool {
-        matches!(
-            self,
-            Shadow::Cast { shadowed: true } | Shadow::Skipped(ShadowSkip::SunShadowed)
-        )
-    }
 }
 
 /// A pixel's shadow as cast: what became of it, the shadow ray's queries, and whether a
@@ -89,13 +71,6 @@ impl Shader<'_> {
         if self.culling.no_shadow_possible && climbs_steeper {
             return skip(ShadowSkip::NoShadowPossible);
         }
-        if self.culling.sun_sweep {
-            match self.sun_verdict::<S>(found, ray, p, sun) {
-                Verdict::Lit => return skip(ShadowSkip::SunLit),
-                Verdict::Shadowed => return skip(ShadowSkip::SunShadowed),
-                Verdict::Unknown => {}
-            }
-        }
         let occlusion = self.occluded(found, ray, p, sun, None);
         match occlusion.occluded {
             Some(shadowed) => (
@@ -109,34 +84,6 @@ impl Shader<'_> {
                 occlusion.exactly,
             ),
         }
-    }
-
-    /// What the sun's sweep of the terrain says of the hard shadow ray of the hit `found` of
-    /// `ray`, shaded at `p`, towards `sun` (grid coordinates), in arithmetic `S`: the walk
-    /// starts where [`Shader::occluded`] does, raised and rounded by `S`, which the sweep's
-    /// margins cover.
-    fn sun_verdict<S: Scalar>(
-        &self,
-        found: &Found<S>,
-        ray: &Ray,
-        p: DVec3,
-        sun: [f64; 3],
-    ) -> Verdict {
-        let start = self.occlusion_start(found.cell, found.triangle, p);
-        let t = found.t.to_f64().abs();
-        let (o, d) = (ray.origin(), ray.dir());
-        let largest = (0..3).fold(start.abs().max_element(), |m, k| {
-            m.max(o[k].abs() + t * d[k].abs())
-        });
-        let start = SweepStart {
-            point: start.to_array(),
-            cell: found.cell,
-            triangle: found.triangle,
-            on_plane: self.lighting.normals == Normals::Flat,
-            relative: (1e3 * S::rounding_error(1.0)).max(1e-9),
-            largest,
-        };
-        self.terrain.sun_verdict(sun, &start)
     }
 
     /// Whether a ray from the hit `found` of `ray` (shaded at `p`) towards `dir` touches the

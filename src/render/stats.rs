@@ -69,10 +69,6 @@ pub struct Skipped {
     pub above_terrain: u64,
     /// Soft shadows: the whole cone towards the sun climbed above the terrain's bound.
     pub horizon_clear: u64,
-    /// The sun's sweep showed nothing in the way.
-    pub sun_lit: u64,
-    /// The sun's sweep showed the point in shadow.
-    pub sun_shadowed: u64,
 }
 
 /// Totals of a frame (or of any set of pixels). Two frames' totals are equal when they
@@ -158,8 +154,6 @@ impl FrameStats {
                 "no_shadow_possible": self.skipped.no_shadow_possible,
                 "above_terrain": self.skipped.above_terrain,
                 "horizon_clear": self.skipped.horizon_clear,
-                "sun_lit": self.skipped.sun_lit,
-                "sun_shadowed": self.skipped.sun_shadowed,
             },
             "effects": self.effects.to_json(self.primary_rays),
             "thread_time_ms": self.time.to_json(),
@@ -209,14 +203,12 @@ impl FrameStats {
             ratio(q.beam)
         );
         out += &format!(
-            "shadow rays: {} cast, {} in shadow; skipped {} facing away, {} no shadow possible, {} above terrain; settled by the sun's sweep {} lit, {} in shadow\n",
+            "shadow rays: {} cast, {} in shadow; skipped {} facing away, {} no shadow possible, {} above terrain\n",
             self.shadow_rays,
             self.shadowed,
             self.skipped.facing_away,
             self.skipped.no_shadow_possible,
-            self.skipped.above_terrain,
-            self.skipped.sun_lit,
-            self.skipped.sun_shadowed
+            self.skipped.above_terrain
         );
         let water = &self.effects.water;
         if water.points > 0 {
@@ -239,8 +231,6 @@ impl AddAssign for FrameStats {
         self.skipped.no_shadow_possible += rhs.skipped.no_shadow_possible;
         self.skipped.above_terrain += rhs.skipped.above_terrain;
         self.skipped.horizon_clear += rhs.skipped.horizon_clear;
-        self.skipped.sun_lit += rhs.skipped.sun_lit;
-        self.skipped.sun_shadowed += rhs.skipped.sun_shadowed;
         self.effects += rhs.effects;
         self.primary += rhs.primary;
         self.shadow += rhs.shadow;

@@ -102,8 +102,6 @@ impl Tally for FrameStats {
             Shadow::Skipped(ShadowSkip::NoShadowPossible) => self.skipped.no_shadow_possible += 1,
             Shadow::Skipped(ShadowSkip::AboveTerrain) => self.skipped.above_terrain += 1,
             Shadow::Skipped(ShadowSkip::HorizonClear) => self.skipped.horizon_clear += 1,
-            Shadow::Skipped(ShadowSkip::SunLit) => self.skipped.sun_lit += 1,
-            Shadow::Skipped(ShadowSkip::SunShadowed) => self.skipped.sun_shadowed += 1,
             Shadow::Soft(soft) => self.effects.add_soft(&soft),
         }
     }

@@ -2,7 +2,7 @@
 //! ([`Shader::traced`]): the same primary ray and the same shadow ray from the same start,
 //! so every query they made can be shown.
 
-use crate::render::{Sample, Shader, Shadow, ShadowSkip};
+use crate::render::{Sample, Shader, Shadow};
 use crate::traverse::plane_t_exact;
 use crate::{Arith, Hit, Ray};
 use std::time::{Duration, Instant};
@@ -53,13 +53,10 @@ impl Probe {
     }
 
     /// Whether the hit point is in shadow (None without a hit, or where no shadow ray was
-    /// cast and the sun's sweep did not settle it).
+    /// cast).
     pub fn shadowed(&self) -> Option<bool> {
         match self.sample.shadow {
             Shadow::Cast { shadowed } => Some(shadowed),
-            Shadow::Skipped(ShadowSkip::SunLit | ShadowSkip::SunShadowed) => {
-                Some(self.sample.shadow.in_shadow())
-            }
             _ => None,
         }
     }

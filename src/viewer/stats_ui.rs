@@ -109,11 +109,6 @@ fn totals_ui(ui: &mut Ui, totals: &FrameStats) {
                     "skipped: no shadow possible",
                     totals.skipped.no_shadow_possible.to_string(),
                 ),
-                ("settled by sweep: lit", totals.skipped.sun_lit.to_string()),
-                (
-                    "settled by sweep: shadow",
-                    totals.skipped.sun_shadowed.to_string(),
-                ),
             ];
             for (name, value) in rows {
                 ui.label(name);

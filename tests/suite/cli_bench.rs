@@ -133,7 +133,7 @@ fn same_figures_in_json_and_table(json: &std::path::Path, text: &str) {
             let number = |key: &str| json_row[key].as_f64().expect(key);
             assert_eq!(format!("{:.2}", number("bytes_per_sample")), cells[4]);
             assert_eq!(format!("{:.3}", number("primary_mrays_per_s")), cells[5]);
-            assert_eq!(format!("{:.1}", number("frame_with_shadows_ms")), cells[8]);
+            assert_eq!(format!("{:.1}", number("frame_with_shadows_ms")), cells[7]);
             let queries = &json_row["queries_per_primary_ray"];
             assert!(
                 queries["triangle"].as_f64().is_some_and(|q| q > 0.0),

@@ -29,7 +29,6 @@ mod ramps;
 mod recorded_cells;
 mod render;
 mod snapshots;
-mod sun_sweep;
 mod sun_time;
 mod terminator;
 mod true_scale;

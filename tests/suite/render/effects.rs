@@ -195,8 +195,8 @@ fn sun_seen(terrain: &Terrain, elevation_deg: f64, angle_deg: f64, xs: &[f64]) -
                 .shadow
             {
                 Shadow::Soft(soft) => soft.visible(),
-                // (Cast, or settled by the sun's sweep.)
-                hard => f64::from(u8::from(!hard.in_shadow())),
+                Shadow::Cast { shadowed } => f64::from(u8::from(!shadowed)),
+                Shadow::Skipped(_) | Shadow::NotAsked => 1.0,
             }
         })
         .collect()

@@ -15,7 +15,6 @@ use std::path::{Path, PathBuf};
 mod effects;
 mod effects_frames;
 mod shadows;
-mod sun_sweep_frames;
 
 const ARITHS: [Arith; 4] = [
     Arith::F32,

@@ -48,7 +48,6 @@ fn no_shadow_rays_where_no_shadow_is_possible() {
         above_terrain: false,
         horizon_clear: false,
         cone_blocked: false,
-        sun_sweep: false,
     };
     let brute = render_by(
         Method::Runs,
@@ -96,16 +95,11 @@ fn each_culling_rule_on_or_off_gives_the_same_image() {
             ..Culling::default()
         },
         Culling {
-            sun_sweep: false,
-            ..Culling::default()
-        },
-        Culling {
             facing_away: false,
             no_shadow_possible: false,
             above_terrain: false,
             horizon_clear: false,
             cone_blocked: false,
-            sun_sweep: false,
         },
     ];
     for culling in rules {
@@ -149,11 +143,7 @@ fn gentle_slope_has_no_shadow_acne_in_any_arithmetic() {
             camera,
             lighting([-1.0, 0.1, 0.2], true),
             arith,
-            // (The sun's sweep would settle these rays without a walk: acne is the walk's.)
-            Culling {
-                sun_sweep: false,
-                ..Culling::default()
-            },
+            Culling::default(),
             2,
         );
         assert_eq!(frame.totals.primary_hits, 144, "{arith}");
