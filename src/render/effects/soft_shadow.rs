@@ -1,8 +1,8 @@
 //! Soft shadows: the sun as a disc of the scene's angular diameter. A point whose whole cone
 //! towards the disc provably clears the terrain is settled by the rules hard shadows use
 //! (generalised to the cone's lowest direction) or by the mipmap's bound of how steeply the
-//! terrain rises around it, where it has several directions (with one or two, the bounds cost
-//! more than the rays); elsewhere each direction of a stratified set over the disc is a
+//! terrain rises around it, where it has [`BOUNDED_FROM`] directions or more (with fewer, the
+//! bounds cost more than the rays); elsewhere each direction of a stratified set over the disc is a
 //! shadow ray, unless it alone climbs above that bound. A cone whose first direction traced
 //! is blocked may be settled as blocked whole ([`sun_cone`](super::sun_cone)) by one more ray.
 
@@ -18,8 +18,9 @@ use glam::{DVec2, DVec3};
 /// The purpose a soft shadow's samples are seeded with (see [`seed_of`]).
 const PURPOSE: u64 = 0x5011_d15c;
 
-/// Directions a point needs before its cone is bounded: measured, a point with one direction
-/// renders faster casting it than bounding it first.
+/// Directions a point needs before its cone is bounded: the march along the cone and the
+/// slope bound each cost about as much as a ray or two, and a point with one direction
+/// renders faster casting it than bounding it first (measured).
 const BOUNDED_FROM: u32 = 4;
 
 /// A soft shadow: how many of the directions towards the sun's disc are clear.
@@ -73,8 +74,6 @@ impl Shader<'_> {
         let whole_cone = Cone::new(start, axis, half);
         let sector = sun_sector(axis, half);
         let rays = self.lighting.effects.sun_rays;
-        // The march along the cone and the slope bound each cost about as much as a ray or
-        // two: a point with fewer directions than this casts its rays without them.
         let bounded = self.culling.horizon_clear && rays >= BOUNDED_FROM;
         if bounded && whole_cone.is_some_and(|c| sun_cone::clear(self.terrain, &c)) {
             return skip(ShadowSkip::HorizonClear);
