@@ -155,18 +155,11 @@ pub fn climbs_above(d: DVec3, slope: f64) -> bool {
     d.z > 0.0 && d.z > slope * d.x.hypot(d.y)
 }
 
-/// The height of the surface at `o`'s horizontal position, on cell `(i, j)`.
+/// The height of the surface at `o`'s horizontal position, on cell `(i, j)` (a position off
+/// the cell is taken at the cell's nearest point).
 fn surface_height(terrain: &Terrain, (i, j): (usize, usize), o: DVec3) -> f64 {
-    let [z00, z10, z01, z11] = terrain.corner_heights(i, j);
-    let (u, w) = (
-        (o.x - i as f64).clamp(0.0, 1.0),
-        (o.y - j as f64).clamp(0.0, 1.0),
-    );
-    if u >= w {
-        z00 * (1.0 - u) + z10 * (u - w) + z11 * w
-    } else {
-        z00 * (1.0 - w) + z11 * u + z01 * (w - u)
-    }
+    let within = |x: f64, c: usize| (x - c as f64).clamp(0.0, 1.0);
+    terrain.field().surface_z((i, j), (within(o.x, i), within(o.y, j)))
 }
 
 /// How fast the steepest triangle of the (up to) 3x3 cells around `cell` rises along the
