@@ -159,7 +159,9 @@ pub fn climbs_above(d: DVec3, slope: f64) -> bool {
 /// the cell is taken at the cell's nearest point).
 fn surface_height(terrain: &Terrain, (i, j): (usize, usize), o: DVec3) -> f64 {
     let within = |x: f64, c: usize| (x - c as f64).clamp(0.0, 1.0);
-    terrain.field().surface_z((i, j), (within(o.x, i), within(o.y, j)))
+    terrain
+        .field()
+        .surface_z((i, j), (within(o.x, i), within(o.y, j)))
 }
 
 /// How fast the steepest triangle of the (up to) 3x3 cells around `cell` rises along the
