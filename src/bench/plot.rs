@@ -92,10 +92,19 @@ fn draw_svg(points: &[Point]) -> anyhow::Result<String> {
             }
         }
         ariths.sort_by(|a, b| a.1.total_cmp(&b.1));
-        let mut placed: Vec<(i32, i32, i32)> = Vec::new();
+        // What a label must not cover, as (left, right, top) of a box 14 high: every point
+        // and every label placed before it.
+        let mut placed: Vec<(i32, i32, i32)> = points
+            .iter()
+            .map(|p| {
+                let (cx, cy) = chart.backend_coord(&(p.ns_per_ray, p.error_rate.max(FLOOR)));
+                (cx - 7, cx + 7, cy - 7)
+            })
+            .collect();
+        let mut labels = Vec::new();
         for (name, x, y) in &ariths {
             let (px, py) = chart.backend_coord(&(x * 0.92, *y));
-            let width = 7 * name.len() as i32;
+            let width = 6 * name.len() as i32 + 4;
             let down = *y > FLOOR;
             let clear = |dy: i32| {
                 let top = if down { py + dy } else { py - dy - 14 };
@@ -104,8 +113,23 @@ fn draw_svg(points: &[Point]) -> anyhow::Result<String> {
                     .all(|&(x0, x1, t)| px + width < x0 || px > x1 || top + 14 < t || top > t + 14);
                 free.then_some(top)
             };
-            let top = (1..8).find_map(|k| clear(12 * k)).unwrap_or(py + 12);
+            let (first, top) = (1..16)
+                .find_map(|k| clear(12 * k).map(|top| (k == 1, top)))
+                .unwrap_or((true, py + 12));
             placed.push((px, px + width, top));
+            // A label pushed away from its point by others is tied to it by a line.
+            if !first {
+                let (ax, ay) = chart.backend_coord(&(*x, *y));
+                let end = if down { top } else { top + 14 };
+                let line = PathElement::new(vec![(ax, ay), (px + 3, end)], BLACK.mix(0.4));
+                root.draw(&line)?;
+            }
+            labels.push((name, px, top, width));
+        }
+        // Labels over every line and grid line, each on a pale ground.
+        for (name, px, top, width) in labels {
+            let ground = [(px - 2, top - 1), (px + width + 2, top + 14)];
+            root.draw(&Rectangle::new(ground, WHITE.mix(0.85).filled()))?;
             let font = ("sans-serif", 13).into_font().color(&BLACK);
             root.draw(&Text::new(name.clone(), (px, top), font))?;
         }
