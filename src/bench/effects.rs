@@ -59,12 +59,7 @@ pub fn frame_with(scene: &Scene, terrain: &Terrain, effects: Effects, label: &st
     let mut lighting = scene.lighting;
     lighting.effects = effects;
     let renderer = Renderer {
-        shader: Shader {
-            terrain,
-            lighting,
-            method: Method::Mipmap,
-            culling: Culling::default(),
-        },
+        shader: Shader::new(terrain, lighting, Method::Mipmap, Culling::default()),
         camera: scene.camera,
         arith: scene.arith,
     };

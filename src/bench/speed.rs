@@ -152,12 +152,7 @@ pub fn view<'a>(
     let mut lighting = scene.lighting;
     lighting.shadows = shadows;
     Renderer {
-        shader: Shader {
-            terrain,
-            lighting,
-            method,
-            culling: Culling::default(),
-        },
+        shader: Shader::new(terrain, lighting, method, Culling::default()),
         camera: scene.camera,
         arith,
     }

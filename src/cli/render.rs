@@ -40,12 +40,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     lighting.effects.adaptive |= args.adaptive;
     let renderer = Renderer {
-        shader: Shader {
-            terrain: &terrain,
-            lighting,
-            method,
-            culling: Culling::default(),
-        },
+        shader: Shader::new(&terrain, lighting, method, Culling::default()),
         camera: scene.camera.in_grid(terrain.world_from_grid()),
         arith,
     };

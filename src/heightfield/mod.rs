@@ -18,6 +18,7 @@ mod mipmap;
 mod nodata;
 pub mod place;
 pub mod relief;
+mod strips;
 mod summary;
 mod terrain;
 
@@ -34,6 +35,7 @@ pub use load::{
 pub use maxima::{CellMaxima, LineMaxima};
 pub use mipmap::Mipmap;
 pub use nodata::NoDataMask;
+pub use strips::{StripBounds, BLOCK as STRIP_BLOCK, STRIP};
 pub use terrain::{Lines, Terrain};
 
 use std::sync::Arc;

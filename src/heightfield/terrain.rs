@@ -1,8 +1,8 @@
 //! A height field with the acceleration data the traversals use.
 
 use super::fetch::FETCH_AHEAD_BYTES;
-use super::{CellMaxima, Heightfield, LineMaxima, Mipmap};
-use std::sync::OnceLock;
+use super::{CellMaxima, Heightfield, LineMaxima, Mipmap, StripBounds};
+use std::sync::{Arc, Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
 /// A height field ready to be ray traced: the min-max mipmap, the height range, and (built on
@@ -12,6 +12,8 @@ pub struct Terrain {
     field: Heightfield,
     mipmap: Mipmap,
     lines: OnceLock<Lines>,
+    /// The strip bounds of the last direction asked for (see [`Terrain::strip_bounds`]).
+    strips: Memo,
     max_slope: f64,
     /// The box every ray is clipped to, `(lowest corner, highest corner)`: cells in x and y,
     /// the height range in z (kept: every ray asks for it).
@@ -42,6 +44,7 @@ impl Terrain {
             field,
             mipmap,
             lines: OnceLock::new(),
+            strips: Memo::default(),
             build_time: start.elapsed(),
         }
     }
@@ -143,6 +146,24 @@ impl Terrain {
     pub fn lines(&self) -> &Lines {
         self.lines.get_or_init(|| Lines::build(&self.field))
     }
+    /// The strip bounds for rays in `dir` (grid coordinates), built on first use and kept
+    /// while the same direction is asked for (a sun that stays put while the camera moves);
+    /// `None` where they cannot help (see [`StripBounds::build`]).
+    pub fn strip_bounds(&self, dir: [f64; 3]) -> Option<Arc<StripBounds>> {
+        let mut kept = self
+            .strips
+            .0
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        if let Some((at, bounds)) = kept.as_ref() {
+            if *at == dir {
+                return bounds.clone();
+            }
+        }
+        let bounds = StripBounds::build(&self.field, dir).map(Arc::new);
+        *kept = Some((dir, bounds.clone()));
+        bounds
+    }
     /// Lowest and highest height of the field.
     pub fn z_range(&self) -> (f64, f64) {
         (self.bounds.0[2], self.bounds.1[2])
@@ -164,6 +185,24 @@ impl Terrain {
     /// Bytes of acceleration data beyond the samples that every method uses (the mipmap).
     pub fn accel_bytes(&self) -> usize {
         self.mipmap.bytes()
+    }
+}
+
+/// The strip bounds last built (none where they cannot help), with the direction they were
+/// built for.
+#[derive(Debug, Default)]
+struct Memo(Mutex<Option<Kept>>);
+
+/// A direction and its strip bounds.
+type Kept = ([f64; 3], Option<Arc<StripBounds>>);
+
+impl Clone for Memo {
+    fn clone(&self) -> Self {
+        let kept = self
+            .0
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        Memo(Mutex::new(kept.clone()))
     }
 }
 

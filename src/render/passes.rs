@@ -135,7 +135,7 @@ impl Renderer<'_> {
                 effects: pixel::per_sample(&self.shader.lighting.effects),
                 ..self.shader.lighting
             },
-            ..self.shader
+            ..self.shader.clone()
         };
         let bands: Vec<Option<FrameStats>> = frame
             .pixels

@@ -11,11 +11,12 @@ use super::sky_gradient::{horizon, night_sky_colour, sky_colour, NIGHT_HORIZON};
 use super::tally::{Counting, Tally};
 use crate::arith::{with_numbers, Arith, Generic, Numbers, WithNumbers};
 use crate::geometry::gradient;
-use crate::heightfield::Terrain;
+use crate::heightfield::{StripBounds, Terrain};
 use crate::traverse::{Clearance, Counters, Hit, Method, Scalar, Tracer};
 use crate::Ray;
 use glam::DVec3;
 use std::cell::{Cell, RefCell};
+use std::sync::Arc;
 use std::time::Instant;
 
 /// One traced sample, recorded on its own (see [`Tally`]).
@@ -61,6 +62,9 @@ pub struct Culling {
     /// Leave out the soft-shadow rays of a cone provably blocked whole
     /// ([`SoftShadow::blocked`]).
     pub cone_blocked: bool,
+    /// Walk only the first cells of a shadow ray that the sun's strip bounds prove clear
+    /// beyond them ([`StripBounds`]).
+    pub strip_bounds: bool,
 }
 
 impl Default for Culling {
@@ -71,11 +75,13 @@ impl Default for Culling {
             above_terrain: true,
             horizon_clear: true,
             cone_blocked: true,
+            strip_bounds: true,
         }
     }
 }
 
 /// Everything a pixel needs besides its ray.
+#[derive(Clone)]
 pub struct Shader<'a> {
     /// The terrain traced.
     pub terrain: &'a Terrain,
@@ -85,6 +91,29 @@ pub struct Shader<'a> {
     pub method: Method,
     /// Which shadow rays to leave out.
     pub culling: Culling,
+    /// The strip bounds of the sun's direction in the grid, where the scene has hard shadows
+    /// and they can help (see [`Shader::new`]).
+    pub(super) strips: Option<Arc<StripBounds>>,
+}
+
+impl<'a> Shader<'a> {
+    /// A shader of `terrain` with the strip bounds its sun's shadow rays need, from the
+    /// terrain's own (built once per direction of the sun and kept while it stays).
+    pub fn new(terrain: &'a Terrain, lighting: Lighting, method: Method, culling: Culling) -> Self {
+        let mut shader = Shader {
+            terrain,
+            lighting,
+            method,
+            culling,
+            strips: None,
+        };
+        let hard_shadows =
+            lighting.shadows && lighting.effects.sun_angle_deg <= 0.0 && lighting.sun_up();
+        if hard_shadows && culling.strip_bounds {
+            shader.strips = terrain.strip_bounds(shader.grid_sun());
+        }
+        shader
+    }
 }
 
 impl Shader<'_> {

@@ -71,7 +71,11 @@ impl Shader<'_> {
         if self.culling.no_shadow_possible && climbs_steeper {
             return skip(ShadowSkip::NoShadowPossible);
         }
-        let occlusion = self.occluded(found, ray, p, sun, None);
+        let (near, looked_up) = self.clear_beyond(found, ray, p, sun);
+        let mut occlusion = self.occluded(found, ray, p, sun, near);
+        if let Some(far_clear) = looked_up {
+            occlusion.counters.strip.record(!far_clear);
+        }
         match occlusion.occluded {
             Some(shadowed) => (
                 Shadow::Cast { shadowed },
@@ -84,6 +88,32 @@ impl Shader<'_> {
                 occlusion.exactly,
             ),
         }
+    }
+
+    /// Where the sun's strip bounds ([`StripBounds`](crate::heightfield::StripBounds)) prove the shadow ray of the hit `found`
+    /// (shaded at `p`) clear beyond its first cells: the `t` its walk may stop at, if so, and
+    /// whether the look-up was made (`Some(true)`: the far part is clear).
+    fn clear_beyond<S: Scalar>(
+        &self,
+        found: &Found<S>,
+        ray: &Ray,
+        p: DVec3,
+        sun: [f64; 3],
+    ) -> (Option<f64>, Option<bool>) {
+        let Some(strips) = self.strips.as_ref().filter(|s| s.dir() == sun) else {
+            return (None, None);
+        };
+        if !self.culling.strip_bounds {
+            return (None, None);
+        }
+        let start = self.occlusion_start(found.cell, found.triangle, p);
+        // The true start may lie off the computed one by the roundings that made it: the hit's
+        // `t` along the primary ray, then the point, far more than covered here.
+        let o = ray.origin();
+        let largest = (0..3).fold(0.0f64, |m, k| m.max(o[k].abs() + start[k].abs()));
+        let room = 1024.0 * S::rounding_error(largest) * (1.0 + self.terrain.max_slope());
+        let near = strips.clear_beyond(start.to_array(), room);
+        (near, Some(near.is_some()))
     }
 
     /// Whether a ray from the hit `found` of `ray` (shaded at `p`) towards `dir` touches the

@@ -51,12 +51,7 @@ pub fn view_pixel_differences(
 ) -> Option<Vec<PixelRow>> {
     let render = |arith| {
         let renderer = Renderer {
-            shader: Shader {
-                terrain: view.terrain,
-                lighting: view.lighting,
-                method: view.method,
-                culling: Culling::default(),
-            },
+            shader: Shader::new(view.terrain, view.lighting, view.method, Culling::default()),
             camera: view.camera.in_grid(view.terrain.world_from_grid()),
             arith,
         };

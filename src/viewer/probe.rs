@@ -108,12 +108,12 @@ mod tests {
         for normals in [Normals::Flat, Normals::Smooth] {
             for arith in [Arith::F64, Arith::Exact] {
                 let renderer = Renderer {
-                    shader: Shader {
-                        terrain: &terrain,
-                        lighting: low_sun(normals),
-                        method: Method::Mipmap,
-                        culling: Culling::default(),
-                    },
+                    shader: Shader::new(
+                        &terrain,
+                        low_sun(normals),
+                        Method::Mipmap,
+                        Culling::default(),
+                    ),
                     camera,
                     arith,
                 };
@@ -148,24 +148,21 @@ mod tests {
             .and_then(|b| b.load().ok())
             .expect("decodes");
         let terrain = Terrain::new(field);
-        let shader = Shader {
-            terrain: &terrain,
-            lighting: Lighting {
-                sun: [0.0, 0.0, 1.0],
-                intensity: 1.0,
-                ambient: 0.25,
-                shadows: true,
-                fog: 0.0,
-                normals: Normals::Flat,
-                ramp: Ramp::Gray,
-                effects: Effects::default(),
-            },
-            method: Method::Runs,
-            culling: Culling {
-                no_shadow_possible: false,
-                ..Culling::default()
-            },
+        let lighting = Lighting {
+            sun: [0.0, 0.0, 1.0],
+            intensity: 1.0,
+            ambient: 0.25,
+            shadows: true,
+            fog: 0.0,
+            normals: Normals::Flat,
+            ramp: Ramp::Gray,
+            effects: Effects::default(),
         };
+        let culling = Culling {
+            no_shadow_possible: false,
+            ..Culling::default()
+        };
+        let shader = Shader::new(&terrain, lighting, Method::Runs, culling);
         let ray = Ray::new([20.5, 20.25, 100.0], [0.0, 0.0, -1.0]).expect("valid ray");
         let probe = Probe::trace(&shader, Arith::F64, ray, (3, 4), 7);
         let hit = probe.hit.as_ref().expect("hits the terrain");

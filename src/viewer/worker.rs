@@ -33,12 +33,12 @@ impl RenderJob {
     /// A renderer of this job's view in arithmetic `arith`.
     pub fn renderer(&self, arith: Arith) -> Renderer<'_> {
         Renderer {
-            shader: Shader {
-                terrain: &self.terrain,
-                lighting: self.lighting,
-                method: self.method,
-                culling: Culling::default(),
-            },
+            shader: Shader::new(
+                &self.terrain,
+                self.lighting,
+                self.method,
+                Culling::default(),
+            ),
             camera: self.camera.in_grid(self.terrain.world_from_grid()),
             arith,
         }

@@ -18,12 +18,7 @@ pub fn render_top_down(terrain: &Terrain, ramp: Ramp, eye_height: f64, fov_y_deg
     )
     .expect("a valid camera");
     let renderer = Renderer {
-        shader: Shader {
-            terrain,
-            lighting,
-            method: Method::Runs,
-            culling: Culling::default(),
-        },
+        shader: Shader::new(terrain, lighting, Method::Runs, Culling::default()),
         camera,
         arith: Arith::F64,
     };

@@ -48,12 +48,12 @@ fn render_from_above(scene: &Scene) -> Frame {
     )
     .expect("a valid camera");
     let renderer = Renderer {
-        shader: Shader {
-            terrain: &terrain,
-            lighting: overhead_light(Ramp::Gray),
-            method: Method::Mipmap,
-            culling: Culling::default(),
-        },
+        shader: Shader::new(
+            &terrain,
+            overhead_light(Ramp::Gray),
+            Method::Mipmap,
+            Culling::default(),
+        ),
         camera: camera.in_grid(terrain.world_from_grid()),
         arith: Arith::F64,
     };

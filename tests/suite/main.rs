@@ -29,6 +29,7 @@ mod ramps;
 mod recorded_cells;
 mod render;
 mod snapshots;
+mod strip_bounds;
 mod sun_time;
 mod terminator;
 mod true_scale;

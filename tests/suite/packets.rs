@@ -205,12 +205,7 @@ fn images_are_the_same_with_packets() {
         let scene = sized_scene(samples, size).expect("a sized scene");
         let terrain = Terrain::new(scene.field.clone());
         let renderer = Renderer {
-            shader: Shader {
-                terrain: &terrain,
-                lighting: scene.lighting,
-                method: Method::Mipmap,
-                culling: Culling::default(),
-            },
+            shader: Shader::new(&terrain, scene.lighting, Method::Mipmap, Culling::default()),
             camera: scene.camera,
             arith: Arith::F64,
         };

@@ -88,12 +88,7 @@ fn a_place_or_time_that_cannot_be_used_is_explained() {
 fn render(scene: Scene) -> (Frame, Vec<bool>) {
     let terrain = Terrain::new(scene.field);
     let renderer = Renderer {
-        shader: Shader {
-            terrain: &terrain,
-            lighting: scene.lighting,
-            method: scene.method,
-            culling: Culling::default(),
-        },
+        shader: Shader::new(&terrain, scene.lighting, scene.method, Culling::default()),
         camera: scene.camera.in_grid(terrain.world_from_grid()),
         arith: scene.arith,
     };

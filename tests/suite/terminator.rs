@@ -37,22 +37,18 @@ fn render(terrain: &Terrain, camera: Camera, arith: Arith, shadows: bool) -> Fra
     // Ten degrees above the horizon, and off the grid's axes and diagonals.
     let sun = [-1.0f64, -0.35, 0.19];
     let length = sun.iter().map(|c| c * c).sum::<f64>().sqrt();
+    let lighting = Lighting {
+        sun: sun.map(|c| c / length),
+        intensity: 1.0,
+        ambient: 0.25,
+        shadows,
+        fog: 0.0,
+        normals: Normals::Smooth,
+        ramp: Ramp::Gray,
+        effects: Effects::default(),
+    };
     let renderer = Renderer {
-        shader: Shader {
-            terrain,
-            lighting: Lighting {
-                sun: sun.map(|c| c / length),
-                intensity: 1.0,
-                ambient: 0.25,
-                shadows,
-                fog: 0.0,
-                normals: Normals::Smooth,
-                ramp: Ramp::Gray,
-                effects: Effects::default(),
-            },
-            method: Method::Mipmap,
-            culling: Culling::default(),
-        },
+        shader: Shader::new(terrain, lighting, Method::Mipmap, Culling::default()),
         camera,
         arith,
     };

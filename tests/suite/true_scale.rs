@@ -43,12 +43,7 @@ fn footprint(field: Heightfield) -> (usize, usize) {
     let camera = Camera::look_at(eye, centre, [0.0, 1.0, 0.0], 90.0, (PIXELS, PIXELS)).unwrap();
     let lighting = overhead_light(Ramp::Gray);
     let renderer = Renderer {
-        shader: Shader {
-            terrain: &terrain,
-            lighting,
-            method: Method::Mipmap,
-            culling: Culling::default(),
-        },
+        shader: Shader::new(&terrain, lighting, Method::Mipmap, Culling::default()),
         camera: camera.in_grid(terrain.world_from_grid()),
         arith: Arith::F64,
     };

@@ -32,12 +32,7 @@ fn lighting(water: bool) -> Lighting {
 }
 
 fn shade(terrain: &Terrain, water: bool, culling: Culling, ray: &Ray, arith: Arith) -> Sample {
-    let shader = Shader {
-        terrain,
-        lighting: lighting(water),
-        method: Method::Mipmap,
-        culling,
-    };
+    let shader = Shader::new(terrain, lighting(water), Method::Mipmap, culling);
     shader.traced(ray, arith).0
 }
 

@@ -160,7 +160,7 @@ impl Renderer<'_> {
                 effects: pixel::per_sample(&self.shader.lighting.effects),
                 ..self.shader.lighting
             },
-            ..self.shader
+            ..self.shader.clone()
         };
         let effects = &self.shader.lighting.effects;
         let last = end >= total;

@@ -10,12 +10,7 @@ use heightray::Ray;
 
 /// A shader over `terrain` with `lighting`, the mipmap walk and every culling rule.
 pub(super) fn shader(terrain: &Terrain, lighting: Lighting) -> Shader<'_> {
-    Shader {
-        terrain,
-        lighting,
-        method: Method::Mipmap,
-        culling: Culling::default(),
-    }
+    Shader::new(terrain, lighting, Method::Mipmap, Culling::default())
 }
 
 /// Straight down onto `(x, y)` from above the terrain.
@@ -258,13 +253,11 @@ fn cones_settled_as_blocked_are_blocked_in_every_arithmetic() {
     lighting.effects.sun_angle_deg = 2.0;
     lighting.effects.sun_rays = 16;
     let settling = shader(&terrain, lighting);
-    let casting = Shader {
-        culling: Culling {
-            cone_blocked: false,
-            ..Culling::default()
-        },
-        ..shader(&terrain, lighting)
+    let culling = Culling {
+        cone_blocked: false,
+        ..Culling::default()
     };
+    let casting = Shader::new(&terrain, lighting, Method::Mipmap, culling);
     // Fully shadowed from x = 61 - 20 / tan(31 degrees) = 27.7 on, lit below 24.9.
     let xs: Vec<f64> = (0..100).map(|k| 20.0 + f64::from(k) * 0.4).collect();
     for arith in [Arith::F32, Arith::F64, Arith::Exact] {

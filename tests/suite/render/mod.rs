@@ -33,12 +33,7 @@ fn render_by(
     threads: usize,
 ) -> Frame {
     let renderer = Renderer {
-        shader: Shader {
-            terrain,
-            lighting,
-            method,
-            culling,
-        },
+        shader: Shader::new(terrain, lighting, method, culling),
         camera,
         arith,
     };
@@ -121,12 +116,7 @@ fn a_frame_rendered_pass_by_pass_is_the_whole_frame() {
     let whole = render_scene(&scene, 2);
     let terrain = Terrain::new(scene.field.clone());
     let renderer = Renderer {
-        shader: Shader {
-            terrain: &terrain,
-            lighting: scene.lighting,
-            method: scene.method,
-            culling: Culling::default(),
-        },
+        shader: Shader::new(&terrain, scene.lighting, scene.method, Culling::default()),
         camera: scene.camera,
         arith: scene.arith,
     };

@@ -48,6 +48,7 @@ fn no_shadow_rays_where_no_shadow_is_possible() {
         above_terrain: false,
         horizon_clear: false,
         cone_blocked: false,
+        strip_bounds: false,
     };
     let brute = render_by(
         Method::Runs,
@@ -95,11 +96,16 @@ fn each_culling_rule_on_or_off_gives_the_same_image() {
             ..Culling::default()
         },
         Culling {
+            strip_bounds: false,
+            ..Culling::default()
+        },
+        Culling {
             facing_away: false,
             no_shadow_possible: false,
             above_terrain: false,
             horizon_clear: false,
             cone_blocked: false,
+            strip_bounds: false,
         },
     ];
     for culling in rules {
@@ -270,12 +276,7 @@ fn exact_shadow_rays_from_flat_ground_are_settled_by_intervals() {
 fn shadow_ray_tests_decided_exactly_give_the_rational_pixel() {
     let scene = builtin_scene("valley513", 512);
     let terrain = Terrain::new(scene.field.clone());
-    let shader = Shader {
-        terrain: &terrain,
-        lighting: scene.lighting,
-        method: Method::Mipmap,
-        culling: Culling::default(),
-    };
+    let shader = Shader::new(&terrain, scene.lighting, Method::Mipmap, Culling::default());
     let mut again = 0;
     for py in 0..512 {
         for px in 0..512 {
@@ -386,12 +387,7 @@ fn a_frame_counts_what_its_samples_record() {
             Culling::default(),
             1,
         );
-        let shader = Shader {
-            terrain: &terrain,
-            lighting,
-            method: Method::Runs,
-            culling: Culling::default(),
-        };
+        let shader = Shader::new(&terrain, lighting, Method::Runs, Culling::default());
         let mut totals = heightray::render::FrameStats::default();
         let (width, height) = camera.size();
         for y in 0..height {

@@ -1,0 +1,247 @@
+//! Strip bounds: for one direction of travel (the sun's), an upper bound on how high the
+//! terrain ahead rises against a ray climbing at the direction's slope, so that most rays
+//! towards it are known clear beyond a few cells without a walk (the exact, conservative
+//! form of the line-sweep horizons of Timonen & Westerholm 2010).
+//!
+//! In the direction's frame, `u` runs along its dominant horizontal axis (towards it) and `v`
+//! along the other; a ray's path keeps `w = v - m*u` fixed (`m` the slope across) and climbs
+//! `kappa` samples per unit of `u`. Strips of [`STRIP`] cells in `w` are cut into blocks of
+//! [`BLOCK`] columns of `u`; each block holds `C(c)`, an upper bound on `s - kappa*(u - u_c)`
+//! over every triangle vertex `(u, v, s)` (`s` in samples) of the cells the strip's paths
+//! cross from the block's first column line `u_c` on:
+//!
+//! `C(c) = max(the block's own vertices, C(c+1) - BLOCK*kappa)`, one pass per strip.
+//!
+//! Why a look-up is exact: over a triangle `s - kappa*u` is linear, so its largest value lies
+//! at a vertex; every point of the surface under a path of the strip beyond `u_c` is thus at
+//! most `C(c) + kappa*(u - u_c)` high, and a ray whose height at `u_c` exceeds `C(c)` stays
+//! above it all the way. Strips are grown by [`PAD`] across, bounds are rounded up to whole
+//! samples, and the caller's room covers the rounding of the ray's own start.
+
+use super::Heightfield;
+
+/// Strip width across the direction, in cells.
+pub const STRIP: usize = 2;
+
+/// Columns of `u` per stored bound.
+pub const BLOCK: usize = 4;
+
+/// How far each strip is grown on either side (cells): far more than a path's `w` can be off
+/// by rounding, or by a start that lies a little off the computed one.
+const PAD: f64 = 1e-4;
+
+/// Upper bounds on the terrain ahead of rays in one direction (see the module docs).
+#[derive(Clone, Debug)]
+pub struct StripBounds {
+    dir: [f64; 3],
+    frame: DirFrame,
+    /// `m`: change of `v` per unit of `u` along a path.
+    slope: f64,
+    /// `kappa`: samples a path climbs per unit of `u`.
+    climb: f64,
+    /// The lowest `w` of any sample, where strip 0 starts.
+    w_min: f64,
+    /// Per strip: its first block and where its bounds start in `bounds`.
+    strips: Vec<StripRange>,
+    /// `C(c)` rounded up to whole samples, strip after strip.
+    bounds: Vec<u16>,
+    /// The height of sample 0, and samples per unit of height.
+    base: f64,
+    per_step: f64,
+    /// How far a path climbs across the whole map (samples), for the rounding of `climb`.
+    climb_across: f64,
+    /// `t` per unit of `u` along the direction.
+    per_du: f64,
+}
+
+/// The blocks of one strip that meet the map, `first..first + len`, stored from `at` on.
+#[derive(Clone, Copy, Debug, Default)]
+struct StripRange {
+    first: u32,
+    len: u32,
+    at: u32,
+}
+
+/// How grid `(x, y)` maps to the direction's `(u, v)`: `u` along the dominant axis, counted
+/// from the far side when the direction points towards lower coordinates.
+#[derive(Clone, Copy, Debug)]
+struct DirFrame {
+    /// `u` runs along y (not x).
+    along_y: bool,
+    /// `u` grows as the grid coordinate falls.
+    reversed: bool,
+    /// Samples along `u` and along `v`.
+    nu: usize,
+    nv: usize,
+}
+
+impl DirFrame {
+    /// `(u, v)` of the grid point `(x, y)`.
+    fn uv(&self, x: f64, y: f64) -> (f64, f64) {
+        let (a, b) = if self.along_y { (y, x) } else { (x, y) };
+        let u = if self.reversed {
+            (self.nu - 1) as f64 - a
+        } else {
+            a
+        };
+        (u, b)
+    }
+
+    /// The index in the field's samples of the vertex `(u, v)`.
+    fn index(&self, u: usize, v: usize, width: usize) -> usize {
+        let a = if self.reversed { self.nu - 1 - u } else { u };
+        let (x, y) = if self.along_y { (v, a) } else { (a, v) };
+        y * width + x
+    }
+}
+
+impl StripBounds {
+    /// The bounds for rays travelling in `dir` (grid coordinates) over `field`; `None` where
+    /// they cannot help: a direction that does not climb, is vertical or not finite, or a
+    /// flat field.
+    pub fn build(field: &Heightfield, dir: [f64; 3]) -> Option<StripBounds> {
+        let [dx, dy, dz] = dir;
+        if !(dir.iter().all(|c| c.is_finite()) && dz > 0.0 && field.step() > 0.0) {
+            return None;
+        }
+        let along_y = dy.abs() > dx.abs();
+        let (du, dv) = if along_y { (dy, dx) } else { (dx, dy) };
+        if du == 0.0 {
+            return None;
+        }
+        let (nu, nv) = match along_y {
+            true => (field.height(), field.width()),
+            false => (field.width(), field.height()),
+        };
+        let frame = DirFrame {
+            along_y,
+            reversed: du < 0.0,
+            nu,
+            nv,
+        };
+        let slope = dv / du.abs();
+        let climb = dz / du.abs() / field.step();
+        if !(slope.is_finite() && climb.is_finite()) {
+            return None;
+        }
+        // `w` over the map: `v` from 0 to `nv - 1` less `m*u` from 0 to `m*(nu - 1)`.
+        let far = (nu - 1) as f64 * slope;
+        let (w_min, w_max) = (-far.max(0.0), (nv - 1) as f64 - far.min(0.0));
+        let count = ((w_max - w_min) / STRIP as f64).floor() as usize + 1;
+        let blocks = (nu - 1).div_ceil(BLOCK).max(1);
+        let mut bounds = StripBounds {
+            dir,
+            frame,
+            slope,
+            climb,
+            w_min,
+            strips: Vec::with_capacity(count),
+            bounds: Vec::new(),
+            base: field.height_of(0),
+            per_step: 1.0 / field.step(),
+            climb_across: climb * nu as f64,
+            per_du: 1.0 / du.abs(),
+        };
+        let samples = field.samples();
+        let mut column = Vec::with_capacity(blocks);
+        for j in 0..count {
+            column.clear();
+            let mut next = f64::NEG_INFINITY;
+            let mut last = None;
+            for c in (0..blocks).rev() {
+                let own = bounds.block_local(j, c, samples, field.width());
+                if own.is_none() && last.is_some() {
+                    // The strip leaves the map towards lower `u` (it met it only further on).
+                    break;
+                }
+                let Some(own) = own else { continue };
+                last.get_or_insert(c);
+                next = own.max(next - (BLOCK as f64) * climb);
+                column.push(next.ceil().clamp(0.0, f64::from(u16::MAX)) as u16);
+            }
+            let Some(last) = last else {
+                bounds.strips.push(StripRange::default());
+                continue;
+            };
+            let len = column.len();
+            bounds.strips.push(StripRange {
+                first: (last + 1 - len) as u32,
+                len: len as u32,
+                at: bounds.bounds.len() as u32,
+            });
+            bounds.bounds.extend(column.iter().rev());
+        }
+        Some(bounds)
+    }
+
+    /// The direction the bounds were built for.
+    pub fn dir(&self) -> [f64; 3] {
+        self.dir
+    }
+
+    /// Bytes held.
+    pub fn bytes(&self) -> usize {
+        self.bounds.len() * 2 + self.strips.len() * std::mem::size_of::<StripRange>()
+    }
+
+    /// The highest `s - climb*(u - u_c)` over the vertices of the cells that the strip `j`'s
+    /// paths cross in block `c` (`u_c` its first column line); `None` where those paths lie
+    /// outside the map there.
+    fn block_local(&self, j: usize, c: usize, samples: &[u16], width: usize) -> Option<f64> {
+        let DirFrame { nu, nv, .. } = self.frame;
+        let u0 = c * BLOCK;
+        let u1 = (u0 + BLOCK).min(nu - 1);
+        let w_lo = self.w_min + (j * STRIP) as f64 - PAD;
+        let w_hi = self.w_min + ((j + 1) * STRIP) as f64 + PAD;
+        let (a, b) = (self.slope * u0 as f64, self.slope * u1 as f64);
+        let (v_lo, v_hi) = (w_lo + a.min(b), w_hi + a.max(b));
+        if v_hi < 0.0 || v_lo > (nv - 1) as f64 {
+            return None;
+        }
+        let r0 = v_lo.floor().max(0.0) as usize;
+        let r1 = ((v_hi.floor() as usize) + 1).min(nv - 1);
+        let mut best = f64::NEG_INFINITY;
+        for u in u0..=u1 {
+            let highest = (r0..=r1)
+                .map(|v| samples[self.frame.index(u, v, width)])
+                .max()
+                .unwrap_or(0);
+            best = best.max(f64::from(highest) - self.climb * (u - u0) as f64);
+        }
+        Some(best)
+    }
+
+    /// Whether a ray from `start` (grid coordinates) in the bounds' direction certainly
+    /// touches no triangle beyond a few cells ahead: `Some(t)` where it is clear from
+    /// `start + t * dir` on, so that only `[0, t]` is left to walk. `room` is how far (in
+    /// height) the ray's true start may lie below `start` or across from it.
+    #[inline]
+    pub fn clear_beyond(&self, start: [f64; 3], room: f64) -> Option<f64> {
+        let (u, v) = self.frame.uv(start[0], start[1]);
+        let strip = (v - self.slope * u - self.w_min) * (1.0 / STRIP as f64);
+        // (Both non-negative here, so truncation is the floor: no call to `floor`.)
+        if !(strip >= 0.0 && u >= 0.0 && u < self.frame.nu as f64) {
+            return None;
+        }
+        let range = *self.strips.get(strip as usize)?;
+        // The next column line more than one cell ahead: the start's own cells are walked.
+        let c = ((u + 1.0) * (1.0 / BLOCK as f64)) as usize + 1;
+        let u_c = (c * BLOCK) as f64;
+        let z = (start[2] - self.base) * self.per_step;
+        let rise = self.climb * (u_c - u);
+        let error = 1e-9 * (z.abs() + rise + self.climb_across + f64::from(u16::MAX))
+            + room * self.per_step * (1.0 + self.climb);
+        let (first, len) = (range.first as usize, range.len as usize);
+        let bound = if len == 0 || c >= first + len {
+            // No terrain ahead: the strip has left the map (or never meets it).
+            f64::NEG_INFINITY
+        } else if c < first {
+            // The strip meets the map only further on.
+            let gap = ((first - c) * BLOCK) as f64;
+            f64::from(self.bounds[range.at as usize]) - gap * self.climb
+        } else {
+            f64::from(self.bounds[range.at as usize + c - first])
+        };
+        (z + rise - error > bound).then_some((u_c - u + 1e-3) * self.per_du)
+    }
+}

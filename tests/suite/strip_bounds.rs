@@ -1,0 +1,208 @@
+//! The sun's strip bounds: every ray they call clear beyond a point touches no triangle from
+//! there on, by the exact reference, for suns along the axes, the diagonals, a grid line,
+//! very steep and very low, on fields with holes, plateaus and map edges; and frames are the
+//! same with the bounds on and off, and with bounds kept from an earlier sun.
+
+use crate::common::random::Rng;
+use crate::common::reference::{first_touch, q, ExactField, ExactRay};
+use heightray::heightfield::{landscape, NoDataMask, Quantisation, StripBounds};
+use heightray::render::effects::Effects;
+use heightray::render::{Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Shader};
+use heightray::{Arith, Heightfield, Method, Terrain};
+
+/// Suns (grid directions) of every kind the bounds must handle.
+const SUNS: [[f64; 3]; 10] = [
+    [1.0, 0.0, 0.3],
+    [-1.0, 0.0, 0.5],
+    [0.0, 1.0, 0.2],
+    [0.0, -1.0, 0.7],
+    [1.0, 1.0, 0.4],
+    [-1.0, 1.0, 0.25],
+    [0.4, 0.3, 0.8],
+    [-0.3, -0.9, 0.05],
+    [0.2, 0.1, 6.0],
+    [0.9, -0.2, 0.01],
+];
+
+/// A random field: rough, terraced (plateaus) or smooth, some with holes.
+fn field(rng: &mut Rng, n: usize) -> Heightfield {
+    let (w, h) = (n + rng.below(9), n + rng.below(9));
+    let style = rng.below(3);
+    let samples: Vec<u16> = (0..w * h)
+        .map(|k| {
+            let (i, j) = ((k % w) as f64, (k / w) as f64);
+            match style {
+                0 => rng.below(256) as u16,
+                1 => (rng.below(4) * 60) as u16,
+                _ => (127.0 + 60.0 * (i * 0.4).sin() * (j * 0.3).cos()) as u16,
+            }
+        })
+        .collect();
+    let mask = (rng.below(3) == 0).then(|| {
+        let mut mask = NoDataMask::new(w * h);
+        for _ in 0..(w * h / 10) {
+            mask.insert(rng.below(w * h));
+        }
+        mask
+    });
+    let z_scale = [20.0, 255.0, 3.0][rng.below(3)];
+    Heightfield::new(w, h, samples, Quantisation::Maxval(255), z_scale, mask).unwrap()
+}
+
+/// Whether the ray from `o` in `dir` touches any triangle of the field, exactly; cells the
+/// ray passes far above (by more than a unit of height) or far beside are left out first.
+fn touches(field: &Heightfield, exact: &ExactField, o: [f64; 3], dir: [f64; 3], t: f64) -> bool {
+    let ray = ExactRay {
+        o: std::array::from_fn(|k| q(o[k]) + q(dir[k]) * q(t)),
+        d: dir.map(q),
+        dir,
+    };
+    let from = std::array::from_fn::<f64, 3, _>(|k| o[k] + dir[k] * t);
+    for j in 0..field.height() - 1 {
+        for i in 0..field.width() - 1 {
+            let highest = [(0, 0), (1, 0), (0, 1), (1, 1)]
+                .iter()
+                .map(|&(a, b)| field.z(i + a, j + b))
+                .fold(f64::NEG_INFINITY, f64::max);
+            if passes_far_above(from, dir, [i as f64, j as f64], highest) {
+                continue;
+            }
+            if (0..2).any(|k| first_touch(exact, &ray, [i, j], k).is_some()) {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// Whether the climbing ray from `o` stays more than a unit above `highest` wherever its path
+/// comes within a cell of the cell at `corner` (a filter with room far beyond rounding).
+fn passes_far_above(o: [f64; 3], dir: [f64; 3], corner: [f64; 2], highest: f64) -> bool {
+    let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
+    for k in 0..2 {
+        let (lo, hi) = (corner[k] - 1.0, corner[k] + 2.0);
+        if dir[k] == 0.0 {
+            if o[k] < lo || o[k] > hi {
+                return true;
+            }
+            continue;
+        }
+        let (a, b) = ((lo - o[k]) / dir[k], (hi - o[k]) / dir[k]);
+        t0 = t0.max(a.min(b));
+        t1 = t1.min(a.max(b));
+    }
+    t0 > t1 || o[2] + dir[2] * t0 > highest + 1.0
+}
+
+#[test]
+fn rays_called_clear_beyond_a_point_touch_nothing_from_there_on() {
+    let mut rng = Rng(0x005e_ed0f_5742);
+    let (mut asked, mut clear) = (0, 0);
+    for round in 0..14 {
+        let field = if round == 0 {
+            landscape(33, 3, 12.0).unwrap()
+        } else {
+            field(&mut rng, 8 + round)
+        };
+        let exact = ExactField::new(&field);
+        for sun in SUNS {
+            let bounds = StripBounds::build(&field, sun).expect("the sun climbs");
+            for _ in 0..40 {
+                let (x, y) = (
+                    rng.within(0.0, (field.width() - 1) as f64),
+                    rng.within(0.0, (field.height() - 1) as f64),
+                );
+                let (i, j) = (
+                    (x as usize).min(field.width() - 2),
+                    (y as usize).min(field.height() - 2),
+                );
+                let ground = field.surface_z((i, j), (x - i as f64, y - j as f64));
+                // On the surface, or a little or well above it.
+                let lift = [0.0, 0.0, 0.3, 5.0][rng.below(4)];
+                let start = [x, y, ground + lift];
+                asked += 1;
+                let Some(t) = bounds.clear_beyond(start, 0.0) else {
+                    continue;
+                };
+                clear += 1;
+                assert!(
+                    !touches(&field, &exact, start, sun, t),
+                    "round {round}, sun {sun:?}, start {start:?}: touches the surface beyond t = {t}"
+                );
+            }
+        }
+    }
+    // Most rays are settled: the test is not vacuous.
+    assert!(clear * 2 > asked, "{clear} of {asked} rays called clear");
+}
+
+#[test]
+fn a_sun_that_does_not_climb_or_a_flat_field_builds_no_bounds() {
+    let field = landscape(17, 1, 8.0).unwrap();
+    assert!(StripBounds::build(&field, [1.0, 0.0, 0.0]).is_none());
+    assert!(StripBounds::build(&field, [1.0, 0.5, -0.1]).is_none());
+    assert!(StripBounds::build(&field, [0.0, 0.0, 1.0]).is_none());
+    assert!(StripBounds::build(&field, [f64::NAN, 0.0, 1.0]).is_none());
+    let flat = Heightfield::from_fn(9, 9, 255, 0.0, |_, _| 7).unwrap();
+    assert!(StripBounds::build(&flat, [1.0, 0.0, 0.5]).is_none());
+}
+
+fn render(terrain: &Terrain, sun: [f64; 3], arith: Arith, culling: Culling) -> Frame {
+    let lighting = Lighting {
+        sun: Lighting::unit(sun),
+        intensity: 1.0,
+        ambient: 0.25,
+        shadows: true,
+        fog: 0.0,
+        normals: Normals::Flat,
+        ramp: Ramp::Gray,
+        effects: Effects::default(),
+    };
+    let (eye, target, up) = ([-12.0, -20.0, 40.0], [32.0, 32.0, 4.0], [0.0, 0.0, 1.0]);
+    let camera = Camera::look_at(eye, target, up, 45.0, (64, 64)).unwrap();
+    let renderer = Renderer {
+        shader: Shader::new(terrain, lighting, Method::Mipmap, culling),
+        camera,
+        arith,
+    };
+    let mut frame = Frame::new(64, 64);
+    renderer.render(&mut frame);
+    frame
+}
+
+#[test]
+fn frames_are_the_same_with_strip_bounds_on_and_off() {
+    let terrain = Terrain::new(landscape(65, 7, 16.0).unwrap());
+    let off = Culling {
+        strip_bounds: false,
+        ..Culling::default()
+    };
+    for arith in [Arith::F32, Arith::F64, Arith::Exact] {
+        for sun in [[0.4, 0.3, 0.5], [-1.0, 0.0, 0.3], [0.7, -0.7, 0.2]] {
+            let on = render(&terrain, sun, arith, Culling::default());
+            let walked = render(&terrain, sun, arith, off);
+            assert_eq!(on.pixels, walked.pixels, "{arith:?}, sun {sun:?}");
+            assert!(
+                on.totals.shadow.strip.miss > 0,
+                "{arith:?}, sun {sun:?}: the bounds settle rays"
+            );
+            assert_eq!(walked.totals.shadow.strip.total(), 0);
+            assert!(
+                on.totals.shadowed > 0,
+                "{arith:?}, sun {sun:?}: has shadows"
+            );
+        }
+    }
+}
+
+#[test]
+fn bounds_kept_from_another_sun_give_the_frame_of_fresh_ones() {
+    let field = landscape(65, 9, 16.0).unwrap();
+    let kept = Terrain::new(field.clone());
+    let (first, second) = ([0.4, 0.3, 0.5], [-0.2, 0.9, 0.3]);
+    let _ = render(&kept, first, Arith::F64, Culling::default());
+    let moved = render(&kept, second, Arith::F64, Culling::default());
+    let fresh = render(&Terrain::new(field), second, Arith::F64, Culling::default());
+    assert_eq!(moved.pixels, fresh.pixels);
+    assert_eq!(moved.totals, fresh.totals);
+}
