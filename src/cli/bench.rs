@@ -1,7 +1,8 @@
 //! `heightray bench ...`: tables on stdout.
 
 use super::speed_report::{
-    print_growth, print_table, Machine, ReferenceBuild, SpeedReport, TerrainReport, LEVELS_APART,
+    print_growth, print_table, Machine, ReferenceBuild, SpeedReport, StripsReport, TerrainReport,
+    LEVELS_APART,
 };
 use super::{SpeedArgs, TextbookArgs};
 use anyhow::Context;
@@ -9,6 +10,8 @@ use heightray::bench::{
     hard_cases_versus_exact, render_as, sized_scene, throughput, versus_textbook, view,
     HardCaseRow, Reference, ThroughputRow, Tracer, ROUNDS, SEED,
 };
+use heightray::heightfield::StripBounds;
+use heightray::render::timing::timed;
 use heightray::render::Frame;
 use heightray::render::{Scene, SceneFile};
 use heightray::traverse::{Arith, Method};
@@ -44,7 +47,14 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
             let scene = scene_at_size(source, size)?;
             let terrain = Terrain::new(scene.field.clone());
             let (rows, references) = measure(args, &scene, &terrain, &bar, &mut notes)?;
-            measured.push(TerrainReport::new(name, &terrain, &rows, &references));
+            let strips = sun_strips(&scene, &terrain);
+            measured.push(TerrainReport::new(
+                name,
+                &terrain,
+                &rows,
+                &references,
+                strips,
+            ));
         }
         bar.finish_and_clear();
     } else {
@@ -57,7 +67,14 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
             bar.set_message(format!("{samples}x{samples}"));
             let (rows, references) = measure(args, &scene, &terrain, &bar, &mut notes)?;
             let label = format!("valley landscape (seed {SEED}) at {samples}x{samples}");
-            measured.push(TerrainReport::new(label, &terrain, &rows, &references));
+            let strips = sun_strips(&scene, &terrain);
+            measured.push(TerrainReport::new(
+                label,
+                &terrain,
+                &rows,
+                &references,
+                strips,
+            ));
         }
         bar.finish_and_clear();
     }
@@ -195,6 +212,35 @@ fn fastest_build(scene: &Scene) -> Terrain {
         }
     }
     fastest
+}
+
+/// What the sun's strip bounds of the scene's view take to build (the fastest of at least
+/// three builds, or as many as fit in half a second) and hold; `None` where the view has none.
+fn sun_strips(scene: &Scene, terrain: &Terrain) -> Option<StripsReport> {
+    let renderer = view(
+        scene,
+        terrain,
+        Tracer::Heightray(Method::Mipmap, Arith::F64),
+        true,
+    );
+    let dir = renderer.shader.strip_bounds()?.dir();
+    let start = Instant::now();
+    let mut fastest = (Duration::MAX, 0);
+    for built in 0.. {
+        if built >= 3 && start.elapsed() > Duration::from_millis(500) {
+            break;
+        }
+        let ((), time) = timed(|| {
+            let bounds = StripBounds::build(terrain.field(), dir);
+            fastest.1 = bounds.map_or(0, |b| b.bytes());
+        });
+        fastest.0 = fastest.0.min(time);
+    }
+    let samples = (terrain.field().width() * terrain.field().height()) as f64;
+    Some(StripsReport {
+        build_ms: fastest.0.as_secs_f64() * 1e3,
+        bytes_per_sample: fastest.1 as f64 / samples,
+    })
 }
 
 /// A reference tracer built for one terrain, with what its build took and holds.

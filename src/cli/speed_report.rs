@@ -56,6 +56,17 @@ pub struct TerrainReport {
     pub references: Vec<ReferenceReport>,
     /// Each of heightray's rows against each reference tracer's at the same thread count.
     pub versus_references: Vec<Versus>,
+    /// The sun's strip bounds, where the view has them: built once per direction of the sun
+    /// and kept while it stays, so the frames above hold them already (steady state).
+    pub sun_strips: Option<StripsReport>,
+}
+
+/// What the sun's strip bounds cost to build and hold.
+#[derive(Serialize, Clone, Copy)]
+pub struct StripsReport {
+    /// The fastest of several builds, on one thread.
+    pub build_ms: f64,
+    pub bytes_per_sample: f64,
 }
 
 /// A row of heightray's against a reference tracer's row at the same thread count.
@@ -73,6 +84,8 @@ pub struct Versus {
     /// heightray's time for the frame with shadows over the reference's: below 1, heightray
     /// is faster.
     pub frame_time_x: f64,
+    /// The same with the sun moving: the strip bounds' build added to heightray's frame.
+    pub sun_moving_frame_time_x: f64,
 }
 
 /// One configuration: a tracer at a thread count.
@@ -145,6 +158,7 @@ impl TerrainReport {
         terrain: &Terrain,
         rows: &[ThroughputRow],
         references: &[ReferenceBuild],
+        sun_strips: Option<StripsReport>,
     ) -> TerrainReport {
         let field = terrain.field();
         let samples = (field.width() * field.height()) as f64;
@@ -211,20 +225,23 @@ impl TerrainReport {
             primary_hits: [r.hits.0, r.hits.1],
         };
         let rows: Vec<RowReport> = rows.iter().map(row_report).collect();
-        let versus_references = versus(&rows, references);
+        let build_ms = sun_strips.map_or(0.0, |s| s.build_ms);
+        let versus_references = versus(&rows, references, build_ms);
         TerrainReport {
             label,
             samples: [field.width(), field.height()],
             rows,
             references: references.iter().map(reference_report).collect(),
             versus_references,
+            sun_strips,
         }
     }
 }
 
 /// Every heightray row (named by a method) against every reference row (named by one of
-/// `references`) at the same thread count.
-fn versus(rows: &[RowReport], references: &[ReferenceBuild]) -> Vec<Versus> {
+/// `references`) at the same thread count; `strips_ms` is what the sun's strip bounds take to
+/// build, charged to each frame where the sun moves.
+fn versus(rows: &[RowReport], references: &[ReferenceBuild], strips_ms: f64) -> Vec<Versus> {
     let is_reference = |row: &RowReport| references.iter().any(|r| r.name == row.method);
     let (theirs, ours): (Vec<&RowReport>, Vec<&RowReport>) =
         rows.iter().partition(|r| is_reference(r));
@@ -240,6 +257,8 @@ fn versus(rows: &[RowReport], references: &[ReferenceBuild]) -> Vec<Versus> {
                 camera_x: row.primary_mrays_per_s / other.primary_mrays_per_s,
                 shadow_x: shadow.map(|(ours, theirs)| ours / theirs),
                 frame_time_x: row.frame_with_shadows_ms / other.frame_with_shadows_ms,
+                sun_moving_frame_time_x: (row.frame_with_shadows_ms + strips_ms)
+                    / other.frame_with_shadows_ms,
             });
         }
     }
@@ -277,6 +296,9 @@ pub fn print_table(out: &mut impl Write, terrain: &TerrainReport) -> io::Result<
     if terrain.rows.iter().any(|r| r.shadow_mrays_per_s.is_none()) {
         writeln!(out, "(shadow Mrays/s \"-\": no shadow rays, or the frame with shadows was not slower than the one without: shadows were lost in the noise of the two times)")?;
     }
+    if let Some(strips) = terrain.sun_strips {
+        writeln!(out, "(the sun's strip bounds: built in {:.2} ms, {:.2} bytes/sample, once per direction of the sun and kept while it stays: the frames above are the steady state)", strips.build_ms, strips.bytes_per_sample)?;
+    }
     if !terrain.references.is_empty() {
         writeln!(out, "(embree: Embree 3 on the terrain's triangles, or on its grid, in f32, built on one thread; its bytes/sample are all it holds, vertices included, where heightray's are what it holds beyond the 2-byte samples)")?;
     }
@@ -297,8 +319,8 @@ fn print_versus(out: &mut impl Write, terrain: &TerrainReport) -> io::Result<()>
     let names: Vec<&str> = terrain.references.iter().map(|r| r.name.as_str()).collect();
     let names = names.join(" / ");
     writeln!(out, "\nheightray against {names}, at the same thread count: rays per second x theirs (above 1: heightray is faster), frame time x theirs (below 1: heightray is faster)")?;
-    writeln!(out, "| method | arith | threads | camera rays/s x theirs | shadow rays/s x theirs | frame with shadows time x theirs |")?;
-    writeln!(out, "|---|---|---:|---:|---:|---:|")?;
+    writeln!(out, "| method | arith | threads | camera rays/s x theirs | shadow rays/s x theirs | frame with shadows time x theirs | the same, sun moving |")?;
+    writeln!(out, "|---|---|---:|---:|---:|---:|---:|")?;
     let mut lines = terrain
         .versus_references
         .chunk_by(|a, b| (&a.method, &a.arith, a.threads) == (&b.method, &b.arith, b.threads));
@@ -312,13 +334,14 @@ fn print_versus(out: &mut impl Write, terrain: &TerrainReport) -> io::Result<()>
         };
         writeln!(
             out,
-            "| {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} |",
             line[0].method,
             line[0].arith,
             line[0].threads,
             cells(&|v| Some(v.camera_x)),
             cells(&|v| v.shadow_x),
             cells(&|v| Some(v.frame_time_x)),
+            cells(&|v| Some(v.sun_moving_frame_time_x)),
         )
     })
 }
@@ -439,7 +462,7 @@ mod tests {
             reference("embree triangles"),
             reference("embree triangles 8-wide"),
         ];
-        let pairs = versus(&rows, &references);
+        let pairs = versus(&rows, &references, 0.0);
         let got: Vec<_> = pairs
             .iter()
             .map(|v| {

@@ -114,6 +114,12 @@ impl<'a> Shader<'a> {
         }
         shader
     }
+
+    /// The strip bounds the sun's shadow rays look up, if the scene has hard shadows and the
+    /// bounds can help (see [`StripBounds::build`]).
+    pub fn strip_bounds(&self) -> Option<&StripBounds> {
+        self.strips.as_deref()
+    }
 }
 
 impl Shader<'_> {
