@@ -18,6 +18,7 @@ mod mipmap;
 mod nodata;
 pub mod place;
 pub mod relief;
+mod sky_bounds;
 mod strips;
 mod summary;
 mod terrain;
@@ -35,6 +36,7 @@ pub use load::{
 pub use maxima::{CellMaxima, LineMaxima};
 pub use mipmap::Mipmap;
 pub use nodata::NoDataMask;
+pub use sky_bounds::{SkyBounds, SKY_SECTORS};
 pub use strips::{StripBounds, BLOCK as STRIP_BLOCK, STRIP};
 pub use terrain::{Lines, Terrain};
 

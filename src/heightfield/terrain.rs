@@ -1,7 +1,7 @@
 //! A height field with the acceleration data the traversals use.
 
 use super::fetch::FETCH_AHEAD_BYTES;
-use super::{CellMaxima, Heightfield, LineMaxima, Mipmap, StripBounds};
+use super::{CellMaxima, Heightfield, LineMaxima, Mipmap, SkyBounds, StripBounds};
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
@@ -13,7 +13,9 @@ pub struct Terrain {
     mipmap: Mipmap,
     lines: OnceLock<Lines>,
     /// The strip bounds of the last direction asked for (see [`Terrain::strip_bounds`]).
-    strips: Memo,
+    strips: Memo<[f64; 3], StripBounds>,
+    /// The sky bounds of the last reach asked for (see [`Terrain::sky_bounds`]).
+    sky: Memo<f64, SkyBounds>,
     max_slope: f64,
     /// The box every ray is clipped to, `(lowest corner, highest corner)`: cells in x and y,
     /// the height range in z (kept: every ray asks for it).
@@ -45,6 +47,7 @@ impl Terrain {
             mipmap,
             lines: OnceLock::new(),
             strips: Memo::default(),
+            sky: Memo::default(),
             build_time: start.elapsed(),
         }
     }
@@ -150,19 +153,14 @@ impl Terrain {
     /// while the same direction is asked for (a sun that stays put while the camera moves);
     /// `None` where they cannot help (see [`StripBounds::build`]).
     pub fn strip_bounds(&self, dir: [f64; 3]) -> Option<Arc<StripBounds>> {
-        let mut kept = self
-            .strips
-            .0
-            .lock()
-            .unwrap_or_else(|poisoned| poisoned.into_inner());
-        if let Some((at, bounds)) = kept.as_ref() {
-            if *at == dir {
-                return bounds.clone();
-            }
-        }
-        let bounds = StripBounds::build(&self.field, dir).map(Arc::new);
-        *kept = Some((dir, bounds.clone()));
-        bounds
+        self.strips
+            .get_or_make(dir, || StripBounds::build(&self.field, dir))
+    }
+    /// The sky bounds for sky-light rays that look `reach` far (grid units, horizontally),
+    /// kept while the same reach is asked for; each block's are made when a ray first asks.
+    /// `None` where they cannot help (see [`SkyBounds::new`]).
+    pub fn sky_bounds(&self, reach: f64) -> Option<Arc<SkyBounds>> {
+        self.sky.get_or_make(reach, || SkyBounds::new(self, reach))
     }
     /// Lowest and highest height of the field.
     pub fn z_range(&self) -> (f64, f64) {
@@ -188,15 +186,35 @@ impl Terrain {
     }
 }
 
-/// The strip bounds last built (none where they cannot help), with the direction they were
-/// built for.
-#[derive(Debug, Default)]
-struct Memo(Mutex<Option<Kept>>);
+/// The bounds last made for a key (none where they cannot help), with the key.
+#[derive(Debug)]
+struct Memo<K, T>(Mutex<Option<(K, Option<Arc<T>>)>>);
 
-/// A direction and its strip bounds.
-type Kept = ([f64; 3], Option<Arc<StripBounds>>);
+impl<K: PartialEq + Copy, T> Memo<K, T> {
+    /// The bounds for `key`: those kept if made for it, else `make`'s, kept in their place.
+    fn get_or_make(&self, key: K, make: impl FnOnce() -> Option<T>) -> Option<Arc<T>> {
+        let mut kept = self
+            .0
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        if let Some((at, bounds)) = kept.as_ref() {
+            if *at == key {
+                return bounds.clone();
+            }
+        }
+        let bounds = make().map(Arc::new);
+        *kept = Some((key, bounds.clone()));
+        bounds
+    }
+}
 
-impl Clone for Memo {
+impl<K, T> Default for Memo<K, T> {
+    fn default() -> Self {
+        Memo(Mutex::new(None))
+    }
+}
+
+impl<K: Clone, T> Clone for Memo<K, T> {
     fn clone(&self) -> Self {
         let kept = self
             .0

@@ -11,7 +11,7 @@ use super::sky_gradient::{horizon, night_sky_colour, sky_colour, NIGHT_HORIZON};
 use super::tally::{Counting, Tally};
 use crate::arith::{with_numbers, Arith, Generic, Numbers, WithNumbers};
 use crate::geometry::gradient;
-use crate::heightfield::{StripBounds, Terrain};
+use crate::heightfield::{SkyBounds, StripBounds, Terrain};
 use crate::traverse::{Clearance, Counters, Hit, Method, Scalar, Tracer};
 use crate::Ray;
 use glam::DVec3;
@@ -62,9 +62,9 @@ pub struct Culling {
     /// Leave out the soft-shadow rays of a cone provably blocked whole
     /// ([`SoftShadow::blocked`]).
     pub cone_blocked: bool,
-    /// Walk only the first cells of a shadow ray that the sun's strip bounds prove clear
-    /// beyond them ([`StripBounds`]).
-    pub strip_bounds: bool,
+    /// Walk only the first cells of a shadow or sky-light ray that bounds kept for the terrain
+    /// ahead prove clear beyond them (the sun's [`StripBounds`], the sky's [`SkyBounds`]).
+    pub far_bounds: bool,
 }
 
 impl Default for Culling {
@@ -75,7 +75,7 @@ impl Default for Culling {
             above_terrain: true,
             horizon_clear: true,
             cone_blocked: true,
-            strip_bounds: true,
+            far_bounds: true,
         }
     }
 }
@@ -94,11 +94,15 @@ pub struct Shader<'a> {
     /// The strip bounds of the sun's direction in the grid, where the scene has hard shadows
     /// and they can help (see [`Shader::new`]).
     pub(super) strips: Option<Arc<StripBounds>>,
+    /// The sky's bounds around each block, where the scene has sky light (see
+    /// [`Shader::new`]).
+    pub(super) sky: Option<Arc<SkyBounds>>,
 }
 
 impl<'a> Shader<'a> {
-    /// A shader of `terrain` with the strip bounds its sun's shadow rays need, from the
-    /// terrain's own (built once per direction of the sun and kept while it stays).
+    /// A shader of `terrain` with the bounds its shadow and sky-light rays look up, from the
+    /// terrain's own: the sun's strip bounds (built once per direction of the sun and kept
+    /// while it stays) and the sky's (kept for the terrain's lifetime).
     pub fn new(terrain: &'a Terrain, lighting: Lighting, method: Method, culling: Culling) -> Self {
         let mut shader = Shader {
             terrain,
@@ -106,11 +110,15 @@ impl<'a> Shader<'a> {
             method,
             culling,
             strips: None,
+            sky: None,
         };
         let hard_shadows =
             lighting.shadows && lighting.effects.sun_angle_deg <= 0.0 && lighting.sun_up();
-        if hard_shadows && culling.strip_bounds {
+        if hard_shadows && culling.far_bounds {
             shader.strips = terrain.strip_bounds(shader.grid_sun());
+        }
+        if lighting.effects.sky_light && culling.far_bounds {
+            shader.sky = terrain.sky_bounds(shader.sky_reach());
         }
         shader
     }

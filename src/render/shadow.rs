@@ -74,7 +74,7 @@ impl Shader<'_> {
         let (near, looked_up) = self.clear_beyond(found, ray, p, sun);
         let mut occlusion = self.occluded(found, ray, p, sun, near);
         if let Some(far_clear) = looked_up {
-            occlusion.counters.strip.record(!far_clear);
+            occlusion.counters.bound.record(!far_clear);
         }
         match occlusion.occluded {
             Some(shadowed) => (
@@ -103,17 +103,21 @@ impl Shader<'_> {
         let Some(strips) = self.strips.as_ref().filter(|s| s.dir() == sun) else {
             return (None, None);
         };
-        if !self.culling.strip_bounds {
+        if !self.culling.far_bounds {
             return (None, None);
         }
         let start = self.occlusion_start(found.cell, found.triangle, p);
-        // The true start may lie off the computed one by the roundings that made it: the hit's
-        // `t` along the primary ray, then the point, far more than covered here.
+        let near = strips.clear_beyond(start.to_array(), self.start_room::<S>(ray, start));
+        (near, Some(near.is_some()))
+    }
+
+    /// How far (in height) the true start of an occlusion ray from the hit of `ray` may lie
+    /// below `start`, as computed in `f64`, in arithmetic `S`: the roundings that made it (the
+    /// hit's `t` along the primary ray, then the point), with far more room than they need.
+    pub(super) fn start_room<S: Scalar>(&self, ray: &Ray, start: DVec3) -> f64 {
         let o = ray.origin();
         let largest = (0..3).fold(0.0f64, |m, k| m.max(o[k].abs() + start[k].abs()));
-        let room = 1024.0 * S::rounding_error(largest) * (1.0 + self.terrain.max_slope());
-        let near = strips.clear_beyond(start.to_array(), room);
-        (near, Some(near.is_some()))
+        1024.0 * S::rounding_error(largest) * (1.0 + self.terrain.max_slope())
     }
 
     /// Whether a ray from the hit `found` of `ray` (shaded at `p`) towards `dir` touches the

@@ -157,7 +157,7 @@ impl FrameStats {
             },
             "effects": self.effects.to_json(self.primary_rays),
             "thread_time_ms": self.time.to_json(),
-            "queries": {"bbox": q.bbox, "block": q.block, "run": q.run, "cell": q.cell, "triangle": q.triangle, "beam": q.beam, "strip": q.strip},
+            "queries": {"bbox": q.bbox, "block": q.block, "run": q.run, "cell": q.cell, "triangle": q.triangle, "beam": q.beam, "bound": q.bound},
             "primary_queries": self.primary,
             "shadow_queries": self.shadow,
             "exact_redone": self.redone,

@@ -52,10 +52,11 @@ pub struct Counters {
     /// primary queries): its lowest height over a stretch against the highest sample under
     /// the stretch.
     pub beam: HitMiss,
-    /// The strip bound ahead of an occlusion ray (see
-    /// [`StripBounds`](crate::heightfield::StripBounds)): a miss is a ray certainly clear
-    /// beyond its first cells, which alone are walked.
-    pub strip: HitMiss,
+    /// A bound kept for the terrain ahead of an occlusion ray (the sun's
+    /// [`StripBounds`](crate::heightfield::StripBounds), the sky's
+    /// [`SkyBounds`](crate::heightfield::SkyBounds)): a miss is a ray certainly clear beyond
+    /// its first cells, which alone are walked.
+    pub bound: HitMiss,
     /// A run as a whole: the ray's lowest height over it against its highest sample.
     pub run: HitMiss,
     /// A cell: the ray's lowest height over it against its highest sample, and its highest
@@ -74,7 +75,7 @@ impl AddAssign for Counters {
         self.bbox += rhs.bbox;
         self.block += rhs.block;
         self.beam += rhs.beam;
-        self.strip += rhs.strip;
+        self.bound += rhs.bound;
         self.run += rhs.run;
         self.cell += rhs.cell;
         self.triangle += rhs.triangle;

@@ -54,6 +54,13 @@ pub fn open_sky_mean() -> DVec3 {
 }
 
 impl Shader<'_> {
+    /// How far sky-light rays look for terrain, horizontally, in grid units: a world unit
+    /// horizontally spans at most this many.
+    pub(in crate::render) fn sky_reach(&self) -> f64 {
+        let scale = self.terrain.world_from_grid().unwrap_or([1.0; 3]);
+        self.lighting.effects.sky_distance / scale[0].min(scale[1])
+    }
+
     /// The sky light (a colour, before the surface's own) where `ray` first meets the
     /// terrain, traced in `f64`, and its rays; `None` where the ray misses.
     pub fn sky_light_at(&self, ray: &Ray) -> Option<(DVec3, SkyRays)> {
@@ -77,15 +84,17 @@ impl Shader<'_> {
         let normal = self.normal(found.cell, found.triangle, p);
         let start = self.occlusion_start(found.cell, found.triangle, p);
         let distance = self.lighting.effects.sky_distance;
-        // A world unit horizontally spans at most this many grid units.
         let scale = self.terrain.world_from_grid().unwrap_or([1.0; 3]);
-        let reach = distance / scale[0].min(scale[1]);
+        let reach = self.sky_reach();
+        let room = self.start_room::<S>(ray, start);
         let rays = self.lighting.effects.sky_rays;
         let culling = self.culling.horizon_clear;
         // Nothing above the point within reach: every rising ray is open.
         let level = culling && level_within(self.terrain, start, reach);
         // A sector's bound costs a few walks: worth it where its sector holds several rays.
-        let by_sector = culling && !level && rays > SECTORS as u32;
+        // (Where the sky's bounds are kept, they settle the far part of each ray instead.)
+        let far = self.sky.as_ref().filter(|_| self.culling.far_bounds);
+        let by_sector = culling && !level && rays > SECTORS as u32 && far.is_none();
         // Each sector's bound, found when a direction in it first asks.
         let mut bounds = [None; SECTORS];
         let mut bound = |dir: DVec3| {
@@ -110,7 +119,16 @@ impl Shader<'_> {
                 // (The ray's `t` runs along the unit grid direction.)
                 let across = (grid.x * scale[0]).hypot(grid.y * scale[1]);
                 let t_max = (distance / across).is_finite().then(|| distance / across);
-                let answer = self.occluded(found, ray, p, grid.into(), t_max);
+                let near =
+                    far.map(|b| b.clear_beyond(self.terrain, start.into(), grid.into(), room));
+                let t_max = match near.flatten() {
+                    Some(t) => Some(t_max.map_or(t, |m| m.min(t))),
+                    None => t_max,
+                };
+                let mut answer = self.occluded(found, ray, p, grid.into(), t_max);
+                if let Some(near) = near.filter(|_| answer.occluded.is_some()) {
+                    answer.counters.bound.record(near.is_none());
+                }
                 if answer.occluded.is_some() {
                     sky.cast += 1;
                     sky.counters += answer.counters;

@@ -45,7 +45,7 @@ fn each_effect_culling_rule_on_or_off_gives_the_same_image() {
         above_terrain: false,
         horizon_clear: false,
         cone_blocked: false,
-        strip_bounds: false,
+        far_bounds: false,
     };
     for culling in [
         Culling {

@@ -48,7 +48,7 @@ fn no_shadow_rays_where_no_shadow_is_possible() {
         above_terrain: false,
         horizon_clear: false,
         cone_blocked: false,
-        strip_bounds: false,
+        far_bounds: false,
     };
     let brute = render_by(
         Method::Runs,
@@ -96,7 +96,7 @@ fn each_culling_rule_on_or_off_gives_the_same_image() {
             ..Culling::default()
         },
         Culling {
-            strip_bounds: false,
+            far_bounds: false,
             ..Culling::default()
         },
         Culling {
@@ -105,7 +105,7 @@ fn each_culling_rule_on_or_off_gives_the_same_image() {
             above_terrain: false,
             horizon_clear: false,
             cone_blocked: false,
-            strip_bounds: false,
+            far_bounds: false,
         },
     ];
     for culling in rules {
