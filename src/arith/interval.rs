@@ -31,9 +31,6 @@ pub fn settled<R>(f: impl FnOnce() -> R) -> (R, bool) {
 /// Marks the code running under [`settled`] as unsettled: a decision it had to make, intervals
 /// could not.
 pub fn unsettled() {
-    if std::env::var_os("HR_DEBUG").is_some() && !UNSETTLED.with(|u| u.get()) {
-        eprintln!("{}", std::backtrace::Backtrace::force_capture());
-    }
     UNSETTLED.with(|u| u.set(true));
 }
 

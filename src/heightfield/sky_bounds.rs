@@ -20,8 +20,9 @@ use std::sync::OnceLock;
 /// Sectors of azimuth, counter-clockwise from +x.
 pub const SKY_SECTORS: usize = 16;
 
-/// Cells per side of a block.
-const BLOCK: usize = 4;
+/// Cells per side of a block: one mipmap block of level [`BLOCK_LEVEL`].
+const BLOCK_LEVEL: u32 = 2;
+const BLOCK: usize = 1 << BLOCK_LEVEL;
 
 /// Ring edges (horizontal distance from the ray's start) before the sky distance cuts them:
 /// the part nearer than the first is always walked.
@@ -35,10 +36,14 @@ const RINGS: usize = EDGES.len();
 const PAD: f64 = 1e-6;
 const ANGLE_PAD: f64 = 1e-7;
 
-/// Mipmap blocks this size or smaller are not looked into: they count whole in every ring
-/// and sector they may reach; and so do blocks this many times their size away or farther.
-const FINEST_LEVEL: u32 = 2;
-const COARSE: usize = 4;
+/// A ring is bounded by mipmap blocks at least this many times smaller than its inner edge
+/// (and never smaller than a block), seen from the block of their size around the ray's
+/// start.
+const COARSE: f64 = 4.0;
+
+/// The most blocks across a ring's look-up pattern: a far ring (an unlimited reach over a
+/// large map) is bounded by blocks large enough to keep it this small.
+const ACROSS: f64 = 64.0;
 
 /// Each sector's ring bounds for one block, in units of [`SkyBounds::unit`] samples.
 type BlockBounds = [[u8; RINGS]; SKY_SECTORS];
@@ -48,8 +53,8 @@ type BlockBounds = [[u8; RINGS]; SKY_SECTORS];
 pub struct SkyBounds {
     /// Ring edges: ring `i` runs from `edges[i]` to `edges[i + 1]`.
     edges: Vec<f64>,
-    /// The sectors, each grown by [`ANGLE_PAD`].
-    cones: [Cone; SKY_SECTORS],
+    /// Per ring, the mipmap blocks that bound it (see [`RingPattern`]).
+    patterns: Vec<RingPattern>,
     /// Blocks along x and y.
     nx: usize,
     ny: usize,
@@ -75,16 +80,14 @@ impl SkyBounds {
         let (nx, ny) = (cells(field.width()), cells(field.height()));
         let top = terrain.mipmap().top();
         let highest = terrain.mipmap().highest(top, 0, 0);
-        let width = 2.0 * PI / SKY_SECTORS as f64;
-        let cones = std::array::from_fn(|s| {
-            Cone::new(
-                s as f64 * width - ANGLE_PAD,
-                (s + 1) as f64 * width + ANGLE_PAD,
-            )
-        });
+        let diagonal = ((field.width() - 1) as f64).hypot((field.height() - 1) as f64);
+        let top = terrain.mipmap().top();
+        let patterns = (0..edges.len() - 1)
+            .map(|i| RingPattern::new(edges[i], edges[i + 1].min(diagonal + 1.0), top))
+            .collect();
         Some(SkyBounds {
             edges,
-            cones,
+            patterns,
             nx,
             ny,
             blocks: (0..nx * ny).map(|_| OnceLock::new()).collect(),
@@ -101,7 +104,14 @@ impl SkyBounds {
 
     /// Bytes held, every block's bounds made or not.
     pub fn bytes(&self) -> usize {
+        let patterns: usize = self
+            .patterns
+            .iter()
+            .flat_map(|p| &p.by_sector)
+            .map(Vec::len)
+            .sum();
         self.blocks.len() * std::mem::size_of::<OnceLock<BlockBounds>>()
+            + patterns * std::mem::size_of::<(i32, i32)>()
     }
 
     /// Whether a ray from `start` (grid coordinates) in direction `dir` certainly touches no
@@ -148,71 +158,89 @@ impl SkyBounds {
         from.map(|edge| (edge + 1e-3) / across)
     }
 
-    /// Every sector's ring bounds for block `(bx, by)`, from the mipmap.
+    /// Every sector's ring bounds for block `(bx, by)`: the highest sample over each ring's
+    /// pattern of mipmap blocks around the block of its level that holds this one.
+    // (Out of line: made once per block, it would only crowd the sky ray.)
+    #[inline(never)]
     fn fill(&self, terrain: &Terrain, bx: usize, by: usize) -> BlockBounds {
         let field = terrain.field();
         let (cells_x, cells_y) = (field.width() - 1, field.height() - 1);
-        let x0 = (bx * BLOCK) as f64 - PAD;
-        let y0 = (by * BLOCK) as f64 - PAD;
-        let x1 = ((bx + 1) * BLOCK).min(cells_x) as f64 + PAD;
-        let y1 = ((by + 1) * BLOCK).min(cells_y) as f64 + PAD;
         let mut out = [[0u8; RINGS]; SKY_SECTORS];
-        let top = terrain.mipmap().top();
-        let mut stack = Vec::with_capacity(64);
-        for (cone, rings) in self.cones.iter().zip(out.iter_mut()) {
-            let mut highest = [0u16; RINGS];
-            stack.push((top, 0usize, 0usize));
-            while let Some((k, i, j)) = stack.pop() {
-                let size = 1usize << k;
-                let (qx0, qy0) = (i * size, j * size);
-                let (qx1, qy1) = ((qx0 + size).min(cells_x), (qy0 + size).min(cells_y));
-                if qx0 >= cells_x || qy0 >= cells_y {
-                    continue;
-                }
-                // Where the block's points see the node's: the rectangle of `q - p`.
-                let d = [
-                    qx0 as f64 - x1,
-                    qy0 as f64 - y1,
-                    qx1 as f64 - x0,
-                    qy1 as f64 - y0,
-                ];
-                let Some((near, far)) = distances(d) else {
-                    continue;
-                };
-                let Some(rings_met) = self.rings_met(near, far) else {
-                    continue;
-                };
-                let sample = terrain.block_max_sample(k, i, j);
-                let gains = rings_met.clone().any(|r| sample > highest[r]);
-                if !gains || !cone.meets(d) {
-                    continue;
-                }
-                let coarse = k <= FINEST_LEVEL || (size * COARSE) as f64 <= near;
-                if coarse || rings_met.len() == 1 && cone.holds(d) {
-                    for r in rings_met {
-                        highest[r] = highest[r].max(sample);
+        for (i, pattern) in self.patterns.iter().enumerate() {
+            let k = pattern.level;
+            let shift = k - BLOCK_LEVEL;
+            let (x, y) = ((bx >> shift) as i64, (by >> shift) as i64);
+            let (nx, ny) = (
+                cells_x.div_ceil(1 << k) as i64,
+                cells_y.div_ceil(1 << k) as i64,
+            );
+            for (rings, offsets) in out.iter_mut().zip(&pattern.by_sector) {
+                let mut highest = 0u16;
+                for &(dx, dy) in offsets {
+                    let (qx, qy) = (x + i64::from(dx), y + i64::from(dy));
+                    if (0..nx).contains(&qx) && (0..ny).contains(&qy) {
+                        highest =
+                            highest.max(terrain.block_max_sample(k, qx as usize, qy as usize));
                     }
-                    continue;
                 }
-                for (a, b) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-                    stack.push((k - 1, 2 * i + a, 2 * j + b));
-                }
-            }
-            for (stored, high) in rings.iter_mut().zip(highest) {
-                *stored = (f64::from(high) / self.unit).ceil().min(255.0) as u8;
+                rings[i] = (f64::from(highest) / self.unit).ceil().min(255.0) as u8;
             }
         }
         out
     }
+}
 
-    /// The rings a distance range `[near, far]` reaches into; `None` if none.
-    fn rings_met(&self, near: f64, far: f64) -> Option<std::ops::Range<usize>> {
-        let last = self.edges.len() - 1;
-        if far < self.edges[0] || near > self.edges[last] {
-            return None;
+/// The mipmap blocks of one level that bound a ring in each sector, as offsets from the block
+/// of that level holding the ray's start: every block holding a point `q` with `q - p` in the
+/// sector and `|q - p|` in the ring, for some `p` in the start's block. Seen from the start's
+/// block rather than from the start, the pattern is the same for every start.
+#[derive(Debug)]
+struct RingPattern {
+    level: u32,
+    by_sector: [Vec<(i32, i32)>; SKY_SECTORS],
+}
+
+impl RingPattern {
+    /// The pattern of the ring from `inner` to `outer` (grid units), on a mipmap whose
+    /// coarsest level is `top`.
+    fn new(inner: f64, outer: f64, top: u32) -> RingPattern {
+        let fine = (inner / COARSE).log2().floor().max(0.0) as u32;
+        let small = (2.0 * outer / ACROSS).log2().ceil().max(0.0) as u32;
+        let level = fine.max(small).max(BLOCK_LEVEL).min(top.max(BLOCK_LEVEL));
+        let size = f64::from(1u32 << level);
+        let width = 2.0 * PI / SKY_SECTORS as f64;
+        let cones: [Cone; SKY_SECTORS] = std::array::from_fn(|s| {
+            Cone::new(
+                s as f64 * width - ANGLE_PAD,
+                (s + 1) as f64 * width + ANGLE_PAD,
+            )
+        });
+        let reach = (outer / size).ceil() as i32 + 1;
+        let mut by_sector: [Vec<(i32, i32)>; SKY_SECTORS] = Default::default();
+        for dy in -reach..=reach {
+            for dx in -reach..=reach {
+                // `q - p` for `q` in the block at the offset and `p` in the start's.
+                let (x, y) = (f64::from(dx) * size, f64::from(dy) * size);
+                let d = [
+                    x - size - PAD,
+                    y - size - PAD,
+                    x + size + PAD,
+                    y + size + PAD,
+                ];
+                let Some((near, far)) = distances(d) else {
+                    continue;
+                };
+                if near > outer || far < inner {
+                    continue;
+                }
+                for (cone, offsets) in cones.iter().zip(by_sector.iter_mut()) {
+                    if cone.meets(d) {
+                        offsets.push((dx, dy));
+                    }
+                }
+            }
         }
-        let ring = |r: f64| self.edges[1..last].iter().filter(|&&e| e <= r).count();
-        Some(ring(near.max(self.edges[0]))..ring(far.min(self.edges[last])) + 1)
+        RingPattern { level, by_sector }
     }
 }
 
@@ -266,12 +294,6 @@ impl Cone {
             || [self.lo, self.hi]
                 .iter()
                 .any(|&u| ray_meets(u, [x0, y0, x1, y1]))
-    }
-
-    /// Whether every point of the rectangle lies inside.
-    fn holds(&self, [x0, y0, x1, y1]: [f64; 4]) -> bool {
-        let corners = [[x0, y0], [x1, y0], [x0, y1], [x1, y1]];
-        corners.iter().all(|&c| self.inside(c))
     }
 }
 
