@@ -39,8 +39,8 @@ pub struct TextbookRow {
     pub differing: u64,
 }
 
-/// Traces every camera ray of `scene` with both walks (heightray's without the beams the
-/// renderer adds, as the textbook walk has none).
+/// Traces every camera ray of `scene` with both walks (heightray's without the wedge
+/// clearances the renderer adds, as the textbook walk has none).
 pub fn versus_textbook(scene: &Scene, terrain: &Terrain) -> TextbookRow {
     let rays: Vec<Ray> = scene.camera.rays().collect();
     let options = TraceOptions::new(Method::Mipmap, Arith::F64);

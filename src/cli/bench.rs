@@ -129,7 +129,7 @@ pub fn textbook(args: &TextbookArgs) -> anyhow::Result<ExitCode> {
     let out = &mut std::io::stdout().lock();
     writeln!(
         out,
-        "camera rays, one thread, f64; heightray's mipmap walk without the renderer's beams"
+        "camera rays, one thread, f64; heightray's mipmap walk without the renderer's wedge clearances"
     )?;
     writeln!(out, "| scene | rays | hits | queries per ray: heightray / textbook | heightray Mrays/s | textbook Mrays/s | heightray time x textbook | answers that differ |")?;
     writeln!(out, "|---|---:|---:|---:|---:|---:|---:|---:|")?;

@@ -120,8 +120,8 @@ pub struct Queries {
     pub run: f64,
     pub cell: f64,
     pub triangle: f64,
-    /// Beam queries: once per tile of camera rays, shared by its rays.
-    pub beam: f64,
+    /// Wedge look-ups: one per camera ray, for its clearance.
+    pub wedge: f64,
 }
 
 /// What was measured of a reference tracer besides its frames.
@@ -195,7 +195,7 @@ impl TerrainReport {
                     run: per_ray(q.run),
                     cell: per_ray(q.cell),
                     triangle: per_ray(q.triangle),
-                    beam: per_ray(q.beam),
+                    wedge: per_ray(q.wedge),
                 }
             });
             RowReport {
@@ -395,12 +395,12 @@ pub fn print_growth<W: Write>(out: &mut W, terrains: &[TerrainReport]) -> io::Re
     writeln!(out, "{line}")?;
 
     // What the time grows with: the finer terrain has more near misses per ray.
-    writeln!(out, "\nqueries per primary ray: block / run / cell / triangle / beam (once per tile of rays)\n{header}")?;
+    writeln!(out, "\nqueries per primary ray: block / run / cell / triangle / wedge (one look-up per camera ray)\n{header}")?;
     let queries = |_: &RowReport, r: &RowReport| {
         r.queries_per_primary_ray.map(|q| {
             format!(
                 "{:.1} / {:.1} / {:.1} / {:.1} / {:.2}",
-                q.block, q.run, q.cell, q.triangle, q.beam
+                q.block, q.run, q.cell, q.triangle, q.wedge
             )
         })
     };

@@ -4,7 +4,6 @@
 //! `direction = f + (2(px+0.5)/width - 1)*h*a*r + (1 - 2(py+0.5)/height)*h*u`.
 
 use crate::geometry::Ray;
-use crate::traverse::Beam;
 use glam::DVec3;
 use thiserror::Error;
 
@@ -125,15 +124,9 @@ impl Camera {
         (self.width, self.height)
     }
 
-    /// The beam of the rays through the pixels of the rectangle from `(x0, y0)` to `(x1, y1)`
-    /// (inclusive): its corners are the directions of the corner pixels, and every pixel's
-    /// direction is a convex combination of them (`dir` is affine in the pixel position).
-    pub fn beam(&self, (x0, y0): (u32, u32), (x1, y1): (u32, u32)) -> Beam {
-        let dir = |x, y| self.ray(x, y).dir();
-        Beam {
-            origin: self.eye.into(),
-            corners: [dir(x0, y0), dir(x1, y0), dir(x0, y1), dir(x1, y1)],
-        }
+    /// The eye, every primary ray's origin.
+    pub fn eye(&self) -> [f64; 3] {
+        self.eye.into()
     }
 
     /// The primary ray through the centre of pixel `(px, py)`.

@@ -9,7 +9,7 @@ use super::shade::Shader;
 use super::stats::{FrameStats, PixelStats};
 use super::tally::Counting;
 use crate::arith::{with_numbers, Arith, Numbers, WithNumbers};
-use crate::traverse::{clear_packet, Clearance, LANES};
+use crate::traverse::{clear_packet, Clearance, Wedges, LANES};
 use crate::Ray;
 use rayon::prelude::*;
 use std::ops::Range;
@@ -27,10 +27,6 @@ const TILE: u32 = 16;
 
 /// The columns of a pass's pixels whose rays are walked in packets, row by row.
 const PACKET_COLUMNS: usize = 4;
-
-/// The passes whose pixels lie at most this far apart trace each tile's rays behind a beam
-/// (a coarser pass has too few rays per tile to pay for the beam's march).
-const BEAM_BLOCK: u32 = 2;
 
 /// An image with its per-pixel statistics and running totals.
 #[derive(Clone, Debug)]
@@ -93,7 +89,7 @@ impl Renderer<'_> {
     }
 
     /// [`Renderer::render`] with neighbouring camera rays walked down the mipmap in packets
-    /// ([`clear_packet`]) where the tile's beam is used and the arithmetic is `f64`: the same
+    /// ([`clear_packet`]) where the method is hierarchical and the arithmetic is `f64`: the same
     /// image. (Not the default: on the built-in views the packets' node tests cost more than
     /// the walks they shorten save.)
     pub fn render_in_packets(&self, frame: &mut Frame) {
@@ -119,7 +115,9 @@ impl Renderer<'_> {
         self.passes(frame, next, cancelled, Paint::Blocks, Walking::Singly)
     }
 
-    /// Renders the passes `passes`, band by band; see [`Renderer::render_pass`].
+    /// Renders the passes `passes`, band by band; see [`Renderer::render_pass`]. The camera
+    /// rays start from their clearance in the camera's [`Wedges`] (made for these passes, each
+    /// wedge when a ray first asks).
     fn passes(
         &self,
         frame: &mut Frame,
@@ -137,6 +135,7 @@ impl Renderer<'_> {
             },
             ..self.shader.clone()
         };
+        let wedges = self.wedges();
         let bands: Vec<Option<FrameStats>> = frame
             .pixels
             .par_chunks_mut(rows)
@@ -159,6 +158,7 @@ impl Renderer<'_> {
                 };
                 let band = Band {
                     renderer: self,
+                    wedges: wedges.as_ref(),
                     shader: &per_sample,
                     out: &mut out,
                     passes: passes.clone(),
@@ -182,13 +182,18 @@ impl Renderer<'_> {
         true
     }
 
+    /// The wedges of the camera's rays (see [`Shader::wedges`]).
+    fn wedges(&self) -> Option<Wedges<'_>> {
+        self.shader.wedges(self.camera.eye(), self.arith)
+    }
+
     /// Traces the pixels of the passes `passes` in one band and paints them; `None` if
     /// cancelled. The band is traced tile by tile, each tile's passes one after another: the
-    /// terrain its rays cross is still in the caches for the next pass. In the finer passes
-    /// the rays of a tile share a beam ([`Camera::beam`]) that clears the way to where any of
-    /// them may first touch the surface.
+    /// terrain its rays cross is still in the caches for the next pass. Each camera ray starts
+    /// where its wedge's profile clears it ([`Wedges::clearance`]).
     fn band(
         &self,
+        wedges: Option<&Wedges<'_>>,
         out: &mut BandOut<'_>,
         passes: Range<usize>,
         sample: impl Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32,
@@ -206,30 +211,23 @@ impl Renderer<'_> {
                 (pass, block, rows)
             })
             .collect();
-        let hierarchical = self.shader.method.is_hierarchical();
         let mut tiles = Tiles {
             renderer: self,
+            wedges,
             out,
             sample,
             totals: FrameStats::default(),
         };
         for x0 in (0..tiles.out.width).step_by(TILE as usize) {
             let x_end = (x0 + TILE).min(tiles.out.width);
-            // One beam around the whole tile for its fine passes, marched at the first: its
-            // rays lie between the tile's corner pixels whichever pass traces them, and a beam
-            // a pixel narrower (a pass's own corners) clears the way no further.
-            let corners = ((x0, tiles.out.y0), (x_end - 1, y_end - 1));
-            let mut tile_beam = None;
             for (pass, block, rows) in &passes {
                 // Asked for every tile: a tile of slow rays (small rational bounds) takes long
                 // enough.
                 if cancelled() {
                     return None;
                 }
-                let beam = (hierarchical && *block <= BEAM_BLOCK && !tiles.sub_pixel())
-                    .then(|| *tile_beam.get_or_insert_with(|| tiles.beam(corners)));
                 let columns: Vec<u32> = (x0..x_end).step_by(*block as usize).collect();
-                tiles.trace(*pass, *block, &columns, rows, beam);
+                tiles.trace(*pass, *block, &columns, rows);
             }
         }
         Some(tiles.totals)
@@ -239,6 +237,7 @@ impl Renderer<'_> {
 /// One band's passes, traced with the numbers of the renderer's arithmetic.
 struct Band<'r, 'o, 'b, 'c> {
     renderer: &'r Renderer<'r>,
+    wedges: Option<&'r Wedges<'r>>,
     /// The shader of each sample (see [`pixel::per_sample`]).
     shader: &'r Shader<'r>,
     out: &'o mut BandOut<'b>,
@@ -252,21 +251,21 @@ impl WithNumbers for Band<'_, '_, '_, '_> {
         let shader = self.shader;
         let sample = |r: &Ray, c, counting: &mut Counting<'_>| shader.sample::<N>(r, c, counting);
         self.renderer
-            .band(self.out, self.passes, sample, self.cancelled)
+            .band(self.wedges, self.out, self.passes, sample, self.cancelled)
     }
 }
 
 /// Traces the pixels of a band tile by tile.
 struct Tiles<'r, 'o, 'b, F> {
     renderer: &'r Renderer<'r>,
+    wedges: Option<&'r Wedges<'r>>,
     out: &'o mut BandOut<'b>,
     sample: F,
     totals: FrameStats,
 }
 
 impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_, F> {
-    /// Whether pixels take several samples: their rays then reach past the pixels' centres,
-    /// outside the tile's beam, which is not used.
+    /// Whether pixels take several samples (each pixel's rays then traced together).
     fn sub_pixel(&self) -> bool {
         self.renderer.shader.lighting.effects.samples > 1
     }
@@ -277,8 +276,10 @@ impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_,
         let mut counting = Counting::new(&mut self.totals);
         let effects = &renderer.shader.lighting.effects;
         let taken = effects.samples;
+        let wedges = self.wedges;
         let (rgb, later) = pixel::shade(&renderer.camera, (x, y), effects, |ray| {
-            sample(ray, None, &mut counting)
+            let clearance = clearance(wedges, ray, counting.frame);
+            sample(ray, clearance, &mut counting)
         });
         let stats = PixelStats {
             samples: taken,
@@ -289,29 +290,16 @@ impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_,
         self.out.paint(x, y, block, rgb, stats);
     }
 
-    /// Clears the beam of the pixels from `first` to `last` (corners of a rectangle).
-    fn beam(&mut self, (first, last): ((u32, u32), (u32, u32))) -> Clearance {
-        let beam = self.renderer.camera.beam(first, last);
-        let (cleared, tests) = beam.clear_until(self.renderer.shader.terrain);
-        self.totals.primary.beam += tests;
-        cleared
-    }
-
     /// Traces the pixels `columns x rows` that pass `pass` (of blocks `block`) traces and no
-    /// earlier pass did, and paints them: behind a beam in `f64`, in packets of neighbours.
-    fn trace(
-        &mut self,
-        pass: usize,
-        block: u32,
-        columns: &[u32],
-        rows: &[u32],
-        beam: Option<Clearance>,
-    ) {
+    /// earlier pass did, and paints them: where asked (and in `f64`), in packets of neighbours.
+    fn trace(&mut self, pass: usize, block: u32, columns: &[u32], rows: &[u32]) {
         let traced_before =
             |x: u32, y: u32| pass > 0 && x.is_multiple_of(2 * block) && y.is_multiple_of(2 * block);
-        let packs = self.out.walking == Walking::Packets && self.renderer.arith == Arith::F64;
-        let packed = beam.filter(|_| packs);
-        if let Some(beam) = packed {
+        let packs = self.out.walking == Walking::Packets
+            && self.renderer.arith == Arith::F64
+            && self.renderer.shader.method.is_hierarchical()
+            && !self.sub_pixel();
+        if packs {
             // Packets of neighbours: the pixels of a few columns, row by row.
             for columns in columns.chunks(PACKET_COLUMNS) {
                 let pixels = rows
@@ -320,7 +308,7 @@ impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_,
                 let pixels: Vec<(u32, u32)> =
                     pixels.filter(|&(x, y)| !traced_before(x, y)).collect();
                 for packet in pixels.chunks(LANES) {
-                    self.trace_packet(packet, block, beam);
+                    self.trace_packet(packet, block);
                 }
             }
             return;
@@ -335,26 +323,46 @@ impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_,
                     continue;
                 }
                 let ray = self.renderer.camera.ray(x, y);
-                self.trace_pixel((x, y), &ray, block, beam);
+                let clearance = clearance(self.wedges, &ray, &mut self.totals);
+                self.trace_pixel((x, y), &ray, block, clearance);
             }
         }
     }
 
-    /// Traces the pixels of one packet (at most [`LANES`]) behind the tile's `beam`.
-    fn trace_packet(&mut self, pixels: &[(u32, u32)], block: u32, beam: Clearance) {
+    /// Traces the pixels of one packet (at most [`LANES`]), walked together from the least of
+    /// their clearances, each then from the later of its own and the packet's.
+    fn trace_packet(&mut self, pixels: &[(u32, u32)], block: u32) {
         let camera = &self.renderer.camera;
         let rays: Vec<Ray> = pixels.iter().map(|&(x, y)| camera.ray(x, y)).collect();
-        let cleared = clear_packet(self.renderer.shader.terrain, &rays, Some(beam));
+        let own: Vec<Option<Clearance>> = rays
+            .iter()
+            .map(|ray| clearance(self.wedges, ray, &mut self.totals))
+            .collect();
+        let least = own.iter().try_fold(None, |least: Option<Clearance>, c| {
+            let c = (*c)?;
+            Some(Some(least.filter(|l| l.t <= c.t).unwrap_or(c)))
+        });
+        let cleared = clear_packet(self.renderer.shader.terrain, &rays, least.flatten());
         self.totals.primary.block += cleared.tests;
         for (l, (&pixel, ray)) in pixels.iter().zip(&rays).enumerate() {
-            self.trace_pixel(pixel, ray, block, cleared.lanes[l]);
+            let later = match (own[l], cleared.lanes[l]) {
+                (Some(a), Some(b)) => Some(if a.t >= b.t { a } else { b }),
+                (a, b) => a.or(b),
+            };
+            self.trace_pixel(pixel, ray, block, later);
         }
     }
 
-    /// Traces pixel `(x, y)`'s ray behind `beam` and paints it.
-    fn trace_pixel(&mut self, (x, y): (u32, u32), ray: &Ray, block: u32, beam: Option<Clearance>) {
+    /// Traces pixel `(x, y)`'s ray from `clearance` and paints it.
+    fn trace_pixel(
+        &mut self,
+        (x, y): (u32, u32),
+        ray: &Ray,
+        block: u32,
+        clearance: Option<Clearance>,
+    ) {
         let mut counting = Counting::new(&mut self.totals);
-        let rgb = (self.sample)(ray, beam, &mut counting);
+        let rgb = (self.sample)(ray, clearance, &mut counting);
         let stats = PixelStats {
             samples: 1,
             ..counting.pixel
@@ -362,6 +370,14 @@ impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_,
         self.totals.effects.add_pixel(1);
         self.out.paint(x, y, block, rgb, stats);
     }
+}
+
+/// A camera ray's clearance in `wedges`, its look-up counted with the frame's primary
+/// queries.
+fn clearance(wedges: Option<&Wedges<'_>>, ray: &Ray, totals: &mut FrameStats) -> Option<Clearance> {
+    let (clearance, asked) = wedges?.clearance(ray.origin(), ray.dir());
+    totals.primary.wedge += asked;
+    clearance
 }
 
 /// What a traced pixel paints.

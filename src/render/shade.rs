@@ -12,7 +12,7 @@ use super::tally::{Counting, Tally};
 use crate::arith::{with_numbers, Arith, Generic, Numbers, WithNumbers};
 use crate::geometry::gradient;
 use crate::heightfield::{SkyBounds, StripBounds, Terrain};
-use crate::traverse::{Clearance, Counters, Hit, Method, Scalar, Tracer};
+use crate::traverse::{Clearance, Counters, Hit, Method, Scalar, Tracer, Wedges};
 use crate::Ray;
 use glam::DVec3;
 use std::cell::{Cell, RefCell};
@@ -65,6 +65,9 @@ pub struct Culling {
     /// Walk only the first cells of a shadow or sky-light ray that bounds kept for the terrain
     /// ahead prove clear beyond them (the sun's [`StripBounds`], the sky's [`SkyBounds`]).
     pub far_bounds: bool,
+    /// Start each camera ray's walk where its wedge's profile proves it clear of the surface,
+    /// and settle the rays above their wedge's whole profile with no walk ([`Wedges`]).
+    pub camera_clearance: bool,
 }
 
 impl Default for Culling {
@@ -76,6 +79,7 @@ impl Default for Culling {
             horizon_clear: true,
             cone_blocked: true,
             far_bounds: true,
+            camera_clearance: true,
         }
     }
 }
@@ -132,67 +136,89 @@ impl<'a> Shader<'a> {
 
 impl Shader<'_> {
     /// Traces and shades one primary ray with the numbers `N` of an arithmetic (see
-    /// [`with_numbers`](crate::arith::with_numbers)), behind a beam that cleared the way to
-    /// its [`Clearance`] if given; counts its rays into `counting` and returns its colour
+    /// [`with_numbers`](crate::arith::with_numbers)), from its [`Clearance`] if given (it
+    /// touches nothing before); counts its rays into `counting` and returns its colour
     /// (0x00RRGGBB).
     #[inline(always)]
     pub fn sample<N: Numbers>(
         &self,
         ray: &Ray,
-        beam: Option<Clearance>,
+        clearance: Option<Clearance>,
         counting: &mut Counting<'_>,
     ) -> u32 {
         if !N::REDOES {
-            return self.sample_into::<N, _>(ray, beam, None, counting);
+            return self.sample_into::<N, _>(ray, clearance, None, counting);
         }
         // Recorded apart first: a run the intervals leave unsettled counts nothing.
         let mut own = Sample::default();
-        let rgb = self.sample_into::<N, _>(ray, beam, None, &mut own);
+        let rgb = self.sample_into::<N, _>(ray, clearance, None, &mut own);
         own.count_into(counting);
         rgb
     }
 
     /// [`Shader::sample`] recorded on its own: its colour, shadow and each kind of ray's
     /// queries.
-    pub fn recorded<N: Numbers>(&self, ray: &Ray, beam: Option<Clearance>) -> Sample {
-        self.record::<N>(ray, beam, None)
+    pub fn recorded<N: Numbers>(&self, ray: &Ray, clearance: Option<Clearance>) -> Sample {
+        self.record::<N>(ray, clearance, None)
     }
 
     /// [`Shader::recorded`] in arithmetic `arith`, with the primary ray's hit (its `t` to the
     /// nearest `f64` of the traversal's, the point shaded, the cell and triangle; no exact
     /// `t`): what the viewer's probe shows of the very rays the renderer traces for a pixel.
     pub fn traced(&self, ray: &Ray, arith: Arith) -> (Sample, Option<Hit>) {
+        self.traced_from(ray, arith, None)
+    }
+
+    /// [`Shader::traced`] from `clearance` (see [`Shader::sample`]).
+    pub fn traced_from(
+        &self,
+        ray: &Ray,
+        arith: Arith,
+        clearance: Option<Clearance>,
+    ) -> (Sample, Option<Hit>) {
         /// One sample, recorded, with the numbers of an arithmetic.
         struct Recorded<'s, 'a> {
             shader: &'s Shader<'a>,
             ray: &'s Ray,
+            clearance: Option<Clearance>,
             hit: &'s Cell<Option<Hit>>,
         }
         impl WithNumbers for Recorded<'_, '_> {
             type Output = Sample;
             fn with<N: Numbers>(self) -> Sample {
-                self.shader.record::<N>(self.ray, None, Some(self.hit))
+                self.shader
+                    .record::<N>(self.ray, self.clearance, Some(self.hit))
             }
         }
         let hit = Cell::new(None);
         let recorded = Recorded {
             shader: self,
             ray,
+            clearance,
             hit: &hit,
         };
         let (sample, _) = with_numbers(arith, recorded);
         (sample, hit.take())
     }
 
+    /// The wedges of camera rays from `eye` traced in `arith`, where the culling asks for them,
+    /// the method starts its walks from a clearance and the arithmetic allows them (see
+    /// [`Wedges::new`]).
+    pub fn wedges(&self, eye: [f64; 3], arith: Arith) -> Option<Wedges<'_>> {
+        (self.culling.camera_clearance && self.method.is_hierarchical())
+            .then(|| Wedges::new(self.terrain, eye, arith))
+            .flatten()
+    }
+
     /// [`Shader::recorded`], its hit kept in `keep` if given.
     fn record<N: Numbers>(
         &self,
         ray: &Ray,
-        beam: Option<Clearance>,
+        clearance: Option<Clearance>,
         keep: Option<&Cell<Option<Hit>>>,
     ) -> Sample {
         let mut sample = Sample::default();
-        let rgb = self.sample_into::<N, _>(ray, beam, keep, &mut sample);
+        let rgb = self.sample_into::<N, _>(ray, clearance, keep, &mut sample);
         Sample { rgb, ..sample }
     }
 
@@ -202,14 +228,14 @@ impl Shader<'_> {
     fn sample_into<N: Numbers, T: Tally>(
         &self,
         ray: &Ray,
-        beam: Option<Clearance>,
+        clearance: Option<Clearance>,
         keep: Option<&Cell<Option<Hit>>>,
         tally: &mut T,
     ) -> u32 {
         let pixel = Pixel {
             shader: self,
             ray,
-            beam,
+            clearance,
             keep,
             tally: RefCell::new(tally),
         };
@@ -226,11 +252,11 @@ impl Shader<'_> {
     fn traced_in<S: Scalar>(
         &self,
         ray: &Ray,
-        beam: Option<Clearance>,
+        clearance: Option<Clearance>,
         keep: Option<&Cell<Option<Hit>>>,
         tally: &mut impl Tally,
     ) -> u32 {
-        let primary = Tracer::new(self.terrain, self.method).trace::<S>(ray, beam);
+        let primary = Tracer::new(self.terrain, self.method).trace::<S>(ray, clearance);
         tally.primary(&primary.counters, primary.hit.is_some());
         if let Some(water) = &self.lighting.effects.water {
             let field = self.terrain.field();
@@ -444,7 +470,7 @@ impl Shader<'_> {
 struct Pixel<'s, 'a, 'c, T> {
     shader: &'s Shader<'a>,
     ray: &'s Ray,
-    beam: Option<Clearance>,
+    clearance: Option<Clearance>,
     /// Where to keep the primary ray's hit, if anywhere.
     keep: Option<&'s Cell<Option<Hit>>>,
     tally: RefCell<&'c mut T>,
@@ -458,6 +484,6 @@ impl<T: Tally> Generic for Pixel<'_, '_, '_, T> {
         // (A run again in rationals after intervals left a decision unsettled starts afresh.)
         tally.restart();
         self.shader
-            .traced_in::<S>(self.ray, self.beam, self.keep, &mut **tally)
+            .traced_in::<S>(self.ray, self.clearance, self.keep, &mut **tally)
     }
 }

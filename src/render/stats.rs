@@ -157,7 +157,7 @@ impl FrameStats {
             },
             "effects": self.effects.to_json(self.primary_rays),
             "thread_time_ms": self.time.to_json(),
-            "queries": {"bbox": q.bbox, "block": q.block, "run": q.run, "cell": q.cell, "triangle": q.triangle, "beam": q.beam, "bound": q.bound},
+            "queries": {"bbox": q.bbox, "block": q.block, "run": q.run, "cell": q.cell, "triangle": q.triangle, "wedge": q.wedge, "bound": q.bound},
             "primary_queries": self.primary,
             "shadow_queries": self.shadow,
             "exact_redone": self.redone,
@@ -196,11 +196,14 @@ impl FrameStats {
             ratio(q.cell),
             ratio(q.triangle)
         );
+        let misses = self.primary_rays.saturating_sub(self.primary_hits);
         out += &format!(
-            "beam queries (once per tile of camera rays, shared by its rays): {} ({:.2} per primary ray), hits:misses {}\n",
-            q.beam.total(),
-            per(q.beam.total()),
-            ratio(q.beam)
+            "wedge look-ups (a camera ray's clearance): {} ({:.2} per primary ray), {} walked from their clearance, {} certain misses settled with no walk ({:.1}% of the misses)\n",
+            q.wedge.total(),
+            per(q.wedge.total()),
+            q.wedge.hit,
+            q.wedge.miss,
+            100.0 * q.wedge.miss as f64 / misses.max(1) as f64
         );
         out += &format!(
             "shadow rays: {} cast, {} in shadow; skipped {} facing away, {} no shadow possible, {} above terrain\n",

@@ -18,12 +18,12 @@ pub struct Approximation {
     pub dz: f64,
     /// How far the exact origin may be from this ray's, per axis (the direction is the same).
     pub radius: [f64; 3],
-    /// The level to start at where it is known better than the default (a beam's).
+    /// The level to start at where it is known better than the default (a clearance's).
     pub level: Option<u32>,
 }
 
 impl Approximation {
-    /// The `f64` ray `near` over `frame` (its segment, clipped), from the beam start and
+    /// The `f64` ray `near` over `frame` (its segment, clipped), from the clearance start and
     /// level `start` if the exact walk has them.
     pub(super) fn along(frame: Frame<f64>, near: F64Ray, start: Option<(f64, u32)>) -> Self {
         let (origin, radius, dir) = near;

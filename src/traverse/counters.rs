@@ -48,10 +48,9 @@ pub struct Counters {
     /// A block of the max-mipmap (the hierarchical method): the ray's lowest height over the
     /// block's part of the path against the block's highest sample.
     pub block: HitMiss,
-    /// A tile of camera rays as a whole (a beam, counted once per tile in the frame's
-    /// primary queries): its lowest height over a stretch against the highest sample under
-    /// the stretch.
-    pub beam: HitMiss,
+    /// A camera ray's look-up in its wedge's profile ([`Wedges`](super::Wedges)): its slope
+    /// against the profile's bounds; a miss is a certain miss, settled with no walk.
+    pub wedge: HitMiss,
     /// A bound kept for the terrain ahead of an occlusion ray (the sun's
     /// [`StripBounds`](crate::heightfield::StripBounds), the sky's
     /// [`SkyBounds`](crate::heightfield::SkyBounds)): a miss is a ray certainly clear beyond
@@ -74,7 +73,7 @@ impl AddAssign for Counters {
     fn add_assign(&mut self, rhs: Counters) {
         self.bbox += rhs.bbox;
         self.block += rhs.block;
-        self.beam += rhs.beam;
+        self.wedge += rhs.wedge;
         self.bound += rhs.bound;
         self.run += rhs.run;
         self.cell += rhs.cell;

@@ -135,9 +135,9 @@ pub(super) fn trace_certified<S: Scalar, C: CellLog, W: Walk>(
     if !mipmap::has_blocks(&frame) {
         return None;
     }
-    let start = beam_start::<S>(options);
-    // (The beam cleared the whole segment.)
-    if !after_beam(&mut frame, start) {
+    let start = clearance_start::<S>(options);
+    // (The clearance covers the whole segment.)
+    if !after_clearance(&mut frame, start) {
         return Some(ScalarTrace::missed(counters));
     }
     let near_ray = Approximation::along(frame, near, start);
@@ -241,14 +241,14 @@ fn clip_near(
 }
 
 /// The `f64` ray an `f64` walk follows to clear the way for the mipmap, from [`f64_ray`]'s,
-/// from the exact walk's beam start and level if it has them.
+/// from the exact walk's clearance start and level if it has them.
 fn approximation(
     terrain: &Terrain,
     (near, start): (F64Ray, Option<(f64, u32)>),
     dir_f64: [f64; 3],
 ) -> Option<Approximation> {
     let mut frame = clip_near(terrain, &near, dir_f64)?;
-    if !after_beam(&mut frame, start) {
+    if !after_clearance(&mut frame, start) {
         return None;
     }
     Some(Approximation::along(frame, near, start))

@@ -14,7 +14,6 @@
 //! [`Tracer`](crate::traverse::Tracer), the same generic inside the renderer runs per pixel.
 
 mod approximation;
-mod beam;
 mod cell_log;
 mod certified;
 mod counters;
@@ -30,8 +29,8 @@ mod runs;
 mod search;
 mod tracer;
 mod walks;
+mod wedges;
 
-pub use beam::{highest_under, Beam, Clearance};
 pub use counters::{Counters, HitMiss};
 pub use exact_mode::{crosses_plane, plane_t_exact};
 use exact_mode::{exact_t, f64_ray, point_over, trace_certified, walk_cleared, F64Ray};
@@ -40,6 +39,7 @@ pub use options::{Hit, Method, Trace, TraceOptions};
 use options::{Query, WalkOptions};
 pub use packet::{clear_packet, clear_packet_on, PacketClearance, SimdPath, LANES, SIMD_VARIABLE};
 pub use tracer::{occluded_from_hit, Occlusion, Start, Tracer};
+pub use wedges::{highest_under, Clearance, Wedges, WEDGES};
 // The number layer, re-exported: every traversal is generic over these.
 pub use crate::arith::{
     scalar, settled, Arith, Exact, Interval, Rational, RationalEvents, Scalar, DEFAULT_BOUND,
@@ -114,13 +114,13 @@ fn ask(terrain: &Terrain, ray: &Ray, options: &TraceOptions, query: Query) -> Tr
     ask_behind(terrain, (&scaled, k), options, query, None)
 }
 
-/// [`ask`] for the ray `scaled` (the ray scaled by `2^k`), behind `beam` if given.
+/// [`ask`] for the ray `scaled` (the ray scaled by `2^k`), from `clearance` if given.
 fn ask_behind(
     terrain: &Terrain,
     (scaled, k): (&Ray, i32),
     options: &TraceOptions,
     query: Query,
-    beam: Option<Clearance>,
+    clearance: Option<Clearance>,
 ) -> Trace {
     let mut tracer = Tracer::new(terrain, options.method);
     if options.record_cells {
@@ -131,7 +131,7 @@ fn ask_behind(
         tracer,
         ray: scaled,
         query,
-        beam,
+        clearance,
     };
     let (ran, rational) = crate::arith::run(options.arith, &ask);
     let mut trace = ran.output;
@@ -156,7 +156,7 @@ struct Ask<'a> {
     tracer: Tracer<'a>,
     ray: &'a Ray,
     query: Query,
-    beam: Option<Clearance>,
+    clearance: Option<Clearance>,
 }
 
 impl Generic for Ask<'_> {
@@ -164,7 +164,9 @@ impl Generic for Ask<'_> {
     fn run<S: Scalar>(&self) -> Trace {
         let ray = self.ray;
         let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
-        let answer = self.tracer.ask(&o, &d, ray.dir(), self.query, self.beam);
+        let answer = self
+            .tracer
+            .ask(&o, &d, ray.dir(), self.query, self.clearance);
         let hit = answer.hit.and_then(|found| {
             let cell = [found.cell.0, found.cell.1];
             let hit = |t: f64, t_exact, point| Hit {
@@ -382,9 +384,9 @@ fn trace_logged<S: Scalar, C: CellLog, W: Walk>(
         return ScalarTrace::missed(counters);
     };
     counters.bbox.record(true);
-    let start = beam_start::<S>(&walk_options);
-    // (The beam cleared the whole segment, or it lies beyond the reach.)
-    if !after_beam(&mut frame, start) || !within_reach(&mut frame, &walk_options) {
+    let start = clearance_start::<S>(&walk_options);
+    // (The clearance covers the whole segment, or it lies beyond the reach.)
+    if !after_clearance(&mut frame, start) || !within_reach(&mut frame, &walk_options) {
         return ScalarTrace::missed(counters);
     }
     let mut search = new_search::<S, C, W>(terrain, o, d, dir_f64, near, &walk_options, counters);
@@ -446,18 +448,18 @@ fn new_search<'a, S: Scalar, C: CellLog, W: Walk>(
     }
 }
 
-/// Where the hierarchical walk starts when a beam around the ray cleared the way
-/// ([`WalkOptions::beam`]): `t` moved down by more than the rounding to `S` (the walk may
-/// start early, never late), and the level. The other methods walk the whole segment: they
-/// are what the hierarchy is measured against.
-fn beam_start<S: Scalar>(options: &WalkOptions) -> Option<(f64, u32)> {
-    let Clearance { t, level } = options.beam.filter(|b| b.t > 0.0)?;
+/// Where the hierarchical walk starts when the ray is known clear of the surface up to some
+/// `t` ([`WalkOptions::clearance`]): `t` moved down by more than the rounding to `S` (the walk
+/// may start early, never late), and the level. The other methods walk the whole segment:
+/// they are what the hierarchy is measured against.
+fn clearance_start<S: Scalar>(options: &WalkOptions) -> Option<(f64, u32)> {
+    let Clearance { t, level } = options.clearance.filter(|c| c.t > 0.0)?;
     (options.method.is_hierarchical()).then(|| (t - 4.0 * S::rounding_error(t), level))
 }
 
 /// The level a hierarchical walk starts at where it knows better than the default: a shadow
 /// ray starts on the surface, where every block around it fails its test; a camera ray at
-/// the level its beam stopped at.
+/// the level its clearance names.
 fn first_level(options: &WalkOptions, start: Option<(f64, u32)>) -> Option<u32> {
     match start {
         _ if options.query == Query::Shadow => Some(0),
@@ -475,9 +477,9 @@ fn within_reach<S: Scalar>(frame: &mut Frame<S>, options: &WalkOptions) -> bool 
     }
 }
 
-/// Cuts the segment at [`beam_start`]'s `t` (keeps all of it without a beam); `false` if the
-/// beam cleared it all.
-fn after_beam<S: Scalar>(frame: &mut Frame<S>, start: Option<(f64, u32)>) -> bool {
+/// Cuts the segment at [`clearance_start`]'s `t` (keeps all of it without a clearance);
+/// `false` if the clearance covers it all.
+fn after_clearance<S: Scalar>(frame: &mut Frame<S>, start: Option<(f64, u32)>) -> bool {
     match start {
         Some((from, _)) => frame.keep(from, f64::INFINITY),
         None => true,

@@ -30,7 +30,7 @@ impl Method {
         Method::Dda,
     ];
 
-    /// Whether the method walks the mipmap's levels (and so starts behind a beam, see
+    /// Whether the method walks the mipmap's levels (and so starts from a clearance, see
     /// [`Tracer::trace`](super::Tracer::trace)).
     pub fn is_hierarchical(self) -> bool {
         matches!(self, Method::Mipmap | Method::HierarchicalRuns)
@@ -58,9 +58,9 @@ pub(crate) struct WalkOptions {
     /// A triangle `(cell, k)` the ray starts on and leaves at once (it touches it only at
     /// `t = 0`), not to be tested: a shadow ray's own triangle.
     pub start_triangle: Option<((usize, usize), u8)>,
-    /// A [`Beam`](super::Beam) around the ray cleared the way: the ray touches nothing before
-    /// its `t`, and the hierarchical walk starts there, at the beam's last level.
-    pub beam: Option<Clearance>,
+    /// The ray touches nothing before this clearance's `t` (a camera ray's, from its
+    /// [`Wedges`](super::Wedges)): the hierarchical walk starts there, at its level.
+    pub clearance: Option<Clearance>,
     /// For a shadow ray in intervals: its start, exactly (the hit point it starts at). A
     /// triangle test the intervals cannot settle is then decided exactly on its own.
     pub exact_start: Option<PlanePoint>,
@@ -77,7 +77,7 @@ impl WalkOptions {
             query,
             record_cells: false,
             start_triangle: None,
-            beam: None,
+            clearance: None,
             exact_start: None,
             reach: None,
         }

@@ -91,31 +91,31 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    /// The first hit of `ray` (the least `t >= 0`), in arithmetic `S`. With `beam`, a
-    /// [`Beam`](super::Beam) around the ray cleared the way: the ray touches nothing before
-    /// its `t`, and a hierarchical walk starts there, at the beam's last level.
+    /// The first hit of `ray` (the least `t >= 0`), in arithmetic `S`. With `clearance`
+    /// (a camera ray's, from its [`Wedges`](super::Wedges)), the ray touches nothing before
+    /// its `t`, and a hierarchical walk starts there, at its level.
     #[inline]
-    pub fn trace<S: Scalar>(&self, ray: &Ray, beam: Option<Clearance>) -> ScalarTrace<S> {
+    pub fn trace<S: Scalar>(&self, ray: &Ray, clearance: Option<Clearance>) -> ScalarTrace<S> {
         let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
         let walk = WalkOptions {
-            beam,
+            clearance,
             ..self.walk(Query::FirstHit)
         };
         trace_scalar(self.terrain, &o, &d, ray.dir(), walk)
     }
 
-    /// Answers `query` for the ray `o + t*d` given in `S` (`dir` is `d` as given), behind
-    /// `beam` if given (see [`Tracer::trace`]).
+    /// Answers `query` for the ray `o + t*d` given in `S` (`dir` is `d` as given), from
+    /// `clearance` if given (see [`Tracer::trace`]).
     pub(super) fn ask<S: Scalar>(
         &self,
         o: &[S; 3],
         d: &[S; 3],
         dir: [f64; 3],
         query: Query,
-        beam: Option<Clearance>,
+        clearance: Option<Clearance>,
     ) -> ScalarTrace<S> {
         let walk = WalkOptions {
-            beam,
+            clearance,
             ..self.walk(query)
         };
         trace_scalar(self.terrain, o, d, dir, walk)

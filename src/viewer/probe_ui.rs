@@ -37,7 +37,7 @@ pub fn probe_ui(ui: &mut Ui, probe: &Probe, field: &Heightfield, rendered: Optio
         });
     ui.weak("hit: the ray may meet the surface there, so look closer; miss: ruled out");
     if let Some(stats) = rendered {
-        // The frame's rays start behind their tile's beam, hence fewer block or run queries.
+        // (The same rays as the frame's, each from its wedge's clearance.)
         ui.weak(format!(
             "in the frame: {} blocks, {} runs, {} cells, {} triangles (traced again in {:.2} ms)",
             stats.blocks,

@@ -159,7 +159,10 @@ fn queries_ui(ui: &mut Ui, totals: &FrameStats) {
         .show(ui, |ui| {
             // Short headings keep the table inside the panel; hovering explains them.
             let headings = [
-                ("query", "the four query kinds, and the beam test of a tile"),
+                (
+                    "query",
+                    "the four query kinds, and the camera rays' wedge look-ups",
+                ),
                 (
                     "total",
                     "queries of the frame, camera and shadow rays together",
@@ -174,10 +177,9 @@ fn queries_ui(ui: &mut Ui, totals: &FrameStats) {
                 ui.strong(heading).on_hover_text(meaning);
             }
             ui.end_row();
-            // Beams are tested once per tile of camera rays, not per ray (a lone ray, as
-            // the probe traces it, has none).
-            let beam: (&str, fn(&Counters) -> HitMiss) = ("beam (per tile)", |c| c.beam);
-            for (name, pick) in QUERY_KINDS.iter().chain([&beam]) {
+            // One look-up per camera ray (miss: a certain miss, settled with no walk).
+            let wedge: (&str, fn(&Counters) -> HitMiss) = ("wedge", |c| c.wedge);
+            for (name, pick) in QUERY_KINDS.iter().chain([&wedge]) {
                 let h = pick(&all);
                 ui.label(*name);
                 ui.label(h.total().to_string());

@@ -80,12 +80,12 @@ fn speed_at_sizes_reports_every_method_with_its_memory_and_growth() {
         );
     }
     // Queries per primary ray at each size: each method asks its own kind of span query,
-    // and the hierarchies' camera rays share beams.
+    // and the hierarchies' camera rays each look up their wedge's clearance.
     let queries = growth
-        .split_once("queries per primary ray: block / run / cell / triangle / beam")
+        .split_once("queries per primary ray: block / run / cell / triangle / wedge")
         .expect("a table of queries")
         .1;
-    for (method, block, run, beam) in [
+    for (method, block, run, wedge) in [
         ("mipmap", true, false, true),
         ("hruns", false, true, true),
         ("runs", false, true, false),
@@ -102,7 +102,7 @@ fn speed_at_sizes_reports_every_method_with_its_memory_and_growth() {
                 .collect();
             assert_eq!(per_ray.len(), 5, "{line}");
             let asked = (per_ray[0] > 0.0, per_ray[1] > 0.0, per_ray[4] > 0.0);
-            assert_eq!(asked, (block, run, beam), "{line}");
+            assert_eq!(asked, (block, run, wedge), "{line}");
             assert!(per_ray[2] > 0.0 && per_ray[3] > 0.0, "{line}");
         }
     }

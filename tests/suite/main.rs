@@ -7,7 +7,6 @@
 mod common;
 
 mod bad_input;
-mod beams;
 mod cell_lanes;
 mod cli_bench;
 mod cli_compare;
@@ -34,3 +33,4 @@ mod sun_time;
 mod terminator;
 mod true_scale;
 mod water;
+mod wedges;

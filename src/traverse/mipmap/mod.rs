@@ -65,8 +65,8 @@ pub(super) struct Part<'a, S> {
 /// Walks the path block by block, handing the cells of blocks that may be hit to `search`.
 /// `level`: the level to start at where the caller knows better than the default: 0 where the
 /// path starts next to the surface (on it, or just before a cell an `f64` walk found may be
-/// hit), where every block around the start would fail its test, or the level of blocks a
-/// beam around the ray found may be touched.
+/// hit), where every block around the start would fail its test, or the level a ray's
+/// clearance names.
 pub fn walk<S: Scalar, C: CellLog>(
     f: &Frame<S>,
     search: &mut Search<'_, S, C>,

@@ -21,7 +21,7 @@ pub(super) struct Lanes {
     pub inv_dv: [f64; LANES],
     pub oz: [f64; LANES],
     pub dz: [f64; LANES],
-    /// The part of the ray left to walk: its clipped segment from where a beam cleared it.
+    /// The part of the ray left to walk: its clipped segment from where its clearance ends.
     pub t_lo: [f64; LANES],
     pub t_hi: [f64; LANES],
 }

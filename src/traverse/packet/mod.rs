@@ -1,7 +1,7 @@
 //! Packets: up to [`LANES`] rays of one octant (a few neighbouring camera rays) walked down the
 //! min-max mipmap together, each node tested for all of them at once in SIMD lanes, until each
 //! ray reaches the first cell it may touch; its own walk starts there (see
-//! [`Clearance`]), as it starts behind a tile's [`Beam`](super::Beam).
+//! [`Clearance`]), as it starts from its wedge's clearance ([`Wedges`](super::Wedges)).
 //!
 //! The walk is depth first, children front to back: in the octant frame every ray goes
 //! towards +u and +v, so of a block's four children the near one comes first and the far one
@@ -49,7 +49,7 @@ pub struct PacketClearance {
 }
 
 /// Walks `rays` (at most [`LANES`]; more are left out) together down the mipmap, from where
-/// `from` (a beam around them all) cleared the way. Rays in another octant frame than the
+/// `from` (a clearance true of them all) ends. Rays in another octant frame than the
 /// first ray that can walk blocks, and rays with nothing to walk, keep `from`.
 pub fn clear_packet(terrain: &Terrain, rays: &[Ray], from: Option<Clearance>) -> PacketClearance {
     clear_packet_on(SimdPath::active(), terrain, rays, from)
@@ -68,7 +68,7 @@ pub fn clear_packet_on(
         tests: HitMiss::default(),
     };
     let from_t = from.map_or(0.0, |c| c.t);
-    // (A beam that cleared the whole way leaves nothing to walk.)
+    // (A clearance of the whole way leaves nothing to walk.)
     if from_t.is_nan() || from_t == f64::INFINITY {
         return out;
     }

@@ -46,6 +46,7 @@ fn each_effect_culling_rule_on_or_off_gives_the_same_image() {
         horizon_clear: false,
         cone_blocked: false,
         far_bounds: false,
+        camera_clearance: false,
     };
     for culling in [
         Culling {

@@ -49,6 +49,7 @@ fn no_shadow_rays_where_no_shadow_is_possible() {
         horizon_clear: false,
         cone_blocked: false,
         far_bounds: false,
+        camera_clearance: false,
     };
     let brute = render_by(
         Method::Runs,
@@ -106,6 +107,7 @@ fn each_culling_rule_on_or_off_gives_the_same_image() {
             horizon_clear: false,
             cone_blocked: false,
             far_bounds: false,
+            camera_clearance: false,
         },
     ];
     for culling in rules {
@@ -346,7 +348,7 @@ fn a_sun_in_the_slope_plane_shadows_it_exactly() {
 /// A frame counts its pixels' rays straight into its totals and heat-map queries: the same
 /// figures as each pixel's sample recorded on its own ([`Shader::traced`]) and added up, with
 /// shadow rays, sky-light rays and water's reflected rays, in `f64` and exact arithmetic (where a pixel traced again
-/// in rationals counts only that trace). The run walk traces every pixel without a beam, as
+/// in rationals counts only that trace). The run walk traces every pixel without a clearance, as
 /// a recorded sample is traced.
 #[test]
 fn a_frame_counts_what_its_samples_record() {
