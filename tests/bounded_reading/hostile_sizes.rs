@@ -2,6 +2,7 @@
 //! each is refused (or its excess skipped) before memory is allocated for the claim, with a
 //! message naming the cause; and a TIFF of millions of strips is read in one pass.
 
+use super::files::tiff_directory;
 use super::recording::{alone, measure, Allocated};
 use super::{error_of, load, sparse, MIB};
 use heightray::heightfield::{load_mosaic, Drape, LoadOptions};
@@ -10,27 +11,6 @@ use std::borrow::Cow;
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use tempfile::TempDir;
-
-/// Little-endian classic TIFF bytes: a header, then one directory of `entries` (tag, type,
-/// count, value or offset), then `tail` at offset 8 + directory.
-fn tiff_bytes(entries: &[(u16, u16, u32, u32)]) -> Vec<u8> {
-    let mut bytes = b"II*\0".to_vec();
-    bytes.extend(8u32.to_le_bytes());
-    bytes.extend((entries.len() as u16).to_le_bytes());
-    for &(tag, kind, count, value) in entries {
-        bytes.extend(tag.to_le_bytes());
-        bytes.extend(kind.to_le_bytes());
-        bytes.extend(count.to_le_bytes());
-        if kind == 3 && count == 1 {
-            bytes.extend((value as u16).to_le_bytes());
-            bytes.extend([0, 0]);
-        } else {
-            bytes.extend(value.to_le_bytes());
-        }
-    }
-    bytes.extend(0u32.to_le_bytes());
-    bytes
-}
 
 #[test]
 fn an_asc_claiming_a_billion_values_in_300_bytes_is_refused_before_allocating() {
@@ -60,7 +40,7 @@ fn an_asc_claiming_a_billion_values_in_300_bytes_is_refused_before_allocating() 
 fn a_134_byte_tiff_claiming_40000_squared_floats_is_refused_before_allocating() {
     let dir = TempDir::new().unwrap();
     // 40000 x 40000 32-bit floats (6.4 GB) in one strip of 12 bytes.
-    let mut tiff = tiff_bytes(&[
+    let mut tiff = tiff_directory(&[
         (256, 4, 1, 40000), // ImageWidth
         (257, 4, 1, 40000), // ImageLength
         (258, 3, 1, 32),    // BitsPerSample
@@ -87,7 +67,7 @@ fn a_134_byte_tiff_claiming_40000_squared_floats_is_refused_before_allocating() 
 #[test]
 fn a_strip_past_the_end_of_the_file_is_corrupt() {
     let dir = TempDir::new().unwrap();
-    let mut tiff = tiff_bytes(&[
+    let mut tiff = tiff_directory(&[
         (256, 4, 1, 4),
         (257, 4, 1, 4),
         (258, 3, 1, 16),
@@ -241,7 +221,7 @@ fn many_strips(rows: u32) -> Vec<u8> {
     }
     bytes.extend((0..rows).flat_map(|r| (data_at + 4 * r).to_le_bytes()));
     bytes.extend((0..rows).flat_map(|_| 4u32.to_le_bytes()));
-    let directory = tiff_bytes(&[
+    let directory = tiff_directory(&[
         (256, 4, 1, 2),
         (257, 4, 1, rows),
         (258, 3, 1, 16),
@@ -252,7 +232,7 @@ fn many_strips(rows: u32) -> Vec<u8> {
         (278, 4, 1, 1),
         (279, 4, rows, counts_at),
     ]);
-    // The directory without tiff_bytes' own 8-byte header.
+    // The directory without its own 8-byte header.
     bytes.extend(&directory[8..]);
     bytes
 }
