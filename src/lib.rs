@@ -15,6 +15,8 @@ pub mod bench;
 pub mod geometry;
 /// Height fields: samples, loading, and the maxima the walks skip empty space with.
 pub mod heightfield;
+/// Writing a file a user names: checked first, then written whole or not at all.
+pub mod output_file;
 mod regular_file;
 /// Turning rays into pixels: cameras, scene files, shading, progressive passes, statistics.
 pub mod render;

@@ -25,6 +25,11 @@ pub fn open(path: &Path) -> Result<(File, u64), OpenError> {
     // Looked at again through the open file: the path may have been replaced in between.
     let metadata = file.metadata().map_err(OpenError::Io)?;
     regular(&metadata)?;
+    if kernel_pseudo_file(&file) {
+        return Err(OpenError::NotAFile(
+            "a kernel pseudo-file (/proc or /sys), whose size says nothing of its contents",
+        ));
+    }
     Ok((file, metadata.len()))
 }
 
@@ -50,7 +55,7 @@ fn regular(metadata: &Metadata) -> Result<(), OpenError> {
 }
 
 /// What a path that is not a regular file names, in words.
-fn kind(metadata: &Metadata) -> &'static str {
+pub(crate) fn kind(metadata: &Metadata) -> &'static str {
     let kind = metadata.file_type();
     if kind.is_dir() {
         return "a directory";
@@ -72,4 +77,24 @@ fn kind(metadata: &Metadata) -> &'static str {
         }
     }
     "a special file"
+}
+
+/// Whether `file` lies on /proc or /sys: "regular" files there say they are empty (or 4096
+/// bytes) whatever they hold, and some never end.
+#[cfg(target_os = "linux")]
+fn kernel_pseudo_file(file: &File) -> bool {
+    use std::os::fd::AsRawFd;
+    let mut stat = std::mem::MaybeUninit::<libc::statfs>::zeroed();
+    // SAFETY: `stat` has room for a `statfs`, and the descriptor is open for the call.
+    if unsafe { libc::fstatfs(file.as_raw_fd(), stat.as_mut_ptr()) } != 0 {
+        return false;
+    }
+    // SAFETY: `fstatfs` succeeded, so it filled `stat`.
+    let kind = unsafe { stat.assume_init() }.f_type;
+    kind == libc::PROC_SUPER_MAGIC || kind == libc::SYSFS_MAGIC
+}
+
+#[cfg(not(target_os = "linux"))]
+fn kernel_pseudo_file(_: &File) -> bool {
+    false
 }

@@ -7,6 +7,8 @@
 #[allow(dead_code)]
 #[path = "common/files.rs"]
 mod files;
+#[path = "bounded_reading/hostile_sizes.rs"]
+mod hostile_sizes;
 #[path = "common/recording.rs"]
 mod recording;
 

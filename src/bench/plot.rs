@@ -32,7 +32,7 @@ pub fn time_against_error(points: &[Point], path: &Path) -> anyhow::Result<()> {
     } else {
         svg.into_bytes()
     };
-    std::fs::write(path, bytes).with_context(|| format!("cannot write {}", path.display()))
+    crate::output_file::write_bytes(path, &bytes).map_err(anyhow::Error::msg)
 }
 
 fn draw_svg(points: &[Point]) -> anyhow::Result<String> {

@@ -2,8 +2,8 @@
 
 use super::bench::{progress_bar, scene_at_size, scenes_or_builtins};
 use super::AccuracyArgs;
-use anyhow::Context;
 use heightray::bench::{accuracy, hard_cases, pixel_differences, plot, scene_sets, AccuracyRow};
+use heightray::output_file;
 use heightray::render::{PixelRow, Scene};
 use heightray::traverse::{Arith, Method};
 use heightray::Terrain;
@@ -59,8 +59,7 @@ pub fn run(args: &AccuracyArgs) -> anyhow::Result<ExitCode> {
 
     let report = report(args, &rows, &pixels);
     if let Some(path) = &args.out {
-        std::fs::write(path, &report)
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        output_file::write_bytes(path, report.as_bytes()).map_err(anyhow::Error::msg)?;
     }
     if let Some(path) = &args.plot {
         plot::time_against_error(&summary(&rows, &args.methods, &ariths), path)?;

@@ -5,12 +5,12 @@ use super::speed_report::{
     LEVELS_APART,
 };
 use super::{SpeedArgs, TextbookArgs};
-use anyhow::Context;
 use heightray::bench::{
     hard_cases_versus_exact, render_as, sized_scene, throughput, versus_textbook, view,
     HardCaseRow, Reference, ThroughputRow, Tracer, ROUNDS, SEED,
 };
 use heightray::heightfield::StripBounds;
+use heightray::output_file;
 use heightray::render::timing::timed;
 use heightray::render::Frame;
 use heightray::render::{Scene, SceneFile};
@@ -104,8 +104,7 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
     }
     if let Some(path) = &args.out {
         let json = serde_json::to_string_pretty(&report)?;
-        std::fs::write(path, json + "\n")
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        output_file::write_bytes(path, (json + "\n").as_bytes()).map_err(anyhow::Error::msg)?;
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -5,6 +5,7 @@
 
 use super::{CompareArgs, SpeedFrames};
 use anyhow::Context;
+use heightray::output_file;
 use serde::{Deserialize, Serialize};
 use std::ffi::OsString;
 use std::io::Write;
@@ -52,8 +53,7 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
     print(stdout, &comparison)?;
     if let Some(path) = &args.out {
         let json = serde_json::to_string_pretty(&comparison)?;
-        std::fs::write(path, json + "\n")
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        output_file::write_bytes(path, (json + "\n").as_bytes()).map_err(anyhow::Error::msg)?;
     }
     Ok(ExitCode::SUCCESS)
 }

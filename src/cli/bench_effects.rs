@@ -3,8 +3,8 @@
 
 use super::bench::{scene_at_size, scenes_or_builtins};
 use super::EffectsArgs;
-use anyhow::Context;
 use heightray::bench::{block_average, configurations, frame_with, rms_error, EffectRow};
+use heightray::output_file;
 use heightray::render::effects::{Effects, Water, MOST_RAYS};
 use heightray::render::WaterSection;
 use heightray::Terrain;
@@ -24,12 +24,7 @@ pub fn run(args: &EffectsArgs) -> anyhow::Result<ExitCode> {
         args.sun_angle_deg > 0.0 && args.sun_angle_deg <= 20.0,
         "--sun-angle-deg must be above 0 and at most 20"
     );
-    let mut pool = rayon::ThreadPoolBuilder::new();
-    if let Some(threads) = args.threads {
-        anyhow::ensure!(threads > 0, "--threads must be at least 1");
-        pool = pool.num_threads(threads);
-    }
-    let pool = pool.build().context("cannot start worker threads")?;
+    let pool = super::knobs::worker_pool(args.threads)?;
     let out = &mut std::io::stdout().lock();
     let mut report = Vec::new();
     for source in scenes_or_builtins(&args.scenes)? {
@@ -58,8 +53,7 @@ pub fn run(args: &EffectsArgs) -> anyhow::Result<ExitCode> {
             "command": std::env::args().collect::<Vec<_>>().join(" "),
             "size": args.size, "threads": pool.current_num_threads(), "scenes": report,
         }))?;
-        std::fs::write(path, text + "\n")
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        output_file::write_bytes(path, (text + "\n").as_bytes()).map_err(anyhow::Error::msg)?;
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -5,13 +5,16 @@ mod bench;
 mod bench_compare;
 mod bench_effects;
 mod generate;
+mod knobs;
 mod loading;
 mod render;
+mod render_progress;
 mod speed_report;
 mod trace;
 
 use clap::{Parser, Subcommand};
 use heightray::heightfield::{ColourEncoding, NoDataValue};
+use heightray::render::MAX_PIXELS;
 use heightray::{Arith, Method};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -113,7 +116,7 @@ pub struct EffectsArgs {
     #[arg(long, value_delimiter = ',')]
     pub scenes: Vec<PathBuf>,
     /// Image width and height.
-    #[arg(long, default_value_t = 256)]
+    #[arg(long, default_value_t = 256, value_parser = knobs::bench_image_size)]
     pub size: u32,
     /// Samples per pixel of the sampled frames.
     #[arg(long, default_value_t = 16)]
@@ -121,8 +124,8 @@ pub struct EffectsArgs {
     /// The sun's angular diameter of the soft-shadow frames, in degrees.
     #[arg(long, default_value_t = 0.53)]
     pub sun_angle_deg: f64,
-    /// Worker threads (default: all cores).
-    #[arg(long)]
+    /// Worker threads (default: all cores; at most 4 a core are used).
+    #[arg(long, value_parser = knobs::threads)]
     pub threads: Option<usize>,
     /// Also write every figure as JSON here.
     #[arg(long)]
@@ -152,10 +155,10 @@ pub struct SpeedFrames {
     /// Instead of scenes: the built-in valley's landscape generated at these sizes (samples
     /// per side, e.g. 513,2049,4097,8193) under the same view, with build time, memory per
     /// sample and the growth of time per ray.
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', value_parser = knobs::landscape_size)]
     pub sizes: Vec<usize>,
     /// Image width and height (overrides the scenes'; 512 with --sizes if not given).
-    #[arg(long)]
+    #[arg(long, value_parser = knobs::bench_image_size)]
     pub size: Option<u32>,
     /// Methods, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "mipmap,hruns,runs,dda")]
@@ -164,7 +167,7 @@ pub struct SpeedFrames {
     #[arg(long, value_delimiter = ',', default_value = "f32,f64,rational:65536")]
     pub ariths: Vec<Arith>,
     /// Thread counts, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "1,2")]
+    #[arg(long, value_delimiter = ',', default_value = "1,2", value_parser = knobs::threads)]
     pub threads: Vec<usize>,
 }
 
@@ -177,7 +180,7 @@ pub struct CompareArgs {
     #[arg(long, value_name = "BIN")]
     pub candidate: Option<PathBuf>,
     /// Runs of `bench speed` by each binary, alternating: baseline, candidate, baseline...
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, value_parser = knobs::rounds)]
     pub rounds: usize,
     /// The configuration both binaries measure, as `bench speed` takes it (its flags must be
     /// ones the baseline knows).
@@ -194,10 +197,10 @@ pub struct TextbookArgs {
     #[arg(long, value_delimiter = ',')]
     pub scenes: Vec<PathBuf>,
     /// Image width and height (overrides the scenes').
-    #[arg(long, default_value_t = 512)]
+    #[arg(long, default_value_t = 512, value_parser = knobs::bench_image_size)]
     pub size: u32,
     /// Rays per hard-case set (answered exactly too, for reference).
-    #[arg(long, default_value_t = 1024)]
+    #[arg(long, default_value_t = 1024, value_parser = knobs::per_set)]
     pub per_set: usize,
     /// Also answer the hard cases with Embree 3 and with heightray in `f32` (needs a build
     /// with `--features embree`).
@@ -211,10 +214,10 @@ pub struct AccuracyArgs {
     #[arg(long, value_delimiter = ',')]
     pub scenes: Vec<PathBuf>,
     /// Image width and height for the scenes' rays and renders (exact arithmetic is slow).
-    #[arg(long, default_value_t = 48)]
+    #[arg(long, default_value_t = 48, value_parser = knobs::bench_image_size)]
     pub size: u32,
     /// Rays per generated hard-case set.
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = 64, value_parser = knobs::per_set)]
     pub per_set: usize,
     /// Methods, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "mipmap,hruns,runs,dda")]
@@ -237,7 +240,7 @@ pub struct AccuracyArgs {
 #[derive(clap::Args, Debug)]
 pub struct GenerateArgs {
     /// Samples per side.
-    #[arg(long, default_value_t = 513)]
+    #[arg(long, default_value_t = 513, value_parser = knobs::landscape_size)]
     pub size: usize,
     /// Noise seed.
     #[arg(long, default_value_t = 1)]
@@ -257,8 +260,8 @@ pub struct RenderArgs {
     /// Output PNG.
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Worker threads (default: all cores).
-    #[arg(long)]
+    /// Worker threads (default: all cores; at most 4 a core are used).
+    #[arg(long, value_parser = knobs::threads)]
     pub threads: Option<usize>,
     /// Traversal (mipmap, hruns, runs, dda or auto), overriding the scene's.
     #[arg(long)]
@@ -354,6 +357,27 @@ pub fn view(args: ViewArgs) -> anyhow::Result<ExitCode> {
         anyhow::ensure!(
             (0.05..=4.0).contains(&scale),
             "--render-scale must be between 0.05 and 4, got {scale}"
+        );
+    }
+    if let Some((w, h)) = args.export_size {
+        anyhow::ensure!(
+            u64::from(w) * u64::from(h) <= MAX_PIXELS,
+            "--export-size {w}x{h} is more than the limit of {MAX_PIXELS} pixels (8192x4096) \
+             an image may have"
+        );
+    }
+    if let Some(folder) = &args.export_dir {
+        // Refused rather than made: a mistyped folder would otherwise collect the exports
+        // somewhere nobody looks.
+        anyhow::ensure!(
+            folder.is_dir(),
+            "--export-dir {} {}; make it first (mkdir -p {0}) or choose another",
+            folder.display(),
+            if folder.exists() {
+                "is not a folder"
+            } else {
+                "does not exist"
+            }
         );
     }
     heightray::viewer::run(heightray::viewer::ViewerOptions {

@@ -1,19 +1,23 @@
 //! `heightray render`: a scene (or a height map alone) to a PNG and statistics in the paper's
 //! shape.
 
-use super::{loading, RenderArgs};
-use anyhow::Context;
+use super::{loading, render_progress, RenderArgs};
+use heightray::output_file;
 use heightray::render::effects::MOST_RAYS;
 use heightray::render::{Culling, Frame, Renderer, Scene, SceneError, SceneFile, Shader};
 use heightray::traverse::prepare;
 use heightray::Terrain;
-use image::{ImageBuffer, Rgb};
 use serde_json::json;
 use std::io::Write;
 use std::process::ExitCode;
 use std::time::Instant;
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
+    // Before any work: a render that fails to be written only at its end is time lost.
+    output_file::check_image(&args.output).map_err(anyhow::Error::msg)?;
+    if let Some(path) = &args.stats {
+        output_file::check(path).map_err(anyhow::Error::msg)?;
+    }
     let start = Instant::now();
     let scene = loading::stage(&format!("loading {}", args.scene.display()), || {
         load_scene(args)
@@ -21,12 +25,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let read_time = start.elapsed();
     let method = args.method.unwrap_or(scene.method);
     let arith = args.arith.unwrap_or(scene.arith);
-    let mut pool = rayon::ThreadPoolBuilder::new();
-    if let Some(threads) = args.threads {
-        anyhow::ensure!(threads > 0, "--threads must be at least 1");
-        pool = pool.num_threads(threads);
-    }
-    let pool = pool.build().context("cannot start worker threads")?;
+    let pool = super::knobs::worker_pool(args.threads)?;
 
     let terrain = loading::stage("building acceleration data", || Terrain::new(scene.field));
     loading::summary(&args.scene, &terrain, read_time);
@@ -49,13 +48,18 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     // Built before the clock starts, so the render time is the render's alone.
     let build_ms = prepare(&terrain, method).0.as_secs_f64() * 1e3;
     let start = Instant::now();
+    let effects = &renderer.shader.lighting.effects;
+    let adaptive = effects.adaptive && effects.samples > 1;
     match args.packets.as_str() {
         "on" => pool.install(|| renderer.render_in_packets(&mut frame)),
-        _ => pool.install(|| renderer.render(&mut frame)),
+        // Traced in rounds over the whole frame, not in passes.
+        _ if adaptive => pool.install(|| renderer.render(&mut frame)),
+        _ => pool.install(|| render_progress::render_with_estimate(&renderer, &mut frame)),
     }
     let render_ms = start.elapsed().as_secs_f64() * 1e3;
 
-    save_png(&frame, &args.output)?;
+    output_file::save_rgb(&args.output, &frame.pixels, (width, height))
+        .map_err(anyhow::Error::msg)?;
     let effects = &frame.totals.effects;
     let rays =
         frame.totals.primary_rays + frame.totals.shadow_rays + effects.soft.rays + effects.sky.rays;
@@ -72,8 +76,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         {
             object.extend(more);
         }
-        std::fs::write(path, serde_json::to_string_pretty(&stats)? + "\n")
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        output_file::write_bytes(
+            path,
+            (serde_json::to_string_pretty(&stats)? + "\n").as_bytes(),
+        )
+        .map_err(anyhow::Error::msg)?;
     }
     let label = args.scene.display().to_string();
     let out = &mut std::io::stdout().lock();
@@ -97,14 +104,4 @@ fn load_scene(args: &RenderArgs) -> Result<Scene, SceneError> {
     };
     file.size = args.size;
     Scene::from_file(&file, Scene::base(path), path)
-}
-
-fn save_png(frame: &Frame, path: &std::path::Path) -> anyhow::Result<()> {
-    let image = ImageBuffer::from_fn(frame.width, frame.height, |x, y| {
-        let rgb = frame.pixels[(y * frame.width + x) as usize];
-        Rgb([(rgb >> 16) as u8, (rgb >> 8) as u8, rgb as u8])
-    });
-    image
-        .save(path)
-        .with_context(|| format!("cannot write {}", path.display()))
 }

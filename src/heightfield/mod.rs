@@ -65,6 +65,12 @@ pub enum HeightfieldError {
     /// A z scale that is negative, NaN or infinite.
     #[error("z scale must be a finite number >= 0, got {0}")]
     BadZScale(f64),
+    /// A z scale whose heights would reach beyond [`MOST_HEIGHT`].
+    #[error(
+        "z scale {0:e} is out of range: heights would reach beyond ±{MOST_HEIGHT:e}; give a z \
+         scale or exaggeration that keeps them within it"
+    )]
+    HeightsOutOfRange(f64),
     /// A maxval of 0 or above 65535.
     #[error("maxval must be between 1 and 65535, got {0}")]
     BadMaxval(u32),
@@ -389,11 +395,25 @@ impl Heightfield {
     }
 }
 
+/// The largest height magnitude a field may have: far beyond any terrain in any unit, and
+/// small enough that a camera framing it stays in range.
+pub const MOST_HEIGHT: f64 = 1e12;
+
 /// `(base, unit)`: the height of sample 0 and of one sample step.
 fn mapping(quantisation: Quantisation, z_scale: f64) -> Result<(f64, f64), HeightfieldError> {
     if !(z_scale.is_finite() && z_scale >= 0.0) {
         return Err(HeightfieldError::BadZScale(z_scale));
     }
+    let (base, unit) = scaled(quantisation, z_scale)?;
+    let highest = base + f64::from(u16::MAX) * unit;
+    if !(base.abs() <= MOST_HEIGHT && highest.abs() <= MOST_HEIGHT) {
+        return Err(HeightfieldError::HeightsOutOfRange(z_scale));
+    }
+    Ok((base, unit))
+}
+
+/// `(base, unit)` before their range is checked.
+fn scaled(quantisation: Quantisation, z_scale: f64) -> Result<(f64, f64), HeightfieldError> {
     match quantisation {
         Quantisation::Maxval(0) => Err(HeightfieldError::BadMaxval(0)),
         Quantisation::Maxval(maxval) => Ok((0.0, z_scale / f64::from(maxval))),

@@ -13,6 +13,15 @@ pub enum CameraError {
     /// The eye, target or up vector (named) has a NaN or infinite component.
     #[error("camera {0} must be finite")]
     NotFinite(&'static str),
+    /// A coordinate or distance (named) beyond [`MOST_COORDINATE`]: no view of a map needs
+    /// it, and the camera's vectors would overflow.
+    #[error("camera {what} is out of range: {value:e} is beyond ±{MOST_COORDINATE:e}")]
+    OutOfRange {
+        /// What it is ("eye", "orbit distance", ...).
+        what: &'static str,
+        /// The value given.
+        value: f64,
+    },
     /// Eye and target are the same point: no viewing direction.
     #[error("camera eye and target coincide")]
     EyeIsTarget,
@@ -25,14 +34,21 @@ pub enum CameraError {
     /// An image size with no pixels (width, height).
     #[error("image size must be at least 1x1, got {0}x{1}")]
     EmptyImage(u32, u32),
-    /// An image size of more than 16384 x 16384 pixels (width, height).
-    #[error("image size {0}x{1} is more than the limit of {MAX_PIXELS} pixels (16384x16384)")]
+    /// An image size of more than [`MAX_PIXELS`] (width, height).
+    #[error(
+        "image size {0}x{1} is more than the limit of {MAX_PIXELS} pixels (8192x4096): a \
+         frame keeps statistics with every pixel, about 24 bytes each"
+    )]
     HugeImage(u32, u32),
 }
 
 /// The most pixels an image may have: a frame holds several bytes a pixel, and a size typed
 /// with a digit too many must be refused, not abort on an allocation of tens of gigabytes.
-pub const MAX_PIXELS: u64 = 1 << 28;
+pub const MAX_PIXELS: u64 = 1 << 25;
+
+/// The largest coordinate or distance a camera takes: far beyond any map (heights are within
+/// the same bound), and small enough that no vector built from it overflows.
+pub const MOST_COORDINATE: f64 = 1e15;
 
 /// A validated pinhole camera.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -58,6 +74,9 @@ impl Camera {
         for (name, v) in [("eye", eye), ("target", target), ("up", up)] {
             if !v.is_finite() {
                 return Err(CameraError::NotFinite(name));
+            }
+            if let Some(&value) = v.to_array().iter().find(|c| c.abs() > MOST_COORDINATE) {
+                return Err(CameraError::OutOfRange { what: name, value });
             }
         }
         if !(fov_y_deg > 0.0 && fov_y_deg < 180.0) {
@@ -97,6 +116,12 @@ impl Camera {
         fov_y_deg: f64,
         size: (u32, u32),
     ) -> Result<Camera, CameraError> {
+        if distance.abs() > MOST_COORDINATE {
+            return Err(CameraError::OutOfRange {
+                what: "orbit distance",
+                value: distance,
+            });
+        }
         let offset = super::framing::eye_direction(yaw_deg, pitch_deg);
         let eye = DVec3::from(target) + offset * distance;
         Camera::look_at(eye.into(), target, [0.0, 0.0, 1.0], fov_y_deg, size)
@@ -177,12 +202,36 @@ mod tests {
     }
 
     #[test]
+    fn coordinates_beyond_any_map_are_out_of_range() {
+        let far = Camera::look_at([1e308, 0.0, 0.0], [0.0; 3], [0.0, 0.0, 1.0], 45.0, (4, 4));
+        assert_eq!(
+            far,
+            Err(CameraError::OutOfRange {
+                what: "eye",
+                value: 1e308
+            })
+        );
+        let orbit = Camera::orbit([0.0; 3], 0.0, 30.0, 1e308, 45.0, (4, 4));
+        assert!(
+            matches!(
+                orbit,
+                Err(CameraError::OutOfRange {
+                    what: "orbit distance",
+                    ..
+                })
+            ),
+            "{orbit:?}"
+        );
+    }
+
+    #[test]
     fn images_too_large_for_memory_are_refused() {
         let look = |size| Camera::look_at([0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], 45.0, size);
-        assert!(look((16384, 16384)).is_ok());
+        assert!(look((8192, 4096)).is_ok());
+        assert_eq!(look((8192, 4097)), Err(CameraError::HugeImage(8192, 4097)));
         assert_eq!(
-            look((16384, 16385)),
-            Err(CameraError::HugeImage(16384, 16385))
+            look((16384, 16384)),
+            Err(CameraError::HugeImage(16384, 16384))
         );
         assert_eq!(
             look((100_000, 100_000)),

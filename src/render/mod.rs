@@ -15,7 +15,7 @@ mod tally;
 pub mod timing;
 mod versus_exact;
 
-pub use camera::{Camera, CameraError};
+pub use camera::{Camera, CameraError, MAX_PIXELS};
 pub use passes::{Frame, Renderer, PASS_BLOCKS};
 pub use ramp::{HeightSpan, Ramp};
 pub use scene::{

@@ -16,6 +16,7 @@ use thiserror::Error;
 mod heightmap;
 mod lighting;
 mod sun;
+mod triple;
 mod view;
 mod water;
 
@@ -207,7 +208,7 @@ impl SceneFile {
 #[serde(deny_unknown_fields)]
 pub struct SunSection {
     /// Towards the sun; normalised on load.
-    #[serde(default = "default_sun")]
+    #[serde(default = "default_sun", deserialize_with = "triple::three")]
     pub direction: [f64; 3],
     /// Instead of `direction`: where the sun stands at this time (RFC 3339, e.g.
     /// `2026-12-21T08:00:00Z`) over the map's centre, or over `lat` and `lon`.

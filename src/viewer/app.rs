@@ -9,7 +9,7 @@ use super::hooks::{Counts, Hooks};
 use super::loader::{LoadRequest, Loaded, Loader};
 use super::model::{Action, Model, Shown};
 use super::navigation::{self, Home};
-use super::quality::{detail, JobKey, Quality, ViewKey};
+use super::quality::{detail, JobKey, Quality, ViewKey, MOST_VIEW_PIXELS};
 use super::worker::{RenderJob, RenderWorker, RenderedFrame};
 use super::{drops, overlay_ui, panels, view, water_ui, UserEvent};
 
@@ -363,6 +363,14 @@ impl App {
             self.quality.changed(model.view_held, &view_key);
             // Latency is measured from input that changed a view already on screen.
             caused_by = input_at.filter(|_| self.submitted.is_some());
+        }
+        if view_key.capped() && self.submitted.as_ref().is_none_or(|s| !s.view.capped()) {
+            let (w, h) = view_key.full_size();
+            self.model.notify(format!(
+                "The window is larger than {:.1} million pixels: the view renders at {w}x{h} \
+                 and is shown scaled up",
+                MOST_VIEW_PIXELS / 1e6
+            ));
         }
         let size = self.quality.render_size(&view_key);
         let key = JobKey {

@@ -6,9 +6,10 @@
 use super::model::Model;
 use super::worker::{RenderJob, RenderedFrame};
 use super::UserEvent;
+use crate::output_file;
 use crate::render::Frame;
 use std::fs::{File, OpenOptions};
-use std::io::{BufWriter, ErrorKind};
+use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use winit::event_loop::EventLoopProxy;
@@ -164,20 +165,13 @@ pub fn save_numbered(
     pixels: &[u32],
     (width, height): (u32, u32),
 ) -> Result<PathBuf, String> {
-    let (file, path) = create_numbered(folder, stem, "png")?;
-    let image = image::RgbImage::from_fn(width, height, |x, y| {
-        let rgb = pixels[(y * width + x) as usize];
-        image::Rgb([(rgb >> 16) as u8, (rgb >> 8) as u8, rgb as u8])
-    });
-    let written = image.write_to(&mut BufWriter::new(file), image::ImageFormat::Png);
-    match written {
-        Ok(()) => Ok(path),
-        Err(e) => {
-            // A half-written image is worse than none.
-            let _ = std::fs::remove_file(&path);
-            Err(format!("cannot write {}: {e}", path.display()))
-        }
-    }
+    // The empty file holds the number; the image replaces it whole once written.
+    let (_, path) = create_numbered(folder, stem, "png")?;
+    output_file::save_rgb(&path, pixels, (width, height)).inspect_err(|_| {
+        // An empty file left behind is worse than none.
+        let _ = std::fs::remove_file(&path);
+    })?;
+    Ok(path)
 }
 
 /// Creates `folder/stem-NNN.extension` with the first number no file has yet (only if it

@@ -6,7 +6,7 @@ use super::compose::PixelRect;
 use super::decoding::Decoding;
 use super::model::Model;
 use crate::heightfield::relief;
-use image::{ImageBuffer, Rgb};
+use crate::output_file;
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
@@ -33,25 +33,16 @@ pub struct Counts {
     pub busy: bool,
 }
 
-/// Saves 0x00RRGGBB pixels as a PNG.
+/// Saves 0x00RRGGBB pixels as a PNG, atomically.
 pub fn save_png(pixels: &[u32], width: u32, height: u32, path: &Path) -> Result<(), String> {
-    let image = ImageBuffer::from_fn(width, height, |x, y| {
-        let rgb = pixels[(y * width + x) as usize];
-        Rgb([(rgb >> 16) as u8, (rgb >> 8) as u8, rgb as u8])
-    });
-    image
-        .save(path)
-        .map_err(|e| format!("cannot write {}: {e}", path.display()))
+    output_file::save_rgb(path, pixels, (width, height))
 }
 
 /// Writes the report atomically (a reader never sees half a file).
 pub fn write_report(path: &Path, model: &Model, counts: &Counts) -> Result<(), String> {
     let text = serde_json::to_string_pretty(&report(model, counts))
         .map_err(|e| format!("cannot encode the state report: {e}"))?;
-    let partial = path.with_extension("partial");
-    std::fs::write(&partial, text + "\n")
-        .and_then(|()| std::fs::rename(&partial, path))
-        .map_err(|e| format!("cannot write {}: {e}", path.display()))
+    output_file::write_bytes(path, (text + "\n").as_bytes())
 }
 
 fn report(model: &Model, counts: &Counts) -> Value {

@@ -9,6 +9,8 @@ use super::sources;
 use crate::heightfield::BUILTINS;
 use crate::render::{Lighting, SceneFile};
 use crate::{Arith, Method, Terrain};
+use std::any::Any;
+use std::panic::AssertUnwindSafe;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -259,9 +261,29 @@ fn load_loop(shared: &Shared) {
         };
         // A newer request cancels this load while the file is decoded.
         let superseded = || shared.requests.newest() != generation;
-        let result = Box::new(sources::load(request, &report, &superseded));
+        let label = request.label();
+        // A load that panics is reported as failed, and the thread goes on to the next
+        // request: a window whose loader died would show "loading" for every later file.
+        let loaded = std::panic::catch_unwind(AssertUnwindSafe(|| {
+            sources::load(request, &report, &superseded)
+        }));
+        let result = Box::new(loaded.unwrap_or_else(|panic| {
+            Err(format!(
+                "loading {label} failed on an internal error ({}); other files still load",
+                panic_message(panic.as_ref())
+            ))
+        }));
         (shared.sink)(LoadEvent::Done { generation, result });
     }
+}
+
+/// What a panic said, if it said it in words.
+fn panic_message(panic: &(dyn Any + Send)) -> &str {
+    panic
+        .downcast_ref::<&str>()
+        .copied()
+        .or_else(|| panic.downcast_ref::<String>().map(String::as_str))
+        .unwrap_or("no message")
 }
 
 /// Loads on the calling thread (for the terrain named on the command line).

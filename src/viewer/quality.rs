@@ -16,12 +16,18 @@ const BUDGET_MS: f64 = 8.0;
 const REST: Duration = Duration::from_millis(150);
 /// Lowest resolution factor while moving.
 const MIN_FACTOR: f64 = 0.3;
+/// The most pixels a view is rendered at (a 4K screen's): a larger window shows the frame
+/// scaled up, and a frame's memory stays bounded whatever size the window is given.
+pub const MOST_VIEW_PIXELS: f64 = (1u64 << 23) as f64;
 
 /// What a render shows, apart from a resolution lowered while moving.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ViewKey {
-    /// The full-resolution render size (the window's view area times the render scale).
+    /// The full-resolution render size (the window's view area times the render scale, at
+    /// most [`MOST_VIEW_PIXELS`]).
     full_size: (u32, u32),
+    /// Whether the render size was lowered to [`MOST_VIEW_PIXELS`].
+    capped: bool,
     terrain: usize,
     orbit: Orbit,
     lighting: Lighting,
@@ -32,8 +38,10 @@ pub struct ViewKey {
 impl ViewKey {
     pub fn new(model: &Model, view: PixelRect) -> ViewKey {
         let (w, h) = Quality::full_size(view, model.settings.render_scale);
+        let (full_size, capped) = capped_size(w, h);
         ViewKey {
-            full_size: (w.ceil() as u32, h.ceil() as u32),
+            full_size,
+            capped,
             // The terrain's identity: a new load is a new allocation.
             terrain: std::sync::Arc::as_ptr(&model.shown.terrain) as usize,
             orbit: model.orbit,
@@ -47,6 +55,29 @@ impl ViewKey {
     pub fn full_size(&self) -> (u32, u32) {
         self.full_size
     }
+
+    /// Whether the view renders at fewer pixels than it shows, to stay within
+    /// [`MOST_VIEW_PIXELS`].
+    pub fn capped(&self) -> bool {
+        self.capped
+    }
+}
+
+/// A render size of `w` x `h` pixels, scaled down (keeping its shape) to at most
+/// [`MOST_VIEW_PIXELS`]; and whether it was.
+fn capped_size(w: f64, h: f64) -> ((u32, u32), bool) {
+    let cap = (MOST_VIEW_PIXELS / (w * h).max(1.0)).sqrt().min(1.0);
+    // Rounded up as ever; down when capped, so that the limit holds.
+    let size = |v: f64| {
+        let scaled = v * cap;
+        (if cap < 1.0 {
+            scaled.floor()
+        } else {
+            scaled.ceil()
+        } as u32)
+            .max(1)
+    };
+    ((size(w), size(h)), cap < 1.0)
 }
 
 /// What a render shows, at which size.
@@ -157,6 +188,16 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_huge_window_renders_at_most_the_pixel_limit_in_its_shape() {
+        let ((w, h), capped) = capped_size(8000.0, 8000.0);
+        assert!(capped);
+        assert_eq!((w, h), (2896, 2896));
+        assert!(f64::from(w) * f64::from(h) <= MOST_VIEW_PIXELS);
+        assert_eq!(capped_size(1280.0, 720.0), ((1280, 720), false));
+        assert_eq!(capped_size(1280.5, 720.2), ((1281, 721), false));
+    }
+
+    #[test]
     fn a_fast_move_lowers_the_resolution_and_rest_restores_it() {
         let mut quality = Quality {
             ms_per_mpixel: Some(32.0),
@@ -164,6 +205,7 @@ mod tests {
         };
         let view = ViewKey {
             full_size: (1000, 500),
+            capped: false,
             terrain: 0,
             orbit: Orbit {
                 target: [0.0; 3],

@@ -7,17 +7,18 @@ use super::export::create_numbered;
 use super::loader::Source;
 use super::model::Model;
 use crate::heightfield::NoDataValue;
+use crate::output_file;
 use crate::render::{bytes_from_linear, level_in_map_units, NoDataKey, Scene, SceneFile};
-use std::io::Write;
 use std::path::Path;
 
 /// Writes the view at `size` pixels as `heightray-MAP-NNN.toml` in the export folder.
 pub fn save(model: &mut Model, size: (u32, u32)) {
     let saved = scene_text(model, size).and_then(|text| {
         let stem = super::export::stem(model);
-        let (mut file, path) = create_numbered(&model.export.folder(), &stem, "toml")?;
-        file.write_all(text.as_bytes())
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        let (_, path) = create_numbered(&model.export.folder(), &stem, "toml")?;
+        output_file::write_bytes(&path, text.as_bytes()).inspect_err(|_| {
+            let _ = std::fs::remove_file(&path);
+        })?;
         Ok(path)
     });
     match saved {

@@ -131,25 +131,29 @@ fn crc32(bytes: &[u8]) -> u32 {
 /// A little-endian classic TIFF with one directory declaring `width` x `height` 16-bit gray
 /// samples in one strip, and no sample data at all.
 pub fn tiff_header(width: u32, height: u32) -> Vec<u8> {
-    // (tag, type, value): type 3 is SHORT, 4 is LONG.
-    let entries: [(u16, u16, u32); 8] = [
-        (256, 4, width),    // ImageWidth
-        (257, 4, height),   // ImageLength
-        (258, 3, 16),       // BitsPerSample
-        (259, 3, 1),        // Compression: none
-        (262, 3, 1),        // PhotometricInterpretation: black is zero
-        (273, 4, 8),        // StripOffsets
-        (278, 4, height),   // RowsPerStrip
-        (279, 4, u32::MAX), // StripByteCounts
-    ];
+    tiff_directory(&[
+        (256, 4, 1, width),    // ImageWidth
+        (257, 4, 1, height),   // ImageLength
+        (258, 3, 1, 16),       // BitsPerSample
+        (259, 3, 1, 1),        // Compression: none
+        (262, 3, 1, 1),        // PhotometricInterpretation: black is zero
+        (273, 4, 1, 8),        // StripOffsets
+        (278, 4, 1, height),   // RowsPerStrip
+        (279, 4, 1, u32::MAX), // StripByteCounts
+    ])
+}
+
+/// A little-endian classic TIFF header and one directory right after it, of `entries`
+/// (tag, type, count, value or offset; type 3 is SHORT, 4 is LONG).
+pub fn tiff_directory(entries: &[(u16, u16, u32, u32)]) -> Vec<u8> {
     let mut bytes = b"II*\0".to_vec();
     bytes.extend(8u32.to_le_bytes());
     bytes.extend((entries.len() as u16).to_le_bytes());
-    for (tag, kind, value) in entries {
+    for &(tag, kind, count, value) in entries {
         bytes.extend(tag.to_le_bytes());
         bytes.extend(kind.to_le_bytes());
-        bytes.extend(1u32.to_le_bytes());
-        if kind == 3 {
+        bytes.extend(count.to_le_bytes());
+        if kind == 3 && count == 1 {
             bytes.extend((value as u16).to_le_bytes());
             bytes.extend([0, 0]);
         } else {

@@ -64,3 +64,11 @@ pub fn measure<T>(work: impl FnOnce() -> T) -> (T, Allocated) {
     };
     (result, allocated)
 }
+
+/// Runs `work` while no measurement runs: preparing a large input (a file of millions of
+/// strips) must not count in another test's peak.
+#[allow(dead_code)] // (Not every test binary prepares large inputs.)
+pub fn alone<T>(work: impl FnOnce() -> T) -> T {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(PoisonError::into_inner);
+    work()
+}

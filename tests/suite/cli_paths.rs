@@ -9,7 +9,7 @@ use std::time::Duration;
 use tempfile::TempDir;
 
 /// Runs `heightray args`; fails the test if it takes more than ten seconds (and stops it).
-fn heightray_within_ten_seconds(args: &[&str]) -> Output {
+pub fn heightray_within_ten_seconds(args: &[&str]) -> Output {
     let child = Command::new(env!("CARGO_BIN_EXE_heightray"))
         .args(args)
         .stdin(Stdio::null())
@@ -32,7 +32,7 @@ fn heightray_within_ten_seconds(args: &[&str]) -> Output {
 }
 
 /// The command fails, and its stderr mentions every word.
-fn assert_fails(args: &[&str], words: &[&str]) {
+pub fn assert_fails(args: &[&str], words: &[&str]) {
     let output = heightray_within_ten_seconds(args);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(!output.status.success(), "{args:?} succeeded");

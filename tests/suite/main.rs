@@ -22,6 +22,7 @@ mod formats;
 mod georeferencing;
 mod hard_cases;
 mod holes;
+mod hostile_input;
 mod loader_fuzz;
 mod mosaics;
 mod packets;

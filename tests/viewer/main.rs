@@ -9,6 +9,7 @@ mod accuracy;
 mod app;
 mod decoding;
 mod export;
+mod failed_loads;
 mod fog;
 mod georeferenced;
 mod navigation;

@@ -118,7 +118,12 @@ struct Source<'a> {
 /// Drags `file` from the bottom-left corner of the screen to `at` (root coordinates) and
 /// drops it there; with `leave`, hovers over the target and leaves again instead.
 pub fn drag_file(x: &X, file: &Path, at: (i16, i16), leave: bool) -> Outcome {
-    let mut source = Source::new(x, file);
+    drag_files(x, &[file], at, leave)
+}
+
+/// Drags `files` together, as a file manager drags a selection, and drops them at `at`.
+pub fn drag_files(x: &X, files: &[&Path], at: (i16, i16), leave: bool) -> Outcome {
+    let mut source = Source::new(x, files);
     let outcome = source.run(at, leave);
     let _ = x.conn.destroy_window(source.window);
     let _ = x.conn.flush();
@@ -126,10 +131,16 @@ pub fn drag_file(x: &X, file: &Path, at: (i16, i16), leave: bool) -> Outcome {
 }
 
 impl<'a> Source<'a> {
-    fn new(x: &'a X, file: &Path) -> Source<'a> {
+    fn new(x: &'a X, files: &[&Path]) -> Source<'a> {
         let atoms = Atoms::intern(x);
-        let path = std::fs::canonicalize(file).expect("the dropped file exists");
-        let uris = format!("file://{}\r\n", percent_encode(&path.to_string_lossy())).into_bytes();
+        let uris = files
+            .iter()
+            .map(|file| {
+                let path = std::fs::canonicalize(file).expect("the dropped file exists");
+                format!("file://{}\r\n", percent_encode(&path.to_string_lossy()))
+            })
+            .collect::<String>()
+            .into_bytes();
         let window = icon_window(x, &atoms);
         Source {
             x,

@@ -4,13 +4,16 @@
 //! north up), and the map coordinates of the top-left pixel's centre).
 
 use crate::heightfield::georef::{Georef, Georeferencing, MapUnits};
-use crate::heightfield::limits::MAX_DECODED_BYTES;
 use crate::heightfield::load::geotiff;
 use crate::regular_file::{self, OpenError};
 use image::{DynamicImage, ImageDecoder, ImageReader};
 use std::io::BufReader;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
+
+/// The most pixels an overlay may have: its colours are kept as 4 bytes a pixel (256 MiB at
+/// the limit), several times finer than any window shows a map.
+pub const MOST_OVERLAY_PIXELS: u64 = 1 << 26;
 
 /// Why an image could not be draped over the map.
 #[derive(Debug, Error)]
@@ -42,10 +45,10 @@ pub enum DrapeError {
         /// The decoder's message.
         reason: String,
     },
-    /// Decoding would take more memory than any height map may.
+    /// More pixels than an overlay may have.
     #[error(
-        "overlay {path} is {width}x{height}: its pixels would take more than {} GiB; \
-         downsample it", MAX_DECODED_BYTES >> 30
+        "overlay {path} is {width}x{height} pixels, more than the limit of \
+         {MOST_OVERLAY_PIXELS} (8192x8192) for an overlay; downsample it"
     )]
     TooLarge {
         /// The file.
@@ -138,7 +141,7 @@ pub fn read(path: &Path) -> Result<Image, DrapeError> {
     if width == 0 || height == 0 {
         return Err(decode(format!("it is {width}x{height} pixels")));
     }
-    if 4 * u64::from(width) * u64::from(height) > MAX_DECODED_BYTES {
+    if u64::from(width) * u64::from(height) > MOST_OVERLAY_PIXELS {
         return Err(DrapeError::TooLarge {
             path: path.to_owned(),
             width,
@@ -182,6 +185,9 @@ fn tiff_place(file: std::fs::File, height: u32) -> Result<Option<OwnPlace>, Stri
     }
 }
 
+/// The longest world file read: six numbers take a few hundred bytes at most.
+const MOST_WORLD_FILE_BYTES: u64 = 4096;
+
 /// The world file beside `path`, if there is one: `NAME.pgw` for `NAME.png` (the extension's
 /// first and last letters and `w`), `NAME.pngw`, or `NAME.wld`.
 fn world_file(path: &Path, height: u32) -> Result<Option<OwnPlace>, String> {
@@ -201,11 +207,18 @@ fn world_file(path: &Path, height: u32) -> Result<Option<OwnPlace>, String> {
         return Ok(None);
     };
     let shown = world.display();
-    let text = regular_file::open(&world)
-        .ok()
-        .and_then(|(file, len)| (len <= 4096).then_some(file))
-        .and_then(|file| std::io::read_to_string(file).ok())
-        .ok_or_else(|| format!("its world file {shown} cannot be read as text"))?;
+    let (file, len) = regular_file::open(&world).map_err(|error| match error {
+        OpenError::NotAFile(what) => format!("its world file {shown} is {what}, not a file"),
+        OpenError::Io(e) => format!("its world file {shown} cannot be opened: {e}"),
+    })?;
+    if len > MOST_WORLD_FILE_BYTES {
+        return Err(format!(
+            "its world file {shown} is too large ({len} bytes; a world file is six numbers, \
+             at most {MOST_WORLD_FILE_BYTES} bytes)"
+        ));
+    }
+    let text = std::io::read_to_string(file)
+        .map_err(|e| format!("its world file {shown} cannot be read as text: {e}"))?;
     let values: Vec<f64> = text
         .split_whitespace()
         .map(str::parse)

@@ -37,7 +37,7 @@ struct Header {
 }
 
 /// Parses a grid from the start of `input`; reading stops after its last value.
-pub fn decode(input: impl BufRead, name: &str) -> Result<Raster, LoadError> {
+pub fn decode(input: impl BufRead, len: u64, name: &str) -> Result<Raster, LoadError> {
     let mut tokens = Tokens { input };
     let mut header = Header::default();
     let first_value = loop {
@@ -80,6 +80,18 @@ pub fn decode(input: impl BufRead, name: &str) -> Result<Raster, LoadError> {
     let (width, height) = (size(header.ncols, "ncols")?, size(header.nrows, "nrows")?);
     check_header(name, width, height, 8)?;
     let count = (width * height) as usize;
+    // Each value takes a digit and a separator: a header claiming more than the file can
+    // hold is refused before anything is allocated for them.
+    if width * height > len / 2 + 1 {
+        return Err(decode_error(
+            name,
+            format!(
+                "its header claims {width}x{height} = {} values, more than a file of {len} \
+                 bytes can hold; the header is wrong or the file is truncated",
+                width * height
+            ),
+        ));
+    }
     let mut values = Vec::with_capacity(count);
     values.push(parse(&first_value, name)?);
     while values.len() < count {

@@ -139,6 +139,16 @@ fn georef(corner: &Corner, keys: &GeoKeys, height: u32) -> Result<Georef, String
     // Sample (0, 0) of the field is the image's bottom-left pixel, row height - 1.
     let bottom = f64::from(height) - 1.0 + half;
     let origin = [corner.x0 + half * corner.sx, corner.y0 - bottom * corner.sy];
+    if units == MapUnits::Degrees {
+        let top = origin[1] + (f64::from(height) - 1.0) * corner.sy;
+        if !(origin[1] >= -90.0 && top <= 90.0) {
+            return Err(format!(
+                "it is in degrees, but its samples span latitudes {:.6} to {top:.6}, outside \
+                 -90..90",
+                origin[1]
+            ));
+        }
+    }
     Georef::new(origin, [corner.sx, corner.sy], units)
 }
 

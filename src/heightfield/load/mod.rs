@@ -339,9 +339,9 @@ fn decode<R: Read + Seek>(
     match Format::of(&start, name) {
         Some(Format::Pgm) => pgm::decode(input, len, name),
         Some(Format::Png) => png::decode(input, name, colour),
-        Some(Format::Tiff) => tiff::decode(input, name),
+        Some(Format::Tiff) => tiff::decode(input, len, name),
         Some(Format::Hgt) => hgt::decode(input, len, name),
-        Some(Format::Asc) => asc::decode(input, name),
+        Some(Format::Asc) => asc::decode(input, len, name),
         None => Err(LoadError::NotAnImage {
             name: name.into(),
             start: first_bytes(&start),

@@ -98,17 +98,58 @@ fn one_grid(a: &Georef, b: &Georef) -> Result<(), String> {
     Ok(())
 }
 
+/// The farthest a tile's origin may lie from the first tile's, in cells: a joined grid
+/// spanning more could never stay within the sample limit.
+const MOST_CELLS_APART: f64 = (1u64 << 32) as f64;
+
+/// A joined grid larger than this many samples is refused when the tiles cover less than
+/// [`LEAST_COVERED`] of it: its gaps would be stored as no data, sample by sample.
+const SPARSE_FLOOR: u64 = 1 << 24;
+
+/// The least fraction of a large joined grid its tiles must cover, as 1 / this.
+const LEAST_COVERED: u64 = 4;
+
+/// Where each tile's lower-left sample lies on the first tile's grid, in whole cells, or why
+/// a tile lies too far off for any joined grid to hold.
+fn tile_offsets(
+    tiles: &[(&Path, Heightfield, Georef)],
+    first: &Georef,
+) -> Result<Vec<[i64; 2]>, String> {
+    tiles
+        .iter()
+        .map(|(path, _, georef)| {
+            let mut cells = [0; 2];
+            for (axis, cell) in cells.iter_mut().enumerate() {
+                let offset =
+                    ((georef.origin[axis] - first.origin[axis]) / first.spacing[axis]).round();
+                if !offset.is_finite() || offset.abs() > MOST_CELLS_APART {
+                    return Err(format!(
+                        "{} lies {offset:e} cells from the first tile along {}, farther than \
+                         any joined map can span ({MAX_SAMPLES} samples at most); check its \
+                         corner coordinates",
+                        path.display(),
+                        ["x", "y"][axis]
+                    ));
+                }
+                // In range: |offset| is at most 2^32.
+                *cell = offset as i64;
+            }
+            Ok(cells)
+        })
+        .collect()
+}
+
 /// The tiles' values in one raster over their joint extent, NaN where no tile has data.
 fn join(tiles: &[(&Path, Heightfield, Georef)], first: Georef) -> Result<Raster, String> {
-    let offset = |georef: &Georef, axis: usize| {
-        ((georef.origin[axis] - first.origin[axis]) / first.spacing[axis]).round() as i64
-    };
+    let offsets = tile_offsets(tiles, &first)?;
     let (mut lo, mut hi) = ([i64::MAX; 2], [i64::MIN; 2]);
-    for (_, field, georef) in tiles {
+    let mut covered = 0u64;
+    for ((_, field, _), offset) in tiles.iter().zip(&offsets) {
         let size = [field.width() as i64, field.height() as i64];
+        covered += (field.width() * field.height()) as u64;
         for axis in 0..2 {
-            lo[axis] = lo[axis].min(offset(georef, axis));
-            hi[axis] = hi[axis].max(offset(georef, axis) + size[axis] - 1);
+            lo[axis] = lo[axis].min(offset[axis]);
+            hi[axis] = hi[axis].max(offset[axis] + size[axis] - 1);
         }
     }
     let (width, height) = ((hi[0] - lo[0] + 1) as u64, (hi[1] - lo[1] + 1) as u64);
@@ -120,13 +161,22 @@ fn join(tiles: &[(&Path, Heightfield, Georef)], first: Georef) -> Result<Raster,
             MAX_DECODED_BYTES >> 30
         ));
     }
+    if samples > SPARSE_FLOOR && samples > LEAST_COVERED.saturating_mul(covered) {
+        return Err(format!(
+            "together they span {width}x{height} samples, of which the tiles cover at most \
+             {covered} ({:.3}%): the gaps between them would be stored as no data; give tiles \
+             that adjoin",
+            100.0 * covered as f64 / samples as f64
+        ));
+    }
     let (width, height) = (width as usize, height as usize);
-    let mut values = vec![f64::NAN; width * height];
-    for (_, field, georef) in tiles {
-        let (di, dj) = (
-            (offset(georef, 0) - lo[0]) as usize,
-            (offset(georef, 1) - lo[1]) as usize,
-        );
+    let mut values = Vec::new();
+    values
+        .try_reserve_exact(width * height)
+        .map_err(|_| format!("there is not enough memory for their {width}x{height} samples"))?;
+    values.resize(width * height, f64::NAN);
+    for ((_, field, _), offset) in tiles.iter().zip(&offsets) {
+        let (di, dj) = ((offset[0] - lo[0]) as usize, (offset[1] - lo[1]) as usize);
         for j in 0..field.height() {
             // Image order: row 0 is the northern edge.
             let row = height - 1 - (dj + j);

@@ -1,13 +1,19 @@
-//! PNG through the `image` crate: grayscale (8/16-bit, alpha ignored) as it is, RGB(A) as
-//! luminance or a terrain-RGB encoding.
+//! PNG through the `png` crate: grayscale (8/16-bit, alpha ignored) as it is, RGB(A) as
+//! luminance or a terrain-RGB encoding. Ancillary chunks that inflate (iCCP, zTXt, iTXt) are
+//! skipped unread: a height map needs none of them, and one can inflate to gigabytes.
 
 use super::limits::{check_header, MAX_DECODED_BYTES};
 use super::raster::{Raster, TerrainRgb, Values};
 use super::{decode_error, ColourEncoding, LoadError};
 use crate::heightfield::georef::Georeferencing;
-use image::codecs::png::PngDecoder;
-use image::{DynamicImage, ImageDecoder, Limits};
+use png::{BitDepth, ColorType, Decoder, Transformations};
 use std::io::{BufRead, Seek};
+
+/// Decoded pixels, channel by channel.
+enum Pixels {
+    Eight(Vec<u8>),
+    Sixteen(Vec<u16>),
+}
 
 /// Decodes a PNG from the start of `input`; reading stops at the end of the image data.
 pub fn decode(
@@ -15,45 +21,70 @@ pub fn decode(
     name: &str,
     colour: ColourEncoding,
 ) -> Result<Raster, LoadError> {
-    let mut limits = Limits::no_limits();
-    limits.max_alloc = Some(MAX_DECODED_BYTES);
-    // Reads the header only: the size is checked before any pixel is decoded.
-    let decoder = PngDecoder::with_limits(input, limits).map_err(|e| decode_error(name, e))?;
-    let (width, height) = decoder.dimensions();
-    let bytes_per_pixel = decoder.color_type().bytes_per_pixel();
-    check_header(name, width.into(), height.into(), bytes_per_pixel.into())?;
-    let image = DynamicImage::from_decoder(decoder).map_err(|e| decode_error(name, e))?;
+    let limits = png::Limits {
+        bytes: usize::try_from(MAX_DECODED_BYTES).unwrap_or(usize::MAX),
+    };
+    let mut decoder = Decoder::new_with_limits(input, limits);
+    decoder.set_ignore_text_chunk(true);
+    decoder.set_ignore_iccp_chunk(true);
+    // Palettes to RGB, fewer than 8 bits to 8, transparency to alpha; 16 bits stay 16.
+    decoder.set_transformations(Transformations::EXPAND);
+    // Reads up to the image data: the size is checked before any pixel is decoded.
+    let mut reader = decoder.read_info().map_err(|e| decode_error(name, e))?;
+    let (width, height) = reader.info().size();
+    let (colour_type, depth) = reader.output_color_type();
+    let channels = colour_type.samples();
+    let bytes_per_sample = if depth == BitDepth::Sixteen { 2 } else { 1 };
+    check_header(
+        name,
+        width.into(),
+        height.into(),
+        (channels * bytes_per_sample) as u64,
+    )?;
+    let size = reader
+        .output_buffer_size()
+        .ok_or_else(|| decode_error(name, "the image does not fit in memory"))?;
+    let mut bytes = Vec::new();
+    bytes
+        .try_reserve_exact(size)
+        .map_err(|_| decode_error(name, format!("no memory for its {size} bytes of pixels")))?;
+    bytes.resize(size, 0);
+    let frame = reader
+        .next_frame(&mut bytes)
+        .map_err(|e| decode_error(name, e))?;
+    bytes.truncate(frame.buffer_size());
+    let pixels = match depth {
+        BitDepth::Sixteen => Pixels::Sixteen(
+            bytes
+                .chunks_exact(2)
+                .map(|pair| u16::from_be_bytes([pair[0], pair[1]]))
+                .collect(),
+        ),
+        _ => Pixels::Eight(bytes),
+    };
     let encoding = match colour {
         ColourEncoding::Luminance => None,
         ColourEncoding::Mapbox => Some(TerrainRgb::Mapbox),
         ColourEncoding::Terrarium => Some(TerrainRgb::Terrarium),
     };
-    let values = match (image, encoding) {
-        (DynamicImage::ImageLuma8(buf), _) => unsigned(buf.into_raw(), 1, u8::MAX),
-        (DynamicImage::ImageLumaA8(buf), _) => unsigned(buf.into_raw(), 2, u8::MAX),
-        (DynamicImage::ImageLuma16(buf), _) => Values::Unsigned {
-            samples: buf.into_raw(),
-            maxval: u16::MAX,
-        },
-        (DynamicImage::ImageLumaA16(buf), _) => unsigned(buf.into_raw(), 2, u16::MAX),
-        (DynamicImage::ImageRgb8(buf), None) => luminance(&buf.into_raw(), 3, u8::MAX),
-        (DynamicImage::ImageRgba8(buf), None) => luminance(&buf.into_raw(), 4, u8::MAX),
-        (DynamicImage::ImageRgb16(buf), None) => luminance(&buf.into_raw(), 3, u16::MAX),
-        (DynamicImage::ImageRgba16(buf), None) => luminance(&buf.into_raw(), 4, u16::MAX),
-        (DynamicImage::ImageRgb8(buf), Some(encoding)) => Values::TerrainRgb {
-            bytes: buf.into_raw(),
-            channels: 3,
+    let gray = matches!(
+        colour_type,
+        ColorType::Grayscale | ColorType::GrayscaleAlpha
+    );
+    let values = match (pixels, gray, encoding) {
+        (Pixels::Eight(p), true, _) => unsigned(p, channels, u8::MAX),
+        (Pixels::Sixteen(p), true, _) => unsigned(p, channels, u16::MAX),
+        (Pixels::Eight(p), false, None) => luminance(&p, channels, u8::MAX),
+        (Pixels::Sixteen(p), false, None) => luminance(&p, channels, u16::MAX),
+        (Pixels::Eight(bytes), false, Some(encoding)) => Values::TerrainRgb {
+            bytes,
+            channels,
             encoding,
         },
-        (DynamicImage::ImageRgba8(buf), Some(encoding)) => Values::TerrainRgb {
-            bytes: buf.into_raw(),
-            channels: 4,
-            encoding,
-        },
-        (other, _) => {
+        (Pixels::Sixteen(_), false, Some(_)) => {
             return Err(LoadError::Unsupported {
                 name: name.into(),
-                what: format!("a {:?} PNG read as {colour:?}", other.color()),
+                what: format!("a 16-bit {colour_type:?} PNG read as {colour:?}"),
             })
         }
     };

@@ -12,7 +12,7 @@ use tiff::tags::Tag;
 use tiff::ColorType;
 
 /// Decodes the first image of a TIFF from `input`, reading only what its directory points at.
-pub fn decode(input: impl Read + Seek, name: &str) -> Result<Raster, LoadError> {
+pub fn decode(input: impl Read + Seek, len: u64, name: &str) -> Result<Raster, LoadError> {
     let unsupported = |what: String| LoadError::Unsupported {
         name: name.into(),
         what,
@@ -25,6 +25,8 @@ pub fn decode(input: impl Read + Seek, name: &str) -> Result<Raster, LoadError> 
         other => return Err(unsupported(format!("a {other:?} TIFF"))),
     };
     check_header(name, width.into(), height.into(), u64::from(bits / 8))?;
+    let needed = u64::from(width) * u64::from(height) * u64::from(bits / 8);
+    check_chunks(&mut decoder, len, needed).map_err(|reason| decode_error(name, reason))?;
     let file_nodata = decoder
         .get_tag_ascii_string(Tag::GdalNodata)
         .ok()
@@ -63,4 +65,57 @@ pub fn decode(input: impl Read + Seek, name: &str) -> Result<Raster, LoadError> 
         file_nodata,
         georef,
     })
+}
+
+/// The most bytes a compressed byte decodes to in the codecs read (Deflate's limit is about
+/// 1032, LZW's about 1500): more claimed than this is a corrupt or forged header.
+const MOST_EXPANSION: u64 = 4096;
+
+/// Checks, before any buffer is made, that the image's strips or tiles lie within the file's
+/// `len` bytes and can hold the `needed` bytes of its samples.
+fn check_chunks<R: Read + Seek>(
+    decoder: &mut Decoder<R>,
+    len: u64,
+    needed: u64,
+) -> Result<(), String> {
+    let (offsets, counts, what) = match decoder.get_tag_u64_vec(Tag::TileOffsets) {
+        Ok(offsets) => (
+            offsets,
+            decoder.get_tag_u64_vec(Tag::TileByteCounts),
+            "tile",
+        ),
+        Err(_) => (
+            decoder
+                .get_tag_u64_vec(Tag::StripOffsets)
+                .map_err(|e| format!("it has no strip offsets ({e})"))?,
+            decoder.get_tag_u64_vec(Tag::StripByteCounts),
+            "strip",
+        ),
+    };
+    let counts = counts.map_err(|e| format!("it has no {what} byte counts ({e})"))?;
+    let mut total = 0u64;
+    for (index, (&offset, &count)) in offsets.iter().zip(&counts).enumerate() {
+        if offset.checked_add(count).is_none_or(|end| end > len) {
+            return Err(format!(
+                "{what} {index} lies past the end of the file ({count} bytes at offset \
+                 {offset}, the file is {len} bytes)"
+            ));
+        }
+        total = total.saturating_add(count);
+    }
+    let compressed = decoder
+        .get_tag_unsigned::<u16>(Tag::Compression)
+        .is_ok_and(|c| c != 1);
+    let most = if compressed {
+        total.saturating_mul(MOST_EXPANSION)
+    } else {
+        total
+    };
+    if most < needed {
+        return Err(format!(
+            "its {what}s hold {total} bytes, which cannot decode to the {needed} bytes its \
+             header claims"
+        ));
+    }
+    Ok(())
 }

@@ -137,6 +137,17 @@ impl<R: Read> BufRead for Watched<'_, '_, R> {
 
 impl<R: Seek> Seek for Watched<'_, '_, R> {
     fn seek(&mut self, to: SeekFrom) -> io::Result<u64> {
+        // Relative when it can be, so that a seek to bytes still in the buffer keeps it: a
+        // TIFF of millions of small strips seeks once a strip.
+        if let SeekFrom::Start(target) = to {
+            if let Ok(delta) = i64::try_from(i128::from(target) - i128::from(self.position)) {
+                self.inner
+                    .seek_relative(delta)
+                    .map_err(|error| self.watch.failed(error))?;
+                self.position = target;
+                return Ok(target);
+            }
+        }
         self.position = self
             .inner
             .seek(to)

@@ -1,6 +1,7 @@
 //! A scene file's `[camera]` section, and the camera of a scene without one: the whole map,
 //! framed as the viewer first shows it.
 
+use super::triple::{maybe_three, three};
 use super::SceneError;
 use crate::render::camera::Camera;
 use crate::render::framing;
@@ -16,13 +17,15 @@ pub const DEFAULT_SIZE: (u32, u32) = (1280, 720);
 #[serde(deny_unknown_fields)]
 pub struct CameraSection {
     /// Where the camera is (with `target`).
+    #[serde(default, deserialize_with = "maybe_three")]
     pub eye: Option<[f64; 3]>,
     /// What it looks at (with `eye`).
+    #[serde(default, deserialize_with = "maybe_three")]
     pub target: Option<[f64; 3]>,
     /// An orbit around a target instead of `eye` and `target`.
     pub orbit: Option<Orbit>,
     /// The direction that is up in the image (default +z).
-    #[serde(default = "default_up")]
+    #[serde(default = "default_up", deserialize_with = "three")]
     pub up: [f64; 3],
     /// Vertical field of view in degrees (default 45).
     #[serde(default = "default_fov")]
@@ -38,6 +41,7 @@ pub struct CameraSection {
 #[serde(deny_unknown_fields)]
 pub struct Orbit {
     /// The point looked at.
+    #[serde(deserialize_with = "three")]
     pub target: [f64; 3],
     /// Degrees from +x towards +y.
     pub yaw_deg: f64,

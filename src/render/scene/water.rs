@@ -58,7 +58,10 @@ pub fn level_in_map_units(field: &Heightfield, z: f64) -> f64 {
 
 /// `#RRGGBB` as display bytes.
 pub fn bytes_from_hex(text: &str) -> Option<[u8; 3]> {
-    let hex = text.strip_prefix('#').filter(|h| h.len() == 6)?;
+    // Six hex digits and nothing else: `from_str_radix` alone would take a sign ("#+fffff").
+    let hex = text
+        .strip_prefix('#')
+        .filter(|h| h.len() == 6 && h.bytes().all(|b| b.is_ascii_hexdigit()))?;
     let value = u32::from_str_radix(hex, 16).ok()?;
     Some([16, 8, 0].map(|shift| (value >> shift) as u8))
 }
@@ -87,7 +90,9 @@ mod tests {
         assert_eq!(parse_colour("#ff0000"), Some([1.0, 0.0, 0.0]));
         let grey = parse_colour("#808080").unwrap();
         assert!((grey[0] - (128.0f64 / 255.0).powf(2.2)).abs() < 1e-15);
-        for bad in ["ff0000", "#ff00", "#gg0000", "#ff00001"] {
+        for bad in [
+            "ff0000", "#ff00", "#gg0000", "#ff00001", "#+fffff", "#-00000", "# fffff",
+        ] {
             assert_eq!(parse_colour(bad), None, "{bad}");
         }
         for byte in 0..=255 {

@@ -1,0 +1,92 @@
+//! Numbers a user types that size work: each is range-checked when parsed, so that a digit
+//! too many is refused at once instead of running for hours or asking for gigabytes.
+
+use std::ops::RangeInclusive;
+
+/// The most worker threads asked for on the command line.
+pub const MOST_THREADS: usize = 1024;
+
+/// Threads beyond this many per core only add switching, never speed.
+const THREADS_PER_CORE: usize = 4;
+
+/// `s` as a whole number in `range`, or a message naming the range.
+fn in_range(s: &str, range: RangeInclusive<usize>, what: &str) -> Result<usize, String> {
+    s.trim()
+        .parse::<usize>()
+        .ok()
+        .filter(|n| range.contains(n))
+        .ok_or_else(|| {
+            format!(
+                "expected {what} from {} to {}, got '{s}'",
+                range.start(),
+                range.end()
+            )
+        })
+}
+
+/// A thread count, 1 to [`MOST_THREADS`].
+pub fn threads(s: &str) -> Result<usize, String> {
+    in_range(s, 1..=MOST_THREADS, "a number of threads")
+}
+
+/// Rays per hard-case set: each is answered exactly too, which takes milliseconds.
+pub fn per_set(s: &str) -> Result<usize, String> {
+    in_range(s, 1..=1 << 16, "a number of rays per set")
+}
+
+/// Samples per side of a generated landscape.
+pub fn landscape_size(s: &str) -> Result<usize, String> {
+    in_range(s, 2..=16385, "samples per side")
+}
+
+/// An image's width and height in a benchmark.
+pub fn bench_image_size(s: &str) -> Result<u32, String> {
+    in_range(s, 1..=4096, "an image width and height").map(|n| n as u32)
+}
+
+/// Rounds of a comparison.
+pub fn rounds(s: &str) -> Result<usize, String> {
+    in_range(s, 1..=1000, "a number of rounds")
+}
+
+/// `requested` threads, or at most [`THREADS_PER_CORE`] per core with a note on stderr.
+pub fn capped_threads(requested: usize) -> usize {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let most = THREADS_PER_CORE * cores;
+    if requested > most {
+        eprintln!(
+            "note: {requested} threads asked for on {cores} cores; using {most} \
+             ({THREADS_PER_CORE} a core): more only add switching"
+        );
+        most
+    } else {
+        requested
+    }
+}
+
+/// A pool of `threads` workers (default: one a core), capped by [`capped_threads`].
+pub fn worker_pool(threads: Option<usize>) -> anyhow::Result<rayon::ThreadPool> {
+    use anyhow::Context;
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(threads) = threads {
+        pool = pool.num_threads(capped_threads(threads));
+    }
+    pool.build().context("cannot start worker threads")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_outside_their_range_are_refused_with_the_range() {
+        assert_eq!(threads("4"), Ok(4));
+        let error = threads("10000").unwrap_err();
+        assert!(error.contains("1 to 1024"), "{error}");
+        assert!(threads("0").is_err());
+        assert!(per_set("100000000").unwrap_err().contains("65536"));
+        assert!(landscape_size("0").unwrap_err().contains("2 to 16385"));
+        assert_eq!(bench_image_size("512"), Ok(512));
+        assert!(capped_threads(1) == 1);
+    }
+}
