@@ -73,6 +73,9 @@ impl Scalar for Exact {
     fn to_exact(&self) -> Option<BigRational> {
         Some(self.0.clone())
     }
+    fn from_exact(q: &BigRational) -> Option<Self> {
+        Some(Exact(q.clone()))
+    }
     fn f64_enclosure(&self) -> Option<(f64, f64)> {
         let x = self.to_f64();
         if !x.is_finite() {

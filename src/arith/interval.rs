@@ -11,7 +11,9 @@
 //! exact answer (and counters) at interval speed.
 
 use super::rounding::{above, below, product, product_end, quotient, quotient_end, sum};
-use super::scalar::Scalar;
+use super::scalar::{exact_from_f64, Scalar};
+use num_rational::BigRational;
+use num_traits::ToPrimitive;
 use std::cell::Cell;
 use std::cmp::Ordering;
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -253,6 +255,24 @@ impl Scalar for Interval {
     fn from_enclosure(lo: f64, hi: f64) -> Option<Self> {
         Interval::between(lo, hi)
     }
+    fn from_exact(q: &BigRational) -> Option<Self> {
+        let x = q.to_f64()?;
+        let below_q = |x: f64| exact_from_f64(x) <= *q;
+        // The nearest `f64`, then the floats on either side of `q` (the conversion is within
+        // a unit of it; stepping is bounded all the same).
+        let (mut lo, mut hi) = (x, x);
+        for _ in 0..4 {
+            if !below_q(lo) {
+                lo = lo.next_down();
+            }
+            if exact_from_f64(hi) < *q {
+                hi = hi.next_up();
+            }
+        }
+        (below_q(lo) && exact_from_f64(hi) >= *q)
+            .then(|| Interval::between(lo, hi))
+            .flatten()
+    }
     fn along(o: f64, d: f64, t: &Interval) -> Interval {
         if d == 0.0 {
             return Interval::point(o);
@@ -285,8 +305,6 @@ impl Scalar for Interval {
 mod tests {
     use super::*;
     use crate::arith::rounding::TINY;
-    use crate::arith::scalar::exact_from_f64;
-    use num_rational::BigRational;
     use proptest::prelude::*;
     use proptest::test_runner::RngSeed;
 

@@ -102,6 +102,12 @@ pub trait Scalar:
         None
     }
 
+    /// The fraction `q` in the arithmetics without rounding: itself in rationals, enclosed
+    /// in intervals (`None` where an end leaves the `f64` range); `None` in the others.
+    fn from_exact(_q: &BigRational) -> Option<Self> {
+        None
+    }
+
     /// The smaller of two values (the first on ties). Enclosing arithmetics need not decide
     /// which it is.
     fn lesser(self, other: Self) -> Self {

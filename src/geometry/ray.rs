@@ -63,9 +63,14 @@ impl Ray {
     /// unit length is rescaled (`k` is 0 otherwise), one whose hit parameter or products
     /// would leave an arithmetic's range (a direction of 1e-310 puts the terrain at `t` near
     /// 1e312, past `f64`'s largest; one of 1e100 is infinite in `f32`).
+    ///
+    /// Scaled down, no component may lose bits below the subnormals (the line would move):
+    /// a direction spanning more than `f64`'s normal range is scaled only as far as its
+    /// lowest bit allows.
     pub fn at_unit_scale(&self) -> (Ray, i32) {
         let largest = self.dir.iter().fold(0.0f64, |m, c| m.max(c.abs()));
-        let k = exponent(largest);
+        let nonzero = self.dir.iter().filter(|c| **c != 0.0);
+        let k = nonzero.fold(exponent(largest), |k, &c| k.min(lowest_bit(c) + 1074));
         if k.abs() <= UNSCALED_EXPONENT {
             return (*self, 0);
         }
@@ -87,6 +92,20 @@ fn exponent(x: f64) -> i32 {
     } else {
         biased - 1023
     }
+}
+
+/// The exponent of the lowest set bit of a finite nonzero `x`: `x` is an odd integer times 2
+/// to its power.
+fn lowest_bit(x: f64) -> i32 {
+    let bits = x.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i32;
+    let fraction = bits & ((1u64 << 52) - 1);
+    let (mantissa, e) = if biased == 0 {
+        (fraction, -1074)
+    } else {
+        (fraction | (1u64 << 52), biased - 1075)
+    };
+    e + mantissa.trailing_zeros() as i32
 }
 
 /// `x * 2^k`, in two steps so that neither factor overflows (`k` may reach about ±1100 for a
@@ -138,6 +157,16 @@ mod tests {
         assert_eq!(
             ray.dir().map(|c| times_power_of_two(c, k)),
             [1e-320, 0.0, -3e-320]
+        );
+        // A direction spanning more than the normal range is scaled only as far as its lowest
+        // bit allows: 1.25 and 0.75 + 2^-52 stay exact.
+        let wide = [1.25, -0.7500000000000002, -1e308];
+        let (ray, k) = scaled(wide);
+        assert_eq!(k, 1022);
+        assert_eq!(ray.dir().map(|c| times_power_of_two(c, k)), wide);
+        assert_eq!(
+            (lowest_bit(1.25), lowest_bit(-0.75), lowest_bit(5e-324)),
+            (-2, -2, -1074)
         );
         let (ray, k) = scaled([1e300, -7e299, 1.0]);
         assert_eq!(ray.dir()[0].abs().log2().floor(), 0.0);

@@ -47,6 +47,11 @@ impl Approximation {
     }
 }
 
+/// The farthest the exact path may be from an `f64` walk's, per axis, for the walk's bounds
+/// to hold: a walk that tests a cell's neighbours for the exact path needs it within the
+/// neighbours, less than a cell away.
+pub(super) const MAX_POS: f64 = 0.25;
+
 /// How far the exact ray may be from the points an `f64` walk along its [`Approximation`]
 /// computes, worked out once per ray.
 ///
@@ -73,8 +78,10 @@ pub(super) struct Bounds {
 }
 
 impl Bounds {
-    /// The bounds for a ray whose path crosses blocks (neither frame component is zero).
-    pub fn new(ray: &Approximation, terrain: &Terrain) -> Self {
+    /// The bounds for a ray whose path crosses blocks (neither frame component is zero);
+    /// `None` where they do not hold: the exact path may be more than [`MAX_POS`] from the
+    /// walk's (an origin so far off, or known so roughly, that its rounding spans cells).
+    pub fn new(ray: &Approximation, terrain: &Terrain) -> Option<Self> {
         let (f, oz, dz, radius) = (&ray.frame, ray.oz, ray.dz, ray.radius);
         let eps = f64::EPSILON;
         let t_max = f.t1.abs().max(f.t0.abs());
@@ -99,7 +106,11 @@ impl Bounds {
         let (z_lo, z_hi) = terrain.z_range();
         let operands =
             4.0 * eps * ((oz.abs() + dz.abs() * t_max) * 1.01 + z_lo.abs().max(z_hi.abs()));
-        Bounds {
+        // (Written so that NaN does not hold.)
+        if !(pos <= MAX_POS) {
+            return None;
+        }
+        Some(Bounds {
             oz,
             dz,
             room: (z_err + rise + operands) * (1.0 + 1e-6),
@@ -107,7 +118,7 @@ impl Bounds {
             dt,
             off_faces: 4.0 * (off + 4.0 * eps * coords) / f.du.abs().min(f.dv.abs()),
             under: false,
-        }
+        })
     }
 
     /// Whether the exact ray may touch block `(bi, bj)` of level `k` (a cell at level 0) on

@@ -29,7 +29,11 @@ pub fn walk<S: Scalar>(f: &Frame<S>, follower: &mut impl Follower<S>) -> Control
     if f.dv.is_zero() {
         return walk_level(f, false, follower);
     }
-    let (mut cu, mut cv) = (f.us.floor_i64(), f.vs.floor_i64());
+    // (No lower than the grid's first column and row, as in the run walk.)
+    let (mut cu, mut cv) = (
+        f.us.floor_i64().max(f.cols.0),
+        f.vs.floor_i64().max(f.rows.0),
+    );
     let t0 = f.t0.clone();
 
     // Cells touched only at the start point: the row below, and the cell behind.

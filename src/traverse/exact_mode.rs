@@ -143,7 +143,7 @@ pub(super) fn trace_certified<S: Scalar, C: CellLog, W: Walk>(
     let near_ray = Approximation::along(frame, near, start);
     let mut search = new_search::<S, C, W>(terrain, o, d, dir, Some(near), options, counters);
     // Ends by itself or at the answer; both are fine here.
-    let _ = certified::certify::<S, C, W>(&near_ray, &mut search);
+    let _ = certified::certify::<S, C, W>(&near_ray, &mut search)?;
     if search.tied && options.query == Query::FirstHit {
         return None;
     }

@@ -21,6 +21,7 @@ mod dda;
 mod degenerate;
 mod exact_mode;
 mod exact_start;
+mod far;
 mod frame;
 mod mipmap;
 mod options;
@@ -50,6 +51,7 @@ use crate::geometry::{plane_crossing, times_power_of_two, CertainMiss, Ray};
 use crate::heightfield::Terrain;
 use approximation::Approximation;
 use cell_log::{CellLog, Recorded, Unrecorded};
+use far::{far_start, FarStart};
 use frame::{clip, clip_grown, Frame};
 use num_rational::BigRational;
 pub use search::Found;
@@ -227,7 +229,12 @@ impl Generic for Cover<'_> {
     type Output = Vec<[usize; 2]>;
     fn run<S: Scalar>(&self) -> Self::Output {
         let ray = self.ray;
-        let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
+        let (mut o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
+        match far_start(self.terrain, &o, &d) {
+            FarStart::Given => {}
+            FarStart::Misses => return Vec::new(),
+            FarStart::Moved { origin, .. } => o = origin,
+        }
         let Some(frame) = clip(self.terrain, &o, &d, ray.dir()) else {
             return Vec::new();
         };
@@ -294,6 +301,67 @@ impl<S> ScalarTrace<S> {
 /// picks the octant and axes identically in every arithmetic. For [`Rational`] the caller
 /// sets the bound (see [`run`](crate::arith::run)).
 fn trace_scalar<S: Scalar>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+) -> ScalarTrace<S> {
+    // (A shadow ray from a hit given exactly starts on the surface, never far off.)
+    if walk_options.exact_start.is_none() {
+        match far_start(terrain, o, d) {
+            FarStart::Given => {}
+            FarStart::Misses => {
+                let mut counters = Counters::default();
+                counters.bbox.record(false);
+                return ScalarTrace::missed(counters);
+            }
+            // A reach is a `t` of the ray as given, in `f64`, which a start moved by a
+            // fraction keeps only approximately: rationals walk such a ray as given.
+            FarStart::Moved { .. } if walk_options.reach.is_some() => {
+                if S::ENCLOSES {
+                    unsettled();
+                    return ScalarTrace::missed(Counters::default());
+                }
+            }
+            FarStart::Moved { origin, t } => {
+                return trace_moved(terrain, (&origin, t), d, dir_f64, walk_options);
+            }
+        }
+    }
+    trace_near(terrain, o, d, dir_f64, walk_options)
+}
+
+/// [`trace_scalar`] for a ray from far off, walked from `origin`, its point at `t` (see
+/// [`far_start`]): its hit's `t` is the walk's plus `t`.
+// (Out of line: far rays are rare.)
+#[inline(never)]
+fn trace_moved<S: Scalar>(
+    terrain: &Terrain,
+    (origin, t): (&[S; 3], BigRational),
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+) -> ScalarTrace<S> {
+    // (A beam's clearance is a `t` of the ray as given, in `f64`, as a reach is: the walk
+    // makes its own way.)
+    let walk_options = WalkOptions {
+        beam: None,
+        ..walk_options
+    };
+    let mut answer = trace_near(terrain, origin, d, dir_f64, walk_options);
+    if let Some(hit) = answer.hit.as_mut() {
+        match S::from_exact(&t) {
+            Some(t) => hit.t = t + hit.t.clone(),
+            None => unsettled(),
+        }
+    }
+    answer
+}
+
+/// [`trace_scalar`] from the ray's own origin.
+#[inline(always)]
+fn trace_near<S: Scalar>(
     terrain: &Terrain,
     o: &[S; 3],
     d: &[S; 3],

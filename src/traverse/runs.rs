@@ -29,8 +29,11 @@ pub fn walk<S: Scalar>(f: &Frame<S>, follower: &mut impl Follower<S>) -> Control
         return walk_level(f, true, follower);
     }
     let (end_col, end_row) = (f.ue.floor_i64(), f.ve.floor_i64());
-    let mut row = f.vs.floor_i64();
-    let mut col = f.us.floor_i64();
+    // The clipped path starts inside the grid, so exactly these are no lower than its first
+    // row and column; an enclosure too wide to tell (already unsettled) may floor far below,
+    // and a walk from there would count rows for ever.
+    let mut row = f.vs.floor_i64().max(f.rows.0);
+    let mut col = f.us.floor_i64().max(f.cols.0);
     let one = S::one();
 
     // The row below is touched only at the start, when the path starts on its top edge.

@@ -181,3 +181,32 @@ pub fn field_and_ray_up_to(n: usize) -> impl Strategy<Value = (Heightfield, Ray)
         (Just(field), ray)
     })
 }
+
+/// Rays from far off aimed at the map: an origin 1e13 to 1e308 away along one axis (the
+/// others a few cells off the target) or off any diagonal, in every octant, the direction
+/// `target - origin` (rounded: from far off a diagonal it passes the target at a distance),
+/// sometimes scaled down to subnormals.
+pub fn far_ray_on(field: &Heightfield) -> BoxedStrategy<Ray> {
+    let (w, h) = (field.width(), field.height());
+    let target = (coordinate(w), coordinate(h), height(field));
+    let distance = (13i32..=307, 1.0f64..9.99).prop_map(|(e, m)| m * 10f64.powi(e));
+    let side = (-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0, 0usize..4);
+    let scale = prop_oneof![Just(0i32), Just(-1000), -1075i32..-1000];
+    (target, distance, side, scale)
+        .prop_filter_map("zero direction", |((x, y, z), s, (a, b, c, axis), k)| {
+            let target = [x, y, z];
+            let o = if axis < 3 {
+                let mut o = target;
+                o[axis] += s * a.signum();
+                o[(axis + 1) % 3] += 4.0 * b;
+                o[(axis + 2) % 3] += 4.0 * c;
+                o
+            } else {
+                [0, 1, 2].map(|i| target[i] + s * [a, b, c][i])
+            };
+            let half = k / 2;
+            let d = [0, 1, 2].map(|i| (target[i] - o[i]) * 2f64.powi(half) * 2f64.powi(k - half));
+            Ray::new(o, d).ok()
+        })
+        .boxed()
+}

@@ -17,6 +17,7 @@ mod drapes;
 mod exact_paths;
 mod exact_reference;
 mod far_bounds;
+mod far_rays;
 mod float_modes;
 mod formats;
 mod georeferencing;

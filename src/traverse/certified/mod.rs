@@ -37,19 +37,20 @@ use std::ops::ControlFlow;
 
 /// Searches the exact ray near `ray` for its answer, walking `W` only in `f64`; breaks when
 /// the answer is known. The path must cross blocks ([`super::mipmap::has_blocks`]: a path
-/// along a row or a point is left to the exact walk).
+/// along a row or a point is left to the exact walk). `None`, before any walk, where the
+/// bounds do not hold (see [`Bounds::new`]).
 pub fn certify<S: Scalar, C: CellLog, W: Walk>(
     ray: &Approximation,
     search: &mut Search<'_, S, C>,
-) -> ControlFlow<()> {
+) -> Option<ControlFlow<()>> {
     let mut certifying = Certifying {
-        bounds: Bounds::new(ray, search.terrain),
+        bounds: Bounds::new(ray, search.terrain)?,
         search,
         found_before: f64::INFINITY,
         recent: [(i64::MIN, i64::MIN); RECENT],
         oldest: 0,
     };
-    W::certify(ray, &mut certifying)
+    Some(W::certify(ray, &mut certifying))
 }
 
 impl<S: Scalar, C: CellLog> Certifying<'_, '_, S, C> {

@@ -46,16 +46,18 @@ pub fn clear_way(
     search: &mut impl FnMut(Stretch) -> ControlFlow<()>,
 ) -> ControlFlow<()> {
     let f = &ray.frame;
-    if !has_blocks(f) {
+    // (Without blocks, or bounds that hold, the exact walk follows the whole path.)
+    let bounds = has_blocks(f).then(|| Bounds::new(ray, terrain)).flatten();
+    let Some(bounds) = bounds else {
         return search(Stretch {
             from: f64::NEG_INFINITY,
             to: f64::INFINITY,
             margin: 0.0,
         });
-    }
+    };
     let mut clearing = Clearing {
         terrain,
-        bounds: Bounds::new(ray, terrain),
+        bounds,
         counters,
         first_only: query == Query::FirstHit,
         stretch: None,

@@ -3,8 +3,10 @@
 //! disagree on the same rays.
 
 mod degenerate;
+mod far;
 
 pub use degenerate::*;
+pub use far::*;
 use heightray::{Heightfield, Ray, Terrain};
 
 /// Rays on one terrain.
