@@ -54,15 +54,20 @@ impl EffectRow {
     }
 }
 
-/// Renders `scene` with `effects` (the scene's shadows, fog and shading), timed.
-pub fn frame_with(scene: &Scene, terrain: &Terrain, effects: Effects, label: &str) -> EffectRow {
+/// The renderer of `scene` with `effects` (the scene's shadows, fog and shading).
+pub fn renderer_with<'a>(scene: &Scene, terrain: &'a Terrain, effects: Effects) -> Renderer<'a> {
     let mut lighting = scene.lighting;
     lighting.effects = effects;
-    let renderer = Renderer {
+    Renderer {
         shader: Shader::new(terrain, lighting, Method::Mipmap, Culling::default()),
         camera: scene.camera,
         arith: scene.arith,
-    };
+    }
+}
+
+/// Renders `scene` with `effects` (the scene's shadows, fog and shading), timed.
+pub fn frame_with(scene: &Scene, terrain: &Terrain, effects: Effects, label: &str) -> EffectRow {
+    let renderer = renderer_with(scene, terrain, effects);
     let (w, h) = scene.camera.size();
     let mut frame = Frame::new(w, h);
     let start = Instant::now();

@@ -9,7 +9,7 @@ mod speed;
 mod textbook;
 
 pub use accuracy::{accuracy, pixel_differences, AccuracyRow, Disagreement};
-pub use effects::{block_average, configurations, frame_with, rms_error, EffectRow};
+pub use effects::{block_average, configurations, frame_with, renderer_with, rms_error, EffectRow};
 pub use ray_sets::{hard_cases, scene_sets, RaySet};
 pub use sizes::{sized_scene, SizedSceneError, SEED};
 pub use speed::{render_as, throughput, view, Reference, ThroughputRow, Tracer, ROUNDS};

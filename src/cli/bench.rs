@@ -162,7 +162,8 @@ pub fn textbook(args: &TextbookArgs) -> anyhow::Result<ExitCode> {
 }
 
 /// Why `--embree` cannot be measured by this build.
-const WITHOUT_EMBREE: &str = "this heightray was built without Embree: install libembree-dev \
+pub(super) const WITHOUT_EMBREE: &str =
+    "this heightray was built without Embree: install libembree-dev \
      (Debian, Ubuntu) and run it with `cargo run --release --features embree -- ...`";
 
 /// The hard cases in `f32`: heightray's mipmap walk and Embree against exact.

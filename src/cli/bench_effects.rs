@@ -24,6 +24,10 @@ pub fn run(args: &EffectsArgs) -> anyhow::Result<ExitCode> {
         args.sun_angle_deg > 0.0 && args.sun_angle_deg <= 20.0,
         "--sun-angle-deg must be above 0 and at most 20"
     );
+    anyhow::ensure!(
+        !args.embree || cfg!(feature = "embree"),
+        super::bench::WITHOUT_EMBREE
+    );
     let pool = super::knobs::worker_pool(args.threads)?;
     let out = &mut std::io::stdout().lock();
     let mut report = Vec::new();
@@ -45,8 +49,9 @@ pub fn run(args: &EffectsArgs) -> anyhow::Result<ExitCode> {
             if scene.lighting.shadows { "on" } else { "off" }
         )?;
         print_costs(out, &rows)?;
+        let embree = versus_embree(out, &pool, &scene, &terrain, &rows, args.embree)?;
         let samples = convergence(out, &pool, &source, &rows, args)?;
-        report.push(json!({"scene": name, "frames": rows.iter().map(row_json).collect::<Vec<_>>(), "samples": samples}));
+        report.push(json!({"scene": name, "frames": rows.iter().map(row_json).collect::<Vec<_>>(), "samples": samples, "embree": embree}));
     }
     if let Some(path) = &args.out {
         let text = serde_json::to_string_pretty(&json!({
@@ -109,6 +114,71 @@ fn print_costs(out: &mut impl Write, rows: &[EffectRow]) -> anyhow::Result<()> {
         )?;
     }
     Ok(())
+}
+
+/// The one-sample frames without water against Embree casting all their rays, where asked:
+/// a table, and its rows as JSON.
+#[cfg(feature = "embree")]
+fn versus_embree(
+    out: &mut impl Write,
+    pool: &rayon::ThreadPool,
+    scene: &heightray::render::Scene,
+    terrain: &Terrain,
+    rows: &[EffectRow],
+    asked: bool,
+) -> anyhow::Result<serde_json::Value> {
+    use heightray::bench::embree::{EmbreeScene, Geometry};
+    use heightray::bench::renderer_with;
+    use heightray::render::Frame;
+    if !asked {
+        return Ok(serde_json::Value::Null);
+    }
+    let embree = EmbreeScene::build(terrain, Geometry::Triangles)?;
+    writeln!(out, "\nagainst Embree {} (its triangles, single rays) casting every ray of the same effects from its own hits, none culled:\n", embree.version())?;
+    writeln!(out, "| frame | heightray ms | embree ms | embree occlusion rays/px | heightray occlusion rays/px | x embree (its time / heightray's) |")?;
+    writeln!(out, "|---|---:|---:|---:|---:|---:|")?;
+    let mut json_rows = Vec::new();
+    for row in rows
+        .iter()
+        .filter(|r| r.effects.samples == 1 && r.effects.water.is_none())
+    {
+        let renderer = renderer_with(scene, terrain, row.effects);
+        let (w, h) = scene.camera.size();
+        let mut frame = Frame::new(w, h);
+        let start = std::time::Instant::now();
+        let cast = pool.install(|| embree.render_effects(&renderer, &mut frame));
+        let time = start.elapsed().as_secs_f64();
+        let t = &row.totals;
+        let ours = t.shadow_rays + t.effects.soft.rays + t.effects.soft.probes + t.effects.sky.rays;
+        let px = row.pixel_count();
+        let ms = row.time.as_secs_f64();
+        writeln!(
+            out,
+            "| {} | {:.0} | {:.0} | {:.2} | {:.2} | {:.2} |",
+            row.label,
+            ms * 1e3,
+            time * 1e3,
+            cast as f64 / px,
+            ours as f64 / px,
+            time / ms
+        )?;
+        json_rows.push(json!({"frame": row.label, "heightray_ms": ms * 1e3, "embree_ms": time * 1e3, "embree_rays": cast, "heightray_rays": ours}));
+    }
+    Ok(json!(json_rows))
+}
+
+#[cfg(not(feature = "embree"))]
+fn versus_embree(
+    _out: &mut impl Write,
+    _pool: &rayon::ThreadPool,
+    _scene: &heightray::render::Scene,
+    _terrain: &Terrain,
+    _rows: &[EffectRow],
+    asked: bool,
+) -> anyhow::Result<serde_json::Value> {
+    // (`run` refused `--embree` in a build without Embree.)
+    let _ = asked;
+    Ok(serde_json::Value::Null)
 }
 
 fn row_json(row: &EffectRow) -> serde_json::Value {

@@ -124,6 +124,11 @@ pub struct EffectsArgs {
     /// The sun's angular diameter of the soft-shadow frames, in degrees.
     #[arg(long, default_value_t = 0.53)]
     pub sun_angle_deg: f64,
+    /// Also cast every ray of the one-sample frames (the sun's shadow ray, soft-shadow and
+    /// sky rays) with Embree 3 from its own hits, none culled, and set the frames side by side
+    /// (needs a build with `--features embree`).
+    #[arg(long)]
+    pub embree: bool,
     /// Worker threads (default: all cores; at most 4 a core are used).
     #[arg(long, value_parser = knobs::threads)]
     pub threads: Option<usize>,

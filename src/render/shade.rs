@@ -413,7 +413,7 @@ impl Shader<'_> {
     /// The shading normal at `p` on triangle `triangle` of cell `(i, j)`, in world
     /// coordinates (where cells may be non-square).
     #[inline(always)]
-    pub(super) fn normal(&self, cell: (usize, usize), triangle: u8, p: DVec3) -> DVec3 {
+    pub(crate) fn normal(&self, cell: (usize, usize), triangle: u8, p: DVec3) -> DVec3 {
         let normal = match self.lighting.normals {
             Normals::Flat => self.geometric_normal(cell, triangle).normalize_or(DVec3::Z),
             Normals::Smooth => normals::smooth_normal(self.terrain, cell, triangle, p),
@@ -426,13 +426,13 @@ impl Shader<'_> {
     }
 
     /// The direction towards the sun in grid coordinates, where shadow rays are traced.
-    pub(super) fn grid_sun(&self) -> [f64; 3] {
+    pub(crate) fn grid_sun(&self) -> [f64; 3] {
         self.grid_dir(DVec3::from(self.lighting.sun)).into()
     }
 
     /// A unit direction in the world as a unit direction in grid coordinates, where rays are
     /// traced (the same vector where cells are square).
-    pub(super) fn grid_dir(&self, dir: DVec3) -> DVec3 {
+    pub(crate) fn grid_dir(&self, dir: DVec3) -> DVec3 {
         match self.terrain.world_from_grid() {
             Some(scale) => (dir / DVec3::from(scale)).normalize_or(dir),
             None => dir,

@@ -343,10 +343,10 @@ fn trace_moved<S: Scalar>(
     dir_f64: [f64; 3],
     walk_options: WalkOptions,
 ) -> ScalarTrace<S> {
-    // (A beam's clearance is a `t` of the ray as given, in `f64`, as a reach is: the walk
-    // makes its own way.)
+    // (A clearance is a `t` of the ray as given, in `f64`, as a reach is: the walk makes its
+    // own way.)
     let walk_options = WalkOptions {
-        beam: None,
+        clearance: None,
         ..walk_options
     };
     let mut answer = trace_near(terrain, origin, d, dir_f64, walk_options);

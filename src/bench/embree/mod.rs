@@ -12,6 +12,7 @@
 //! (`rtcIntersect1`, `rtcOccluded1`: [`single`]) or in packets of 8 or 16 ([`packets`]). So
 //! the images can be compared pixel by pixel, and the times differ only in the tracing.
 
+mod effects;
 mod ffi;
 mod hard_cases;
 mod packets;

@@ -7,7 +7,7 @@
 mod accumulate;
 mod horizon;
 pub mod pixel;
-mod sampling;
+pub(crate) mod sampling;
 mod sky;
 mod soft_shadow;
 mod stats;
