@@ -25,6 +25,12 @@ impl Viewer {
         let state = dir.path().join("state.json");
         let log = dir.path().join("viewer.log");
         let log_file = std::fs::File::create(&log).expect("a log file");
+        // The viewer refuses an export folder that does not exist: made first, as a user would.
+        if let Some(k) = extra.iter().position(|&a| a == "--export-dir") {
+            if let Some(folder) = extra.get(k + 1) {
+                std::fs::create_dir_all(dir.path().join(folder)).expect("the export folder");
+            }
+        }
         let child = Command::new(env!("CARGO_BIN_EXE_heightray"))
             .arg("view")
             .arg("--report-state")
