@@ -106,8 +106,8 @@ impl Bounds {
         let (z_lo, z_hi) = terrain.z_range();
         let operands =
             4.0 * eps * ((oz.abs() + dz.abs() * t_max) * 1.01 + z_lo.abs().max(z_hi.abs()));
-        // (Written so that NaN does not hold.)
-        if !(pos <= MAX_POS) {
+        // (NaN does not hold either.)
+        if pos.partial_cmp(&MAX_POS).is_none_or(|o| o.is_gt()) {
             return None;
         }
         Some(Bounds {
