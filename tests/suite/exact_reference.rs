@@ -209,7 +209,7 @@ fn hand_worked_counters_on_4x3_field() {
 // ---------------------------------------------------------------------------------------
 // Random rays on random small fields (strategies in tests/common/random.rs).
 
-fn config(cases: u32, seed: u64) -> ProptestConfig {
+pub(crate) fn config(cases: u32, seed: u64) -> ProptestConfig {
     ProptestConfig {
         cases,
         rng_seed: RngSeed::Fixed(seed),
@@ -220,7 +220,7 @@ fn config(cases: u32, seed: u64) -> ProptestConfig {
 }
 
 /// Fails with the field and the ray when the crate disagrees with the reference.
-fn check_random(field: &Heightfield, ray: &Ray) -> Result<(), TestCaseError> {
+pub(crate) fn check_random(field: &Heightfield, ray: &Ray) -> Result<(), TestCaseError> {
     let problems = check_exact(&Terrain::new(field.clone()), ray);
     prop_assert!(
         problems.is_empty(),

@@ -5,10 +5,10 @@
 use crate::common::families::{far_off, hilly, integer_hills, ray};
 use crate::common::random::{far_ray_on, field_up_to};
 use crate::common::{assert_family, check_exact, describe};
+use crate::exact_reference::{check_random, config};
 use heightray::heightfield::Builtin;
-use heightray::{Heightfield, Ray, Terrain};
+use heightray::Terrain;
 use proptest::prelude::*;
-use proptest::test_runner::RngSeed;
 
 #[test]
 fn far_off_rays_on_integer_hills_match_the_reference() {
@@ -47,33 +47,6 @@ fn the_far_diagonal_onto_small49_hits_cell_5_5_with_every_method() {
     }
 }
 
-fn config(cases: u32, seed: u64) -> ProptestConfig {
-    ProptestConfig {
-        cases,
-        rng_seed: RngSeed::Fixed(seed),
-        failure_persistence: None,
-        max_shrink_iters: 2048,
-        ..ProptestConfig::default()
-    }
-}
-
-/// Fails with the field and the ray when the crate disagrees with the reference.
-fn check_far(field: &Heightfield, ray: &Ray) -> Result<(), TestCaseError> {
-    let problems = check_exact(&Terrain::new(field.clone()), ray);
-    prop_assert!(
-        problems.is_empty(),
-        "field {}x{} maxval {} z_scale {:?} samples {:?}\n{}\n{}",
-        field.width(),
-        field.height(),
-        field.maxval(),
-        field.z_scale(),
-        field.samples(),
-        describe(ray),
-        problems.join("\n")
-    );
-    Ok(())
-}
-
 proptest! {
     #![proptest_config(config(1_500, 0x4641_524f_4646))]
 
@@ -85,6 +58,6 @@ proptest! {
             (Just(field), ray)
         })
     ) {
-        check_far(&field, &ray)?;
+        check_random(&field, &ray)?;
     }
 }
