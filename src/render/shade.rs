@@ -12,11 +12,11 @@ use super::tally::{Counting, Tally};
 use crate::arith::{with_numbers, Arith, Generic, Numbers, WithNumbers};
 use crate::geometry::gradient;
 use crate::heightfield::{SkyBounds, StripBounds, Terrain};
-use crate::traverse::{Clearance, Counters, Hit, Method, Scalar, Tracer, Wedges};
+use crate::traverse::{Clearance, Counters, Hit, Method, Profiles, Scalar, Tracer, Wedges};
 use crate::Ray;
 use glam::DVec3;
 use std::cell::{Cell, RefCell};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Instant;
 
 /// One traced sample, recorded on its own (see [`Tally`]).
@@ -101,6 +101,9 @@ pub struct Shader<'a> {
     /// The sky's bounds around each block, where the scene has sky light (see
     /// [`Shader::new`]).
     pub(super) sky: Option<Arc<SkyBounds>>,
+    /// The camera wedges' profiles made last, kept across a view's passes (clones share
+    /// them).
+    pub(super) wedges: Arc<Mutex<Option<Arc<Profiles>>>>,
 }
 
 impl<'a> Shader<'a> {
@@ -115,6 +118,7 @@ impl<'a> Shader<'a> {
             culling,
             strips: None,
             sky: None,
+            wedges: Arc::default(),
         };
         let hard_shadows =
             lighting.shadows && lighting.effects.sun_angle_deg <= 0.0 && lighting.sun_up();
@@ -134,7 +138,7 @@ impl<'a> Shader<'a> {
     }
 }
 
-impl Shader<'_> {
+impl<'a> Shader<'a> {
     /// Traces and shades one primary ray with the numbers `N` of an arithmetic (see
     /// [`with_numbers`](crate::arith::with_numbers)), from its [`Clearance`] if given (it
     /// touches nothing before); counts its rays into `counting` and returns its colour
@@ -203,11 +207,19 @@ impl Shader<'_> {
 
     /// The wedges of camera rays from `eye` traced in `arith`, where the culling asks for them,
     /// the method starts its walks from a clearance and the arithmetic allows them (see
-    /// [`Wedges::new`]).
-    pub fn wedges(&self, eye: [f64; 3], arith: Arith) -> Option<Wedges<'_>> {
-        (self.culling.camera_clearance && self.method.is_hierarchical())
-            .then(|| Wedges::new(self.terrain, eye, arith))
-            .flatten()
+    /// [`Wedges::new`]). The profiles made last are kept for the next passes from the same
+    /// eye.
+    pub fn wedges(&self, eye: [f64; 3], arith: Arith) -> Option<Wedges<'a>> {
+        if !(self.culling.camera_clearance && self.method.is_hierarchical()) {
+            return None;
+        }
+        let mut kept = self.wedges.lock().unwrap_or_else(PoisonError::into_inner);
+        if let Some(profiles) = kept.as_ref().filter(|p| p.are_for(eye, arith)) {
+            return Some(Wedges::kept(self.terrain, Arc::clone(profiles)));
+        }
+        let wedges = Wedges::new(self.terrain, eye, arith)?;
+        *kept = Some(Arc::clone(wedges.profiles()));
+        Some(wedges)
     }
 
     /// [`Shader::recorded`], its hit kept in `keep` if given.

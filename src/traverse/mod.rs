@@ -40,7 +40,7 @@ pub use options::{Hit, Method, Trace, TraceOptions};
 use options::{Query, WalkOptions};
 pub use packet::{clear_packet, clear_packet_on, PacketClearance, SimdPath, LANES, SIMD_VARIABLE};
 pub use tracer::{occluded_from_hit, Occlusion, Start, Tracer};
-pub use wedges::{highest_under, Clearance, Wedges, WEDGES};
+pub use wedges::{highest_under, Clearance, Profiles, Wedges, WEDGES};
 // The number layer, re-exported: every traversal is generic over these.
 pub use crate::arith::{
     scalar, settled, Arith, Exact, Interval, Rational, RationalEvents, Scalar, DEFAULT_BOUND,

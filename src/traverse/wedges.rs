@@ -22,7 +22,7 @@
 use super::counters::HitMiss;
 use crate::arith::Arith;
 use crate::heightfield::Terrain;
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 /// Wedges of azimuth around the eye (a multiple of 4, so that no wedge holds an axis
 /// direction inside it and a piece's box is the box of its four corners).
@@ -51,9 +51,16 @@ pub struct Clearance {
 
 /// The profiles of the wedges around one eye over one terrain, each made the first time a ray
 /// in it asks (a frame's rays see only the wedges in view).
+#[derive(Clone)]
 pub struct Wedges<'a> {
     terrain: &'a Terrain,
+    profiles: Arc<Profiles>,
+}
+
+/// What [`Wedges`] keep, apart from the terrain: kept across the passes of a view.
+pub struct Profiles {
     eye: [f64; 3],
+    arith: Arith,
     /// Ring boundaries `B[0] = 0 < B[1] < ...`, the last beyond every point of the map.
     rings: Vec<f64>,
     /// What heights are raised by and boxes grown by, for rounding.
@@ -63,6 +70,13 @@ pub struct Wedges<'a> {
     nearest: f64,
     /// Per wedge, the running maximum of its pieces' bounds, ring by ring.
     profiles: Vec<OnceLock<Box<[f64]>>>,
+}
+
+impl Profiles {
+    /// Whether these are the profiles around `eye` for rays walked in `arith`.
+    pub fn are_for(&self, eye: [f64; 3], arith: Arith) -> bool {
+        self.eye == eye && self.arith == arith
+    }
 }
 
 impl<'a> Wedges<'a> {
@@ -99,14 +113,25 @@ impl<'a> Wedges<'a> {
             let last = rings[rings.len() - 1];
             rings.push(last * ratio);
         }
-        Some(Wedges {
-            terrain,
+        let profiles = Profiles {
             eye,
+            arith,
             rings,
             room,
             nearest,
             profiles: (0..WEDGES).map(|_| OnceLock::new()).collect(),
-        })
+        };
+        Some(Wedges::kept(terrain, Arc::new(profiles)))
+    }
+
+    /// The wedges of `profiles` (made over `terrain`).
+    pub fn kept(terrain: &'a Terrain, profiles: Arc<Profiles>) -> Wedges<'a> {
+        Wedges { terrain, profiles }
+    }
+
+    /// What these wedges keep apart from the terrain.
+    pub fn profiles(&self) -> &Arc<Profiles> {
+        &self.profiles
     }
 
     /// How far the ray `origin + t * dir` travels clear of the surface, and the look-up as a
@@ -115,7 +140,7 @@ impl<'a> Wedges<'a> {
     /// once).
     pub fn clearance(&self, origin: [f64; 3], dir: [f64; 3]) -> (Option<Clearance>, HitMiss) {
         let mut asked = HitMiss::default();
-        if origin != self.eye {
+        if origin != self.profiles.eye {
             return (None, asked);
         }
         let [dx, dy, dz] = dir;
@@ -136,13 +161,13 @@ impl<'a> Wedges<'a> {
         if clear == 0 {
             return (None, asked);
         }
-        let t = self.rings[clear] / across * (1.0 - 1e-12);
+        let t = self.profiles.rings[clear] / across * (1.0 - 1e-12);
         (Some(Clearance { t, level: 0 }), asked)
     }
 
     /// Wedge `w`'s profile, made the first time it is asked for.
     fn profile(&self, w: usize) -> &[f64] {
-        self.profiles[w].get_or_init(|| self.build(w))
+        self.profiles.profiles[w].get_or_init(|| self.build(w))
     }
 
     /// Wedge `w`'s profile: per ring, the largest bound of its pieces up to that ring.
@@ -152,16 +177,17 @@ impl<'a> Wedges<'a> {
             4.0 * (w + 1) as f64 / WEDGES as f64,
         );
         let (u0, u1) = (ground_direction(a0), ground_direction(a1));
-        let [ex, ey, ez] = self.eye;
+        let [ex, ey, ez] = self.profiles.eye;
         let mut running = f64::NEG_INFINITY;
-        self.rings
+        self.profiles
+            .rings
             .windows(2)
             .map(|ring| {
                 let (r0, r1) = (ring[0], ring[1]);
-                if r1 <= self.nearest {
+                if r1 <= self.profiles.nearest {
                     return running;
                 }
-                let grow = self.room + 1e-12 * r1;
+                let grow = self.profiles.room + 1e-12 * r1;
                 let corners = [(r0, u0), (r0, u1), (r1, u0), (r1, u1)];
                 let (xs, ys) = corners.iter().fold(
                     (
@@ -180,7 +206,7 @@ impl<'a> Wedges<'a> {
                     BLOCKS_ACROSS,
                 );
                 if let Some((highest, _)) = highest {
-                    running = running.max(slope_bound(highest + self.room - ez, r0, r1));
+                    running = running.max(slope_bound(highest + self.profiles.room - ez, r0, r1));
                 }
                 running
             })
