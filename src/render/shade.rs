@@ -68,6 +68,9 @@ pub struct Culling {
     /// Start each camera ray's walk where its wedge's profile proves it clear of the surface,
     /// and settle the rays above their wedge's whole profile with no walk ([`Wedges`]).
     pub camera_clearance: bool,
+    /// Walk the first cells of camera rays from their clearance and of shadow and effect rays
+    /// from the surface one by one, not down the mipmap ([`Tracer::walking_near`]).
+    pub near_walk: bool,
 }
 
 impl Default for Culling {
@@ -80,6 +83,7 @@ impl Default for Culling {
             cone_blocked: true,
             far_bounds: true,
             camera_clearance: true,
+            near_walk: true,
         }
     }
 }
@@ -205,6 +209,12 @@ impl<'a> Shader<'a> {
         (sample, hit.take())
     }
 
+    /// The tracer of this shader's rays: its method, walking near the surface as the culling
+    /// says.
+    pub fn tracer(&self) -> Tracer<'a> {
+        Tracer::new(self.terrain, self.method).walking_near(self.culling.near_walk)
+    }
+
     /// The wedges of camera rays from `eye` traced in `arith`, where the culling asks for them,
     /// the method starts its walks from a clearance and the arithmetic allows them (see
     /// [`Wedges::new`]). The profiles made last are kept for the next passes from the same
@@ -268,7 +278,7 @@ impl<'a> Shader<'a> {
         keep: Option<&Cell<Option<Hit>>>,
         tally: &mut impl Tally,
     ) -> u32 {
-        let primary = Tracer::new(self.terrain, self.method).trace::<S>(ray, clearance);
+        let primary = self.tracer().trace::<S>(ray, clearance);
         tally.primary(&primary.counters, primary.hit.is_some());
         if let Some(water) = &self.lighting.effects.water {
             let field = self.terrain.field();

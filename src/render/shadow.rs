@@ -5,7 +5,7 @@ use super::effects::SoftShadow;
 use super::normals;
 use super::scene::Normals;
 use super::shade::Shader;
-use crate::traverse::{Counters, Found, Occlusion, Scalar, Start, Tracer};
+use crate::traverse::{Counters, Found, Occlusion, Scalar, Start};
 use crate::Ray;
 use glam::DVec3;
 
@@ -132,7 +132,7 @@ impl Shader<'_> {
         dir: [f64; 3],
         t_max: Option<f64>,
     ) -> Occlusion {
-        let tracer = Tracer::new(self.terrain, self.method);
+        let tracer = self.tracer();
         let tracer = match t_max {
             Some(t) => tracer.within(t),
             None => tracer,

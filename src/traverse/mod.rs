@@ -464,7 +464,16 @@ fn trace_logged<S: Scalar, C: CellLog, W: Walk>(
         && walk_options.reach.is_none()
         && near
             .is_some_and(|near| walk_cleared(terrain, (near, start), dir_f64, &frame, &mut search));
-    if !cleared {
+    let near = !cleared && mipmap::starts_near::<S, C>(&walk_options, start.is_some(), &frame);
+    let walked_near = near
+        && match mipmap::near_walk(&frame, &mut search, mipmap::NEAR_CELLS) {
+            mipmap::Near::Done => true,
+            mipmap::Near::From(at) => {
+                frame.resume(at);
+                false
+            }
+        };
+    if !cleared && !walked_near {
         let level = first_level(&walk_options, start);
         // Ends by itself or at the answer; both are fine here.
         let _ = W::walk(&frame, level, &mut search);

@@ -19,6 +19,8 @@ pub struct Tracer<'a> {
     record_cells: bool,
     /// Occlusion rays look no further than this `t` (see [`Tracer::within`]).
     reach: Option<f64>,
+    /// Walk the first cells of a path one by one (see [`Tracer::walking_near`]).
+    near: bool,
 }
 
 /// Where an occlusion ray ([`Tracer::occluded`]) starts.
@@ -71,6 +73,7 @@ impl<'a> Tracer<'a> {
             method,
             record_cells: false,
             reach: None,
+            near: true,
         }
     }
 
@@ -81,6 +84,13 @@ impl<'a> Tracer<'a> {
             reach: Some(t_max),
             ..self
         }
+    }
+
+    /// The same tracer, walking the first cells of a path that starts next to the surface
+    /// one by one (`true`, the default) or down the hierarchy like the rest: the same
+    /// answers, at another cost.
+    pub fn walking_near(self, near: bool) -> Self {
+        Tracer { near, ..self }
     }
 
     /// The same tracer, listing the cells each walk covers.
@@ -189,6 +199,7 @@ impl<'a> Tracer<'a> {
     fn walk(&self, query: Query) -> WalkOptions {
         WalkOptions {
             record_cells: self.record_cells,
+            near: self.near,
             ..WalkOptions::new(self.method, query)
         }
     }

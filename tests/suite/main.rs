@@ -26,6 +26,7 @@ mod holes;
 mod hostile_input;
 mod loader_fuzz;
 mod mosaics;
+mod near_walk;
 mod packets;
 mod ramps;
 mod recorded_cells;

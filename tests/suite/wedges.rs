@@ -15,7 +15,7 @@ use heightray::traverse::{Clearance, Wedges};
 use heightray::{Arith, Heightfield, Method, Ray, Terrain};
 
 /// A random field of `w x h` samples, a share of them no data (holes) where `holes`.
-fn random_terrain(rng: &mut Rng, w: usize, h: usize, holes: bool) -> Terrain {
+pub(crate) fn random_terrain(rng: &mut Rng, w: usize, h: usize, holes: bool) -> Terrain {
     let salt = rng.next();
     let top = [3u16, 40, 1000][rng.below(3)];
     let samples: Vec<u16> = (0..w * h)

@@ -9,7 +9,7 @@ use super::horizon::{climbs_above, level_within, sector_of, slope_bound_within, 
 use super::sampling::{cosine_hemisphere, point, seed_of};
 use crate::render::shade::Shader;
 use crate::render::sky_gradient::{horizon, sky_colour, zenith};
-use crate::traverse::{Counters, Found, Scalar, Tracer};
+use crate::traverse::{Counters, Found, Scalar};
 use crate::Ray;
 use glam::DVec3;
 
@@ -64,9 +64,7 @@ impl Shader<'_> {
     /// The sky light (a colour, before the surface's own) where `ray` first meets the
     /// terrain, traced in `f64`, and its rays; `None` where the ray misses.
     pub fn sky_light_at(&self, ray: &Ray) -> Option<(DVec3, SkyRays)> {
-        let found = Tracer::new(self.terrain, self.method)
-            .trace::<f64>(ray, None)
-            .hit?;
+        let found = self.tracer().trace::<f64>(ray, None).hit?;
         let (o, d) = (ray.origin(), ray.dir());
         let p = DVec3::from(found.point(&o, &d));
         Some(self.sky_light(&found, ray, p))

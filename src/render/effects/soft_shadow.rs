@@ -11,7 +11,7 @@ use super::sampling::{cone, point, seed_of};
 use super::sun_cone::{self, Cone};
 use crate::render::shade::Shader;
 use crate::render::shadow::{Cast, Shadow, ShadowSkip};
-use crate::traverse::{Counters, Found, Scalar, Tracer};
+use crate::traverse::{Counters, Found, Scalar};
 use crate::Ray;
 use glam::{DVec2, DVec3};
 
@@ -132,7 +132,7 @@ impl Shader<'_> {
         found: &Found<S>,
         counters: &mut Counters,
     ) -> bool {
-        let tracer = Tracer::new(self.terrain, self.method);
+        let tracer = self.tracer();
         let first_touch = |from: DVec3, dir: DVec3| {
             let ray = Ray::new(from.into(), dir.into()).ok()?;
             let traced = tracer.trace::<f64>(&ray, None);

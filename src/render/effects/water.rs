@@ -8,7 +8,7 @@
 use super::horizon::{climbs_above, slope_bound, Sector};
 use crate::heightfield::Heightfield;
 use crate::render::shade::Shader;
-use crate::traverse::{Counters, Scalar, Tracer};
+use crate::traverse::{Counters, Scalar};
 use crate::Ray;
 use glam::{DVec2, DVec3};
 
@@ -147,7 +147,7 @@ impl Shader<'_> {
         let Ok(ray) = Ray::new(start.into(), grid.into()) else {
             return (sky, Reflection::Clear, Counters::default(), false);
         };
-        let traced = Tracer::new(self.terrain, self.method).trace::<S>(&ray, None);
+        let traced = self.tracer().trace::<S>(&ray, None);
         let redone = traced.decided_exactly;
         let Some(found) = traced.hit else {
             return (

@@ -22,8 +22,11 @@
 //! which the order of the cells decides, the `f64` walk only clears the way ([`clear_way`])
 //! and an exact walk follows the stretches between the blocks it skipped.
 
+mod near;
 mod run_levels;
 mod stretches;
+
+pub(super) use near::{near_walk, starts_near, Near, NEAR_CELLS};
 
 pub(super) use run_levels::{descend_runs, run_sample, BlockRun};
 pub use stretches::clear_way;

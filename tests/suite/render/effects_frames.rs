@@ -47,6 +47,7 @@ fn each_effect_culling_rule_on_or_off_gives_the_same_image() {
         cone_blocked: false,
         far_bounds: false,
         camera_clearance: false,
+        near_walk: false,
     };
     for culling in [
         Culling {
@@ -59,6 +60,10 @@ fn each_effect_culling_rule_on_or_off_gives_the_same_image() {
         },
         Culling {
             cone_blocked: false,
+            ..Culling::default()
+        },
+        Culling {
+            near_walk: false,
             ..Culling::default()
         },
         none,

@@ -50,6 +50,7 @@ fn no_shadow_rays_where_no_shadow_is_possible() {
         cone_blocked: false,
         far_bounds: false,
         camera_clearance: false,
+        near_walk: false,
     };
     let brute = render_by(
         Method::Runs,
@@ -108,6 +109,11 @@ fn each_culling_rule_on_or_off_gives_the_same_image() {
             cone_blocked: false,
             far_bounds: false,
             camera_clearance: false,
+            near_walk: false,
+        },
+        Culling {
+            near_walk: false,
+            ..Culling::default()
         },
     ];
     for culling in rules {

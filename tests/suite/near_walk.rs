@@ -1,0 +1,170 @@
+//! The near walk (the first cells of a ray walked one by one, [`Tracer::walking_near`]) gives
+//! the block walk's answers: occlusion rays from random points and camera rays from their
+//! wedge clearance, on random terrains with holes, with both hierarchical methods; and whole
+//! frames with shadows, soft shadows and sky light are pixel-identical with it on and off in
+//! `f32`, `f64` and exact arithmetic.
+
+use crate::common::families;
+use crate::common::random::Rng;
+use crate::wedges::random_terrain;
+use heightray::bench::sized_scene;
+use heightray::render::effects::Effects;
+use heightray::render::{Culling, Frame, Lighting, Renderer, Shader};
+use heightray::traverse::{Start, Tracer, Wedges};
+use heightray::{Arith, Method, Ray, Terrain};
+
+/// A direction with each component in `[-1, 1]`, not all near zero.
+fn direction(rng: &mut Rng) -> [f64; 3] {
+    loop {
+        let d = [0, 1, 2].map(|_| rng.within(-1.0, 1.0));
+        if d.iter().map(|c| c.abs()).sum::<f64>() > 0.1 {
+            return d;
+        }
+    }
+}
+
+#[test]
+fn occlusion_rays_answer_the_same_walked_near_or_down_the_mipmap() {
+    let mut rng = Rng(0x6e65_6172);
+    let mut occluded = 0;
+    for case in 0..40 {
+        let (w, h) = (17 + rng.below(30), 17 + rng.below(30));
+        let terrain = random_terrain(&mut rng, w, h, case % 2 == 0);
+        let (w, h) = (
+            terrain.field().width() as f64,
+            terrain.field().height() as f64,
+        );
+        let (_, top) = terrain.z_range();
+        for method in [Method::Mipmap, Method::HierarchicalRuns] {
+            let tracer = Tracer::new(&terrain, method);
+            for _ in 0..150 {
+                let o = [
+                    rng.within(0.0, w),
+                    rng.within(0.0, h),
+                    rng.within(0.0, top * 1.2),
+                ];
+                let dir = direction(&mut rng);
+                let ask = |near: bool| {
+                    let tracer = tracer.walking_near(near);
+                    let answer = tracer.occluded::<f64>(&Start::Point(&o), dir, false);
+                    answer.occluded
+                };
+                let near = ask(true);
+                assert_eq!(
+                    near,
+                    ask(false),
+                    "case {case}, {method:?}, from {o:?} towards {dir:?}"
+                );
+                occluded += usize::from(near == Some(true));
+            }
+        }
+    }
+    // Both answers occur often.
+    assert!(
+        (2_000..10_000).contains(&occluded),
+        "{occluded} of 12,000 occluded"
+    );
+}
+
+#[test]
+fn camera_rays_from_their_clearance_hit_the_same_walked_near_or_down_the_mipmap() {
+    let mut rng = Rng(0x7765_6467);
+    let mut hits = 0;
+    for case in 0..30 {
+        let terrain = random_terrain(&mut rng, 33, 33, case % 2 == 1);
+        let (_, top) = terrain.z_range();
+        let eye = [
+            rng.within(-4.0, 36.0),
+            rng.within(-4.0, 36.0),
+            top + rng.within(1.0, 31.0),
+        ];
+        let wedges = Wedges::new(&terrain, eye, Arith::F64).expect("wedges");
+        for method in [Method::Mipmap, Method::HierarchicalRuns] {
+            let tracer = Tracer::new(&terrain, method);
+            for _ in 0..100 {
+                let target = [
+                    rng.within(0.0, 32.0),
+                    rng.within(0.0, 32.0),
+                    rng.within(0.0, top),
+                ];
+                let dir = [0, 1, 2].map(|k| target[k] - eye[k]);
+                let Ok(ray) = Ray::new(eye, dir) else {
+                    continue;
+                };
+                let (clearance, _) = wedges.clearance(eye, dir);
+                let first = |near: bool| {
+                    let hit = tracer.walking_near(near).trace::<f64>(&ray, clearance).hit;
+                    hit.map(|h| (h.t.to_bits(), h.cell, h.triangle))
+                };
+                let near = first(true);
+                assert_eq!(
+                    near,
+                    first(false),
+                    "case {case}, {method:?}, towards {target:?}"
+                );
+                hits += usize::from(near.is_some());
+            }
+        }
+    }
+    assert!(hits > 3_000, "{hits} of 6,000 hit");
+}
+
+/// A frame of `lighting` over `terrain`, walking near the surface or not.
+fn frame(terrain: &Terrain, lighting: Lighting, arith: Arith, near_walk: bool) -> Frame {
+    let scene = sized_scene(65, 20).expect("a scene");
+    let culling = Culling {
+        near_walk,
+        ..Culling::default()
+    };
+    let renderer = Renderer {
+        shader: Shader::new(terrain, lighting, Method::Mipmap, culling),
+        camera: scene.camera,
+        arith,
+    };
+    let mut frame = Frame::new(20, 20);
+    renderer.render(&mut frame);
+    frame
+}
+
+#[test]
+fn frames_with_every_effect_are_the_same_walked_near_or_not() {
+    let scene = sized_scene(65, 20).expect("a scene");
+    let terrain = Terrain::new(scene.field.clone());
+    let hard = scene.lighting;
+    let effects = Effects {
+        sun_angle_deg: 3.0,
+        sun_rays: 8,
+        sky_light: true,
+        sky_rays: 8,
+        sky_distance: 12.0,
+        ..hard.effects
+    };
+    let soft = Lighting { effects, ..hard };
+    for (name, lighting) in [("hard shadows", hard), ("soft shadows and sky", soft)] {
+        for arith in [Arith::F32, Arith::F64, Arith::Exact] {
+            let near = frame(&terrain, lighting, arith, true);
+            let far = frame(&terrain, lighting, arith, false);
+            assert_eq!(near.pixels, far.pixels, "{name} in {arith}");
+            let (totals, effects) = (near.totals, near.totals.effects);
+            let cast = totals.shadow_rays + effects.soft.rays + effects.sky.rays;
+            assert!(cast > 0, "{name}: shadow and effect rays cast");
+        }
+    }
+}
+
+#[test]
+fn a_ray_through_a_lattice_point_in_its_first_cell_touches_the_vertex_there() {
+    // Flat at 0 but for the vertex (2, 2) at height 5 (one unit a sample); the ray runs
+    // level at height 5 from (1.25, 1.5) and reaches x = 2 and y = 2 together at t = 1,
+    // in its first cell: it touches the vertex there, after its start.
+    let terrain = families::terrain(8, 8, 5, 5.0, |x, y| if (x, y) == (2, 2) { 5 } else { 0 });
+    let o = [1.25, 1.5, 5.0];
+    let dir = [0.75, 0.5, 0.0];
+    for method in [Method::Mipmap, Method::HierarchicalRuns] {
+        for near in [true, false] {
+            let tracer = Tracer::new(&terrain, method).walking_near(near);
+            let answer = tracer.occluded::<f64>(&Start::Point(&o), dir, false);
+            assert_eq!(answer.occluded, Some(true), "{method:?}, near {near}");
+        }
+    }
+}
