@@ -68,8 +68,8 @@ pub struct Culling {
     /// Start each camera ray's walk where its wedge's profile proves it clear of the surface,
     /// and settle the rays above their wedge's whole profile with no walk ([`Wedges`]).
     pub camera_clearance: bool,
-    /// Walk the first cells of camera rays from their clearance and of shadow and effect rays
-    /// from the surface one by one, not down the mipmap ([`Tracer::walking_near`]).
+    /// Walk the first cells of camera rays from their clearance one by one, not down the
+    /// mipmap ([`Tracer::walking_near`]).
     pub near_walk: bool,
 }
 

@@ -67,7 +67,7 @@ pub(crate) struct WalkOptions {
     /// The walk ends at this `t` (an occlusion ray asking only so far, see
     /// [`Tracer::within`](super::Tracer::within)).
     pub reach: Option<f64>,
-    /// Walk the first cells one by one where the path starts next to the surface (see
+    /// Walk the first cells one by one from a clearance (see
     /// [`near_walk`](super::mipmap::near_walk)); the answers are the same either way.
     pub near: bool,
 }

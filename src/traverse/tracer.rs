@@ -86,9 +86,9 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    /// The same tracer, walking the first cells of a path that starts next to the surface
-    /// one by one (`true`, the default) or down the hierarchy like the rest: the same
-    /// answers, at another cost.
+    /// The same tracer, walking the first cells of a first-hit ray from its clearance one by
+    /// one (`true`, the default) or down the hierarchy like the rest: the same answers, at
+    /// another cost.
     pub fn walking_near(self, near: bool) -> Self {
         Tracer { near, ..self }
     }

@@ -1,5 +1,6 @@
-//! The near walk (the first cells of a ray walked one by one, [`Tracer::walking_near`]) gives
-//! the block walk's answers: occlusion rays from random points and camera rays from their
+//! The near walk (the first cells of a ray walked one by one from its clearance,
+//! [`Tracer::walking_near`]) gives the block walk's answers: rays from random points and
+//! clearances, a ray through a lattice point in its first cell, and camera rays from their
 //! wedge clearance, on random terrains with holes, with both hierarchical methods; and whole
 //! frames with shadows, soft shadows and sky light are pixel-identical with it on and off in
 //! `f32`, `f64` and exact arithmetic.
@@ -10,7 +11,7 @@ use crate::wedges::random_terrain;
 use heightray::bench::sized_scene;
 use heightray::render::effects::Effects;
 use heightray::render::{Culling, Frame, Lighting, Renderer, Shader};
-use heightray::traverse::{Start, Tracer, Wedges};
+use heightray::traverse::{Clearance, Tracer, Wedges};
 use heightray::{Arith, Method, Ray, Terrain};
 
 /// A direction with each component in `[-1, 1]`, not all near zero.
@@ -24,16 +25,13 @@ fn direction(rng: &mut Rng) -> [f64; 3] {
 }
 
 #[test]
-fn occlusion_rays_answer_the_same_walked_near_or_down_the_mipmap() {
+fn rays_from_any_clearance_hit_the_same_walked_near_or_down_the_mipmap() {
     let mut rng = Rng(0x6e65_6172);
-    let mut occluded = 0;
+    let mut hits = 0;
     for case in 0..40 {
         let (w, h) = (17 + rng.below(30), 17 + rng.below(30));
         let terrain = random_terrain(&mut rng, w, h, case % 2 == 0);
-        let (w, h) = (
-            terrain.field().width() as f64,
-            terrain.field().height() as f64,
-        );
+        let (w, h) = (w as f64, h as f64);
         let (_, top) = terrain.z_range();
         for method in [Method::Mipmap, Method::HierarchicalRuns] {
             let tracer = Tracer::new(&terrain, method);
@@ -43,27 +41,27 @@ fn occlusion_rays_answer_the_same_walked_near_or_down_the_mipmap() {
                     rng.within(0.0, h),
                     rng.within(0.0, top * 1.2),
                 ];
-                let dir = direction(&mut rng);
-                let ask = |near: bool| {
-                    let tracer = tracer.walking_near(near);
-                    let answer = tracer.occluded::<f64>(&Start::Point(&o), dir, false);
-                    answer.occluded
+                let Ok(ray) = Ray::new(o, direction(&mut rng)) else {
+                    continue;
                 };
-                let near = ask(true);
-                assert_eq!(
-                    near,
-                    ask(false),
-                    "case {case}, {method:?}, from {o:?} towards {dir:?}"
-                );
-                occluded += usize::from(near == Some(true));
+                let clearance = Clearance {
+                    t: rng.within(0.0, 2.0),
+                    level: 0,
+                };
+                let first = |near: bool| {
+                    let hit = tracer
+                        .walking_near(near)
+                        .trace::<f64>(&ray, Some(clearance));
+                    hit.hit.map(|h| (h.t.to_bits(), h.cell, h.triangle))
+                };
+                let near = first(true);
+                assert_eq!(near, first(false), "case {case}, {method:?}, {ray:?}");
+                hits += usize::from(near.is_some());
             }
         }
     }
     // Both answers occur often.
-    assert!(
-        (2_000..10_000).contains(&occluded),
-        "{occluded} of 12,000 occluded"
-    );
+    assert!((2_000..10_000).contains(&hits), "{hits} of 12,000 hit");
 }
 
 #[test]
@@ -156,15 +154,18 @@ fn frames_with_every_effect_are_the_same_walked_near_or_not() {
 fn a_ray_through_a_lattice_point_in_its_first_cell_touches_the_vertex_there() {
     // Flat at 0 but for the vertex (2, 2) at height 5 (one unit a sample); the ray runs
     // level at height 5 from (1.25, 1.5) and reaches x = 2 and y = 2 together at t = 1,
-    // in its first cell: it touches the vertex there, after its start.
+    // in its first cell: it touches the vertex there.
     let terrain = families::terrain(8, 8, 5, 5.0, |x, y| if (x, y) == (2, 2) { 5 } else { 0 });
-    let o = [1.25, 1.5, 5.0];
-    let dir = [0.75, 0.5, 0.0];
+    let ray = families::ray([1.25, 1.5, 5.0], [0.75, 0.5, 0.0]);
+    let clearance = Clearance { t: 0.25, level: 0 };
     for method in [Method::Mipmap, Method::HierarchicalRuns] {
-        for near in [true, false] {
+        let first = |near: bool| {
             let tracer = Tracer::new(&terrain, method).walking_near(near);
-            let answer = tracer.occluded::<f64>(&Start::Point(&o), dir, false);
-            assert_eq!(answer.occluded, Some(true), "{method:?}, near {near}");
-        }
+            let hit = tracer.trace::<f64>(&ray, Some(clearance)).hit;
+            hit.map(|h| (h.t, h.cell, h.triangle))
+        };
+        let near = first(true);
+        assert_eq!(near.map(|(t, ..)| t), Some(1.0), "{method:?}");
+        assert_eq!(near, first(false), "{method:?}");
     }
 }

@@ -1,7 +1,6 @@
 //! The near walk: the first cells of a path walked one by one, with no level above the cells,
 //! where the path starts next to where it may touch (a camera ray from its wedge's
-//! clearance, an occlusion ray from the surface). Over a few cells a climb up the mipmap
-//! costs more than it skips.
+//! clearance). Over a few cells a climb up the mipmap costs more than it skips.
 //!
 //! It hands each cell to the same tests as the block walk at level 0 ([`Search::cell_may_hit`],
 //! [`Search::triangles`]), each crossing worked out from its grid line as the block walk's
@@ -14,7 +13,7 @@ use super::{on_a_grid_line, Point};
 use crate::arith::scalar::Scalar;
 use crate::traverse::cell_log::CellLog;
 use crate::traverse::frame::Frame;
-use crate::traverse::options::{Query, WalkOptions};
+use crate::traverse::options::WalkOptions;
 use crate::traverse::search::Search;
 
 /// How many cells the near walk takes before the block walk takes over: about as far as
@@ -23,8 +22,9 @@ use crate::traverse::search::Search;
 pub(in crate::traverse) const NEAR_CELLS: u32 = 8;
 
 /// Whether a walk of `f` with `options` starts with the near walk: a hierarchical method's
-/// occlusion ray, or its first-hit ray from a clearance (`cleared`), in `f64`, its cells not
-/// listed.
+/// first-hit ray from a clearance (`cleared`), in `f64`, its cells not listed. (Occlusion
+/// rays from the surface gain nothing from it: their first cells are mostly tested whole,
+/// and their walks are short already.)
 pub(in crate::traverse) fn starts_near<S: Scalar, C: CellLog>(
     options: &WalkOptions,
     cleared: bool,
@@ -34,7 +34,7 @@ pub(in crate::traverse) fn starts_near<S: Scalar, C: CellLog>(
         && S::as_f64s::<0>(&[]).is_some()
         && !C::RECORDS
         && options.method.is_hierarchical()
-        && (cleared || options.query == Query::Shadow)
+        && cleared
         && super::has_blocks(f)
 }
 
