@@ -94,7 +94,10 @@ pub(in crate::traverse) fn near_walk<S: Scalar, C: CellLog>(
         // takes over (with room beyond its own tolerance, see `Scalar::nearly_equal`).
         let exit = tu.min(tv);
         let near = |a: f64, b: f64| (a - b).abs() <= 4e-9 * a.abs().max(b.abs()).max(1.0);
-        if near(tu, tv) || near(exit, t_end) || !(t < exit) {
+        if near(tu, tv)
+            || near(exit, t_end)
+            || t.partial_cmp(&exit) != Some(std::cmp::Ordering::Less)
+        {
             return resume(t, cu, cv, crossed_u);
         }
         let ends_inside = t_end < exit;
