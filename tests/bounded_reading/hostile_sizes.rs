@@ -119,6 +119,19 @@ fn png_text_and_profile_chunks_are_skipped_unread() {
     assert!(outcome.allocated.peak < 4 * MIB, "{:?}", outcome.allocated);
 }
 
+#[test]
+fn an_overlay_png_s_text_and_profile_chunks_are_skipped_unread() {
+    let dir = TempDir::new().unwrap();
+    let path = dir.path().join("bombs.png");
+    alone(|| std::fs::write(&path, png_with_bombs(64 * MIB)).unwrap());
+    let field = Heightfield::from_fn(8, 8, 255, 1.0, |i, j| (i + j) as u16).unwrap();
+    let (drape, allocated) = measure(|| Drape::load(&path, &field, 1.0));
+    let drape = drape.expect("the overlay loads");
+    assert_eq!(drape.size(), (64, 64));
+    // The chunks inflate to 128 MiB between them; the overlay needs 16 KiB of pixels.
+    assert!(allocated.peak < 4 * MIB, "{allocated:?}");
+}
+
 /// A small JPEG whose frame header is rewritten to declare `width` x `height` pixels.
 fn jpeg_declaring(width: u16, height: u16) -> Vec<u8> {
     let image = image::RgbImage::from_fn(16, 16, |x, y| image::Rgb([x as u8 * 16, y as u8, 9]));
