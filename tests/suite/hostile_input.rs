@@ -55,6 +55,11 @@ fn arrays_of_three_take_exactly_three_numbers() {
     }
     let up = SMALL_SCENE.replace("width = 16", "up = { x = 1.0 }\nwidth = 16");
     assert_mentions(&scene_error(&up), &["up = { x = 1.0 }"]);
+    let zero = SMALL_SCENE.replace("width = 16", "up = [0.0, 0.0, 0.0]\nwidth = 16");
+    assert_mentions(
+        &scene_error(&zero),
+        &["camera up vector is zero or parallel"],
+    );
     let sun = format!("{SMALL_SCENE}[sun]\ndirection = [1.0, 1.0, 1.0, 1.0]\n");
     assert_mentions(&scene_error(&sun), &["direction", "three numbers"]);
 }
@@ -263,6 +268,10 @@ fn knobs_beyond_their_range_are_refused() {
     assert_fails(
         &["view", "--export-dir", missing.to_str().unwrap(), map],
         &["does not exist; make it first"],
+    );
+    assert_fails(
+        &["view", "--export-dir", map, map],
+        &["is not a folder; choose a folder for the exports"],
     );
     // Many threads are capped to 4 a core, with a note.
     let output = heightray_within_ten_seconds(&["render", map, "-o", out, "--threads", "1000"]);
