@@ -375,14 +375,14 @@ pub fn view(args: ViewArgs) -> anyhow::Result<ExitCode> {
         // Refused rather than made: a mistyped folder would otherwise collect the exports
         // somewhere nobody looks.
         anyhow::ensure!(
+            folder.exists(),
+            "--export-dir {} does not exist; make it first (mkdir -p {0}) or choose another",
+            folder.display()
+        );
+        anyhow::ensure!(
             folder.is_dir(),
-            "--export-dir {} {}; make it first (mkdir -p {0}) or choose another",
-            folder.display(),
-            if folder.exists() {
-                "is not a folder"
-            } else {
-                "does not exist"
-            }
+            "--export-dir {} is not a folder; choose a folder for the exports",
+            folder.display()
         );
     }
     heightray::viewer::run(heightray::viewer::ViewerOptions {

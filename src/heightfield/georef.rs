@@ -16,6 +16,12 @@ pub const METRES_PER_FOOT: f64 = 0.3048;
 /// Metres in a US survey foot (EPSG 9003).
 pub const METRES_PER_US_SURVEY_FOOT: f64 = 1200.0 / 3937.0;
 
+/// The finest cells a georeferenced field is shown at true scale with: a micrometre.
+pub const FINEST_CELL_METRES: f64 = 1e-6;
+
+/// The coarsest: a quarter of the Earth's circumference.
+pub const COARSEST_CELL_METRES: f64 = 1e7;
+
 /// The units of a map's coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum MapUnits {
@@ -26,6 +32,16 @@ pub enum MapUnits {
     },
     /// A geographic CRS: x is longitude and y latitude, in degrees.
     Degrees,
+}
+
+impl std::fmt::Display for MapUnits {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            MapUnits::Linear { metres } if *metres == 1.0 => write!(f, "metres"),
+            MapUnits::Linear { metres } => write!(f, "units of {metres} m"),
+            MapUnits::Degrees => write!(f, "degrees"),
+        }
+    }
 }
 
 /// The map coordinates of a height field's samples.
@@ -108,6 +124,24 @@ impl Georeferencing {
             Georeferencing::Map(georef) => Some(georef),
             _ => None,
         }
+    }
+
+    /// The same, ignored with the reason when a field of `width` x `height` samples would have
+    /// cells finer than [`FINEST_CELL_METRES`] or coarser than [`COARSEST_CELL_METRES`]: its
+    /// true-scale relief would be out of all proportion (or its z scale not even finite).
+    pub fn with_cells_checked(self, width: usize, height: usize) -> Georeferencing {
+        let Georeferencing::Map(georef) = &self else {
+            return self;
+        };
+        let [x, y] = georef.cell_metres(width, height);
+        let range = FINEST_CELL_METRES..=COARSEST_CELL_METRES;
+        if range.contains(&x) && range.contains(&y) {
+            return self;
+        }
+        Georeferencing::Ignored(format!(
+            "its cells are {x:.3e} x {y:.3e} m, outside {FINEST_CELL_METRES:e} to \
+             {COARSEST_CELL_METRES:e} m"
+        ))
     }
 
     /// Georeferencing from a candidate: used when valid, else ignored with the reason.

@@ -26,7 +26,10 @@ pub enum CameraError {
     #[error("camera eye and target coincide")]
     EyeIsTarget,
     /// The up vector is parallel to the viewing direction (or zero).
-    #[error("camera up vector is parallel to the viewing direction")]
+    #[error(
+        "camera up vector is zero or parallel to the viewing direction; give one across it, \
+         such as [0, 0, 1] for a camera that does not look straight down"
+    )]
     UpParallel,
     /// A vertical field of view outside (0, 180) degrees.
     #[error("field of view must be between 0 and 180 degrees, got {0}")]

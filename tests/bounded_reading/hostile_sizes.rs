@@ -119,6 +119,19 @@ fn png_text_and_profile_chunks_are_skipped_unread() {
     assert!(outcome.allocated.peak < 4 * MIB, "{:?}", outcome.allocated);
 }
 
+#[test]
+fn an_overlay_png_s_text_and_profile_chunks_are_skipped_unread() {
+    let dir = TempDir::new().unwrap();
+    let path = dir.path().join("bombs.png");
+    alone(|| std::fs::write(&path, png_with_bombs(64 * MIB)).unwrap());
+    let field = Heightfield::from_fn(8, 8, 255, 1.0, |i, j| (i + j) as u16).unwrap();
+    let (drape, allocated) = measure(|| Drape::load(&path, &field, 1.0));
+    let drape = drape.expect("the overlay loads");
+    assert_eq!(drape.size(), (64, 64));
+    // The chunks inflate to 128 MiB between them; the overlay needs 16 KiB of pixels.
+    assert!(allocated.peak < 4 * MIB, "{allocated:?}");
+}
+
 /// A small JPEG whose frame header is rewritten to declare `width` x `height` pixels.
 fn jpeg_declaring(width: u16, height: u16) -> Vec<u8> {
     let image = image::RgbImage::from_fn(16, 16, |x, y| image::Rgb([x as u8 * 16, y as u8, 9]));
@@ -207,19 +220,22 @@ fn tiles_far_off_or_far_apart_are_refused_with_the_reason() {
 }
 
 /// A TIFF of `rows` rows of two 16-bit samples, one row a strip: row `r` holds `r % 65536`
-/// and `7 r % 65536`.
-fn many_strips(rows: u32) -> Vec<u8> {
+/// and `7 r % 65536`, and is stored `slot(r)` strips into the file's data.
+fn many_strips(rows: u32, slot: impl Fn(u32) -> u32) -> Vec<u8> {
     let data_at = 8u32;
     let offsets_at = data_at + 4 * rows;
     let counts_at = offsets_at + 4 * rows;
     let directory_at = counts_at + 4 * rows;
     let mut bytes = b"II*\0".to_vec();
     bytes.extend(directory_at.to_le_bytes());
+    let mut data = vec![0u8; 4 * rows as usize];
     for r in 0..rows {
-        bytes.extend(((r % 65536) as u16).to_le_bytes());
-        bytes.extend(((r.wrapping_mul(7) % 65536) as u16).to_le_bytes());
+        let at = 4 * slot(r) as usize;
+        data[at..at + 2].copy_from_slice(&((r % 65536) as u16).to_le_bytes());
+        data[at + 2..at + 4].copy_from_slice(&((r.wrapping_mul(7) % 65536) as u16).to_le_bytes());
     }
-    bytes.extend((0..rows).flat_map(|r| (data_at + 4 * r).to_le_bytes()));
+    bytes.extend(data);
+    bytes.extend((0..rows).flat_map(|r| (data_at + 4 * slot(r)).to_le_bytes()));
     bytes.extend((0..rows).flat_map(|_| 4u32.to_le_bytes()));
     let directory = tiff_directory(&[
         (256, 4, 1, 2),
@@ -243,7 +259,7 @@ fn a_tiff_of_two_million_strips_is_read_in_one_pass() {
     let rows = 2_000_000;
     let path = dir.path().join("strips.tif");
     let len = alone(|| {
-        let bytes = many_strips(rows);
+        let bytes = many_strips(rows, |r| r);
         std::fs::write(&path, &bytes).unwrap();
         bytes.len() as u64
     });
@@ -267,4 +283,53 @@ fn a_tiff_of_two_million_strips_is_read_in_one_pass() {
         "{:?}",
         outcome.allocated
     );
+}
+
+/// Loads `path`, a TIFF of `rows` strips made by [`many_strips`], and checks two of its rows.
+fn assert_strips_load(path: &Path, rows: u32) -> super::Outcome {
+    let outcome = load(path);
+    let field = outcome.result.as_ref().expect("the map loads");
+    assert_eq!((field.width(), field.height()), (2, rows as usize));
+    for j in [0, 12345, rows as usize - 1] {
+        // Sample row j is image row rows - 1 - j.
+        let r = rows - 1 - j as u32;
+        assert_eq!(field.sample(0, j), (r % 65536) as u16, "row {r}");
+        assert_eq!(field.sample(1, j), (r * 7 % 65536) as u16, "row {r}");
+    }
+    outcome
+}
+
+#[test]
+fn a_tiff_of_two_million_strips_in_any_order_is_read_once() {
+    let dir = TempDir::new().unwrap();
+    let rows = 2_000_000;
+    // Backwards, and scattered (7919 is prime to 2 million, so each row has its own slot).
+    let orders: [(&str, &dyn Fn(u32) -> u32); 2] = [
+        ("backwards.tif", &|r| rows - 1 - r),
+        ("scattered.tif", &|r| {
+            ((u64::from(r) * 7919) % u64::from(rows)) as u32
+        }),
+    ];
+    for (name, slot) in orders {
+        let path = dir.path().join(name);
+        alone(|| std::fs::write(&path, many_strips(rows, slot)).unwrap());
+        let len = std::fs::metadata(&path).unwrap().len();
+        let outcome = assert_strips_load(&path, rows);
+        // Each byte once: jumping between strips reads nothing again.
+        assert!(
+            outcome.read < len + MIB as u64,
+            "{name}: read {} bytes of {len}",
+            outcome.read
+        );
+        assert!(
+            outcome.time.as_secs_f64() < 5.0,
+            "{name}: {:?}",
+            outcome.time
+        );
+        assert!(
+            outcome.allocated.peak < 384 * MIB,
+            "{name}: {:?}",
+            outcome.allocated
+        );
+    }
 }

@@ -55,6 +55,11 @@ fn arrays_of_three_take_exactly_three_numbers() {
     }
     let up = SMALL_SCENE.replace("width = 16", "up = { x = 1.0 }\nwidth = 16");
     assert_mentions(&scene_error(&up), &["up = { x = 1.0 }"]);
+    let zero = SMALL_SCENE.replace("width = 16", "up = [0.0, 0.0, 0.0]\nwidth = 16");
+    assert_mentions(
+        &scene_error(&zero),
+        &["camera up vector is zero or parallel"],
+    );
     let sun = format!("{SMALL_SCENE}[sun]\ndirection = [1.0, 1.0, 1.0, 1.0]\n");
     assert_mentions(&scene_error(&sun), &["direction", "three numbers"]);
 }
@@ -110,6 +115,57 @@ fn a_geographic_map_beyond_the_poles_is_not_placed() {
         Georeferencing::Ignored(why) => assert_mentions(why, &["outside -90..90"]),
         other => panic!("placed: {other:?}"),
     }
+}
+
+/// Cells finer than a micrometre (down to subnormal sizes, whose true-scale z scale is not
+/// even finite) or coarser than 10 000 km leave a map unplaced, saying why, instead of
+/// failing on a z scale nobody gave.
+#[test]
+fn a_map_of_absurd_cell_sizes_is_not_placed() {
+    let dir = TempDir::new().unwrap();
+    for (scale, shown) in [(1e-310, "1.000e-310 x 1.000e-310 m"), (1e10, "1.000e10")] {
+        let path = dir.path().join("cells.tif");
+        let bytes = crate::common::files::dem_bytes(scale, [500_000.0, 4_000_000.0], 1);
+        std::fs::write(&path, bytes).unwrap();
+        let field = load(&path, 1.0).expect("the samples load");
+        match field.georeferencing() {
+            Georeferencing::Ignored(why) => assert_mentions(why, &[shown, "outside 1e-6 to 1e7 m"]),
+            other => panic!("placed: {other:?}"),
+        }
+        let output = heightray_within_ten_seconds(&[
+            "render",
+            path.to_str().unwrap(),
+            "-o",
+            dir.path().join("out.png").to_str().unwrap(),
+            "--size",
+            "16x16",
+        ]);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(output.status.success(), "{stderr}");
+        assert_mentions(&stderr, &["georeferencing not used (its cells are"]);
+    }
+}
+
+#[test]
+fn tiles_in_metres_and_degrees_name_their_units() {
+    let dir = TempDir::new().unwrap();
+    let rows = "1 2 3 4\n".repeat(4);
+    let mut paths = Vec::new();
+    for (name, cell) in [("metres.asc", 1.0), ("degrees.asc", 0.001)] {
+        let path = dir.path().join(name);
+        let header = format!("ncols 4\nnrows 4\nxllcorner 0\nyllcorner 0\ncellsize {cell}\n");
+        std::fs::write(&path, header + &rows).unwrap();
+        paths.push(path);
+    }
+    let message = heightray::heightfield::load_mosaic(
+        &paths,
+        &heightray::heightfield::LoadOptions::new(1.0),
+        &|_| std::ops::ControlFlow::Continue(()),
+    )
+    .map(|_| ())
+    .expect_err("refused")
+    .to_string();
+    assert_mentions(&message, &["are in different units (metres and degrees)"]);
 }
 
 #[test]
@@ -212,6 +268,10 @@ fn knobs_beyond_their_range_are_refused() {
     assert_fails(
         &["view", "--export-dir", missing.to_str().unwrap(), map],
         &["does not exist; make it first"],
+    );
+    assert_fails(
+        &["view", "--export-dir", map, map],
+        &["is not a folder; choose a folder for the exports"],
     );
     // Many threads are capped to 4 a core, with a note.
     let output = heightray_within_ten_seconds(&["render", map, "-o", out, "--threads", "1000"]);

@@ -131,25 +131,34 @@ pub fn read(path: &Path) -> Result<Image, DrapeError> {
             OpenError::Io(reason) => io(reason),
         })
     };
-    let (file, _) = open()?;
+    let (file, len) = open()?;
     let reader = ImageReader::new(BufReader::new(file))
         .with_guessed_format()
         .map_err(io)?;
     let format = reader.format();
-    let decoder = reader.into_decoder().map_err(|e| decode(e.to_string()))?;
-    let (width, height) = decoder.dimensions();
-    if width == 0 || height == 0 {
-        return Err(decode(format!("it is {width}x{height} pixels")));
-    }
-    if u64::from(width) * u64::from(height) > MOST_OVERLAY_PIXELS {
-        return Err(DrapeError::TooLarge {
-            path: path.to_owned(),
-            width,
-            height,
-        });
-    }
-    let image = DynamicImage::from_decoder(decoder).map_err(|e| decode(e.to_string()))?;
-    let pixels = image.into_rgba8().into_raw();
+    let admit = |width: u32, height: u32| {
+        if u64::from(width) * u64::from(height) > MOST_OVERLAY_PIXELS {
+            return Err(DrapeError::TooLarge {
+                path: path.to_owned(),
+                width,
+                height,
+            });
+        }
+        Ok(())
+    };
+    let (width, height, pixels) = if format == Some(image::ImageFormat::Png) {
+        let png = super::png::decode(reader.into_inner(), len, admit, decode)?;
+        (png.width, png.height, png.rgba)
+    } else {
+        let decoder = reader.into_decoder().map_err(|e| decode(e.to_string()))?;
+        let (width, height) = decoder.dimensions();
+        if width == 0 || height == 0 {
+            return Err(decode(format!("it is {width}x{height} pixels")));
+        }
+        admit(width, height)?;
+        let image = DynamicImage::from_decoder(decoder).map_err(|e| decode(e.to_string()))?;
+        (width, height, image.into_rgba8().into_raw())
+    };
     let place = if format == Some(image::ImageFormat::Tiff) {
         let (file, _) = open()?;
         tiff_place(file, height).map_err(|reason| DrapeError::Placement {

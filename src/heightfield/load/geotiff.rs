@@ -143,13 +143,23 @@ fn georef(corner: &Corner, keys: &GeoKeys, height: u32) -> Result<Georef, String
         let top = origin[1] + (f64::from(height) - 1.0) * corner.sy;
         if !(origin[1] >= -90.0 && top <= 90.0) {
             return Err(format!(
-                "it is in degrees, but its samples span latitudes {:.6} to {top:.6}, outside \
-                 -90..90",
-                origin[1]
+                "it is in degrees, but its samples span latitudes {} to {}, outside -90..90",
+                latitude(origin[1]),
+                latitude(top)
             ));
         }
     }
     Georef::new(origin, [corner.sx, corner.sy], units)
+}
+
+/// A latitude for a message: in degrees to six places, or in scientific notation when it is
+/// far beyond any (a forged or broken file's).
+fn latitude(degrees: f64) -> String {
+    if degrees.abs() < 1e6 {
+        format!("{degrees:.6}")
+    } else {
+        format!("{degrees:.3e}")
+    }
 }
 
 /// A GeoKeyDirectory: a header of four shorts, then (id, location, count, value) per key.

@@ -339,7 +339,7 @@ fn decode<R: Read + Seek>(
     match Format::of(&start, name) {
         Some(Format::Pgm) => pgm::decode(input, len, name),
         Some(Format::Png) => png::decode(input, name, colour),
-        Some(Format::Tiff) => tiff::decode(input, len, name),
+        Some(Format::Tiff) => decode_tiff(input, len, name),
         Some(Format::Hgt) => hgt::decode(input, len, name),
         Some(Format::Asc) => asc::decode(input, len, name),
         None => Err(LoadError::NotAnImage {
@@ -347,6 +347,28 @@ fn decode<R: Read + Seek>(
             start: first_bytes(&start),
         }),
     }
+}
+
+/// The longest TIFF read whole before decoding.
+const MOST_TIFF_READ_WHOLE: u64 = 64 << 20;
+
+/// Decodes a TIFF, `len` bytes long. Its strips or tiles may lie in any order in the file, and
+/// a decoder jumping between millions of them would make a system call or two at each: a
+/// file of up to [`MOST_TIFF_READ_WHOLE`] bytes is read whole first, and jumps cost nothing.
+fn decode_tiff<R: Read + Seek>(
+    mut input: Watched<R>,
+    len: u64,
+    name: &str,
+) -> Result<Raster, LoadError> {
+    if len > MOST_TIFF_READ_WHOLE {
+        return tiff::decode(input, len, name);
+    }
+    let mut bytes = Vec::with_capacity(len as usize);
+    (&mut input)
+        .take(len)
+        .read_to_end(&mut bytes)
+        .map_err(|e| decode_error(name, e))?;
+    tiff::decode(Cursor::new(bytes), len, name)
 }
 
 /// The formats read, told apart by their first bytes (an `.hgt` tile, which has no header, by

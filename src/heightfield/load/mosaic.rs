@@ -36,11 +36,21 @@ pub fn load_mosaic(
     let mut tiles = Vec::with_capacity(paths.len());
     for path in paths {
         let field = load_with(path, &tile_options, progress)?;
-        let Some(georef) = field.georef().copied() else {
-            return Err(refuse(format!(
-                "{} is not georeferenced, so where it lies beside the others is unknown",
-                path.display()
-            )));
+        let georef = match field.georeferencing() {
+            Georeferencing::Map(georef) => *georef,
+            Georeferencing::Ignored(why) => {
+                return Err(refuse(format!(
+                    "{}'s georeferencing cannot be used ({why}), so where it lies beside the \
+                     others is unknown",
+                    path.display()
+                )))
+            }
+            Georeferencing::None => {
+                return Err(refuse(format!(
+                    "{} is not georeferenced, so where it lies beside the others is unknown",
+                    path.display()
+                )))
+            }
         };
         tiles.push((path.as_path(), field, georef));
     }
@@ -78,7 +88,7 @@ fn one_grid(a: &Georef, b: &Georef) -> Result<(), String> {
     };
     if !same_units {
         return Err(format!(
-            "are in different units ({:?} and {:?}); reproject them to one CRS",
+            "are in different units ({} and {}); reproject them to one CRS",
             a.units, b.units
         ));
     }

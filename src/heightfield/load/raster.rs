@@ -70,7 +70,10 @@ impl Values {
 impl Raster {
     /// The height field, with the options' z scale and no-data value.
     pub fn into_field(self, options: &LoadOptions) -> Result<Heightfield, HeightfieldError> {
-        let georef = self.georef.clone();
+        let georef = self
+            .georef
+            .clone()
+            .with_cells_checked(self.width, self.height);
         Ok(self.into_samples(options)?.with_georeferencing(georef))
     }
 

@@ -4,7 +4,7 @@
 
 use super::Progress;
 use std::cell::{Cell, RefCell};
-use std::io::{self, BufRead, BufReader, Read, Seek, SeekFrom};
+use std::io::{self, BufRead, Read, Seek, SeekFrom};
 
 /// Bytes read from the file at once into the buffer.
 const BUFFER: usize = 1 << 16;
@@ -42,8 +42,12 @@ impl<'a> Watch<'a> {
     pub fn reader<R: Read>(&self, file: R) -> Watched<'_, 'a, R> {
         Watched {
             watch: self,
-            inner: BufReader::with_capacity(BUFFER, file),
+            inner: file,
+            buffer: vec![0; BUFFER].into_boxed_slice(),
+            start: 0,
+            filled: 0,
             position: 0,
+            next_fill: BUFFER,
         }
     }
 
@@ -91,21 +95,82 @@ impl<'a> Watch<'a> {
 }
 
 /// A file (or bytes in memory) under a [`Watch`], buffered.
+///
+/// The buffer holds bytes `start..start + filled` of the file, and the file itself stands at
+/// `start + filled`; decoding is at `position`, within those bytes or at their end. Reading on
+/// refills the buffer from where the file stands; a seek elsewhere reads a small window around
+/// its target instead of a whole buffer, so that a decoder that jumps about (a TIFF's strips
+/// in any order) pays for a KiB a jump, and a walk backwards finds most targets in the window
+/// before. Refills after a window double up to the whole buffer, as reading goes on.
 pub struct Watched<'w, 'a, R> {
     watch: &'w Watch<'a>,
-    inner: BufReader<R>,
-    /// Where decoding is in the file.
+    inner: R,
+    buffer: Box<[u8]>,
+    start: u64,
+    filled: usize,
     position: u64,
+    /// How much the next refill reads.
+    next_fill: usize,
 }
 
-impl<R: Seek> Watched<'_, '_, R> {
+/// Bytes read around the target of a seek that leaves the buffer: half before, half after.
+const WINDOW: usize = 1 << 10;
+
+impl<R> Watched<'_, '_, R> {
+    fn end(&self) -> u64 {
+        self.start + self.filled as u64
+    }
+
+    /// The buffered bytes from `position` on.
+    fn buffered(&self) -> &[u8] {
+        let from = (self.position - self.start) as usize;
+        &self.buffer[from..self.filled]
+    }
+}
+
+impl<R: Read> Watched<'_, '_, R> {
+    /// Reads once from the file into the buffer, from where it stands, at most `most` bytes.
+    fn refill(&mut self, most: usize) -> io::Result<()> {
+        let at = self.end();
+        let count = loop {
+            match self.inner.read(&mut self.buffer[..most]) {
+                Err(error) if error.kind() == io::ErrorKind::Interrupted => continue,
+                other => break other.map_err(|error| self.watch.failed(error))?,
+            }
+        };
+        self.start = at;
+        self.filled = count;
+        Ok(())
+    }
+}
+
+impl<R: Read + Seek> Watched<'_, '_, R> {
     /// Goes back `count` bytes, within the buffer when they are still in it.
     pub fn back(&mut self, count: u64) -> io::Result<()> {
-        let count = i64::try_from(count).map_err(io::Error::other)?;
-        self.inner
-            .seek_relative(-count)
-            .map_err(|error| self.watch.failed(error))?;
-        self.position = self.position.saturating_sub(count as u64);
+        let to = self.position.saturating_sub(count);
+        self.seek_to(to).map_err(|error| self.watch.failed(error))
+    }
+
+    /// Moves decoding to `target`: within the buffer when it is there, else through a window
+    /// read around it.
+    fn seek_to(&mut self, target: u64) -> io::Result<()> {
+        if (self.start..=self.end()).contains(&target) {
+            self.position = target;
+            return Ok(());
+        }
+        let from = target.saturating_sub(WINDOW as u64 / 2);
+        self.inner.seek(SeekFrom::Start(from))?;
+        self.start = from;
+        self.filled = 0;
+        self.refill(WINDOW)?;
+        self.next_fill = 2 * WINDOW;
+        if target > self.end() {
+            // Past the end of the file: reading there finds nothing.
+            self.inner.seek(SeekFrom::Start(target))?;
+            self.start = target;
+            self.filled = 0;
+        }
+        self.position = target;
         Ok(())
     }
 }
@@ -114,11 +179,21 @@ impl<R: Read> Read for Watched<'_, '_, R> {
     fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
         self.watch.reached(self.position)?;
         let most = buf.len().min(MOST_AT_ONCE);
-        let count = self
-            .inner
-            .read(&mut buf[..most])
-            .map_err(|error| self.watch.failed(error))?;
-        self.position += count as u64;
+        if self.position == self.end() && most >= self.buffer.len() {
+            // A large read goes straight to the caller.
+            let count = self
+                .inner
+                .read(&mut buf[..most])
+                .map_err(|error| self.watch.failed(error))?;
+            self.position += count as u64;
+            self.start = self.position;
+            self.filled = 0;
+            return Ok(count);
+        }
+        let available = self.fill_buf()?;
+        let count = available.len().min(most);
+        buf[..count].copy_from_slice(&available[..count]);
+        self.consume(count);
         Ok(count)
     }
 }
@@ -126,33 +201,43 @@ impl<R: Read> Read for Watched<'_, '_, R> {
 impl<R: Read> BufRead for Watched<'_, '_, R> {
     fn fill_buf(&mut self) -> io::Result<&[u8]> {
         self.watch.reached(self.position)?;
-        let watch = self.watch;
-        self.inner.fill_buf().map_err(|error| watch.failed(error))
+        if self.position == self.end() {
+            let most = self.next_fill;
+            self.refill(most)?;
+            self.next_fill = (most * 2).min(self.buffer.len());
+        }
+        Ok(self.buffered())
     }
     fn consume(&mut self, amount: usize) {
-        self.inner.consume(amount);
-        self.position += amount as u64;
+        self.position = (self.position + amount as u64).min(self.end());
     }
 }
 
-impl<R: Seek> Seek for Watched<'_, '_, R> {
+impl<R: Read + Seek> Seek for Watched<'_, '_, R> {
     fn seek(&mut self, to: SeekFrom) -> io::Result<u64> {
-        // Relative when it can be, so that a seek to bytes still in the buffer keeps it: a
-        // TIFF of millions of small strips seeks once a strip.
-        if let SeekFrom::Start(target) = to {
-            if let Ok(delta) = i64::try_from(i128::from(target) - i128::from(self.position)) {
-                self.inner
-                    .seek_relative(delta)
+        let target = match to {
+            SeekFrom::Start(target) => Some(target),
+            SeekFrom::Current(delta) => self.position.checked_add_signed(delta),
+            SeekFrom::End(_) => {
+                let target = self
+                    .inner
+                    .seek(to)
                     .map_err(|error| self.watch.failed(error))?;
+                self.start = target;
+                self.filled = 0;
                 self.position = target;
                 return Ok(target);
             }
-        }
-        self.position = self
-            .inner
-            .seek(to)
+        };
+        let target = target.ok_or_else(|| {
+            io::Error::new(
+                io::ErrorKind::InvalidInput,
+                "a seek before the file's start",
+            )
+        })?;
+        self.seek_to(target)
             .map_err(|error| self.watch.failed(error))?;
-        Ok(self.position)
+        Ok(target)
     }
 }
 
@@ -206,6 +291,41 @@ mod tests {
         reader.read_exact(&mut part[..20]).expect("20 bytes");
         assert_eq!(reader.read(&mut part).expect("the end"), 0);
         assert_eq!(*seen.borrow(), [0.0, 0.8, 1.0]);
+    }
+
+    /// Seeks anywhere (backwards, forwards, past the end) and reads of any length, small ones
+    /// through the buffer and large ones past it, give the file's own bytes.
+    #[test]
+    fn reads_after_any_seek_give_the_bytes_there() {
+        let bytes: Vec<u8> = (0..300_000u32).map(|i| (i * 31 % 251) as u8).collect();
+        let go_on = |_| ControlFlow::Continue(());
+        let watch = Watch::new(bytes.len() as u64, &go_on);
+        let mut reader = watch.reader(io::Cursor::new(&bytes[..]));
+        let mut state = 12345u64;
+        let mut next = |below: u64| {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 33) % below
+        };
+        let mut at = 0u64;
+        for _ in 0..2000 {
+            match next(4) {
+                0 => at = next(bytes.len() as u64 + 100),
+                1 => at = at.saturating_sub(next(3000)),
+                _ => {}
+            }
+            assert_eq!(reader.seek(SeekFrom::Start(at)).expect("seek"), at);
+            let want = [1, 7, 600, 5000, 70_000][next(5) as usize];
+            let mut got = vec![0; want];
+            let count = reader.read(&mut got).expect("read");
+            let from = (at as usize).min(bytes.len());
+            let expected = &bytes[from..(from + want).min(bytes.len())];
+            assert!(count <= expected.len() && count > 0 || expected.is_empty());
+            assert_eq!(&got[..count], &expected[..count], "{count} bytes at {at}");
+            at += count as u64;
+            assert_eq!(reader.stream_position().expect("position"), at);
+        }
     }
 
     #[test]
