@@ -450,6 +450,7 @@ mod tests {
             decoding: Decoding {
                 colour: crate::heightfield::ColourEncoding::Mapbox,
                 nodata: crate::heightfield::NoDataValue::Off,
+                height_unit: None,
             },
             overlay: None,
         })

@@ -75,6 +75,7 @@ fn read_map(
     let options = LoadOptions {
         colour: request.decoding.colour,
         nodata: request.decoding.nodata,
+        height_unit: request.decoding.height_unit,
         ..LoadOptions::new(1.0)
     };
     let field = match paths {
