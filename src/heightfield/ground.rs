@@ -26,7 +26,8 @@ pub struct GroundScale {
     /// Metres a cell spans along x and y at the map's centre.
     pub cell_metres: [f64; 2],
     /// Map units per metre of ground along x and y at the centre, in metres of the map's
-    /// unit (1 on a projection's true-scale lines); `None` for longitude and latitude.
+    /// unit (1 on a projection's true-scale lines); `None` for longitude and latitude, or
+    /// where the projection is not known.
     pub map_scale: Option<[f64; 2]>,
     /// The largest share by which a cell anywhere on the map differs from the centre's.
     pub spread: f64,
@@ -46,7 +47,7 @@ impl GroundScale {
         };
         let flat = |metres: f64| GroundScale {
             cell_metres: georef.spacing.map(|s| s * metres),
-            map_scale: Some([1.0, 1.0]),
+            map_scale: None,
             spread: 0.0,
             basis: measure.basis.clone(),
         };

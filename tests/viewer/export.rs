@@ -241,3 +241,80 @@ fn a_saved_scene_keeps_the_overlay_and_the_water() {
         "{saved}"
     );
 }
+
+#[test]
+fn render_of_a_map_alone_is_what_the_viewer_shows_on_opening_it() {
+    // A georeferenced DEM: a 30 m UTM grid with a wall steeper than the default sun, so that
+    // shadows show (the viewer opens it at true scale, shadows on).
+    let files = tempfile::tempdir().expect("a temporary directory");
+    let map = files.path().join("wall.asc");
+    let rows: Vec<String> = (0..65)
+        .map(|r| {
+            (0..65)
+                .map(|c| {
+                    let x = (c as f64 - 32.0) / 3.0;
+                    format!("{:.2}", 300.0 + 1500.0 * (-x * x).exp() + r as f64)
+                })
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+        .collect();
+    let text = format!(
+        "ncols 65\nnrows 65\nxllcorner 500000\nyllcorner 4000000\ncellsize 30\n{}\n",
+        rows.join("\n")
+    );
+    std::fs::write(&map, text).expect("the map written");
+    let mut session = Session::start(&[map.to_str().expect("a UTF-8 path"), "--export-dir", "out"]);
+    session.x.focus(session.window);
+    session.x.key('s' as u32);
+    let done = session.viewer.wait_for("the export", |s| {
+        s["export"]["saved"] == 1 && s["export"]["running"] == 0
+    });
+    assert_eq!(done["error"], Value::Null);
+    assert_eq!(
+        done["shadows"],
+        Value::Bool(true),
+        "the viewer opens with shadows"
+    );
+    let file = PathBuf::from(done["export"]["last"].as_str().expect("an export"));
+    let exported = image::open(&file).expect("an exported PNG").to_rgb8();
+    let (w, h) = exported.dimensions();
+    let out = files.path().join("render.png");
+    let status = Command::new(env!("CARGO_BIN_EXE_heightray"))
+        .arg("render")
+        .arg(&map)
+        .arg("-o")
+        .arg(&out)
+        .args(["--size", &format!("{w}x{h}")])
+        .stdout(std::process::Stdio::null())
+        .status()
+        .expect("run heightray render");
+    assert!(status.success());
+    let rendered = image::open(&out).expect("the rendered PNG").to_rgb8();
+    assert_same(&file, &exported, &rendered);
+    // The map casts shadows: the same view without them differs.
+    let scene = files.path().join("no_shadows.toml");
+    std::fs::write(
+        &scene,
+        "[heightmap]\npath = \"wall.asc\"\n[effects]\nshadows = false\n",
+    )
+    .expect("the scene written");
+    let unshadowed = files.path().join("unshadowed.png");
+    let status = Command::new(env!("CARGO_BIN_EXE_heightray"))
+        .arg("render")
+        .arg(&scene)
+        .arg("-o")
+        .arg(&unshadowed)
+        .args(["--size", &format!("{w}x{h}")])
+        .stdout(std::process::Stdio::null())
+        .status()
+        .expect("run heightray render");
+    assert!(status.success());
+    let unshadowed = image::open(&unshadowed)
+        .expect("the rendered PNG")
+        .to_rgb8();
+    assert_ne!(
+        unshadowed, rendered,
+        "no shadow on the map: the test shows nothing"
+    );
+}
