@@ -194,8 +194,9 @@ fn camera_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
 
 fn light_ui(ui: &mut Ui, model: &mut Model) {
     let s = &mut model.settings;
-    let azimuth =
-        ui.add(Slider::new(&mut s.sun_azimuth_deg, 0.0..=360.0).text("bearing ° (0 N, 90 E)"));
+    let azimuth = ui
+        .add(Slider::new(&mut s.sun_azimuth_deg, 0.0..=360.0).text("bearing °"))
+        .on_hover_text("the sun's compass bearing: 0 north, 90 east, 180 south");
     let azimuth = named(model, "sun_azimuth", azimuth);
     let s = &mut model.settings;
     // (Not clamped when shown: a date and time may put the sun below the horizon.)

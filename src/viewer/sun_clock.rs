@@ -3,11 +3,12 @@
 //! clocks of the map's time zone (or a zone typed here). Fields apply on Enter or when they
 //! lose focus, not at every keystroke.
 
+use super::loader::SceneClock;
 use super::model::Model;
 use crate::heightfield::place;
 use crate::render::local_time;
 use crate::render::sun_position::SunPosition;
-use chrono::{DateTime, Datelike, NaiveDate, NaiveDateTime, NaiveTime, Utc};
+use chrono::{DateTime, Datelike, NaiveDate, NaiveDateTime, NaiveTime, Timelike, Utc};
 use chrono_tz::Tz;
 use egui::{DragValue, TextEdit, Ui};
 
@@ -35,7 +36,7 @@ impl Default for SunClock {
             on: false,
             local,
             date_text: local.format("%Y-%m-%d").to_string(),
-            time_text: local.format("%H:%M").to_string(),
+            time_text: clock_text(local),
             zone_text: String::new(),
             latitude: 0.0,
             longitude: 0.0,
@@ -72,15 +73,40 @@ impl SunClock {
     fn typed(&self) -> Result<NaiveDateTime, String> {
         let date = NaiveDate::parse_from_str(self.date_text.trim(), "%Y-%m-%d")
             .map_err(|_| format!("date '{}' is not a date such as 2026-06-21", self.date_text))?;
-        let time = NaiveTime::parse_from_str(self.time_text.trim(), "%H:%M")
+        let text = self.time_text.trim();
+        let time = NaiveTime::parse_from_str(text, "%H:%M:%S")
+            .or_else(|_| NaiveTime::parse_from_str(text, "%H:%M"))
             .map_err(|_| format!("time '{}' is not a time such as 09:30", self.time_text))?;
         Ok(date.and_time(time))
+    }
+
+    /// Takes a scene's local time, zone and place, and sets the sun by them.
+    pub fn set(&mut self, clock: SceneClock) {
+        self.on = true;
+        self.local = clock.local;
+        self.date_text = clock.local.format("%Y-%m-%d").to_string();
+        self.time_text = clock_text(clock.local);
+        self.zone_text = clock.zone.map(|z| z.name().to_owned()).unwrap_or_default();
+        if let Some((lat, lon)) = clock.place {
+            self.latitude = lat;
+            self.longitude = lon;
+        }
     }
 
     /// The local time as a scene writes it, e.g. `2026-06-21T09:30:00`.
     pub fn time_key(&self) -> String {
         self.local.format("%Y-%m-%dT%H:%M:%S").to_string()
     }
+}
+
+/// The time of day as the field shows it: to the minute, or the second where it has any.
+fn clock_text(local: NaiveDateTime) -> String {
+    let format = if local.second() == 0 {
+        "%H:%M"
+    } else {
+        "%H:%M:%S"
+    };
+    local.format(format).to_string()
 }
 
 /// Where the clock's sun stands: over the map's centre, or the place typed.
@@ -104,7 +130,7 @@ pub fn sun_clock_ui(ui: &mut Ui, model: &mut Model) {
         // A time when the sun is up at the map.
         clock.local = default_local(centre.map_or(clock.latitude, |c| c.0));
         clock.date_text = clock.local.format("%Y-%m-%d").to_string();
-        clock.time_text = clock.local.format("%H:%M").to_string();
+        clock.time_text = clock_text(clock.local);
     }
     let mut apply = switched;
     ui.horizontal(|ui| {

@@ -33,6 +33,7 @@ mod ramps;
 mod recorded_cells;
 mod render;
 mod snapshots;
+mod sun_bearing;
 mod sun_time;
 mod terminator;
 mod true_scale;

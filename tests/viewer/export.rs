@@ -318,3 +318,35 @@ fn render_of_a_map_alone_is_what_the_viewer_shows_on_opening_it() {
         "no shadow on the map: the test shows nothing"
     );
 }
+
+#[test]
+fn a_scene_set_by_local_time_is_saved_with_its_time_and_zone() {
+    let files = tempfile::tempdir().expect("a temporary directory");
+    let scene = files.path().join("morning.toml");
+    // 09:30 in Oslo on 21 June is 07:30 UTC (summer time, UTC+2).
+    let text = "[heightmap]\npath = \"builtin:small49\"\nz_scale = 12.0\n\
+                [sun]\ntime = \"2026-06-21T09:30:00\"\nzone = \"Europe/Oslo\"\nlat = 59.91\nlon = 10.75\n";
+    std::fs::write(&scene, text).expect("the scene written");
+    let mut session =
+        Session::start(&[scene.to_str().expect("a UTF-8 path"), "--export-dir", "out"]);
+    let state = session.state();
+    assert_eq!(state["sun"]["clock"], "2026-06-21T09:30:00");
+    // The same instant given in UTC places the same sun.
+    let utc = files.path().join("utc.toml");
+    std::fs::write(
+        &utc,
+        "[heightmap]\npath = \"builtin:small49\"\nz_scale = 12.0\n\
+         [sun]\ntime = \"2026-06-21T07:30:00Z\"\nlat = 59.91\nlon = 10.75\n",
+    )
+    .expect("the scene written");
+    let saved = std::fs::read_to_string(save_and_export(&mut session)).expect("the saved scene");
+    assert!(
+        saved.contains(
+            "time = \"2026-06-21T09:30:00\"\nzone = \"Europe/Oslo\"\nlat = 59.91\nlon = 10.75\n"
+        ),
+        "{saved}"
+    );
+    let by_utc = heightray::render::Scene::load(&utc).expect("the UTC scene");
+    let by_local = heightray::render::Scene::load(&scene).expect("the local scene");
+    assert_eq!(by_utc.lighting.sun, by_local.lighting.sun);
+}
