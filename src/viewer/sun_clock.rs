@@ -8,7 +8,9 @@ use super::model::Model;
 use crate::heightfield::place;
 use crate::render::local_time;
 use crate::render::sun_position::SunPosition;
-use chrono::{DateTime, Datelike, NaiveDate, NaiveDateTime, NaiveTime, Timelike, Utc};
+use chrono::{
+    DateTime, Datelike, NaiveDate, NaiveDateTime, NaiveTime, Offset, TimeZone, Timelike, Utc,
+};
 use chrono_tz::Tz;
 use egui::{DragValue, TextEdit, Ui};
 
@@ -151,7 +153,13 @@ pub fn sun_clock_ui(ui: &mut Ui, model: &mut Model) {
                 .desired_width(140.0),
         );
         apply |= zone.lost_focus();
-        ui.label("time zone");
+        // The offset the zone's rules give at the clock's time, summer time included.
+        let offset = clock.zone(place).ok().and_then(|z| {
+            z.offset_from_local_datetime(&clock.local)
+                .earliest()
+                .map(|o| o.fix().to_string())
+        });
+        ui.label(format!("zone, UTC{}", offset.unwrap_or_default()));
     });
     match centre {
         Some((lat, lon)) => {

@@ -164,7 +164,7 @@ fn an_export_at_a_chosen_size_is_rendered_anew_into_the_export_folder() {
     assert_same(&file, &image, &reference);
 }
 
-/// `heightray render` of a scene file, at `size` if given.
+/// `heightray render` of a scene file (or a map alone), at `size` if given.
 fn render_file(scene: &Path, size: Option<&str>) -> image::RgbImage {
     let out = scene.with_extension("check.png");
     let mut command = Command::new(env!("CARGO_BIN_EXE_heightray"));
@@ -279,18 +279,8 @@ fn render_of_a_map_alone_is_what_the_viewer_shows_on_opening_it() {
     let file = PathBuf::from(done["export"]["last"].as_str().expect("an export"));
     let exported = image::open(&file).expect("an exported PNG").to_rgb8();
     let (w, h) = exported.dimensions();
-    let out = files.path().join("render.png");
-    let status = Command::new(env!("CARGO_BIN_EXE_heightray"))
-        .arg("render")
-        .arg(&map)
-        .arg("-o")
-        .arg(&out)
-        .args(["--size", &format!("{w}x{h}")])
-        .stdout(std::process::Stdio::null())
-        .status()
-        .expect("run heightray render");
-    assert!(status.success());
-    let rendered = image::open(&out).expect("the rendered PNG").to_rgb8();
+    let size = format!("{w}x{h}");
+    let rendered = render_file(&map, Some(&size));
     assert_same(&file, &exported, &rendered);
     // The map casts shadows: the same view without them differs.
     let scene = files.path().join("no_shadows.toml");
@@ -299,20 +289,7 @@ fn render_of_a_map_alone_is_what_the_viewer_shows_on_opening_it() {
         "[heightmap]\npath = \"wall.asc\"\n[effects]\nshadows = false\n",
     )
     .expect("the scene written");
-    let unshadowed = files.path().join("unshadowed.png");
-    let status = Command::new(env!("CARGO_BIN_EXE_heightray"))
-        .arg("render")
-        .arg(&scene)
-        .arg("-o")
-        .arg(&unshadowed)
-        .args(["--size", &format!("{w}x{h}")])
-        .stdout(std::process::Stdio::null())
-        .status()
-        .expect("run heightray render");
-    assert!(status.success());
-    let unshadowed = image::open(&unshadowed)
-        .expect("the rendered PNG")
-        .to_rgb8();
+    let unshadowed = render_file(&scene, Some(&size));
     assert_ne!(
         unshadowed, rendered,
         "no shadow on the map: the test shows nothing"
