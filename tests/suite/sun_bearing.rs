@@ -75,3 +75,18 @@ fn the_spa_example_at_local_time_reads_back_as_its_bearing() {
     assert!((azimuth - 194.34024).abs() < 0.01, "{azimuth}");
     assert!((90.0 - elevation - 50.11162).abs() < 0.01, "{elevation}");
 }
+
+#[test]
+fn a_scene_error_keeps_the_parsers_lines_so_the_marker_stands_under_the_key() {
+    let error =
+        load_scene_text("typo.toml", &format!("{MAP}[sun]\nazimuth = 135.0\n")).unwrap_err();
+    // TOML's message: the line, then a `^` under the unknown key, on lines of their own.
+    let lines: Vec<&str> = error.lines().collect();
+    let key = lines
+        .iter()
+        .position(|l| l.contains("azimuth = 135.0"))
+        .expect(&error);
+    let marker = lines.get(key + 1).expect(&error);
+    let column = |l: &str, c: char| l.find(c);
+    assert_eq!(column(marker, '^'), column(lines[key], 'a'), "{error}");
+}
