@@ -15,6 +15,7 @@ pub fn map(path: &Path, z_scale: f64, args: &MapArgs) -> anyhow::Result<Terrain>
         z_scale,
         colour: args.rgb,
         nodata: args.nodata,
+        height_unit: None,
     };
     let bar = ProgressBar::new(1000).with_style(
         ProgressStyle::with_template("decoding {msg} {bar:40} {percent}% {elapsed}")

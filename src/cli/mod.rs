@@ -391,6 +391,7 @@ pub fn view(args: ViewArgs) -> anyhow::Result<ExitCode> {
         decoding: heightray::viewer::Decoding {
             colour: args.loading.rgb,
             nodata: args.loading.nodata,
+            height_unit: None,
         },
         size: args.size,
         render_scale: args.render_scale,

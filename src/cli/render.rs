@@ -4,6 +4,7 @@
 use super::{loading, render_progress, RenderArgs};
 use heightray::output_file;
 use heightray::render::effects::MOST_RAYS;
+use heightray::render::sun_position::SunPosition;
 use heightray::render::{Culling, Frame, Renderer, Scene, SceneError, SceneFile, Shader};
 use heightray::traverse::prepare;
 use heightray::Terrain;
@@ -65,7 +66,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         frame.totals.primary_rays + frame.totals.shadow_rays + effects.soft.rays + effects.sky.rays;
     // (Before the table: a reader of the table that stops early loses none of the files.)
     if let Some(path) = &args.stats {
+        // The sun as a compass bearing (0 north, 90 east) and elevation, in degrees.
+        let sun = SunPosition::from_direction(renderer.shader.lighting.sun);
         let mut stats = json!({
+            "sun": { "azimuth_deg": sun.azimuth_deg, "elevation_deg": sun.elevation_deg },
             "width": width, "height": height, "threads": pool.current_num_threads(),
             "method": method.to_string(), "arith": arith.to_string(),
             "build_ms": build_ms, "render_ms": render_ms,

@@ -6,9 +6,7 @@
 //! `origin + (i * spacing[0], j * spacing[1])`, north up. Cells may be non-square: a
 //! geographic grid's degree of longitude spans `cos(latitude)` of a degree of latitude.
 
-/// Metres in one degree of a great circle on the sphere of the Earth's mean radius
-/// (6 371 008.8 m, IUGG): `pi * R / 180`.
-pub const METRES_PER_DEGREE: f64 = std::f64::consts::PI * 6_371_008.8 / 180.0;
+use super::crs::Crs;
 
 /// Metres in an international foot (EPSG 9002).
 pub const METRES_PER_FOOT: f64 = 0.3048;
@@ -53,6 +51,80 @@ pub struct Georef {
     pub spacing: [f64; 2],
     /// What the map coordinates measure.
     pub units: MapUnits,
+    /// The coordinate system by its EPSG code, where the file names one.
+    pub crs: Option<Crs>,
+    /// The unit of the heights.
+    pub height_unit: HeightUnit,
+}
+
+/// The unit of a map's heights, in metres, and who said so.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HeightUnit {
+    /// Metres in one unit of height.
+    pub metres: f64,
+    /// Where the unit comes from.
+    pub source: HeightUnitSource,
+}
+
+/// Where a map's height unit comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HeightUnitSource {
+    /// The file's vertical unit (GeoTIFF's VerticalUnitsGeoKey).
+    VerticalKey,
+    /// The projected CRS's linear unit: a map in feet has heights in feet.
+    MapUnit,
+    /// Metres, the unit of DEMs that say nothing.
+    Default,
+    /// A scene or the user chose it.
+    Chosen,
+}
+
+impl HeightUnit {
+    /// Metres, by default.
+    pub const METRES: HeightUnit = HeightUnit {
+        metres: 1.0,
+        source: HeightUnitSource::Default,
+    };
+
+    /// The unit's short name: `m`, `ft` or `US ft`.
+    pub fn symbol(&self) -> &'static str {
+        unit_symbol(self.metres)
+    }
+
+    /// A unit named `m`, `ft` or `us-ft` (as scenes and the panel say), chosen.
+    pub fn named(name: &str) -> Option<HeightUnit> {
+        let metres = match name {
+            "m" | "metre" | "meter" | "metres" | "meters" => 1.0,
+            "ft" | "foot" | "feet" => METRES_PER_FOOT,
+            "us-ft" | "us_ft" | "ftUS" | "US ft" => METRES_PER_US_SURVEY_FOOT,
+            _ => return None,
+        };
+        Some(HeightUnit {
+            metres,
+            source: HeightUnitSource::Chosen,
+        })
+    }
+
+    /// The key a scene file writes for the unit.
+    pub fn key(&self) -> &'static str {
+        match self.symbol() {
+            "ft" => "ft",
+            "US ft" => "us-ft",
+            _ => "m",
+        }
+    }
+}
+
+/// The short name of a unit of `metres` metres.
+pub fn unit_symbol(metres: f64) -> &'static str {
+    // Definitions write the US survey foot to 15 or 16 digits.
+    if (metres - METRES_PER_FOOT).abs() < 1e-9 {
+        "ft"
+    } else if (metres - METRES_PER_US_SURVEY_FOOT).abs() < 1e-9 {
+        "US ft"
+    } else {
+        "m"
+    }
 }
 
 impl Georef {
@@ -75,7 +147,50 @@ impl Georef {
             origin,
             spacing,
             units,
+            crs: None,
+            height_unit: match units {
+                MapUnits::Linear { metres } if metres != 1.0 => HeightUnit {
+                    metres,
+                    source: HeightUnitSource::MapUnit,
+                },
+                _ => HeightUnit::METRES,
+            },
         })
+    }
+
+    /// The same georeferencing with heights in `height_unit`.
+    pub fn with_height_unit(self, height_unit: HeightUnit) -> Georef {
+        Georef {
+            height_unit,
+            ..self
+        }
+    }
+
+    /// The same georeferencing in coordinate system `crs`.
+    pub fn with_crs(self, crs: Option<Crs>) -> Georef {
+        let mut georef = Georef { crs, ..self };
+        if let (Some(metres), MapUnits::Linear { .. }) =
+            (crs.and_then(|c| c.metres_per_unit()), self.units)
+        {
+            if georef.height_unit.source == HeightUnitSource::Default && metres != 1.0 {
+                georef.height_unit = HeightUnit {
+                    metres,
+                    source: HeightUnitSource::MapUnit,
+                };
+            }
+        }
+        georef
+    }
+
+    /// The coordinate system in words: its name and code, or its kind of units.
+    pub fn crs_label(&self) -> String {
+        match (self.crs, self.units) {
+            (Some(crs), _) => crs.label(),
+            (None, MapUnits::Degrees) => "longitude/latitude".into(),
+            (None, MapUnits::Linear { metres }) => {
+                format!("a projected CRS in {}", unit_symbol(metres))
+            }
+        }
     }
 
     /// The map coordinates of grid point `(x, y)` (fractional sample positions).
@@ -84,23 +199,6 @@ impl Georef {
             self.origin[0] + x * self.spacing[0],
             self.origin[1] + y * self.spacing[1],
         ]
-    }
-
-    /// The size of a cell in metres along x and y, at the centre of a field of `width` x
-    /// `height` samples (a geographic grid's cells narrow towards the poles; the centre's
-    /// latitude stands for the whole field).
-    pub fn cell_metres(&self, width: usize, height: usize) -> [f64; 2] {
-        match self.units {
-            MapUnits::Linear { metres } => self.spacing.map(|s| s * metres),
-            MapUnits::Degrees => {
-                let centre = self.map_point(0.5 * (width - 1) as f64, 0.5 * (height - 1) as f64);
-                let across = centre[1].to_radians().cos().max(0.0);
-                [
-                    self.spacing[0] * METRES_PER_DEGREE * across,
-                    self.spacing[1] * METRES_PER_DEGREE,
-                ]
-            }
-        }
     }
 }
 
@@ -133,7 +231,7 @@ impl Georeferencing {
         let Georeferencing::Map(georef) = &self else {
             return self;
         };
-        let [x, y] = georef.cell_metres(width, height);
+        let [x, y] = super::ground::GroundScale::of(georef, width, height).cell_metres;
         let range = FINEST_CELL_METRES..=COARSEST_CELL_METRES;
         if range.contains(&x) && range.contains(&y) {
             return self;
@@ -158,24 +256,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_degree_of_longitude_at_60_north_spans_half_a_degree_of_latitude() {
-        // 3x3 samples a second apart, centred on 60 N.
-        let second = 1.0 / 3600.0;
-        let georef =
-            Georef::new([10.0, 60.0 - second], [second, second], MapUnits::Degrees).unwrap();
-        let [x, y] = georef.cell_metres(3, 3);
-        assert!((x / y - 0.5).abs() < 1e-12, "{x} / {y}");
-        // A second of latitude on the mean sphere: 6371008.8 m * pi / 648000.
-        assert!((y - 6_371_008.8 * std::f64::consts::PI / 648_000.0).abs() < 1e-9);
-    }
-
-    #[test]
-    fn projected_cells_are_their_spacing_in_metres() {
+    fn map_points_step_by_the_spacing() {
         let feet = MapUnits::Linear {
             metres: METRES_PER_FOOT,
         };
         let georef = Georef::new([0.0, 0.0], [10.0, 20.0], feet).unwrap();
-        assert_eq!(georef.cell_metres(5, 5), [3.048, 6.096]);
         assert_eq!(georef.map_point(2.0, 0.5), [20.0, 10.0]);
     }
 

@@ -7,10 +7,12 @@
 //! with ([`Terrain`](crate::heightfield::Terrain)).
 
 mod builtin;
+pub mod crs;
 mod drape;
 mod fetch;
 mod generate;
 mod georef;
+pub mod ground;
 mod limits;
 mod load;
 mod maxima;
@@ -27,11 +29,11 @@ pub use builtin::{Builtin, BUILTINS};
 pub use drape::{Drape, DrapeError, Placement};
 pub use fetch::Window;
 pub use generate::landscape;
-pub use georef::{Georef, Georeferencing, MapUnits, METRES_PER_DEGREE};
+pub use georef::{Georef, Georeferencing, HeightUnit, HeightUnitSource, MapUnits};
 pub use limits::{MAX_DECODED_BYTES, MAX_SAMPLES};
 pub use load::{
-    load, load_bytes, load_bytes_with, load_mosaic, load_with, ColourEncoding, LoadError,
-    LoadOptions, NoDataValue, Progress,
+    load, load_bytes, load_bytes_with, load_mosaic, load_with, picture_kind, ColourEncoding,
+    LoadError, LoadOptions, NoDataValue, Progress,
 };
 pub use maxima::{CellMaxima, LineMaxima};
 pub use mipmap::Mipmap;
@@ -147,6 +149,8 @@ pub struct Heightfield {
     nodata: Option<NoDataMask>,
     /// Where the samples lie on the Earth, if the file said.
     georef: Georeferencing,
+    /// The ground size of the cells, for a georeferenced field.
+    ground: Option<Arc<ground::GroundScale>>,
     /// An image colouring the surface, if one is laid over it.
     drape: Option<Arc<Drape>>,
 }
@@ -250,13 +254,26 @@ impl Heightfield {
             unit,
             nodata,
             georef: Georeferencing::None,
+            ground: None,
             drape: None,
         })
     }
 
     /// The same field, placed on the Earth.
     pub fn with_georeferencing(self, georef: Georeferencing) -> Self {
-        Heightfield { georef, ..self }
+        let ground = georef
+            .georef()
+            .map(|g| Arc::new(ground::GroundScale::of(g, self.width, self.height)));
+        Heightfield {
+            georef,
+            ground,
+            ..self
+        }
+    }
+
+    /// The ground size of the cells and what it rests on, for a georeferenced field.
+    pub fn ground(&self) -> Option<&ground::GroundScale> {
+        self.ground.as_deref()
     }
 
     /// The same field with `drape` colouring its surface (or none).
@@ -281,8 +298,7 @@ impl Heightfield {
 
     /// The size of a cell in metres along x and y, for a georeferenced field.
     pub fn cell_metres(&self) -> Option<[f64; 2]> {
-        self.georef()
-            .map(|g| g.cell_metres(self.width, self.height))
+        self.ground().map(|g| g.cell_metres)
     }
 
     /// The same samples and holes with another z scale.

@@ -1,10 +1,11 @@
 //! Words for where a georeferenced field lies: its cells and extent in metres and kilometres,
 //! and a grid point's map coordinates and elevation.
 
-use super::{relief, Georeferencing, Heightfield, MapUnits};
+use super::{relief, Georeferencing, HeightUnitSource, Heightfield, MapUnits};
 
-/// A field's georeferencing in a line: cell size, extent, exaggeration; or why a file's
-/// georeferencing is not used; `None` for a plain image.
+/// A field's georeferencing in a line: cell size, extent, coordinate system and scale,
+/// height unit, exaggeration; or why a file's georeferencing is not used; `None` for a plain
+/// image.
 pub fn describe_georeferencing(field: &Heightfield) -> Option<String> {
     let georef = match field.georeferencing() {
         Georeferencing::None => return None,
@@ -15,26 +16,38 @@ pub fn describe_georeferencing(field: &Heightfield) -> Option<String> {
         }
         Georeferencing::Map(georef) => georef,
     };
-    let [cx, cy] = field.cell_metres()?;
+    let ground = field.ground()?;
+    let [cx, cy] = ground.cell_metres;
     let (w, h) = ((field.width() - 1) as f64, (field.height() - 1) as f64);
-    let crs = match georef.units {
-        MapUnits::Degrees => "longitude/latitude",
-        MapUnits::Linear { metres: 1.0 } => "projected, metres",
-        MapUnits::Linear { .. } => "projected, feet",
+    let unit = georef.height_unit;
+    let heights = match unit.source {
+        HeightUnitSource::Default => String::new(),
+        HeightUnitSource::VerticalKey => {
+            format!("heights in {} (the file's vertical unit), ", unit.symbol())
+        }
+        HeightUnitSource::MapUnit => format!("heights in {} (the CRS's unit), ", unit.symbol()),
+        HeightUnitSource::Chosen => format!("heights in {} (chosen), ", unit.symbol()),
     };
     let exaggeration = relief::exaggeration(field).unwrap_or(1.0);
     Some(format!(
-        "cells {cx:.2} x {cy:.2} m, {:.2} x {:.2} km ({crs}), heights shown x{exaggeration:.2}",
+        "cells {cx:.2} x {cy:.2} m, {:.2} x {:.2} km ({}), {heights}shown x{exaggeration:.2}",
         w * cx / 1000.0,
-        h * cy / 1000.0
+        h * cy / 1000.0,
+        ground.describe()
     ))
 }
 
-/// Latitude and longitude in degrees of the centre of a map in longitude and latitude.
+/// Latitude and longitude in degrees of the centre of a map in longitude and latitude, or in
+/// a projected CRS known by its EPSG code.
 pub fn centre_degrees(field: &Heightfield) -> Option<(f64, f64)> {
-    let georef = field.georef().filter(|g| g.units == MapUnits::Degrees)?;
+    let georef = field.georef()?;
     let (w, h) = (field.width() - 1, field.height() - 1);
-    let [lon, lat] = georef.map_point(0.5 * w as f64, 0.5 * h as f64);
+    let centre = georef.map_point(0.5 * w as f64, 0.5 * h as f64);
+    let [lon, lat] = match (georef.crs, georef.units) {
+        (Some(crs), _) => crs.to_lonlat().ok()?.lonlat(centre)?,
+        (None, MapUnits::Degrees) => centre,
+        (None, MapUnits::Linear { .. }) => return None,
+    };
     Some((lat, lon))
 }
 

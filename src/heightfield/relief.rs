@@ -4,6 +4,7 @@
 //!
 //! Grid units are cells; on a georeferenced field one unit of height is one cell along y, so
 //! a height of `h` metres over cells `cell_y` metres high is `h * exaggeration / cell_y` units.
+//! Heights in feet are taken to metres by the map's height unit first.
 
 use super::{Heightfield, Quantisation};
 
@@ -31,13 +32,14 @@ pub fn exaggeration_at(field: &Heightfield, z_scale: f64) -> Option<f64> {
     Some(z_scale * cell_y / metres_per_z_scale(field))
 }
 
-/// The z scale at which heights are the raster's values: 1 for values in their own units, the
-/// maxval for integer samples.
+/// The z scale at which heights are metres on the map: the raster's values (1 for values in
+/// their own units, the maxval for integer samples) times metres in its height unit.
 pub(super) fn metres_per_z_scale(field: &Heightfield) -> f64 {
-    match field.quantisation() {
+    let values = match field.quantisation() {
         Quantisation::Maxval(maxval) => f64::from(maxval),
         Quantisation::Offset { .. } => 1.0,
-    }
+    };
+    values * field.georef().map_or(1.0, |g| g.height_unit.metres)
 }
 
 /// A z scale that makes a plain image's relief visible whatever its size: an integer raster's

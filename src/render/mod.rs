@@ -2,6 +2,7 @@ mod camera;
 pub mod effects;
 pub mod framing;
 mod gamma;
+pub mod local_time;
 mod normals;
 mod passes;
 mod ramp;

@@ -198,7 +198,8 @@ impl SceneFile {
     fn parse(text: &str, path: &Path) -> Result<SceneFile, SceneError> {
         toml::from_str(text).map_err(|e| SceneError::Parse {
             path: path.to_owned(),
-            message: e.to_string().trim_end().replace('\n', " "),
+            // Kept on its lines, so that the `^` marker stands under the bad key.
+            message: e.to_string().trim_end().to_owned(),
         })
     }
 }
@@ -210,10 +211,21 @@ pub struct SunSection {
     /// Towards the sun; normalised on load.
     #[serde(default = "default_sun", deserialize_with = "triple::three")]
     pub direction: [f64; 3],
-    /// Instead of `direction`: where the sun stands at this time (RFC 3339, e.g.
-    /// `2026-12-21T08:00:00Z`) over the map's centre, or over `lat` and `lon`.
+    /// Instead of `direction`: the sun's compass bearing (0 north, 90 east) and its
+    /// elevation above the horizon, in degrees.
+    #[serde(default)]
+    pub azimuth_deg: Option<f64>,
+    /// With `azimuth_deg`: degrees above the horizon.
+    #[serde(default)]
+    pub elevation_deg: Option<f64>,
+    /// Instead of `direction`: where the sun stands at this time over the map's centre, or
+    /// over `lat` and `lon`: an instant (`2026-12-21T08:00:00Z`) or a local time
+    /// (`2026-06-21T09:30`) in `zone`.
     #[serde(default)]
     pub time: Option<String>,
+    /// The IANA time zone of a local `time` (default: the zone at the place).
+    #[serde(default)]
+    pub zone: Option<String>,
     /// Latitude in degrees for `time`.
     #[serde(default)]
     pub lat: Option<f64>,
@@ -312,7 +324,10 @@ impl Default for SunSection {
     fn default() -> Self {
         SunSection {
             direction: default_sun(),
+            azimuth_deg: None,
+            elevation_deg: None,
             time: None,
+            zone: None,
             lat: None,
             lon: None,
             intensity: 1.0,

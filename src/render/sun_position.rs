@@ -8,7 +8,7 @@ use solar_positioning::{delta_t, Location, RefractionCorrection, SolarPositions}
 /// Where the sun stands in the sky.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SunPosition {
-    /// Degrees clockwise from north.
+    /// Compass bearing: degrees clockwise from north, 0 to 360.
     pub azimuth_deg: f64,
     /// Degrees above the horizon (negative below it), refraction included.
     pub elevation_deg: f64,
@@ -21,6 +21,15 @@ impl SunPosition {
         let time: DateTime<Utc> = time
             .parse()
             .map_err(|e| format!("'{time}' is not a time such as 2026-12-21T08:00:00Z ({e})"))?;
+        SunPosition::at_utc(time, latitude, longitude)
+    }
+
+    /// The sun at instant `time` seen from `latitude` and `longitude` in degrees.
+    pub fn at_utc(
+        time: DateTime<Utc>,
+        latitude: f64,
+        longitude: f64,
+    ) -> Result<SunPosition, String> {
         let delta_t = delta_t::estimate_from_date_like(&time).map_err(|e| e.to_string())?;
         let location = Location {
             latitude,
@@ -39,6 +48,14 @@ impl SunPosition {
             azimuth_deg: position.azimuth(),
             elevation_deg: position.elevation_angle(),
         })
+    }
+
+    /// The sun in the direction `towards_sun` (x east, y north, z up; any length but 0).
+    pub fn from_direction([x, y, z]: [f64; 3]) -> SunPosition {
+        SunPosition {
+            azimuth_deg: x.atan2(y).to_degrees().rem_euclid(360.0),
+            elevation_deg: z.atan2(x.hypot(y)).to_degrees(),
+        }
     }
 
     /// Whether the sun is above the horizon.

@@ -6,7 +6,7 @@
 use super::loader::{LoadRequest, Source};
 use super::model::{Action, Model};
 use super::panels::named;
-use crate::heightfield::{ColourEncoding, NoDataValue};
+use crate::heightfield::{ColourEncoding, HeightUnit, NoDataValue};
 use egui::{DragValue, Ui};
 use std::path::{Path, PathBuf};
 
@@ -17,6 +17,8 @@ pub struct Decoding {
     pub colour: ColourEncoding,
     /// Which raster value means no data.
     pub nodata: NoDataValue,
+    /// A georeferenced map's height unit, instead of the one its file implies.
+    pub height_unit: Option<HeightUnit>,
 }
 
 /// The choices, and a button that reads the shown image again when they differ from how it
@@ -40,6 +42,7 @@ pub fn decoding_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         }
     });
     ui.horizontal_wrapped(|ui| nodata_ui(ui, model));
+    ui.horizontal_wrapped(|ui| height_unit_ui(ui, model));
     let Source::File(path) = &model.shown.source else {
         return;
     };
@@ -49,8 +52,9 @@ pub fn decoding_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     // The colour choice changes nothing in a grey image: reading it again is offered only
     // for what would change.
     let (chosen, shown) = (model.decoding, model.shown.decoding);
-    let differs =
-        chosen.nodata != shown.nodata || (chosen.colour != shown.colour && has_colour(ui, path));
+    let differs = chosen.nodata != shown.nodata
+        || chosen.height_unit != shown.height_unit
+        || (chosen.colour != shown.colour && has_colour(ui, path));
     if differs {
         let again = ui.button(format!("read {} again", model.shown.source.label()));
         if named(model, "decode_again", again).clicked() {
@@ -84,6 +88,21 @@ fn has_colour(ui: &Ui, path: &Path) -> bool {
         });
     ui.data_mut(|d| d.insert_temp(id, (path.to_path_buf(), colour)));
     colour
+}
+
+/// A georeferenced map's heights: in the unit its file implies, or in metres or feet.
+fn height_unit_ui(ui: &mut Ui, model: &mut Model) {
+    ui.label("heights in");
+    let choices = [
+        (None, "the file's unit", "height_unit_file"),
+        (HeightUnit::named("m"), "m", "height_unit_m"),
+        (HeightUnit::named("ft"), "ft", "height_unit_ft"),
+        (HeightUnit::named("us-ft"), "US ft", "height_unit_us_ft"),
+    ];
+    for (chosen, label, widget) in choices {
+        let radio = ui.radio_value(&mut model.decoding.height_unit, chosen, label);
+        named(model, widget, radio);
+    }
 }
 
 /// No data: the file's own (auto), none, or a value.

@@ -1,9 +1,12 @@
 //! Files dropped onto the window: gathered while a drop delivers them one by one, then loaded
-//! as one request: a height map or scene, tiles joined into one map, or an overlay.
+//! as one request: a height map or scene, tiles joined into one map, or an overlay. A single
+//! picture (a JPEG, an RGB TIFF) dropped as a height map is laid over the map instead, as it
+//! holds no heights.
 
 use super::loader::{LoadRequest, OverlayChange, Source};
 use super::model::Model;
 use super::overlay_ui::overlay_request;
+use crate::heightfield;
 use std::path::PathBuf;
 
 /// What files dropped onto the window load.
@@ -19,8 +22,18 @@ pub enum DropLoads {
 /// The request the files dropped since the last call make, if any were dropped.
 pub fn take(model: &mut Model) -> Option<LoadRequest> {
     let mut paths = std::mem::take(&mut model.dropped);
-    match model.overlay.drop_loads {
-        DropLoads::HeightMap => Some(LoadRequest {
+    let picture = match paths.as_slice() {
+        [path] => heightfield::picture_kind(path),
+        _ => None,
+    };
+    match (model.overlay.drop_loads, picture) {
+        (DropLoads::HeightMap, Some(what)) => {
+            let path = paths.pop()?;
+            model.overlay.dropped_picture = Some(what);
+            let opacity = model.overlay.opacity;
+            Some(overlay_request(model, OverlayChange::Lay { path, opacity }))
+        }
+        (DropLoads::HeightMap, None) => Some(LoadRequest {
             source: Source::of_paths(paths)?,
             z_scale: None,
             reframe: true,
@@ -28,7 +41,7 @@ pub fn take(model: &mut Model) -> Option<LoadRequest> {
             decoding: model.decoding,
             overlay: None,
         }),
-        DropLoads::Overlay => {
+        (DropLoads::Overlay, _) => {
             // One image at a time: the last one dropped.
             let path: PathBuf = paths.pop()?;
             let opacity = model.overlay.opacity;

@@ -69,6 +69,7 @@ fn report(model: &Model, counts: &Counts) -> Value {
             "azimuth_deg": model.settings.sun_azimuth_deg,
             "elevation_deg": model.settings.sun_elevation_deg,
             "direction": model.settings.sun(),
+            "clock": model.sun_clock.on.then(|| model.sun_clock.time_key()),
         },
         "lighting": lighting_report(model),
         "method": model.settings.method.to_string(),

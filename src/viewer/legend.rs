@@ -22,7 +22,15 @@ pub fn height_legend_ui(ui: &Ui, rect: Rect, model: &Model) {
     let Some(latest) = &model.latest else {
         return;
     };
-    if model.settings.heat != HeatMode::Off {
+    // An opaque overlay colours the map instead of the ramp: the legend would explain
+    // colours not shown.
+    let overlaid = latest
+        .job
+        .terrain
+        .field()
+        .drape()
+        .is_some_and(|d| d.opacity() >= 1.0);
+    if model.settings.heat != HeatMode::Off || overlaid {
         return;
     }
     let ramp = latest.job.lighting.ramp;

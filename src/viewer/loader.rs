@@ -117,6 +117,17 @@ pub struct SceneSetup {
     pub lighting: Lighting,
     pub method: Method,
     pub arith: Arith,
+    /// The local date and time that placed the sun, if the scene gave one.
+    pub clock: Option<SceneClock>,
+}
+
+/// A scene's `[sun]` local time, its zone (none: the place's own) and place (none: the
+/// map's centre).
+#[derive(Clone, Copy, Debug)]
+pub struct SceneClock {
+    pub local: chrono::NaiveDateTime,
+    pub zone: Option<chrono_tz::Tz>,
+    pub place: Option<(f64, f64)>,
 }
 
 /// A terrain ready to render.
@@ -450,6 +461,7 @@ mod tests {
             decoding: Decoding {
                 colour: crate::heightfield::ColourEncoding::Mapbox,
                 nodata: crate::heightfield::NoDataValue::Off,
+                height_unit: None,
             },
             overlay: None,
         })

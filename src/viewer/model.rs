@@ -164,6 +164,12 @@ impl Model {
         self.framed = None;
         self.settings
             .adopt_scene(&scene.lighting, scene.method, scene.arith);
+        self.sun_clock.on = false;
+        if let Some(clock) = scene.clock {
+            self.sun_clock.set(clock);
+            // Placed again by the clock, as the scene was: the same sun to the last bit.
+            super::sun_clock::apply_clock(self);
+        }
     }
 
     /// A model showing the whole of `shown` (framed again for the view's shape once it is

@@ -18,6 +18,8 @@ pub struct OverlayControls {
     pub opacity: f64,
     /// What a dropped file loads.
     pub drop_loads: DropLoads,
+    /// What kind of picture was dropped as a height map and is being laid as an overlay.
+    pub dropped_picture: Option<String>,
 }
 
 impl Default for OverlayControls {
@@ -26,6 +28,7 @@ impl Default for OverlayControls {
             path_text: String::new(),
             opacity: 1.0,
             drop_loads: DropLoads::default(),
+            dropped_picture: None,
         }
     }
 }
@@ -50,7 +53,11 @@ pub fn shown(model: &mut Model, change: Option<&OverlayChange>) {
     }
     match change {
         Some(OverlayChange::Lay { path, .. }) => {
-            model.notify(format!("Draped {} over the map", path.display()))
+            let why = match model.overlay.dropped_picture.take() {
+                Some(what) => format!(" as an overlay: it is {what}, not a height map"),
+                None => String::new(),
+            };
+            model.notify(format!("Draped {} over the map{why}", path.display()))
         }
         Some(OverlayChange::Remove) => model.notify("Removed the overlay"),
         None => {}

@@ -194,15 +194,21 @@ fn camera_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
 
 fn light_ui(ui: &mut Ui, model: &mut Model) {
     let s = &mut model.settings;
-    let azimuth = ui.add(Slider::new(&mut s.sun_azimuth_deg, -180.0..=180.0).text("azimuth °"));
-    named(model, "sun_azimuth", azimuth);
+    let azimuth = ui
+        .add(Slider::new(&mut s.sun_azimuth_deg, 0.0..=360.0).text("bearing °"))
+        .on_hover_text("the sun's compass bearing: 0 north, 90 east, 180 south");
+    let azimuth = named(model, "sun_azimuth", azimuth);
     let s = &mut model.settings;
     // (Not clamped when shown: a date and time may put the sun below the horizon.)
-    ui.add(
+    let elevation = ui.add(
         Slider::new(&mut s.sun_elevation_deg, 1.0..=90.0)
             .clamping(egui::SliderClamping::Edits)
             .text("elevation °"),
     );
+    if azimuth.changed() || elevation.changed() {
+        // The sliders now set the sun, not the clock.
+        model.sun_clock.on = false;
+    }
     super::sun_clock::sun_clock_ui(ui, model);
     let s = &mut model.settings;
     ui.add(Slider::new(&mut s.intensity, 0.0..=3.0).text("intensity"));
@@ -238,11 +244,15 @@ fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         field.width(),
         field.height()
     ));
-    ui.label(format!(
-        "heights {lo:.2} .. {hi:.2} (step {:.3e}), {} no-data samples",
-        field.step(),
-        field.nodata_count()
-    ));
+    // A georeferenced map's heights are shown in metres below; grid units only for a plain
+    // image, labelled as such.
+    if field.georef().is_none() {
+        ui.label(format!(
+            "heights {lo:.2} .. {hi:.2} grid units (step {:.3e})",
+            field.step()
+        ));
+    }
+    ui.label(format!("{} no-data samples", field.nodata_count()));
     georeferencing_ui(ui, model);
     ui.label(format!(
         "read {:.1} ms, build {:.1} ms ({:.1} MB of acceleration data)",
@@ -310,7 +320,7 @@ fn z_scale_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         DragValue::new(&mut model.z_scale)
             .range(0.0..=1e7)
             .speed(speed)
-            .prefix("z scale "),
+            .prefix("z scale (grid units) "),
     );
     let exaggerated = exaggeration_ui(ui, model);
     if (z.changed() || exaggerated) && model.z_scale != model.shown.terrain.field().z_scale() {

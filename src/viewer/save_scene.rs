@@ -6,7 +6,9 @@
 use super::export::create_numbered;
 use super::loader::Source;
 use super::model::Model;
-use crate::heightfield::NoDataValue;
+use super::sun_clock;
+use crate::heightfield::place;
+use crate::heightfield::{HeightUnitSource, NoDataValue};
 use crate::output_file;
 use crate::render::{bytes_from_linear, level_in_map_units, NoDataKey, Scene, SceneFile};
 use std::path::Path;
@@ -37,14 +39,13 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
     let z_scale = model.shown.terrain.field().z_scale();
     let heightmap = heightmap_keys(&model.shown.source, model)?;
     let [tx, ty, tz] = orbit.target;
-    let [sx, sy, sz] = model.settings.sun();
     let effects = lighting.effects;
     Ok(format!(
         "[heightmap]\n{heightmap}z_scale = {z_scale:?}\n\n\
          [camera]\norbit = {{ target = [{tx:?}, {ty:?}, {tz:?}], yaw_deg = {:?}, \
          pitch_deg = {:?}, distance = {:?} }}\nfov_y_deg = {:?}\nwidth = {width}\n\
          height = {height}\n\n\
-         [sun]\ndirection = [{sx:?}, {sy:?}, {sz:?}]\nintensity = {:?}\nambient = {:?}\n\
+         [sun]\n{}intensity = {:?}\nambient = {:?}\n\
          angle_deg = {:?}\nrays = {}\n\n\
          [effects]\nshadows = {}\nfog = {:?}\nsky_light = {}\nsky_rays = {}\nsky_distance = {:?}\n\n\
          [shading]\nnormals = \"{}\"\nramp = \"{}\"\n\n\
@@ -53,6 +54,7 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
         orbit.pitch_deg,
         orbit.distance,
         orbit.fov_y_deg,
+        sun_keys(model),
         lighting.intensity,
         lighting.ambient,
         effects.sun_angle_deg,
@@ -71,6 +73,34 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
         overlay_keys(model),
         water_keys(model),
     ))
+}
+
+/// The `[sun]` keys that place the sun: the local time and zone the clock set it by; a
+/// scene's direction, as given; or the compass bearing and elevation of the sliders.
+fn sun_keys(model: &Model) -> String {
+    let settings = &model.settings;
+    if model.sun_clock.on {
+        let place = sun_clock::clock_place(model);
+        let zone = model.sun_clock.zone(place).unwrap_or(chrono_tz::Tz::UTC);
+        let own_place = place::centre_degrees(model.shown.terrain.field()).is_some();
+        let lat_lon = if own_place {
+            String::new()
+        } else {
+            format!("lat = {:?}\nlon = {:?}\n", place.0, place.1)
+        };
+        return format!(
+            "time = \"{}\"\nzone = \"{}\"\n{lat_lon}",
+            model.sun_clock.time_key(),
+            zone.name()
+        );
+    }
+    match settings.given_sun() {
+        Some([x, y, z]) => format!("direction = [{x:?}, {y:?}, {z:?}]\n"),
+        None => format!(
+            "azimuth_deg = {:?}\nelevation_deg = {:?}\n",
+            settings.sun_azimuth_deg, settings.sun_elevation_deg
+        ),
+    }
 }
 
 /// The `[water]` section, if the view shows water.
@@ -144,7 +174,16 @@ fn heightmap_keys(source: &Source, model: &Model) -> Result<String, String> {
         NoDataValue::Value(v) => format!("{v:?}"),
         word => format!("\"{word}\""),
     };
-    Ok(format!("{path}\nrgb = \"{rgb}\"\nnodata = {nodata}\n"))
+    // The unit the map is shown in, as a key, whatever chose it.
+    let unit = match model.shown.terrain.field().georef().map(|g| g.height_unit) {
+        Some(unit) if unit.source == HeightUnitSource::Chosen => {
+            format!("height_unit = \"{}\"\n", unit.key())
+        }
+        _ => String::new(),
+    };
+    Ok(format!(
+        "{path}\nrgb = \"{rgb}\"\nnodata = {nodata}\n{unit}"
+    ))
 }
 
 /// `path` in full, so the scene works from any folder.

@@ -1,6 +1,7 @@
 //! What the panels edit besides the camera: light, shading, effects, traversal, display.
 
 use crate::render::effects::Effects;
+use crate::render::sun_position::SunPosition;
 use crate::render::{Lighting, Normals, Ramp};
 use crate::traverse::DEFAULT_BOUND;
 use crate::{Arith, Method};
@@ -122,8 +123,11 @@ pub mod fog {
 /// Everything the panels edit besides the camera and the height map.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
-    /// Sun direction: azimuth from +x towards +y, elevation above the horizon.
+    /// Sun direction: compass bearing (0 north, 90 east, 0 to 360), elevation above the
+    /// horizon.
     pub sun_azimuth_deg: f64,
+    /// A direction given as such (a scene's), with the angles it was shown at.
+    pub sun_given: Option<([f64; 3], f64, f64)>,
     pub sun_elevation_deg: f64,
     pub intensity: f64,
     pub ambient: f64,
@@ -146,6 +150,7 @@ impl Default for Settings {
     fn default() -> Self {
         let mut settings = Settings {
             sun_azimuth_deg: 0.0,
+            sun_given: None,
             sun_elevation_deg: 0.0,
             intensity: 1.0,
             ambient: 0.25,
@@ -191,18 +196,29 @@ impl Settings {
 
     /// Sets azimuth and elevation from a direction towards the sun.
     pub fn set_sun(&mut self, towards_sun: [f64; 3]) {
-        let [x, y, z] = towards_sun;
-        self.sun_azimuth_deg = y.atan2(x).to_degrees();
-        self.sun_elevation_deg = z.atan2(x.hypot(y)).to_degrees();
+        let sun = SunPosition::from_direction(towards_sun);
+        self.sun_azimuth_deg = sun.azimuth_deg;
+        self.sun_elevation_deg = sun.elevation_deg;
+        self.sun_given = Some((towards_sun, sun.azimuth_deg, sun.elevation_deg));
     }
 
-    /// Unit vector towards the sun.
+    /// The direction a scene gave, while the sliders have not moved the sun from it: kept
+    /// as given, since angles and back would change its last bits and so the image.
+    pub fn given_sun(&self) -> Option<[f64; 3]> {
+        self.sun_given
+            .filter(|&(_, az, el)| az == self.sun_azimuth_deg && el == self.sun_elevation_deg)
+            .map(|(direction, _, _)| direction)
+    }
+
+    /// Vector towards the sun.
     pub fn sun(&self) -> [f64; 3] {
-        let (az, el) = (
-            self.sun_azimuth_deg.to_radians(),
-            self.sun_elevation_deg.to_radians(),
-        );
-        [az.cos() * el.cos(), az.sin() * el.cos(), el.sin()]
+        self.given_sun().unwrap_or_else(|| {
+            SunPosition {
+                azimuth_deg: self.sun_azimuth_deg,
+                elevation_deg: self.sun_elevation_deg,
+            }
+            .direction()
+        })
     }
 
     /// The renderer's lighting; a sun below the horizon (set by a date and time) lights
@@ -244,9 +260,20 @@ mod tests {
         let towards = [0.4, 0.3, 0.8];
         let length = (0.16f64 + 0.09 + 0.64).sqrt();
         settings.set_sun(towards);
-        for (got, want) in settings.sun().iter().zip(towards) {
+        // A given direction is kept as given; the sliders' angles give the same within
+        // rounding.
+        assert_eq!(settings.lighting().sun, Lighting::unit(towards));
+        let angles = SunPosition {
+            azimuth_deg: settings.sun_azimuth_deg,
+            elevation_deg: settings.sun_elevation_deg,
+        }
+        .direction();
+        for (got, want) in angles.iter().zip(towards) {
             assert!((got - want / length).abs() < 1e-12);
         }
+        // North-east is bearing 45.
+        settings.set_sun([1.0, 1.0, 0.0]);
+        assert!((settings.sun_azimuth_deg - 45.0).abs() < 1e-12);
     }
 
     #[test]

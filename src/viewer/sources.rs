@@ -2,10 +2,10 @@
 //! plain ones with a z scale that makes their relief visible) and scene files (with their
 //! camera and lighting); rescaling, and laying an image over the map.
 
-use super::loader::{LoadRequest, Loaded, OverlayChange, SceneSetup, Source, Stage};
+use super::loader::{LoadRequest, Loaded, OverlayChange, SceneClock, SceneSetup, Source, Stage};
 use super::orbit::Orbit;
 use crate::heightfield::{self, relief, Builtin, Drape, LoadOptions};
-use crate::render::{Lighting, Scene, SceneFile};
+use crate::render::{local_time, Lighting, Scene, SceneFile};
 use crate::{Arith, Heightfield, Method, Terrain};
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
@@ -75,6 +75,7 @@ fn read_map(
     let options = LoadOptions {
         colour: request.decoding.colour,
         nodata: request.decoding.nodata,
+        height_unit: request.decoding.height_unit,
         ..LoadOptions::new(1.0)
     };
     let field = match paths {
@@ -136,11 +137,26 @@ fn scene_setup(parts: &SceneParts, terrain: &Terrain) -> SceneSetup {
             _ => framing,
         },
     };
+    let sun = &parts.file.sun;
+    // A local time (no offset) is kept as the clock's; an instant leaves the sun as placed.
+    let clock = sun
+        .time
+        .as_deref()
+        .and_then(|t| chrono::NaiveDateTime::parse_from_str(t.trim(), "%Y-%m-%dT%H:%M:%S").ok())
+        .map(|local| SceneClock {
+            local,
+            zone: sun
+                .zone
+                .as_deref()
+                .and_then(|z| local_time::zone_named(z).ok()),
+            place: sun.lat.zip(sun.lon),
+        });
     SceneSetup {
         orbit,
         lighting: parts.lighting,
         method: parts.method,
         arith: parts.arith,
+        clock,
     }
 }
 

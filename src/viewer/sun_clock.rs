@@ -1,23 +1,31 @@
-//! The Light panel's date and time of day: the sun where the Solar Position Algorithm puts it
-//! over the map's centre (a map in longitude and latitude) or over a latitude and longitude
-//! given here.
+//! The Light panel's date and time: the sun where the Solar Position Algorithm puts it over
+//! the map's centre (or a latitude and longitude given here) at a date and time on the
+//! clocks of the map's time zone (or a zone typed here). Fields apply on Enter or when they
+//! lose focus, not at every keystroke.
 
+use super::loader::SceneClock;
 use super::model::Model;
 use crate::heightfield::place;
+use crate::render::local_time;
 use crate::render::sun_position::SunPosition;
-use chrono::{Datelike, NaiveDate};
-use egui::{DragValue, Slider, Ui};
+use chrono::{
+    DateTime, Datelike, NaiveDate, NaiveDateTime, NaiveTime, Offset, TimeZone, Timelike, Utc,
+};
+use chrono_tz::Tz;
+use egui::{DragValue, TextEdit, Ui};
 
 /// The date and time the sun is placed at, and where.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct SunClock {
     /// Whether the date and time set the sun (else its sliders do).
     pub on: bool,
-    pub year: i32,
-    /// Day of the year, 1 = 1 January.
-    pub day: u32,
-    /// Hours after midnight, UTC.
-    pub hour: f64,
+    /// The local date and time, to the minute.
+    pub local: NaiveDateTime,
+    /// The date and time fields as typed.
+    pub date_text: String,
+    pub time_text: String,
+    /// A time zone typed (an IANA name); empty: the place's own.
+    pub zone_text: String,
     /// The place when the map does not give one, in degrees.
     pub latitude: f64,
     pub longitude: f64,
@@ -25,135 +33,205 @@ pub struct SunClock {
 
 impl Default for SunClock {
     fn default() -> Self {
-        // The winter solstice at eight in the morning.
+        let local = default_local(0.0);
         SunClock {
             on: false,
-            year: 2026,
-            day: 355,
-            hour: 8.0,
+            local,
+            date_text: local.format("%Y-%m-%d").to_string(),
+            time_text: clock_text(local),
+            zone_text: String::new(),
             latitude: 0.0,
             longitude: 0.0,
         }
     }
 }
 
+/// A time when the sun is up almost anywhere: 10:00 on the clocks on this year's summer
+/// solstice of the place's hemisphere (21 June north of the equator, 21 December south).
+pub fn default_local(latitude: f64) -> NaiveDateTime {
+    let now = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let year = i64::try_from(now)
+        .ok()
+        .and_then(|secs| DateTime::<Utc>::from_timestamp(secs, 0))
+        .map_or(2026, |t| t.year());
+    let month = if latitude < 0.0 { 12 } else { 6 };
+    let date = NaiveDate::from_ymd_opt(year, month, 21).unwrap_or_default();
+    date.and_time(NaiveTime::from_hms_opt(10, 0, 0).unwrap_or_default())
+}
+
 impl SunClock {
-    /// The time as RFC 3339, e.g. `2026-12-21T08:00:00Z`.
-    pub fn time(&self) -> Option<String> {
-        let date = NaiveDate::from_yo_opt(self.year, self.day)?;
-        let minutes = (self.hour.clamp(0.0, 24.0) * 60.0).round() as u32;
-        let (hour, minute) = (
-            (minutes / 60).min(23),
-            if minutes >= 1440 { 59 } else { minutes % 60 },
-        );
-        Some(format!(
-            "{:04}-{:02}-{:02}T{hour:02}:{minute:02}:00Z",
-            date.year(),
-            date.month(),
-            date.day()
-        ))
+    /// The zone the clock reads: the one typed, else the place's, else UTC.
+    pub fn zone(&self, (latitude, longitude): (f64, f64)) -> Result<Tz, String> {
+        if self.zone_text.trim().is_empty() {
+            Ok(local_time::zone_at(latitude, longitude).unwrap_or(Tz::UTC))
+        } else {
+            local_time::zone_named(&self.zone_text)
+        }
+    }
+
+    /// The date and time fields, read; or why they cannot be.
+    fn typed(&self) -> Result<NaiveDateTime, String> {
+        let date = NaiveDate::parse_from_str(self.date_text.trim(), "%Y-%m-%d")
+            .map_err(|_| format!("date '{}' is not a date such as 2026-06-21", self.date_text))?;
+        let text = self.time_text.trim();
+        let time = NaiveTime::parse_from_str(text, "%H:%M:%S")
+            .or_else(|_| NaiveTime::parse_from_str(text, "%H:%M"))
+            .map_err(|_| format!("time '{}' is not a time such as 09:30", self.time_text))?;
+        Ok(date.and_time(time))
+    }
+
+    /// Takes a scene's local time, zone and place, and sets the sun by them.
+    pub fn set(&mut self, clock: SceneClock) {
+        self.on = true;
+        self.local = clock.local;
+        self.date_text = clock.local.format("%Y-%m-%d").to_string();
+        self.time_text = clock_text(clock.local);
+        self.zone_text = clock.zone.map(|z| z.name().to_owned()).unwrap_or_default();
+        if let Some((lat, lon)) = clock.place {
+            self.latitude = lat;
+            self.longitude = lon;
+        }
+    }
+
+    /// The local time as a scene writes it, e.g. `2026-06-21T09:30:00`.
+    pub fn time_key(&self) -> String {
+        self.local.format("%Y-%m-%dT%H:%M:%S").to_string()
     }
 }
 
-/// The date and time controls; when they change, the sun moves to where they put it.
+/// The time of day as the field shows it: to the minute, or the second where it has any.
+fn clock_text(local: NaiveDateTime) -> String {
+    let format = if local.second() == 0 {
+        "%H:%M"
+    } else {
+        "%H:%M:%S"
+    };
+    local.format(format).to_string()
+}
+
+/// Where the clock's sun stands: over the map's centre, or the place typed.
+pub fn clock_place(model: &Model) -> (f64, f64) {
+    place::centre_degrees(model.shown.terrain.field())
+        .unwrap_or((model.sun_clock.latitude, model.sun_clock.longitude))
+}
+
+/// The date, time and zone controls; when they are applied, the sun moves to where they put
+/// it.
 pub fn sun_clock_ui(ui: &mut Ui, model: &mut Model) {
     let centre = place::centre_degrees(model.shown.terrain.field());
     let clock = &mut model.sun_clock;
-    let mut changed = ui
-        .checkbox(&mut clock.on, "sun at a date and time (UTC)")
+    let switched = ui
+        .checkbox(&mut clock.on, "sun at a local date and time")
         .changed();
     if !clock.on {
         return;
     }
+    if switched {
+        // A time when the sun is up at the map.
+        clock.local = default_local(centre.map_or(clock.latitude, |c| c.0));
+        clock.date_text = clock.local.format("%Y-%m-%d").to_string();
+        clock.time_text = clock_text(clock.local);
+    }
+    let mut apply = switched;
     ui.horizontal(|ui| {
-        changed |= ui
-            .add(
-                DragValue::new(&mut clock.year)
-                    .range(1..=3000)
-                    .prefix("year "),
-            )
-            .changed();
-        let date = clock.time().map(|t| t[..10].to_owned()).unwrap_or_default();
-        ui.label(date);
+        let date = ui.add(TextEdit::singleline(&mut clock.date_text).desired_width(80.0));
+        let time = ui.add(TextEdit::singleline(&mut clock.time_text).desired_width(40.0));
+        apply |= date.lost_focus() || time.lost_focus();
+        ui.label("date, time");
     });
-    changed |= ui
-        .add(Slider::new(&mut clock.day, 1..=366).text("day of the year"))
-        .changed();
-    changed |= ui
-        .add(
-            Slider::new(&mut clock.hour, 0.0..=24.0)
-                .step_by(0.25)
-                .text("hour (UTC)"),
-        )
-        .changed();
-    let (latitude, longitude) = match centre {
-        Some(centre) => {
-            ui.weak(format!(
-                "over the map's centre, {:.3}, {:.3}",
-                centre.0, centre.1
-            ));
-            centre
+    let place = centre.unwrap_or((clock.latitude, clock.longitude));
+    ui.horizontal(|ui| {
+        let hint = clock
+            .zone(place)
+            .map(|z| z.name().to_owned())
+            .unwrap_or_default();
+        let zone = ui.add(
+            TextEdit::singleline(&mut clock.zone_text)
+                .hint_text(hint)
+                .desired_width(140.0),
+        );
+        apply |= zone.lost_focus();
+        // The offset the zone's rules give at the clock's time, summer time included.
+        let offset = clock.zone(place).ok().and_then(|z| {
+            z.offset_from_local_datetime(&clock.local)
+                .earliest()
+                .map(|o| o.fix().to_string())
+        });
+        ui.label(format!("zone, UTC{}", offset.unwrap_or_default()));
+    });
+    match centre {
+        Some((lat, lon)) => {
+            ui.weak(format!("over the map's centre, {lat:.3}, {lon:.3}"));
         }
         None => {
             ui.horizontal(|ui| {
-                changed |= ui
-                    .add(
-                        DragValue::new(&mut clock.latitude)
-                            .range(-90.0..=90.0)
-                            .prefix("lat "),
-                    )
-                    .changed();
-                changed |= ui
-                    .add(
-                        DragValue::new(&mut clock.longitude)
-                            .range(-180.0..=180.0)
-                            .prefix("lon "),
-                    )
-                    .changed();
+                for (value, range, prefix) in [
+                    (&mut clock.latitude, -90.0..=90.0, "lat "),
+                    (&mut clock.longitude, -180.0..=180.0, "lon "),
+                ] {
+                    apply |= ui
+                        .add(DragValue::new(value).range(range).prefix(prefix))
+                        .lost_focus();
+                }
             });
-            (clock.latitude, clock.longitude)
         }
-    };
-    if !changed {
-        return;
     }
-    let placed = clock
-        .time()
-        .ok_or_else(|| format!("day {} is not in {}", clock.day, clock.year))
-        .and_then(|time| SunPosition::at(&time, latitude, longitude));
+    if apply {
+        apply_clock(model);
+    }
+}
+
+/// Places the sun at the clock's date and time, or says why it cannot.
+pub fn apply_clock(model: &mut Model) {
+    let place = clock_place(model);
+    let clock = &mut model.sun_clock;
+    let placed = clock.typed().and_then(|local| {
+        let zone = clock.zone(place)?;
+        let instant = local_time::utc_of_local(local, zone)?;
+        clock.local = local;
+        SunPosition::at_utc(instant, place.0, place.1)
+    });
     match placed {
         Ok(sun) => {
             let settings = &mut model.settings;
-            // The panel's azimuth turns from +x (east) towards +y (north); the sky's from north
-            // towards east.
-            settings.sun_azimuth_deg = (90.0 - sun.azimuth_deg + 180.0).rem_euclid(360.0) - 180.0;
+            settings.sun_azimuth_deg = sun.azimuth_deg;
             settings.sun_elevation_deg = sun.elevation_deg;
+            let night = model
+                .notice
+                .as_ref()
+                .is_some_and(|n| n.text.ends_with(NIGHT));
             if !sun.is_up() {
                 model.notify(format!(
-                    "The sun is {:.1}° below the horizon: night",
+                    "The sun is {:.1}° below the horizon{NIGHT}",
                     -sun.elevation_deg
                 ));
+            } else if night {
+                model.notice = None;
             }
         }
         Err(message) => model.error = Some(message),
     }
 }
 
+/// How a notice of the sun below the horizon ends, so that sunrise can clear it.
+const NIGHT: &str = ": night";
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn the_clock_names_its_date_and_time() {
-        let clock = SunClock::default();
-        assert_eq!(clock.time().as_deref(), Some("2026-12-21T08:00:00Z"));
-        let leap = SunClock {
-            year: 2028,
-            day: 60,
-            hour: 23.99,
-            ..clock
+    fn the_default_is_ten_in_the_morning_at_midsummer() {
+        let north = default_local(36.0);
+        assert_eq!((north.month(), north.day()), (6, 21));
+        assert_eq!(north.format("%H:%M").to_string(), "10:00");
+        assert_eq!(default_local(-33.0).month(), 12);
+        let clock = SunClock {
+            date_text: "2026-13-01".into(),
+            ..SunClock::default()
         };
-        assert_eq!(leap.time().as_deref(), Some("2028-02-29T23:59:00Z"));
-        assert_eq!(SunClock { day: 366, ..clock }.time(), None);
+        assert!(clock.typed().unwrap_err().contains("not a date"));
     }
 }

@@ -376,7 +376,15 @@ fn messages_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
                 let frame = egui::Frame::popup(ui.style())
                     .fill(Color32::from_rgb(110, 24, 24))
                     .show(ui, |ui| {
-                        ui.label(egui::RichText::new(format!("⚠ {error}")).color(Color32::WHITE));
+                        let text = egui::RichText::new(format!("⚠ {error}")).color(Color32::WHITE);
+                        // A parser's message on several lines points at a column: monospace
+                        // keeps its marker under the bad key.
+                        let text = if error.contains('\n') {
+                            text.monospace()
+                        } else {
+                            text
+                        };
+                        ui.label(text);
                         let button = ui.button("Dismiss");
                         model.widget_rects.insert("error_dismiss", button.rect);
                         dismiss = button.clicked();

@@ -4,7 +4,7 @@
 //! hand; a rotated transform or an unknown unit falls back to a plain image with the reason.
 
 use crate::common::files::{tagged_tiff, TagData};
-use heightray::heightfield::{load_bytes, Georef, Georeferencing, MapUnits, METRES_PER_DEGREE};
+use heightray::heightfield::{load_bytes, Georef, Georeferencing, MapUnits};
 use heightray::Heightfield;
 use tiff::encoder::colortype::Gray32Float;
 use tiff::tags::Tag;
@@ -118,10 +118,13 @@ fn a_geographic_tile_at_60_north_has_cells_half_as_wide_as_high() {
     );
     assert_eq!(georef(&field).units, MapUnits::Degrees);
     let [x, y] = field.cell_metres().unwrap();
-    assert!((y - second * METRES_PER_DEGREE).abs() < 1e-9, "{y}");
-    assert!((x / y - 0.5).abs() < 1e-9, "{x} / {y}");
-    // About 30.9 m: a second of arc on the Earth's mean sphere.
-    assert!((y - 30.887).abs() < 1e-3, "{y}");
+    // On the WGS 84 ellipsoid a degree of longitude spans N cos(phi) where one of latitude
+    // spans M: the ratio is cos(phi) (1 - e^2 sin^2 phi) / (1 - e^2) = 0.50084 at 60 N.
+    let e2 = 0.006_694_379_990_141_317_f64;
+    let ratio = 0.5 * (1.0 - e2 * 0.75) / (1.0 - e2);
+    assert!((x / y - ratio).abs() < 1e-6, "{x} / {y}");
+    // About 30.95 m: a second of latitude at 60 N (a degree spans 111.41 km there).
+    assert!((y - 30.948).abs() < 1e-3, "{y}");
 }
 
 #[test]

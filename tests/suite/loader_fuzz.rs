@@ -82,6 +82,7 @@ fn mutated_files_never_panic_the_loader() {
                 z_scale: 10.0,
                 colour: colours[case % 3],
                 nodata: nodata[(case / 3) % 3],
+                height_unit: None,
             };
             let result = catch_unwind(AssertUnwindSafe(|| {
                 load_bytes_with(&bytes, &options, name, &|_| ControlFlow::Continue(()))

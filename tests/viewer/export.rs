@@ -164,7 +164,7 @@ fn an_export_at_a_chosen_size_is_rendered_anew_into_the_export_folder() {
     assert_same(&file, &image, &reference);
 }
 
-/// `heightray render` of a scene file, at `size` if given.
+/// `heightray render` of a scene file (or a map alone), at `size` if given.
 fn render_file(scene: &Path, size: Option<&str>) -> image::RgbImage {
     let out = scene.with_extension("check.png");
     let mut command = Command::new(env!("CARGO_BIN_EXE_heightray"));
@@ -240,4 +240,90 @@ fn a_saved_scene_keeps_the_overlay_and_the_water() {
         saved.contains("[water]\nlevel = 3.5\ncolour = \"#1e4d6b\""),
         "{saved}"
     );
+}
+
+#[test]
+fn render_of_a_map_alone_is_what_the_viewer_shows_on_opening_it() {
+    // A georeferenced DEM: a 30 m UTM grid with a wall steeper than the default sun, so that
+    // shadows show (the viewer opens it at true scale, shadows on).
+    let files = tempfile::tempdir().expect("a temporary directory");
+    let map = files.path().join("wall.asc");
+    let rows: Vec<String> = (0..65)
+        .map(|r| {
+            (0..65)
+                .map(|c| {
+                    let x = (c as f64 - 32.0) / 3.0;
+                    format!("{:.2}", 300.0 + 1500.0 * (-x * x).exp() + r as f64)
+                })
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+        .collect();
+    let text = format!(
+        "ncols 65\nnrows 65\nxllcorner 500000\nyllcorner 4000000\ncellsize 30\n{}\n",
+        rows.join("\n")
+    );
+    std::fs::write(&map, text).expect("the map written");
+    let mut session = Session::start(&[map.to_str().expect("a UTF-8 path"), "--export-dir", "out"]);
+    session.x.focus(session.window);
+    session.x.key('s' as u32);
+    let done = session.viewer.wait_for("the export", |s| {
+        s["export"]["saved"] == 1 && s["export"]["running"] == 0
+    });
+    assert_eq!(done["error"], Value::Null);
+    assert_eq!(
+        done["shadows"],
+        Value::Bool(true),
+        "the viewer opens with shadows"
+    );
+    let file = PathBuf::from(done["export"]["last"].as_str().expect("an export"));
+    let exported = image::open(&file).expect("an exported PNG").to_rgb8();
+    let (w, h) = exported.dimensions();
+    let size = format!("{w}x{h}");
+    let rendered = render_file(&map, Some(&size));
+    assert_same(&file, &exported, &rendered);
+    // The map casts shadows: the same view without them differs.
+    let scene = files.path().join("no_shadows.toml");
+    std::fs::write(
+        &scene,
+        "[heightmap]\npath = \"wall.asc\"\n[effects]\nshadows = false\n",
+    )
+    .expect("the scene written");
+    let unshadowed = render_file(&scene, Some(&size));
+    assert_ne!(
+        unshadowed, rendered,
+        "no shadow on the map: the test shows nothing"
+    );
+}
+
+#[test]
+fn a_scene_set_by_local_time_is_saved_with_its_time_and_zone() {
+    let files = tempfile::tempdir().expect("a temporary directory");
+    let scene = files.path().join("morning.toml");
+    // 09:30 in Oslo on 21 June is 07:30 UTC (summer time, UTC+2).
+    let text = "[heightmap]\npath = \"builtin:small49\"\nz_scale = 12.0\n\
+                [sun]\ntime = \"2026-06-21T09:30:00\"\nzone = \"Europe/Oslo\"\nlat = 59.91\nlon = 10.75\n";
+    std::fs::write(&scene, text).expect("the scene written");
+    let mut session =
+        Session::start(&[scene.to_str().expect("a UTF-8 path"), "--export-dir", "out"]);
+    let state = session.state();
+    assert_eq!(state["sun"]["clock"], "2026-06-21T09:30:00");
+    // The same instant given in UTC places the same sun.
+    let utc = files.path().join("utc.toml");
+    std::fs::write(
+        &utc,
+        "[heightmap]\npath = \"builtin:small49\"\nz_scale = 12.0\n\
+         [sun]\ntime = \"2026-06-21T07:30:00Z\"\nlat = 59.91\nlon = 10.75\n",
+    )
+    .expect("the scene written");
+    let saved = std::fs::read_to_string(save_and_export(&mut session)).expect("the saved scene");
+    assert!(
+        saved.contains(
+            "time = \"2026-06-21T09:30:00\"\nzone = \"Europe/Oslo\"\nlat = 59.91\nlon = 10.75\n"
+        ),
+        "{saved}"
+    );
+    let by_utc = heightray::render::Scene::load(&utc).expect("the UTC scene");
+    let by_local = heightray::render::Scene::load(&scene).expect("the local scene");
+    assert_eq!(by_utc.lighting.sun, by_local.lighting.sun);
 }

@@ -25,13 +25,16 @@ fn an_srtm_tile_opens_at_true_scale_with_cells_in_metres() {
         num(&state, "/terrain/cell_metres/0"),
         num(&state, "/terrain/cell_metres/1"),
     );
-    let quarter_degree = 0.25 * std::f64::consts::PI * 6_371_008.8 / 180.0;
-    assert!((y - quarter_degree).abs() < 1e-6, "{y}");
-    assert!(
-        (x / y - 60.5f64.to_radians().cos()).abs() < 1e-12,
-        "{x} / {y}"
-    );
+    // On the WGS 84 ellipsoid: a quarter degree of the meridian's radius of curvature M at
+    // 60.5 N along y, of the prime vertical's N times cos(latitude) along x.
+    let (a, e2) = (6_378_137.0, 0.006_694_379_990_141_317_f64);
+    let phi = 60.5f64.to_radians();
+    let w = 1.0 - e2 * phi.sin().powi(2);
+    let quarter_degree = 0.25f64.to_radians() * a * (1.0 - e2) / w.powf(1.5);
+    assert!((y / quarter_degree - 1.0).abs() < 1e-9, "{y}");
+    let ratio = phi.cos() * w / (1.0 - e2);
+    assert!((x / y - ratio).abs() < 1e-9, "{x} / {y}");
     assert!((num(&state, "/terrain/exaggeration") - 1.0).abs() < 1e-12);
     // One world unit is a cell's height: 900 m of hill over 27.8 km cells.
-    assert!((num(&state, "/terrain/z_scale") - 1.0 / quarter_degree).abs() < 1e-15);
+    assert!((num(&state, "/terrain/z_scale") * y - 1.0).abs() < 1e-12);
 }

@@ -5,6 +5,8 @@
 
 mod png;
 mod read;
+mod reproject;
+mod tiff_rgba;
 
 pub use read::DrapeError;
 
@@ -48,6 +50,14 @@ pub struct Placement {
 }
 
 impl Placement {
+    /// Grid coordinates are image coordinates.
+    pub const IDENTITY: Placement = Placement {
+        u0: 0.0,
+        du: 1.0,
+        v0: 0.0,
+        dv: 1.0,
+    };
+
     /// An image of `width` x `height` pixels stretched over a field of `field` samples: the
     /// image's outer edges on the first and last samples.
     pub fn stretched((width, height): (usize, usize), field: (usize, usize)) -> Placement {
@@ -92,22 +102,33 @@ impl Drape {
             return Err(DrapeError::Opacity(opacity));
         }
         let image = read::read(path)?;
-        let size = (image.width, image.height);
         let field_size = (field.width(), field.height());
-        let own = match (image.place, field.georef()) {
-            (Some(OwnPlace::Map(own)), Some(map)) if !same_units(own.units, map.units) => {
-                return Err(DrapeError::Units {
-                    path: path.to_owned(),
-                })
+        let own = match (image.place.as_ref(), field.georef()) {
+            (Some(OwnPlace::Map(own)), Some(_)) => Some(*own),
+            (Some(OwnPlace::WorldFile { origin, spacing }), Some(map)) => {
+                Some(world_file_place(*origin, *spacing, map))
             }
-            (Some(OwnPlace::Map(own)), Some(_)) => Some(own),
-            (Some(OwnPlace::WorldFile { origin, spacing }), Some(map)) => Some(Georef {
-                origin,
-                spacing,
-                units: map.units,
-            }),
             _ => None,
         };
+        if let (Some(own), Some(map)) = (&own, field.georef()) {
+            if !reproject::same_crs(own, map) {
+                let (width, height, pixels) = reproject::onto_map(image, own, map, field_size)
+                    .map_err(|why| DrapeError::Crs {
+                        path: path.to_owned(),
+                        own: own.crs_label(),
+                        map: map.crs_label(),
+                        why,
+                    })?;
+                let drape = Drape {
+                    path: path.to_owned(),
+                    placement: Placement::stretched((width, height), field_size),
+                    georeferenced: true,
+                    ..Drape::from_pixels(width, height, pixels, opacity, Placement::IDENTITY)
+                };
+                return drape.covering(field_size);
+            }
+        }
+        let size = (image.width, image.height);
         let placement = match (&own, field.georef()) {
             (Some(own), Some(map)) => Placement::by_map(own, image.height, map),
             _ => Placement::stretched(size, field_size),
@@ -122,12 +143,16 @@ impl Drape {
             placement,
             georeferenced,
         };
-        if !drape.overlaps(field_size) {
-            return Err(DrapeError::Outside {
-                path: path.to_owned(),
-            });
+        drape.covering(field_size)
+    }
+
+    /// The drape, if it covers any of a field of `field_size` samples.
+    fn covering(self, field_size: (usize, usize)) -> Result<Drape, DrapeError> {
+        if self.overlaps(field_size) {
+            Ok(self)
+        } else {
+            Err(DrapeError::Outside { path: self.path })
         }
-        Ok(drape)
     }
 
     /// An image of `width` x `height` pixels, RGBA bytes by rows from the top, placed by
@@ -221,13 +246,23 @@ impl Drape {
     }
 }
 
-/// Whether two maps' coordinates share their units (their CRS is not recorded; the units are
-/// what can be checked).
-fn same_units(a: MapUnits, b: MapUnits) -> bool {
-    match (a, b) {
-        (MapUnits::Degrees, MapUnits::Degrees) => true,
-        (MapUnits::Linear { metres: a }, MapUnits::Linear { metres: b }) => a == b,
-        _ => false,
+/// Where a world file places an image over `map`: in the map's coordinate system, unless its
+/// numbers can only be longitude and latitude on a map in metres or feet (a world file does
+/// not say its CRS).
+fn world_file_place(origin: [f64; 2], spacing: [f64; 2], map: &Georef) -> Georef {
+    let looks_like_degrees =
+        spacing.iter().all(|s| *s < 0.01) && origin[0].abs() <= 180.0 && origin[1].abs() <= 90.0;
+    let units = match map.units {
+        MapUnits::Linear { .. } if looks_like_degrees => MapUnits::Degrees,
+        units => units,
+    };
+    let crs = if units == map.units { map.crs } else { None };
+    Georef {
+        origin,
+        spacing,
+        units,
+        crs,
+        height_unit: map.height_unit,
     }
 }
 

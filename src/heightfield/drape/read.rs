@@ -3,6 +3,7 @@
 //! lines, the pixel size along x, two rotation terms, the pixel size along y (negative for
 //! north up), and the map coordinates of the top-left pixel's centre).
 
+use super::tiff_rgba;
 use crate::heightfield::georef::{Georef, Georeferencing, MapUnits};
 use crate::heightfield::load::geotiff;
 use crate::regular_file::{self, OpenError};
@@ -66,14 +67,20 @@ pub enum DrapeError {
         /// What is wrong with it.
         reason: String,
     },
-    /// It and the map are in coordinates of different units.
+    /// It and the map are in different coordinate systems, and it cannot be reprojected.
     #[error(
-        "overlay {path} is georeferenced in other units than the map (degrees against \
-         metres or feet); reproject one of them to the other's coordinate system"
+        "overlay {path} is in {own}, the map in {map}, and it cannot be reprojected ({why}); \
+         reproject it to the map's CRS (gdalwarp -t_srs)"
     )]
-    Units {
+    Crs {
         /// The file.
         path: PathBuf,
+        /// The overlay's coordinate system.
+        own: String,
+        /// The map's.
+        map: String,
+        /// Why not.
+        why: String,
     },
     /// Placed by its georeferencing, it covers none of the map.
     #[error(
@@ -146,7 +153,14 @@ pub fn read(path: &Path) -> Result<Image, DrapeError> {
         }
         Ok(())
     };
-    let (width, height, pixels) = if format == Some(image::ImageFormat::Png) {
+    let (width, height, pixels) = if format == Some(image::ImageFormat::Tiff) {
+        // The `tiff` crate itself: `image` does not turn YCbCr (JPEG-compressed) into RGB.
+        drop(reader);
+        let (file, _) = open()?;
+        let rgba = tiff_rgba::decode(BufReader::new(file)).map_err(decode)?;
+        admit(rgba.width, rgba.height)?;
+        (rgba.width, rgba.height, rgba.pixels)
+    } else if format == Some(image::ImageFormat::Png) {
         let png = super::png::decode(reader.into_inner(), len, admit, decode)?;
         (png.width, png.height, png.rgba)
     } else {

@@ -1,12 +1,14 @@
 //! A GeoTIFF's georeferencing, read through the `tiff` crate's tag API: ModelPixelScale with
 //! ModelTiepoint, or ModelTransformation, and the GeoKeyDirectory's model type, raster type
-//! and units (GeoTIFF 1.1, OGC 19-008r4).
+//! and units, and the CRS's EPSG code (GeoTIFF 1.1, OGC 19-008r4).
 //!
 //! Only north-up grids are used; a rotated or sheared transform, a geocentric model or a unit
 //! that is not a metre, a foot or a degree leaves the field a plain image, with the reason.
 
+use crate::heightfield::crs::Crs;
 use crate::heightfield::georef::{
-    Georef, Georeferencing, MapUnits, METRES_PER_FOOT, METRES_PER_US_SURVEY_FOOT,
+    Georef, Georeferencing, HeightUnit, HeightUnitSource, MapUnits, METRES_PER_FOOT,
+    METRES_PER_US_SURVEY_FOOT,
 };
 use std::io::{Read, Seek};
 use tiff::decoder::Decoder;
@@ -15,8 +17,11 @@ use tiff::tags::Tag;
 // GeoKey ids and values (GeoTIFF 1.1, section 7).
 const MODEL_TYPE: u16 = 1024;
 const RASTER_TYPE: u16 = 1025;
+const GEOGRAPHIC_TYPE: u16 = 2048;
 const ANGULAR_UNITS: u16 = 2054;
+const PROJECTED_TYPE: u16 = 3072;
 const LINEAR_UNITS: u16 = 3076;
+const VERTICAL_UNITS: u16 = 4099;
 const MODEL_PROJECTED: u16 = 1;
 const MODEL_GEOGRAPHIC: u16 = 2;
 const RASTER_PIXEL_IS_POINT: u16 = 2;
@@ -50,6 +55,16 @@ pub fn georeferencing<R: Read + Seek>(decoder: &mut Decoder<R>, height: u32) -> 
         corner_transform(scale, tiepoint, transformation)
             .and_then(|corner| georef(&corner, &keys, height)),
     )
+}
+
+/// Metres in a linear unit by its EPSG code (metre, foot, US survey foot).
+fn unit_metres(code: u16) -> Option<f64> {
+    match code {
+        UNIT_METRE => Some(1.0),
+        UNIT_FOOT => Some(METRES_PER_FOOT),
+        UNIT_US_SURVEY_FOOT => Some(METRES_PER_US_SURVEY_FOOT),
+        _ => None,
+    }
 }
 
 /// The affine map from raster space (column, row; corners of pixel `(0, 0)` at `(0, 0)`) to
@@ -107,19 +122,23 @@ fn corner_transform(
 
 /// The sample positions of an image `height` rows high under `corner`, in the keys' units.
 fn georef(corner: &Corner, keys: &GeoKeys, height: u32) -> Result<Georef, String> {
+    let crs = match keys.get(MODEL_TYPE) {
+        Some(MODEL_GEOGRAPHIC) => keys.get(GEOGRAPHIC_TYPE).and_then(Crs::from_epsg),
+        Some(MODEL_PROJECTED) => keys.get(PROJECTED_TYPE).and_then(Crs::from_epsg),
+        _ => None,
+    };
     let units = match keys.get(MODEL_TYPE) {
         Some(MODEL_GEOGRAPHIC) => match keys.get(ANGULAR_UNITS) {
             None | Some(UNIT_DEGREE) => MapUnits::Degrees,
             Some(unit) => return Err(format!("its angular unit (EPSG {unit}) is not degrees")),
         },
         Some(MODEL_PROJECTED) => {
+            // GDAL writes the unit key only where the CRS is not an EPSG code; an EPSG
+            // code's definition says its unit.
             let metres = match keys.get(LINEAR_UNITS) {
-                // Most projected CRSs (UTM, national grids) are in metres; GDAL writes the
-                // unit key only where the CRS is not an EPSG code.
-                None | Some(UNIT_METRE) => 1.0,
-                Some(UNIT_FOOT) => METRES_PER_FOOT,
-                Some(UNIT_US_SURVEY_FOOT) => METRES_PER_US_SURVEY_FOOT,
-                Some(unit) => return Err(format!("its linear unit (EPSG {unit}) is unknown")),
+                Some(unit) => unit_metres(unit)
+                    .ok_or_else(|| format!("its linear unit (EPSG {unit}) is unknown"))?,
+                None => crs.and_then(|c| c.metres_per_unit()).unwrap_or(1.0),
             };
             MapUnits::Linear { metres }
         }
@@ -149,7 +168,14 @@ fn georef(corner: &Corner, keys: &GeoKeys, height: u32) -> Result<Georef, String
             ));
         }
     }
-    Georef::new(origin, [corner.sx, corner.sy], units)
+    let georef = Georef::new(origin, [corner.sx, corner.sy], units)?.with_crs(crs);
+    Ok(match keys.get(VERTICAL_UNITS).and_then(unit_metres) {
+        Some(metres) => georef.with_height_unit(HeightUnit {
+            metres,
+            source: HeightUnitSource::VerticalKey,
+        }),
+        None => georef,
+    })
 }
 
 /// A latitude for a message: in degrees to six places, or in scientific notation when it is

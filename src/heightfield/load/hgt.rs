@@ -7,6 +7,7 @@
 use super::limits::check_header;
 use super::raster::{Raster, Values};
 use super::{decode_error, LoadError};
+use crate::heightfield::crs::Crs;
 use crate::heightfield::georef::{Georef, Georeferencing, MapUnits};
 use std::io::Read;
 use std::path::Path;
@@ -59,7 +60,9 @@ fn place(name: &str, n: usize) -> Result<Georef, String> {
         "its name '{stem}' does not say where it lies (as N45W123 does)"
     ))?;
     let spacing = 1.0 / (n - 1) as f64;
+    // SRTM tiles are WGS 84 longitude and latitude.
     Georef::new([lon, lat], [spacing, spacing], MapUnits::Degrees)
+        .map(|g| g.with_crs(Crs::from_epsg(4326)))
 }
 
 /// Latitude and longitude of a tile's south-west corner from a name such as `N45W123` or

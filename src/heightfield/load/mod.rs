@@ -12,13 +12,14 @@ pub(super) mod geotiff;
 mod hgt;
 mod mosaic;
 mod pgm;
+mod picture;
 mod png;
 mod raster;
 mod tiff;
 mod watched;
 
 use super::limits::{self, MAX_DECODED_BYTES, MAX_SAMPLES};
-use super::{Heightfield, HeightfieldError};
+use super::{HeightUnit, Heightfield, HeightfieldError};
 use crate::regular_file::{self, OpenError};
 use raster::Raster;
 use std::io::{Cursor, Read, Seek};
@@ -28,6 +29,7 @@ use thiserror::Error;
 use watched::{Watch, Watched};
 
 pub use mosaic::load_mosaic;
+pub use picture::picture_kind;
 
 /// Why a file could not be loaded as a height field.
 #[derive(Debug, Error)]
@@ -62,6 +64,22 @@ pub enum LoadError {
         name: String,
         /// Its first bytes, for the message.
         start: String,
+    },
+    /// A picture (a JPEG, an RGB TIFF): an overlay, not a height map.
+    #[error("{name} is {what}, a picture rather than a height map: lay it over a map as an overlay (a scene's [overlay] path; the viewer does so with a dropped picture); height maps are grayscale or terrain-RGB PNGs, PGMs and single-band TIFFs")]
+    Picture {
+        /// The file's name in messages.
+        name: String,
+        /// What kind of picture it is.
+        what: String,
+    },
+    /// A TIFF compressed by a method the decoder does not have.
+    #[error("{name} is compressed with {method}, which heightray does not read; convert it with GDAL: gdal_translate -co COMPRESS=DEFLATE {name} converted.tif")]
+    Compression {
+        /// The file's name in messages.
+        name: String,
+        /// The compression method's name.
+        method: String,
     },
     /// The image is truncated or corrupt.
     #[error("{name} is truncated or corrupt: cannot decode the image ({reason}); export or download it again")]
@@ -222,6 +240,8 @@ pub struct LoadOptions {
     pub colour: ColourEncoding,
     /// Which raster value means no data.
     pub nodata: NoDataValue,
+    /// The unit of a georeferenced map's heights, instead of the one its file implies.
+    pub height_unit: Option<HeightUnit>,
 }
 
 impl LoadOptions {
@@ -231,6 +251,7 @@ impl LoadOptions {
             z_scale,
             colour: ColourEncoding::default(),
             nodata: NoDataValue::default(),
+            height_unit: None,
         }
     }
 }
@@ -342,6 +363,10 @@ fn decode<R: Read + Seek>(
         Some(Format::Tiff) => decode_tiff(input, len, name),
         Some(Format::Hgt) => hgt::decode(input, len, name),
         Some(Format::Asc) => asc::decode(input, len, name),
+        None if picture::is_jpeg(&start) => Err(LoadError::Picture {
+            name: name.into(),
+            what: "a JPEG image".into(),
+        }),
         None => Err(LoadError::NotAnImage {
             name: name.into(),
             start: first_bytes(&start),
@@ -403,10 +428,16 @@ impl Format {
     }
 }
 
-/// Up to 8 leading bytes, for a message about a file that is not an image.
+/// Up to 8 leading bytes, for a message about a file that is not an image: as text when all
+/// are printable, else in hex.
 fn first_bytes(bytes: &[u8]) -> String {
     let start = &bytes[..bytes.len().min(8)];
-    format!("{:?}", String::from_utf8_lossy(start))
+    if start.iter().all(|b| b.is_ascii_graphic() || *b == b' ') {
+        format!("\"{}\"", String::from_utf8_lossy(start))
+    } else {
+        let hex: Vec<String> = start.iter().map(|b| format!("{b:02x}")).collect();
+        format!("{} in hex", hex.join(" "))
+    }
 }
 
 /// A decoding library's error as `LoadError::Decode`.

@@ -86,10 +86,21 @@ fn one_grid(a: &Georef, b: &Georef) -> Result<(), String> {
         (MapUnits::Linear { metres: x }, MapUnits::Linear { metres: y }) => x == y,
         _ => false,
     };
+    let same_crs = match (a.crs, b.crs) {
+        (Some(x), Some(y)) => x == y,
+        _ => true,
+    };
     if !same_units {
         return Err(format!(
             "are in different units ({} and {}); reproject them to one CRS",
             a.units, b.units
+        ));
+    }
+    if !same_crs {
+        return Err(format!(
+            "are in different coordinate systems ({} and {}); reproject them to one CRS",
+            a.crs_label(),
+            b.crs_label()
         ));
     }
     for axis in 0..2 {
@@ -202,7 +213,9 @@ fn join(tiles: &[(&Path, Heightfield, Georef)], first: Georef) -> Result<Raster,
         first.origin[0] + lo[0] as f64 * first.spacing[0],
         first.origin[1] + lo[1] as f64 * first.spacing[1],
     ];
-    let georef = Georef::new(origin, first.spacing, first.units)?;
+    let georef = Georef::new(origin, first.spacing, first.units)?
+        .with_crs(first.crs)
+        .with_height_unit(first.height_unit);
     Ok(Raster {
         width,
         height,

@@ -68,12 +68,13 @@ impl Values {
 }
 
 impl Raster {
-    /// The height field, with the options' z scale and no-data value.
+    /// The height field, with the options' z scale, no-data value and height unit.
     pub fn into_field(self, options: &LoadOptions) -> Result<Heightfield, HeightfieldError> {
-        let georef = self
-            .georef
-            .clone()
-            .with_cells_checked(self.width, self.height);
+        let georef = match (&self.georef, options.height_unit) {
+            (Georeferencing::Map(g), Some(unit)) => Georeferencing::Map(g.with_height_unit(unit)),
+            (georef, _) => georef.clone(),
+        };
+        let georef = georef.with_cells_checked(self.width, self.height);
         Ok(self.into_samples(options)?.with_georeferencing(georef))
     }
 

@@ -4,6 +4,7 @@
 
 use super::geotiff;
 use super::limits::{check_header, MAX_DECODED_BYTES};
+use super::picture;
 use super::raster::{Raster, Values};
 use super::{decode_error, LoadError};
 use std::io::{Read, Seek};
@@ -20,9 +21,26 @@ pub fn decode(input: impl Read + Seek, len: u64, name: &str) -> Result<Raster, L
     // Reads the header and the first directory only: the size is checked before decoding.
     let mut decoder = Decoder::new(input).map_err(|e| decode_error(name, e))?;
     let (width, height) = decoder.dimensions().map_err(|e| decode_error(name, e))?;
+    let compression = decoder
+        .get_tag_unsigned::<u16>(Tag::Compression)
+        .unwrap_or(1);
+    if let Some(method) = picture::unread_compression(compression) {
+        return Err(LoadError::Compression {
+            name: name.into(),
+            method,
+        });
+    }
     let bits = match decoder.colortype().map_err(|e| decode_error(name, e))? {
         ColorType::Gray(bits @ (8 | 16 | 32 | 64)) => bits,
-        other => return Err(unsupported(format!("a {other:?} TIFF"))),
+        other => {
+            return Err(match picture::tiff_picture(other) {
+                Some(what) => LoadError::Picture {
+                    name: name.into(),
+                    what,
+                },
+                None => unsupported(format!("a {other:?} TIFF")),
+            })
+        }
     };
     check_header(name, width.into(), height.into(), u64::from(bits / 8))?;
     let needed = u64::from(width) * u64::from(height) * u64::from(bits / 8);
@@ -103,13 +121,14 @@ fn check_chunks<R: Read + Seek>(
         }
         total = total.saturating_add(count);
     }
-    let compressed = decoder
+    let compression = decoder
         .get_tag_unsigned::<u16>(Tag::Compression)
-        .is_ok_and(|c| c != 1);
-    let most = if compressed {
-        total.saturating_mul(MOST_EXPANSION)
-    } else {
-        total
+        .unwrap_or(1);
+    let most = match compression {
+        1 => total,
+        // The decoded size is bounded by the header's, checked before.
+        c if picture::expands_without_bound(c) => u64::MAX,
+        _ => total.saturating_mul(MOST_EXPANSION),
     };
     if most < needed {
         return Err(format!(

@@ -2,7 +2,9 @@
 //! relief (a z scale, or an exaggeration of a georeferenced map's true scale).
 
 use super::SceneFile;
-use crate::heightfield::{self, relief, Builtin, Heightfield, LoadError, LoadOptions, NoDataValue};
+use crate::heightfield::{
+    self, relief, Builtin, HeightUnit, Heightfield, LoadError, LoadOptions, NoDataValue,
+};
 use serde::Deserialize;
 use std::ops::ControlFlow;
 use std::path::Path;
@@ -32,6 +34,10 @@ pub struct HeightmapSection {
     /// Which raster value means no data: `"auto"` (the default), `"none"` or a number.
     #[serde(default)]
     pub nodata: Option<NoDataKey>,
+    /// A georeferenced map's height unit, `m`, `ft` or `us-ft`, instead of the one its file
+    /// implies (its vertical unit, else a CRS in feet's foot, else metres).
+    #[serde(default)]
+    pub height_unit: Option<String>,
 }
 
 /// `nodata` as written: a number, or a word.
@@ -59,9 +65,9 @@ impl SceneFile {
             .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
     }
 
-    /// The scene of a height map on its own: the whole map framed as the viewer first shows
-    /// it, at its default relief, with every other section's defaults. Its path is relative
-    /// to the map's folder ([`Scene::base`](super::Scene::base)).
+    /// The scene of a height map on its own: what the viewer first shows of it, the whole map
+    /// framed, at its default relief, with shadows on and every other section's defaults. Its
+    /// path is relative to the map's folder ([`Scene::base`](super::Scene::base)).
     pub fn for_map(path: &Path) -> SceneFile {
         let name = path.file_name().unwrap_or(path.as_os_str());
         SceneFile {
@@ -72,10 +78,14 @@ impl SceneFile {
                 exaggeration: None,
                 rgb: None,
                 nodata: None,
+                height_unit: None,
             },
             camera: None,
             sun: Default::default(),
-            effects: Default::default(),
+            effects: super::EffectsSection {
+                shadows: true,
+                ..Default::default()
+            },
             shading: Default::default(),
             render: Default::default(),
             overlay: None,
@@ -130,6 +140,17 @@ impl HeightmapSection {
                         .parse()
                         .map_err(|e| invalid(format!("[heightmap] nodata: {e}")))?,
                 };
+                options.height_unit = self
+                    .height_unit
+                    .as_deref()
+                    .map(|name| {
+                        HeightUnit::named(name).ok_or_else(|| {
+                            invalid(format!(
+                                "[heightmap] height_unit must be m, ft or us-ft, got '{name}'"
+                            ))
+                        })
+                    })
+                    .transpose()?;
                 let keep_going = |_| ControlFlow::Continue(());
                 if self.paths.is_empty() {
                     heightfield::load_with(&base.join(&self.path), &options, &keep_going)

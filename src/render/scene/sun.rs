@@ -1,27 +1,61 @@
-//! `[sun] time`: the sun where it stands at a place and time, the place the map's centre (on a
-//! map in longitude and latitude) or the `lat` and `lon` keys. (A sun below the horizon lights
-//! nothing: [`Lighting::after_dark`].)
+//! `[sun]`: a direction; or a compass bearing and an elevation; or where the sun stands at a
+//! time over a place, the place the map's centre (a map in longitude and latitude, or in a
+//! CRS known by its EPSG code) or the `lat` and `lon` keys, a local time read on the clocks of
+//! `zone` or of the place's own time zone. (A sun below the horizon lights nothing:
+//! [`Lighting::after_dark`].)
 
 use super::{Lighting, SunSection};
 use crate::heightfield::{place, Heightfield};
+use crate::render::local_time;
 use crate::render::sun_position::SunPosition;
 
-/// `lighting` with its sun placed by the section's time, if it gives one.
+/// `lighting` with its sun placed by the section's bearing or time, if it gives either.
 pub fn place_sun(
     section: &SunSection,
     field: &Heightfield,
     lighting: Lighting,
 ) -> Result<Lighting, String> {
-    let Some(time) = &section.time else {
-        return Ok(lighting);
+    let sun = match (section.azimuth_deg, section.elevation_deg, &section.time) {
+        (None, None, None) => return Ok(lighting),
+        (Some(_), Some(_), Some(_)) => {
+            return Err("[sun] gives both azimuth_deg and time: give one".into())
+        }
+        (Some(azimuth_deg), Some(elevation_deg), None) => {
+            if !(azimuth_deg.is_finite() && (-90.0..=90.0).contains(&elevation_deg)) {
+                return Err(format!(
+                    "[sun] azimuth_deg must be finite and elevation_deg from -90 to 90, got \
+                     {azimuth_deg} and {elevation_deg}"
+                ));
+            }
+            SunPosition {
+                azimuth_deg,
+                elevation_deg,
+            }
+        }
+        (Some(_), None, _) | (None, Some(_), _) => {
+            return Err("[sun] azimuth_deg and elevation_deg go together: give both".into())
+        }
+        (None, None, Some(time)) => {
+            let (latitude, longitude) = match (section.lat, section.lon) {
+                (Some(lat), Some(lon)) => (lat, lon),
+                (None, None) => place::centre_degrees(field).ok_or(
+                    "[sun] time needs lat and lon keys: the map's place is not known (it is \
+                     not georeferenced by longitude and latitude or an EPSG code)",
+                )?,
+                _ => return Err("[sun] lat and lon go together: give both or neither".into()),
+            };
+            let zone = match &section.zone {
+                Some(name) => {
+                    Some(local_time::zone_named(name).map_err(|e| format!("[sun] zone: {e}"))?)
+                }
+                None => local_time::zone_at(latitude, longitude),
+            };
+            let instant =
+                local_time::parse_time(time, zone).map_err(|e| format!("[sun] time: {e}"))?;
+            SunPosition::at_utc(instant, latitude, longitude)
+                .map_err(|e| format!("[sun] time: {e}"))?
+        }
     };
-    let (latitude, longitude) = match (section.lat, section.lon) {
-        (Some(lat), Some(lon)) => (lat, lon),
-        (None, None) => place::centre_degrees(field)
-            .ok_or("[sun] time needs lat and lon keys: the map is not in longitude and latitude")?,
-        _ => return Err("[sun] lat and lon go together: give both or neither".into()),
-    };
-    let sun = SunPosition::at(time, latitude, longitude).map_err(|e| format!("[sun] time: {e}"))?;
     Ok(Lighting {
         sun: Lighting::unit(sun.direction()),
         ..lighting

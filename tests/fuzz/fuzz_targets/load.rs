@@ -24,6 +24,7 @@ fuzz_target!(|data: &[u8]| {
         z_scale: 10.0,
         colour,
         nodata,
+        height_unit: None,
     };
     if let Ok(field) = load_bytes_with(file, &options, "fuzz", &|_| ControlFlow::Continue(())) {
         assert!(field.width() >= 2 && field.height() >= 2);
