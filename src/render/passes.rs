@@ -374,7 +374,11 @@ impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_,
 
 /// A camera ray's clearance in `wedges`, its look-up counted with the frame's primary
 /// queries.
-fn clearance(wedges: Option<&Wedges<'_>>, ray: &Ray, totals: &mut FrameStats) -> Option<Clearance> {
+pub(super) fn clearance(
+    wedges: Option<&Wedges<'_>>,
+    ray: &Ray,
+    totals: &mut FrameStats,
+) -> Option<Clearance> {
     let (clearance, asked) = wedges?.clearance(ray.origin(), ray.dir());
     totals.primary.wedge += asked;
     clearance

@@ -464,7 +464,7 @@ fn trace_logged<S: Scalar, C: CellLog, W: Walk>(
         && walk_options.reach.is_none()
         && near
             .is_some_and(|near| walk_cleared(terrain, (near, start), dir_f64, &frame, &mut search));
-    let near = !cleared && mipmap::starts_near::<S, C>(&walk_options, start.is_some(), &frame);
+    let near = !cleared && mipmap::starts_near::<S>(&walk_options, start.is_some(), &frame);
     let walked_near = near
         && match mipmap::near_walk(&frame, &mut search, mipmap::NEAR_CELLS) {
             mipmap::Near::Done => true,

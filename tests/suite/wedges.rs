@@ -243,3 +243,20 @@ fn a_ray_over_a_map_seen_from_far_away_starts_near_it() {
         hit.t
     );
 }
+
+#[test]
+fn adaptive_sample_rounds_start_from_clearances_and_give_the_same_frames() {
+    let scene = sized_scene(65, 24).expect("a scene");
+    let terrain = Terrain::new(scene.field.clone());
+    let mut lighting = scene.lighting;
+    lighting.effects.samples = 4;
+    lighting.effects.adaptive = true;
+    for arith in [Arith::F64, Arith::Exact] {
+        let on = frame(&terrain, scene.camera, lighting, arith, true);
+        let off = frame(&terrain, scene.camera, lighting, arith, false);
+        assert_eq!(on.pixels, off.pixels, "{arith}");
+        // Every sample of the rounds looked its clearance up, more than one a pixel.
+        assert!(on.totals.primary.wedge.total() > 24 * 24, "{arith}");
+        assert_eq!(off.totals.primary.wedge.total(), 0);
+    }
+}

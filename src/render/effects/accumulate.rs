@@ -7,7 +7,7 @@
 
 use super::pixel::{self, position, Estimate, FIRST_BATCH};
 use super::time::nanos_since;
-use crate::render::passes::{Frame, Renderer};
+use crate::render::passes::{clearance, Frame, Renderer};
 use crate::render::scene::Lighting;
 use crate::render::shade::Shader;
 use crate::render::stats::PixelStats;
@@ -164,6 +164,7 @@ impl Renderer<'_> {
         };
         let effects = &self.shader.lighting.effects;
         let last = end >= total;
+        let wedges = self.shader.wedges(self.camera.eye(), self.arith);
         let rows = frame
             .pixels
             .par_chunks_mut(width)
@@ -189,7 +190,9 @@ impl Renderer<'_> {
                             later = Some(Instant::now());
                         }
                         let (px, py) = position(x as u32, y as u32, index);
-                        let (sample, _) = shader.traced(&self.camera.ray_at(px, py), self.arith);
+                        let ray = self.camera.ray_at(px, py);
+                        let clearance = clearance(wedges.as_ref(), &ray, &mut totals);
+                        let (sample, _) = shader.traced_from(&ray, self.arith, clearance);
                         totals.add(&sample);
                         if let Some(agrees) = taking.estimate.add(sample.rgb) {
                             taking.agrees = agrees;

@@ -22,17 +22,16 @@ use crate::traverse::search::Search;
 pub(in crate::traverse) const NEAR_CELLS: u32 = 8;
 
 /// Whether a walk of `f` with `options` starts with the near walk: a hierarchical method's
-/// first-hit ray from a clearance (`cleared`), in `f64`, its cells not listed. (Occlusion
-/// rays from the surface gain nothing from it: their first cells are mostly tested whole,
-/// and their walks are short already.)
-pub(in crate::traverse) fn starts_near<S: Scalar, C: CellLog>(
+/// first-hit ray from a clearance (`cleared`), in `f64`. (Occlusion rays from the surface
+/// gain nothing from it: their first cells are mostly tested whole, and their walks are
+/// short already.)
+pub(in crate::traverse) fn starts_near<S: Scalar>(
     options: &WalkOptions,
     cleared: bool,
     f: &Frame<S>,
 ) -> bool {
     options.near
         && S::as_f64s::<0>(&[]).is_some()
-        && !C::RECORDS
         && options.method.is_hierarchical()
         && cleared
         && super::has_blocks(f)
