@@ -152,6 +152,7 @@ impl App {
             UserEvent::Load(event) => match self.loader.accept(event) {
                 Some((_, Ok(loaded))) => self.show(loaded),
                 Some((what, Err(message))) => {
+                    self.model.overlay.dropped_picture = None;
                     self.model.error = Some(format!(
                         "Could not open {what}: {message}. Still showing {}.",
                         self.model.shown.source.label()

@@ -92,6 +92,7 @@ fn report(model: &Model, counts: &Counts) -> Value {
         "path_field": model.path_text,
         "loading": model.progress.as_ref().map(|p| p.label.clone()),
         "error": model.error,
+        "notice": model.notice.as_ref().map(|n| n.text.clone()),
         "drop_hover": model.drop_hover,
         "panels_visible": model.panels_visible,
         "help_open": model.help_open,

@@ -29,7 +29,11 @@ pub fn water_ui(ui: &mut Ui, model: &mut Model) {
     });
     let mut level = level_in_map_units(field, water.level);
     let span = level_in_map_units(field, hi) - level_in_map_units(field, lo);
-    let unit = if field.georef().is_some() { " m" } else { "" };
+    // In the map's height unit, as scenes write the level (feet on a map in feet).
+    let unit = field
+        .georef()
+        .map(|g| format!(" {}", g.height_unit.symbol()))
+        .unwrap_or_default();
     let mut bytes = bytes_from_linear(water.colour);
     ui.horizontal(|ui| {
         let drag = DragValue::new(&mut level)

@@ -1,6 +1,7 @@
 //! A load that fails on the loading thread is reported, and the files dropped after it still
 //! load: two tiles of which one lies 1e300 m away are refused with the reason, then a good
-//! map dropped onto the same window loads and shows.
+//! map dropped onto the same window loads and shows. A JPEG dropped as a height map is
+//! draped over the map instead, and the notice says why.
 
 use super::app::num;
 use super::{write_hill, xdnd, Session};
@@ -57,4 +58,31 @@ fn a_refused_mosaic_leaves_the_loader_loading_the_next_drop() {
         (Some(64), Some(40))
     );
     session.capture("after-a-refused-mosaic.png");
+}
+
+#[test]
+fn a_jpeg_dropped_as_a_height_map_is_draped_as_an_overlay_saying_so() {
+    let mut session = Session::start(&[]);
+    let state = session.state();
+    let at = session.screen(session.view_centre(&state));
+    let photo = session.viewer.path("photo.jpg");
+    image::RgbImage::from_fn(64, 40, |x, y| image::Rgb([x as u8 * 4, y as u8 * 6, 90]))
+        .save(&photo)
+        .expect("the JPEG written");
+    assert_eq!(
+        xdnd::drag_file(&session.x, &photo, at, false),
+        xdnd::Outcome::Accepted
+    );
+    let draped = session.viewer.wait_for("the photo draped", |s| {
+        s["terrain"]["overlay"]
+            .as_str()
+            .is_some_and(|o| o.ends_with("photo.jpg"))
+    });
+    assert_eq!(draped["error"], Value::Null);
+    assert_eq!(draped["terrain"]["name"], state["terrain"]["name"]);
+    let notice = draped["notice"].as_str().unwrap_or_default();
+    assert!(
+        notice.contains("it is a JPEG image, not a height map"),
+        "{notice}"
+    );
 }
