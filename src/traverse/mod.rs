@@ -28,6 +28,7 @@ mod options;
 mod packet;
 mod runs;
 mod search;
+mod segment;
 mod tracer;
 mod walks;
 mod wedges;
@@ -51,11 +52,12 @@ use crate::geometry::{plane_crossing, times_power_of_two, CertainMiss, Ray};
 use crate::heightfield::Terrain;
 use approximation::Approximation;
 use cell_log::{CellLog, Recorded, Unrecorded};
-use far::{far_start, FarStart};
+use far::{far_start, trace_moved, FarStart};
 use frame::{clip, clip_grown, Frame};
 use num_rational::BigRational;
 pub use search::Found;
 use search::{LazyRaySpace, Search};
+use segment::{after_clearance, clearance_start, first_level, within_reach};
 use std::ops::ControlFlow;
 use std::time::Duration;
 use walks::{choose, Covering, Walk, WithWalk};
@@ -332,33 +334,6 @@ fn trace_scalar<S: Scalar>(
     trace_near(terrain, o, d, dir_f64, walk_options)
 }
 
-/// [`trace_scalar`] for a ray from far off, walked from `origin`, its point at `t` (see
-/// [`far_start`]): its hit's `t` is the walk's plus `t`.
-// (Out of line: far rays are rare.)
-#[inline(never)]
-fn trace_moved<S: Scalar>(
-    terrain: &Terrain,
-    (origin, t): (&[S; 3], BigRational),
-    d: &[S; 3],
-    dir_f64: [f64; 3],
-    walk_options: WalkOptions,
-) -> ScalarTrace<S> {
-    // (A clearance is a `t` of the ray as given, in `f64`, as a reach is: the walk makes its
-    // own way.)
-    let walk_options = WalkOptions {
-        clearance: None,
-        ..walk_options
-    };
-    let mut answer = trace_near(terrain, origin, d, dir_f64, walk_options);
-    if let Some(hit) = answer.hit.as_mut() {
-        match S::from_exact(&t) {
-            Some(t) => hit.t = t + hit.t.clone(),
-            None => unsettled(),
-        }
-    }
-    answer
-}
-
 /// [`trace_scalar`] from the ray's own origin.
 #[inline(always)]
 fn trace_near<S: Scalar>(
@@ -522,43 +497,5 @@ fn new_search<'a, S: Scalar, C: CellLog, W: Walk>(
             .exact_start
             .filter(|_| S::EXACT && options.query == Query::Shadow),
         decided_exactly: false,
-    }
-}
-
-/// Where the hierarchical walk starts when the ray is known clear of the surface up to some
-/// `t` ([`WalkOptions::clearance`]): `t` moved down by more than the rounding to `S` (the walk
-/// may start early, never late), and the level. The other methods walk the whole segment:
-/// they are what the hierarchy is measured against.
-fn clearance_start<S: Scalar>(options: &WalkOptions) -> Option<(f64, u32)> {
-    let Clearance { t, level } = options.clearance.filter(|c| c.t > 0.0)?;
-    (options.method.is_hierarchical()).then(|| (t - 4.0 * S::rounding_error(t), level))
-}
-
-/// The level a hierarchical walk starts at where it knows better than the default: a shadow
-/// ray starts on the surface, where every block around it fails its test; a camera ray at
-/// the level its clearance names.
-fn first_level(options: &WalkOptions, start: Option<(f64, u32)>) -> Option<u32> {
-    match start {
-        _ if options.query == Query::Shadow => Some(0),
-        Some((_, level)) => Some(level),
-        None => None,
-    }
-}
-
-/// Cuts the segment at [`WalkOptions::reach`] (keeps all of it without one), ended at exactly
-/// that `t` in the walk's arithmetic; `false` if the segment starts beyond it.
-fn within_reach<S: Scalar>(frame: &mut Frame<S>, options: &WalkOptions) -> bool {
-    match options.reach {
-        Some(to) => frame.keep(f64::NEG_INFINITY, to),
-        None => true,
-    }
-}
-
-/// Cuts the segment at [`clearance_start`]'s `t` (keeps all of it without a clearance);
-/// `false` if the clearance covers it all.
-fn after_clearance<S: Scalar>(frame: &mut Frame<S>, start: Option<(f64, u32)>) -> bool {
-    match start {
-        Some((from, _)) => frame.keep(from, f64::INFINITY),
-        None => true,
     }
 }
