@@ -29,6 +29,7 @@ mod packet;
 mod runs;
 mod search;
 mod segment;
+mod short_walk;
 mod tracer;
 mod walks;
 mod wedges;

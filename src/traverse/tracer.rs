@@ -180,8 +180,12 @@ impl<'a> Tracer<'a> {
         if skip_above && dir[2] > 0.0 && origin[2] > S::from_f64(z_max) {
             return Occlusion::default();
         }
+        let start_triangle = start_triangle.map(|hit| (hit.cell, hit.triangle));
+        if let Some(short) = self.short_walk(&origin, dir, start_triangle) {
+            return short;
+        }
         let walk = WalkOptions {
-            start_triangle: start_triangle.map(|hit| (hit.cell, hit.triangle)),
+            start_triangle,
             exact_start,
             reach: self.reach,
             ..self.walk(Query::Shadow)
@@ -193,6 +197,32 @@ impl<'a> Tracer<'a> {
             cells: answer.cells,
             exactly: answer.decided_exactly,
         }
+    }
+
+    /// An `f64` occlusion ray with a short reach, answered by the
+    /// [`short_walk`](super::short_walk) where it can be (with the near walk's switch, as it
+    /// is the same idea: the first cells one by one), for the hierarchical methods whose
+    /// answers it reproduces.
+    #[inline(always)]
+    fn short_walk<S: Scalar>(
+        &self,
+        origin: &[S; 3],
+        dir: [f64; 3],
+        start_triangle: Option<((usize, usize), u8)>,
+    ) -> Option<Occlusion> {
+        let reach = self.reach?;
+        let o = S::as_f64s(origin)?;
+        if !(self.near && self.method.is_hierarchical()) || self.record_cells {
+            return None;
+        }
+        let (occluded, counters) =
+            super::short_walk::short_walk(self.terrain, *o, dir, reach, start_triangle)?;
+        Some(Occlusion {
+            occluded: Some(occluded),
+            counters,
+            cells: Vec::new(),
+            exactly: false,
+        })
     }
 
     /// The walk options of a query of this tracer.

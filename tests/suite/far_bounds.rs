@@ -133,8 +133,8 @@ fn rays_called_clear_beyond_a_point_touch_nothing_from_there_on() {
             }
         }
     }
-    // Most rays are settled: the test is not vacuous.
-    assert!(clear * 2 > asked, "{clear} of {asked} rays called clear");
+    // A good share of the rays is settled: the test is not vacuous.
+    assert!(clear * 3 > asked, "{clear} of {asked} rays called clear");
 }
 
 /// A random point on the surface of `field` (or a little or well above it).

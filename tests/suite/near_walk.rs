@@ -1,7 +1,8 @@
 //! The near walk (the first cells of a ray walked one by one from its clearance,
 //! [`Tracer::walking_near`]) gives the block walk's answers: rays from random points and
-//! clearances, a ray through a lattice point in its first cell, and camera rays from their
-//! wedge clearance, on random terrains with holes, with both hierarchical methods; and whole
+//! clearances, a ray through a lattice point in its first cell, camera rays from their wedge
+//! clearance, and occlusion rays from the surface with a short reach (the short walk), on
+//! random terrains with holes, with both hierarchical methods; and whole
 //! frames with shadows, soft shadows and sky light are pixel-identical with it on and off in
 //! `f32`, `f64` and exact arithmetic.
 
@@ -11,7 +12,7 @@ use crate::wedges::random_terrain;
 use heightray::bench::sized_scene;
 use heightray::render::effects::Effects;
 use heightray::render::{Culling, Frame, Lighting, Renderer, Shader};
-use heightray::traverse::{Clearance, Tracer, Wedges};
+use heightray::traverse::{Clearance, Start, Tracer, Wedges};
 use heightray::{Arith, Method, Ray, Terrain};
 
 /// A direction with each component in `[-1, 1]`, not all near zero.
@@ -105,6 +106,59 @@ fn camera_rays_from_their_clearance_hit_the_same_walked_near_or_down_the_mipmap(
         }
     }
     assert!(hits > 3_000, "{hits} of 6,000 hit");
+}
+
+#[test]
+fn occlusion_rays_with_a_short_reach_answer_the_same_walked_short_or_down_the_mipmap() {
+    let mut rng = Rng(0x7368_6f72);
+    let (mut asked, mut occluded, mut short) = (0, 0, 0);
+    for case in 0..40 {
+        let (w, h) = (17 + rng.below(30), 17 + rng.below(30));
+        let terrain = random_terrain(&mut rng, w, h, case % 2 == 0);
+        let (_, top) = terrain.z_range();
+        let (w, h) = (w as f64, h as f64);
+        for method in [Method::Mipmap, Method::HierarchicalRuns] {
+            let tracer = Tracer::new(&terrain, method);
+            for _ in 0..100 {
+                // From where a ray from above hits the surface (its own triangle left out),
+                // towards a random direction, asked only a few cells far.
+                let o = [rng.within(0.0, w), rng.within(0.0, h), top * 1.5 + 1.0];
+                let target = [rng.within(0.0, w), rng.within(0.0, h), 0.0];
+                let Ok(ray) = Ray::new(o, std::array::from_fn(|k| target[k] - o[k])) else {
+                    continue;
+                };
+                let Some(found) = tracer.trace::<f64>(&ray, None).hit else {
+                    continue;
+                };
+                let dir = direction(&mut rng);
+                let reach = rng.within(0.0, 5.0);
+                let from = Start::Hit {
+                    ray: &ray,
+                    hit: &found,
+                };
+                let answer = |near: bool| {
+                    tracer
+                        .within(reach)
+                        .walking_near(near)
+                        .occluded::<f64>(&from, dir, false)
+                };
+                let (walked_short, walked_down) = (answer(true), answer(false));
+                assert_eq!(
+                    walked_short.occluded, walked_down.occluded,
+                    "case {case}, {method:?}, {ray:?} towards {dir:?} within {reach}"
+                );
+                asked += 1;
+                occluded += usize::from(walked_short.occluded == Some(true));
+                short += usize::from(walked_short.counters.block.total() == 0);
+            }
+        }
+    }
+    // Both answers occur often, and most rays take the short walk.
+    assert!(
+        occluded * 5 > asked && occluded * 5 < asked * 4,
+        "{occluded} of {asked} occluded"
+    );
+    assert!(short * 2 > asked, "{short} of {asked} walked short");
 }
 
 /// A frame of `lighting` over `terrain`, walking near the surface or not.
