@@ -24,7 +24,7 @@ use super::Heightfield;
 pub const STRIP: usize = 2;
 
 /// Columns of `u` per stored bound.
-pub const BLOCK: usize = 2;
+pub const BLOCK: usize = 3;
 
 /// How far each strip is grown on either side (cells): far more than a path's `w` can be off
 /// by rounding, or by a start that lies a little off the computed one.
