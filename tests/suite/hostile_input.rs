@@ -279,3 +279,69 @@ fn knobs_beyond_their_range_are_refused() {
     assert!(output.status.success(), "{stderr}");
     assert_mentions(&stderr, &["note: 1000 threads asked for"]);
 }
+
+/// A smooth picture of `width` x `height` pixels as RGBA bytes, and as a JPEG an encoder
+/// writes of it.
+fn picture_and_jpeg(width: u32, height: u32) -> (Vec<u8>, Vec<u8>) {
+    let picture = image::RgbaImage::from_fn(width, height, |x, y| {
+        image::Rgba([(x * 255 / width) as u8, 120, (y * 255 / height) as u8, 255])
+    });
+    let mut jpeg = Vec::new();
+    image::DynamicImage::ImageRgba8(picture.clone())
+        .to_rgb8()
+        .write_to(
+            &mut std::io::Cursor::new(&mut jpeg),
+            image::ImageFormat::Jpeg,
+        )
+        .unwrap();
+    (picture.into_raw(), jpeg)
+}
+
+#[test]
+fn a_truncated_jpeg_overlay_is_refused_and_whole_ones_load() {
+    use heightray::heightfield::{Drape, Heightfield, Placement};
+    let dir = TempDir::new().unwrap();
+    let field = Heightfield::from_fn(8, 8, 255, 1.0, |i, j| (i + j) as u16).unwrap();
+    let (width, height) = (640, 480);
+    let (picture, jpeg) = picture_and_jpeg(width, height);
+
+    // Whole, it drapes the picture within JPEG's error.
+    let whole = dir.path().join("whole.jpg");
+    std::fs::write(&whole, &jpeg).unwrap();
+    let drape = Drape::load(&whole, &field, 1.0).expect("a whole JPEG loads");
+    assert_eq!(drape.size(), (640, 480));
+    let size = (width as usize, height as usize);
+    let source = Drape::from_pixels(
+        size.0,
+        size.1,
+        picture,
+        1.0,
+        Placement::stretched(size, (8, 8)),
+    );
+    for (x, y) in [(0.0, 0.0), (7.0, 0.0), (0.0, 7.0), (3.5, 2.25), (7.0, 7.0)] {
+        let (got, expected) = (drape.colour(x, y).unwrap(), source.colour(x, y).unwrap());
+        for (a, b) in got.0.iter().zip(expected.0) {
+            assert!(
+                (a - b).abs() < 0.03,
+                "at ({x}, {y}): {got:?} against {expected:?}"
+            );
+        }
+    }
+
+    // Cut short, within its entropy-coded data: refused, not filled with grey.
+    let cut = dir.path().join("cut.jpg");
+    std::fs::write(&cut, &jpeg[..jpeg.len() * 3 / 5]).unwrap();
+    let message = Drape::load(&cut, &field, 1.0)
+        .map(|_| ())
+        .expect_err("a truncated JPEG is refused")
+        .to_string();
+    assert_mentions(&message, &["cut.jpg", "cannot be decoded"]);
+
+    // One flat colour, the least data an encoder writes a block in, 4096x4096: it loads.
+    let flat = image::RgbImage::from_pixel(4096, 4096, image::Rgb([90, 140, 60]));
+    let path = dir.path().join("flat.jpg");
+    flat.save(&path).unwrap();
+    let flat_bytes = std::fs::metadata(&path).unwrap().len();
+    let drape = Drape::load(&path, &field, 1.0).expect("a flat JPEG loads");
+    assert_eq!(drape.size(), (4096, 4096), "{flat_bytes} bytes");
+}

@@ -1,7 +1,7 @@
-//! Reading a drape's image (PNG, JPEG or TIFF, through the `image` crate) and where it says it
-//! lies: a GeoTIFF's tags, or a world file beside it (`.pgw`, `.jgw`, `.tfw`, `.wld`: six
-//! lines, the pixel size along x, two rotation terms, the pixel size along y (negative for
-//! north up), and the map coordinates of the top-left pixel's centre).
+//! Reading a drape's image (PNG, JPEG or TIFF, each through its own decoder) and where it
+//! says it lies: a GeoTIFF's tags, or a world file beside it (`.pgw`, `.jgw`, `.tfw`, `.wld`:
+//! six lines, the pixel size along x, two rotation terms, the pixel size along y (negative
+//! for north up), and the map coordinates of the top-left pixel's centre).
 
 use super::tiff_rgba;
 use crate::heightfield::georef::{Georef, Georeferencing, MapUnits};
@@ -163,6 +163,9 @@ pub fn read(path: &Path) -> Result<Image, DrapeError> {
     } else if format == Some(image::ImageFormat::Png) {
         let png = super::png::decode(reader.into_inner(), len, admit, decode)?;
         (png.width, png.height, png.rgba)
+    } else if format == Some(image::ImageFormat::Jpeg) {
+        let jpeg = super::jpeg::decode(reader.into_inner(), len, admit, decode)?;
+        (jpeg.width, jpeg.height, jpeg.rgba)
     } else {
         let decoder = reader.into_decoder().map_err(|e| decode(e.to_string()))?;
         let (width, height) = decoder.dimensions();
