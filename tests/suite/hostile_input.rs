@@ -220,6 +220,17 @@ fn outputs_that_cannot_be_written_are_refused_before_rendering() {
     ] {
         assert_fails(&["render", &map, "-o", &out], &words);
     }
+    // A statistics file named by its folder: the suggestion is a JSON file, not an image.
+    let stats_folder = [
+        "render",
+        &map,
+        "-o",
+        &format!("{shown}/out.png"),
+        "--stats",
+        &shown,
+    ];
+    let suggestion = format!("such as {}", dir.path().join("stats.json").display());
+    assert_fails(&stats_folder, &["is a directory", &suggestion]);
     let generate = ["generate", "--size", "33", "-o", "/dev/full"];
     assert_fails(&generate, &["/dev/full is a character device"]);
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
@@ -344,4 +355,59 @@ fn a_truncated_jpeg_overlay_is_refused_and_whole_ones_load() {
     let flat_bytes = std::fs::metadata(&path).unwrap().len();
     let drape = Drape::load(&path, &field, 1.0).expect("a flat JPEG loads");
     assert_eq!(drape.size(), (4096, 4096), "{flat_bytes} bytes");
+}
+
+/// Whether `message` holds a run of `n` digits.
+fn has_digit_run(message: &str, n: usize) -> bool {
+    message
+        .split(|c: char| !c.is_ascii_digit())
+        .any(|run| run.len() >= n)
+}
+
+#[test]
+fn huge_and_tiny_numbers_are_echoed_compactly() {
+    let scene = |extra: &str| format!("{SMALL_SCENE}{extra}\n");
+    for (text, echoed) in [
+        (
+            SMALL_SCENE.replace("width = 16", "fov_y_deg = 1e300\nwidth = 16"),
+            "got 1e300",
+        ),
+        (
+            SMALL_SCENE.replace("width = 16", "fov_y_deg = -2.5e-300\nwidth = 16"),
+            "got -2.5e-300",
+        ),
+        (scene("[sun]\nangle_deg = 1e300"), "got 1e300"),
+        (scene("[sun]\nintensity = -1e300"), "got -1e300"),
+        (
+            scene("[sun]\nazimuth_deg = 10.0\nelevation_deg = 1e300"),
+            "got 10 and 1e300",
+        ),
+        (
+            scene("[sun]\ntime = \"2024-06-21T10:00:00Z\"\nlat = 1e300\nlon = 9.5"),
+            "got 1e300 and 9.5",
+        ),
+        (scene("[effects]\nfog = -1e300"), "got -1e300"),
+        (
+            scene("[effects]\nsky_light = true\nsky_distance = -1e300"),
+            "got -1e300",
+        ),
+        (
+            scene("[overlay]\npath = \"ortho.png\"\nopacity = 1e300"),
+            "got 1e300",
+        ),
+        (
+            SMALL_SCENE.replace("z_scale = 12.0", "z_scale = -1e300"),
+            "got -1e300",
+        ),
+    ] {
+        let message = scene_error(&text);
+        assert_mentions(&message, &[echoed]);
+        assert!(!has_digit_run(&message, 20), "{message}");
+    }
+    let (_dir, map) = small_map();
+    let output = heightray_within_ten_seconds(&["view", &map, "--render-scale", "1e30"]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success());
+    assert_mentions(&stderr, &["--render-scale", "got 1e30"]);
+    assert!(!has_digit_run(&stderr, 20), "{stderr}");
 }

@@ -4,6 +4,7 @@
 //! for north up), and the map coordinates of the top-left pixel's centre).
 
 use super::tiff_rgba;
+use crate::compact::Compact;
 use crate::heightfield::georef::{Georef, Georeferencing, MapUnits};
 use crate::heightfield::load::geotiff;
 use crate::regular_file::{self, OpenError};
@@ -20,7 +21,7 @@ pub const MOST_OVERLAY_PIXELS: u64 = 1 << 26;
 #[derive(Debug, Error)]
 pub enum DrapeError {
     /// The opacity is not a number from 0 to 1.
-    #[error("overlay opacity must be a number from 0 to 1, got {0}")]
+    #[error("overlay opacity must be a number from 0 to 1, got {}", Compact(*.0))]
     Opacity(f64),
     /// The file could not be read.
     #[error("cannot read overlay {path}: {reason}; check that the file exists and can be read")]
