@@ -11,6 +11,8 @@
 pub mod arith;
 /// Benchmarks: methods, arithmetics and thread counts measured side by side in one run.
 pub mod bench;
+/// Numbers echoed in messages, written compactly (`1e300`, not 301 digits).
+pub mod compact;
 /// Rays, box clipping, the watertight two-triangle cell test, and the surface contract.
 pub mod geometry;
 /// Height fields: samples, loading, and the maxima the walks skip empty space with.

@@ -13,14 +13,15 @@ use std::sync::atomic::{AtomicU64, Ordering};
 /// Distinguishes the temporary files of one process.
 static NEXT: AtomicU64 = AtomicU64::new(0);
 
-/// Checks that `path` can be written as a new or replaced file, or says why not.
-pub fn check(path: &Path) -> Result<(), String> {
+/// Checks that `path` can be written as a new or replaced file, or says why not; where it
+/// names a folder, the message suggests `example` (a file name, `out.png`) in it.
+pub fn check(path: &Path, example: &str) -> Result<(), String> {
     let shown = path.display();
     match std::fs::metadata(path) {
         Ok(metadata) if metadata.is_dir() => {
             return Err(format!(
                 "{shown} is a directory; give a file name in it, such as {}",
-                path.join("out.png").display()
+                path.join(example).display()
             ))
         }
         Ok(metadata) if !metadata.is_file() => {
@@ -54,7 +55,7 @@ pub fn check(path: &Path) -> Result<(), String> {
 /// Checks that `path` can be written, and that its extension names an image format that
 /// can be written; returns the format.
 pub fn check_image(path: &Path) -> Result<ImageFormat, String> {
-    check(path)?;
+    check(path, "out.png")?;
     ImageFormat::from_path(path)
         .ok()
         .filter(ImageFormat::writing_enabled)
@@ -166,11 +167,18 @@ mod tests {
     #[test]
     fn paths_that_cannot_be_written_say_why() {
         let dir = tempfile::tempdir().unwrap();
-        let folder = check(dir.path()).unwrap_err();
+        let folder = check(dir.path(), "stats.json").unwrap_err();
+        let suggested = dir.path().join("stats.json").display().to_string();
         assert!(folder.contains("is a directory"), "{folder}");
-        let device = check(Path::new("/dev/full")).unwrap_err();
+        assert!(
+            folder.ends_with(&format!("such as {suggested}")),
+            "{folder}"
+        );
+        let image_folder = check_image(dir.path()).unwrap_err();
+        assert!(image_folder.contains("out.png"), "{image_folder}");
+        let device = check(Path::new("/dev/full"), "out.txt").unwrap_err();
         assert!(device.contains("character device"), "{device}");
-        let missing = check(&dir.path().join("no/such/out.png")).unwrap_err();
+        let missing = check(&dir.path().join("no/such/out.png"), "out.png").unwrap_err();
         assert!(missing.contains("does not exist"), "{missing}");
         let extension = check_image(&dir.path().join("out.xyz")).unwrap_err();
         assert!(extension.contains("extension"), "{extension}");

@@ -13,6 +13,7 @@ mod speed_report;
 mod trace;
 
 use clap::{Parser, Subcommand};
+use heightray::compact::Compact;
 use heightray::heightfield::{ColourEncoding, NoDataValue};
 use heightray::render::MAX_PIXELS;
 use heightray::{Arith, Method};
@@ -361,7 +362,8 @@ pub fn view(args: ViewArgs) -> anyhow::Result<ExitCode> {
     if let Some(scale) = args.render_scale {
         anyhow::ensure!(
             (0.05..=4.0).contains(&scale),
-            "--render-scale must be between 0.05 and 4, got {scale}"
+            "--render-scale must be between 0.05 and 4, got {}",
+            Compact(scale)
         );
     }
     if let Some((w, h)) = args.export_size {

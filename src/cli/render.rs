@@ -17,7 +17,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     // Before any work: a render that fails to be written only at its end is time lost.
     output_file::check_image(&args.output).map_err(anyhow::Error::msg)?;
     if let Some(path) = &args.stats {
-        output_file::check(path).map_err(anyhow::Error::msg)?;
+        output_file::check(path, "stats.json").map_err(anyhow::Error::msg)?;
     }
     let start = Instant::now();
     let scene = loading::stage(&format!("loading {}", args.scene.display()), || {

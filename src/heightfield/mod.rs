@@ -42,6 +42,7 @@ pub use sky_bounds::{SkyBounds, SKY_SECTORS};
 pub use strips::{StripBounds, BLOCK as STRIP_BLOCK, STRIP};
 pub use terrain::{Lines, Terrain};
 
+use crate::compact::Compact;
 use std::sync::Arc;
 use thiserror::Error;
 
@@ -65,7 +66,7 @@ pub enum HeightfieldError {
         height: usize,
     },
     /// A z scale that is negative, NaN or infinite.
-    #[error("z scale must be a finite number >= 0, got {0}")]
+    #[error("z scale must be a finite number >= 0, got {}", Compact(*.0))]
     BadZScale(f64),
     /// A z scale whose heights would reach beyond [`MOST_HEIGHT`].
     #[error(
@@ -98,7 +99,11 @@ pub enum HeightfieldError {
     },
     /// An offset mapping ([`Quantisation::Offset`]) whose heights are not finite (scaled or
     /// not), or whose step is negative.
-    #[error("heights must be finite with a step >= 0, got lowest {lowest} and step {step}")]
+    #[error(
+        "heights must be finite with a step >= 0, got lowest {} and step {}",
+        Compact(*lowest),
+        Compact(*step)
+    )]
     BadOffset {
         /// The raster value of sample 0.
         lowest: f64,

@@ -3,6 +3,7 @@
 //! `a = width/height`, `h = tan(fov_y/2)`:
 //! `direction = f + (2(px+0.5)/width - 1)*h*a*r + (1 - 2(py+0.5)/height)*h*u`.
 
+use crate::compact::Compact;
 use crate::geometry::Ray;
 use glam::DVec3;
 use thiserror::Error;
@@ -32,7 +33,7 @@ pub enum CameraError {
     )]
     UpParallel,
     /// A vertical field of view outside (0, 180) degrees.
-    #[error("field of view must be between 0 and 180 degrees, got {0}")]
+    #[error("field of view must be between 0 and 180 degrees, got {}", Compact(*.0))]
     BadFov(f64),
     /// An image size with no pixels (width, height).
     #[error("image size must be at least 1x1, got {0}x{1}")]

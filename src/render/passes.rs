@@ -29,7 +29,7 @@ const TILE: u32 = 16;
 const PACKET_COLUMNS: usize = 4;
 
 /// An image with its per-pixel statistics and running totals.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct Frame {
     /// Width in pixels.
     pub width: u32,
@@ -62,6 +62,34 @@ impl Frame {
     /// Whether every pass has been rendered.
     pub fn complete(&self) -> bool {
         self.passes_done == PASS_BLOCKS.len()
+    }
+}
+
+impl Clone for Frame {
+    fn clone(&self) -> Frame {
+        let mut copy = Frame::new(0, 0);
+        copy.clone_from(self);
+        copy
+    }
+
+    /// Copies into `self`'s buffers: the viewer refines a copy of every pass it shows, and
+    /// a frame is tens of megabytes that need not be allocated and paged in again.
+    fn clone_from(&mut self, source: &Frame) {
+        // (Destructured, so that a field added later is copied or left out on purpose.)
+        let Frame {
+            width,
+            height,
+            pixels,
+            stats,
+            totals,
+            passes_done,
+        } = source;
+        self.width = *width;
+        self.height = *height;
+        self.pixels.clone_from(pixels);
+        self.stats.clone_from(stats);
+        self.totals = *totals;
+        self.passes_done = *passes_done;
     }
 }
 

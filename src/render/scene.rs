@@ -20,6 +20,7 @@ mod triple;
 mod view;
 mod water;
 
+use crate::compact::Compact;
 use heightmap::HeightmapError;
 pub use heightmap::{HeightmapSection, NoDataKey};
 pub use lighting::Lighting;
@@ -433,7 +434,8 @@ impl Scene {
         ] {
             if !(value.is_finite() && value >= 0.0) {
                 return Err(invalid(format!(
-                    "{key} must be a finite number >= 0, got {value}"
+                    "{key} must be a finite number >= 0, got {}",
+                    Compact(value)
                 )));
             }
         }

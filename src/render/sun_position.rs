@@ -2,6 +2,7 @@
 //! Andreas (NREL, 2004) through the `solar-positioning` crate, with Delta T estimated (Espenak
 //! and Meeus) and refraction for a standard atmosphere, seen from sea level.
 
+use crate::compact::Compact;
 use chrono::{DateTime, Utc};
 use solar_positioning::{delta_t, Location, RefractionCorrection, SolarPositions};
 
@@ -30,6 +31,15 @@ impl SunPosition {
         latitude: f64,
         longitude: f64,
     ) -> Result<SunPosition, String> {
+        // Checked here, not by the solar position crate, whose message writes every digit.
+        if !((-90.0..=90.0).contains(&latitude) && (-180.0..=180.0).contains(&longitude)) {
+            return Err(format!(
+                "latitude must be from -90 to 90 and longitude from -180 to 180 degrees, got \
+                 {} and {}",
+                Compact(latitude),
+                Compact(longitude)
+            ));
+        }
         let delta_t = delta_t::estimate_from_date_like(&time).map_err(|e| e.to_string())?;
         let location = Location {
             latitude,

@@ -9,7 +9,7 @@ use super::hooks::{Counts, Hooks};
 use super::loader::{LoadRequest, Loaded, Loader};
 use super::model::{Action, Model, Shown};
 use super::navigation::{self, Home};
-use super::quality::{detail, JobKey, Quality, ViewKey, MOST_VIEW_PIXELS};
+use super::quality::{detail, Capped, JobKey, Quality, ViewKey};
 use super::worker::{RenderJob, RenderWorker, RenderedFrame};
 use super::{drops, overlay_ui, panels, view, water_ui, UserEvent};
 
@@ -95,7 +95,9 @@ impl App {
             surface,
             egui_ctx,
             egui_state,
-            egui_renderer: EguiSoftwareRender::new(ColorFieldOrder::Bgra),
+            // Drawn straight into the window's buffer: the cache keeps a canvas the size of the
+            // window (256 MB at 8000x8000), and the panel redraws as fast without it.
+            egui_renderer: EguiSoftwareRender::new(ColorFieldOrder::Bgra).with_caching(false),
             proxy,
             worker,
             loader,
@@ -148,7 +150,13 @@ impl App {
 
     pub fn user_event(&mut self, event: UserEvent) {
         match event {
-            UserEvent::FrameReady | UserEvent::Accuracy => {}
+            UserEvent::FrameReady => {
+                // Taken now, not at the redraw: the worker waits for the window to let go
+                // of the frame before, to refine the next pass in its buffers.
+                self.pick_frame();
+                self.worker.taken();
+            }
+            UserEvent::Accuracy => {}
             UserEvent::Load(event) => match self.loader.accept(event) {
                 Some((_, Ok(loaded))) => self.show(loaded),
                 Some((what, Err(message))) => {
@@ -317,6 +325,8 @@ impl App {
         };
         let replace = match &self.model.latest {
             None => true,
+            // Taken already (when the worker said it was ready).
+            Some(shown) if Arc::ptr_eq(shown, &latest) => false,
             Some(shown) => {
                 shown.generation == latest.generation
                     || shown.job.view_id != latest.job.view_id
@@ -365,14 +375,10 @@ impl App {
             // Latency is measured from input that changed a view already on screen.
             caused_by = input_at.filter(|_| self.submitted.is_some());
         }
-        if view_key.capped() && self.submitted.as_ref().is_none_or(|s| !s.view.capped()) {
-            let (w, h) = view_key.full_size();
-            self.model.notify(format!(
-                "The window is larger than {:.1} million pixels: the view renders at {w}x{h} \
-                 and is shown scaled up",
-                MOST_VIEW_PIXELS / 1e6
-            ));
-        }
+        self.model.capped = view_key.capped().then(|| Capped {
+            render: view_key.full_size(),
+            shown: (view.width, view.height),
+        });
         let size = self.quality.render_size(&view_key);
         let key = JobKey {
             view: view_key,

@@ -143,15 +143,25 @@ pub fn blit(canvas: &mut Canvas<'_>, rect: PixelRect, frame: &Frame, look: Look<
             ((u64::from(x - rect.x) * u64::from(frame.width)) / u64::from(rect.width)) as usize
         })
         .collect();
+    let row_start = |y: u32| (y as usize) * (canvas.width as usize) + rect.x as usize;
+    let mut previous: Option<(usize, u32)> = None;
     for y in rect.y..y_end {
         let sy =
             (u64::from(y - rect.y) * u64::from(frame.height) / u64::from(rect.height)) as usize;
+        let start = row_start(y);
+        // Scaled up, a source row fills several window rows: the first is coloured, the
+        // rest copied from it.
+        if let Some((_, above)) = previous.filter(|&(row, _)| row == sy) {
+            let from = row_start(above);
+            canvas.pixels.copy_within(from..from + columns.len(), start);
+            continue;
+        }
         let source = sy * frame.width as usize;
-        let start = (y * canvas.width + rect.x) as usize;
         let row = &mut canvas.pixels[start..start + columns.len()];
         for (out, &sx) in row.iter_mut().zip(&columns) {
             *out = colour(source + sx);
         }
+        previous = Some((sy, y));
     }
 }
 
@@ -192,6 +202,37 @@ mod tests {
         };
         blit(&mut canvas, rect, &frame, Look::default());
         assert_eq!(pixels, vec![0, 1, 1, 2, 2, 0, 1, 1, 2, 2, 0, 3, 3, 4, 4]);
+    }
+
+    /// Scaled up by an uneven factor, rows copied from the row above them show the same
+    /// source row as those coloured afresh: every window pixel is the frame pixel
+    /// `frame_pixel` maps it to.
+    #[test]
+    fn blit_at_any_scale_shows_the_pixel_each_window_pixel_maps_to() {
+        let mut frame = Frame::new(3, 5);
+        frame.pixels = (0..15).collect();
+        let (width, height) = (9, 14);
+        let mut pixels = vec![u32::MAX; (width * height) as usize];
+        let mut canvas = Canvas {
+            pixels: &mut pixels,
+            width,
+            height,
+        };
+        let rect = PixelRect {
+            x: 2,
+            y: 1,
+            width: 7,
+            height: 13,
+        };
+        blit(&mut canvas, rect, &frame, Look::default());
+        for y in 0..height {
+            for x in 0..width {
+                let shown = pixels[(y * width + x) as usize];
+                let expected = frame_pixel(rect, (3, 5), f64::from(x), f64::from(y))
+                    .map_or(u32::MAX, |(fx, fy)| fy * 3 + fx);
+                assert_eq!(shown, expected, "window pixel ({x}, {y})");
+            }
+        }
     }
 
     #[test]

@@ -59,6 +59,10 @@ fn report(model: &Model, counts: &Counts) -> Value {
         "window_size": [model.window_size.0, model.window_size.1],
         "scale_factor": model.scale_factor,
         "view_rect": counts.view_rect.map(|r| [r.x, r.y, r.width, r.height]),
+        "capped": model.capped.map(|c| json!({
+            "render": [c.render.0, c.render.1], "shown": [c.shown.0, c.shown.1],
+            "text": c.to_string(),
+        })),
         "frame": frame_report(model),
         "camera": {
             "yaw_deg": orbit.yaw_deg, "pitch_deg": orbit.pitch_deg, "distance": orbit.distance,

@@ -7,6 +7,7 @@
 //! This module wires winit's events to `app::App`; the state and drawing live there.
 
 mod accuracy;
+mod annotations;
 mod app;
 mod background;
 mod compose;

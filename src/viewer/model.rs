@@ -10,6 +10,7 @@ use super::navigation::{Framed, Home};
 use super::orbit::Orbit;
 use super::overlay_ui::OverlayControls;
 use super::probe::Probe;
+use super::quality::Capped;
 use super::settings::Settings;
 use super::sun_clock::SunClock;
 use super::worker::RenderedFrame;
@@ -147,6 +148,8 @@ pub struct Model {
     pub scale_factor: f32,
     pub pixels_per_point: f32,
     pub window_size: (u32, u32),
+    /// Set while the view renders at fewer pixels than it shows.
+    pub capped: Option<Capped>,
     /// A mouse button is held on the 3D view (a drag in progress).
     pub view_held: bool,
     /// Where named widgets were drawn last frame, in points (for scripted tests).
@@ -215,6 +218,7 @@ impl Model {
             scale_factor: 1.0,
             pixels_per_point: 1.0,
             window_size: (0, 0),
+            capped: None,
             view_held: false,
             widget_rects: BTreeMap::new(),
             accuracy: AccuracyState::default(),

@@ -16,9 +16,33 @@ const BUDGET_MS: f64 = 8.0;
 const REST: Duration = Duration::from_millis(150);
 /// Lowest resolution factor while moving.
 const MIN_FACTOR: f64 = 0.3;
-/// The most pixels a view is rendered at (a 4K screen's): a larger window shows the frame
-/// scaled up, and a frame's memory stays bounded whatever size the window is given.
-pub const MOST_VIEW_PIXELS: f64 = (1u64 << 23) as f64;
+/// The most pixels a view is rendered at (2048x2048, a 2560x1600 screen's fit): a larger
+/// window shows the frame scaled up, and a frame's memory (24 bytes a pixel, up to three
+/// frames alive) stays about 300 MB whatever size the window is given.
+pub const MOST_VIEW_PIXELS: f64 = (1u64 << 22) as f64;
+
+/// A view rendered at fewer pixels than the window shows it at.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Capped {
+    /// The render size at full resolution.
+    pub render: (u32, u32),
+    /// The view's size in window pixels.
+    pub shown: (u32, u32),
+}
+
+impl std::fmt::Display for Capped {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "rendering at {}x{}, shown at {}x{} (at most {:.1} million pixels are rendered)",
+            self.render.0,
+            self.render.1,
+            self.shown.0,
+            self.shown.1,
+            MOST_VIEW_PIXELS / 1e6
+        )
+    }
+}
 
 /// What a render shows, apart from a resolution lowered while moving.
 #[derive(Clone, Debug, PartialEq)]
@@ -191,8 +215,17 @@ mod tests {
     fn a_huge_window_renders_at_most_the_pixel_limit_in_its_shape() {
         let ((w, h), capped) = capped_size(8000.0, 8000.0);
         assert!(capped);
-        assert_eq!((w, h), (2896, 2896));
+        // 2^22 pixels: 2048 on each side of a square, 4096x1024 at 4:1.
+        assert_eq!((w, h), (2048, 2048));
+        assert_eq!(capped_size(16000.0, 4000.0), ((4096, 1024), true));
         assert!(f64::from(w) * f64::from(h) <= MOST_VIEW_PIXELS);
+        let capped = Capped {
+            render: (w, h),
+            shown: (8000, 8000),
+        };
+        assert!(capped
+            .to_string()
+            .starts_with("rendering at 2048x2048, shown at 8000x8000"));
         assert_eq!(capped_size(1280.0, 720.0), ((1280, 720), false));
         assert_eq!(capped_size(1280.5, 720.2), ((1281, 721), false));
     }

@@ -64,6 +64,9 @@ pub fn statistics_ui(ui: &mut Ui, model: &mut Model) {
         frame.width,
         frame.height
     ));
+    if let Some(capped) = model.capped {
+        ui.label(capped.to_string());
+    }
     ui.label(format!(
         "build {:.1} ms (acceleration data)",
         latest.job.terrain.build_time().as_secs_f64() * 1e3

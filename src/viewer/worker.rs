@@ -119,6 +119,11 @@ impl RenderWorker {
         self.shared.jobs.nudge();
     }
 
+    /// Tells the worker the window has taken the newest frame and let go of older ones.
+    pub fn taken(&self) {
+        self.shared.jobs.nudge();
+    }
+
     /// The newest published frame.
     pub fn latest(&self) -> Option<Arc<RenderedFrame>> {
         self.shared
@@ -171,11 +176,17 @@ fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJo
     let samples = job.lighting.effects.samples;
     renderer.shader.lighting.effects.samples = 1;
     let rounds = job.renderer(job.arith);
-    let mut sums = Accumulation::new(width, height, if samples > 1 { samples } else { 0 });
+    // Running sums (88 bytes a pixel) only for samples to add: one sample keeps none.
+    let mut sums = if samples > 1 {
+        Accumulation::new(width, height, samples)
+    } else {
+        Accumulation::new(0, 0, 0)
+    };
     let quitting = || shared.jobs.is_closed();
     let superseded = || shared.jobs.newest() != generation || quitting();
     let start = Instant::now();
     let mut pass_times = Vec::new();
+    let mut spare: Option<Arc<RenderedFrame>> = None;
     loop {
         // The coarse first pass always finishes (it is short): were it cancelled too, a
         // stream of camera moves could keep every job from ever showing a frame.
@@ -223,7 +234,31 @@ fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJo
         if superseded() {
             return;
         }
-        frame = rendered.frame.clone();
+        frame = copy_to_refine(shared, spare.take(), &rendered);
+        spare = Some(rendered);
+    }
+}
+
+/// The copy of `rendered` that the next pass refines, made in the buffers of `before` (the
+/// pass published ahead of it) once the window has let go of that, which it does as it takes
+/// `rendered` (briefly waited for): then two frames are alive, not three.
+fn copy_to_refine(
+    shared: &Shared,
+    before: Option<Arc<RenderedFrame>>,
+    rendered: &RenderedFrame,
+) -> Frame {
+    const PATIENCE: Duration = Duration::from_millis(40);
+    if let Some(before) = &before {
+        shared
+            .jobs
+            .wait_until(Instant::now() + PATIENCE, || Arc::strong_count(before) == 1);
+    }
+    match before.map(Arc::try_unwrap) {
+        Some(Ok(mut old)) => {
+            old.frame.clone_from(&rendered.frame);
+            old.frame
+        }
+        _ => rendered.frame.clone(),
     }
 }
 
@@ -233,6 +268,53 @@ mod tests {
     use crate::heightfield::landscape;
     use crate::render::{EffectsSection, ShadingSection, SunSection};
     use std::sync::mpsc;
+
+    fn small_job() -> RenderJob {
+        let terrain = Arc::new(Terrain::new(landscape(33, 1, 8.0).unwrap()));
+        let orbit = Orbit::framing(&terrain);
+        let lighting = Lighting::from_sections(
+            &SunSection::default(),
+            &EffectsSection::default(),
+            &ShadingSection::default(),
+        );
+        RenderJob {
+            terrain,
+            orbit,
+            camera: orbit.camera((40, 24)).unwrap(),
+            lighting,
+            method: Method::Mipmap,
+            arith: Arith::F64,
+            view_id: 0,
+        }
+    }
+
+    /// Each pass is refined in the buffers of the pass before the last (nothing here holds
+    /// it): the last pass shows the image and counts a render in one go makes.
+    #[test]
+    fn passes_refined_in_reused_buffers_end_with_the_renderers_image() {
+        let (published, heard) = mpsc::channel();
+        let worker = RenderWorker::start(move || {
+            let _ = published.send(());
+        })
+        .unwrap();
+        let job = small_job();
+        let mut whole = Frame::new(40, 24);
+        job.renderer(job.arith).render(&mut whole);
+        worker.submit(job);
+        let mut passes = 0;
+        let last = loop {
+            heard.recv_timeout(Duration::from_secs(10)).unwrap();
+            passes += 1;
+            let latest = worker.latest().unwrap();
+            if latest.finished() {
+                break latest;
+            }
+        };
+        assert_eq!(passes, crate::render::PASS_BLOCKS.len());
+        assert_eq!(last.frame.pixels, whole.pixels);
+        assert_eq!(last.frame.stats, whole.stats);
+        assert_eq!(last.frame.totals, whole.totals);
+    }
 
     /// When the window hears of the complete frame, the worker already says it is idle: the
     /// window reports `busy` as it shows that frame and may draw nothing after it. Here the
@@ -250,22 +332,7 @@ mod tests {
                 .map(|go_on| go_on.recv_timeout(Duration::from_secs(10)));
         })
         .unwrap();
-        let terrain = Arc::new(Terrain::new(landscape(33, 1, 8.0).unwrap()));
-        let orbit = Orbit::framing(&terrain);
-        let lighting = Lighting::from_sections(
-            &SunSection::default(),
-            &EffectsSection::default(),
-            &ShadingSection::default(),
-        );
-        worker.submit(RenderJob {
-            terrain,
-            orbit,
-            camera: orbit.camera((16, 16)).unwrap(),
-            lighting,
-            method: Method::Mipmap,
-            arith: Arith::F64,
-            view_id: 0,
-        });
+        worker.submit(small_job());
         let mut passes = 0;
         loop {
             heard.recv().unwrap();

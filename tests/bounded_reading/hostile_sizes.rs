@@ -169,6 +169,28 @@ fn an_overlay_declaring_46000_squared_pixels_is_refused_before_decoding() {
     assert!(allocated.peak < 4 * MIB, "{allocated:?}");
 }
 
+/// The 16x16 JPEG's few hundred bytes cannot hold the coded blocks of 8000x8000 pixels (a
+/// 4:2:0 frame of 250,000 units of 6 blocks, at least a bit each): refused before its 256 MB
+/// of pixels are allocated, where a lenient decoder fills them with grey.
+#[test]
+fn an_overlay_of_a_few_hundred_bytes_declaring_8000_squared_pixels_is_corrupt() {
+    let dir = TempDir::new().unwrap();
+    let path = dir.path().join("claims.jpg");
+    let bytes = jpeg_declaring(8000, 8000);
+    assert!(bytes.len() < 1000, "{} bytes", bytes.len());
+    std::fs::write(&path, &bytes).unwrap();
+    let field = Heightfield::from_fn(8, 8, 255, 1.0, |i, j| (i + j) as u16).unwrap();
+    let (result, allocated) = measure(|| Drape::load(&path, &field, 1.0).map(|_| ()));
+    let message = result.expect_err("refused").to_string();
+    assert!(
+        message.contains("claims.jpg")
+            && message.contains("truncated or corrupt")
+            && message.contains("8000x8000"),
+        "{message}"
+    );
+    assert!(allocated.peak < 4 * MIB, "{allocated:?}");
+}
+
 /// A 4x4 ESRI ASCII tile of 1 m cells with its lower-left corner at `(x, 0)`.
 fn tile(dir: &Path, name: &str, x: f64) -> PathBuf {
     let path = dir.join(name);

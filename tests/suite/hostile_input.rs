@@ -220,6 +220,17 @@ fn outputs_that_cannot_be_written_are_refused_before_rendering() {
     ] {
         assert_fails(&["render", &map, "-o", &out], &words);
     }
+    // A statistics file named by its folder: the suggestion is a JSON file, not an image.
+    let stats_folder = [
+        "render",
+        &map,
+        "-o",
+        &format!("{shown}/out.png"),
+        "--stats",
+        &shown,
+    ];
+    let suggestion = format!("such as {}", dir.path().join("stats.json").display());
+    assert_fails(&stats_folder, &["is a directory", &suggestion]);
     let generate = ["generate", "--size", "33", "-o", "/dev/full"];
     assert_fails(&generate, &["/dev/full is a character device"]);
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
@@ -278,4 +289,125 @@ fn knobs_beyond_their_range_are_refused() {
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(output.status.success(), "{stderr}");
     assert_mentions(&stderr, &["note: 1000 threads asked for"]);
+}
+
+/// A smooth picture of `width` x `height` pixels as RGBA bytes, and as a JPEG an encoder
+/// writes of it.
+fn picture_and_jpeg(width: u32, height: u32) -> (Vec<u8>, Vec<u8>) {
+    let picture = image::RgbaImage::from_fn(width, height, |x, y| {
+        image::Rgba([(x * 255 / width) as u8, 120, (y * 255 / height) as u8, 255])
+    });
+    let mut jpeg = Vec::new();
+    image::DynamicImage::ImageRgba8(picture.clone())
+        .to_rgb8()
+        .write_to(
+            &mut std::io::Cursor::new(&mut jpeg),
+            image::ImageFormat::Jpeg,
+        )
+        .unwrap();
+    (picture.into_raw(), jpeg)
+}
+
+#[test]
+fn a_truncated_jpeg_overlay_is_refused_and_whole_ones_load() {
+    use heightray::heightfield::{Drape, Heightfield, Placement};
+    let dir = TempDir::new().unwrap();
+    let field = Heightfield::from_fn(8, 8, 255, 1.0, |i, j| (i + j) as u16).unwrap();
+    let (width, height) = (640, 480);
+    let (picture, jpeg) = picture_and_jpeg(width, height);
+
+    // Whole, it drapes the picture within JPEG's error.
+    let whole = dir.path().join("whole.jpg");
+    std::fs::write(&whole, &jpeg).unwrap();
+    let drape = Drape::load(&whole, &field, 1.0).expect("a whole JPEG loads");
+    assert_eq!(drape.size(), (640, 480));
+    let size = (width as usize, height as usize);
+    let source = Drape::from_pixels(
+        size.0,
+        size.1,
+        picture,
+        1.0,
+        Placement::stretched(size, (8, 8)),
+    );
+    for (x, y) in [(0.0, 0.0), (7.0, 0.0), (0.0, 7.0), (3.5, 2.25), (7.0, 7.0)] {
+        let (got, expected) = (drape.colour(x, y).unwrap(), source.colour(x, y).unwrap());
+        for (a, b) in got.0.iter().zip(expected.0) {
+            assert!(
+                (a - b).abs() < 0.03,
+                "at ({x}, {y}): {got:?} against {expected:?}"
+            );
+        }
+    }
+
+    // Cut short, within its entropy-coded data: refused, not filled with grey.
+    let cut = dir.path().join("cut.jpg");
+    std::fs::write(&cut, &jpeg[..jpeg.len() * 3 / 5]).unwrap();
+    let message = Drape::load(&cut, &field, 1.0)
+        .map(|_| ())
+        .expect_err("a truncated JPEG is refused")
+        .to_string();
+    assert_mentions(&message, &["cut.jpg", "cannot be decoded"]);
+
+    // One flat colour, the least data an encoder writes a block in, 4096x4096: it loads.
+    let flat = image::RgbImage::from_pixel(4096, 4096, image::Rgb([90, 140, 60]));
+    let path = dir.path().join("flat.jpg");
+    flat.save(&path).unwrap();
+    let flat_bytes = std::fs::metadata(&path).unwrap().len();
+    let drape = Drape::load(&path, &field, 1.0).expect("a flat JPEG loads");
+    assert_eq!(drape.size(), (4096, 4096), "{flat_bytes} bytes");
+}
+
+/// Whether `message` holds a run of `n` digits.
+fn has_digit_run(message: &str, n: usize) -> bool {
+    message
+        .split(|c: char| !c.is_ascii_digit())
+        .any(|run| run.len() >= n)
+}
+
+#[test]
+fn huge_and_tiny_numbers_are_echoed_compactly() {
+    let scene = |extra: &str| format!("{SMALL_SCENE}{extra}\n");
+    for (text, echoed) in [
+        (
+            SMALL_SCENE.replace("width = 16", "fov_y_deg = 1e300\nwidth = 16"),
+            "got 1e300",
+        ),
+        (
+            SMALL_SCENE.replace("width = 16", "fov_y_deg = -2.5e-300\nwidth = 16"),
+            "got -2.5e-300",
+        ),
+        (scene("[sun]\nangle_deg = 1e300"), "got 1e300"),
+        (scene("[sun]\nintensity = -1e300"), "got -1e300"),
+        (
+            scene("[sun]\nazimuth_deg = 10.0\nelevation_deg = 1e300"),
+            "got 10 and 1e300",
+        ),
+        (
+            scene("[sun]\ntime = \"2024-06-21T10:00:00Z\"\nlat = 1e300\nlon = 9.5"),
+            "got 1e300 and 9.5",
+        ),
+        (scene("[effects]\nfog = -1e300"), "got -1e300"),
+        (
+            scene("[effects]\nsky_light = true\nsky_distance = -1e300"),
+            "got -1e300",
+        ),
+        (
+            scene("[overlay]\npath = \"ortho.png\"\nopacity = 1e300"),
+            "got 1e300",
+        ),
+        (
+            SMALL_SCENE.replace("z_scale = 12.0", "z_scale = -1e300"),
+            "got -1e300",
+        ),
+    ] {
+        let message = scene_error(&text);
+        assert_mentions(&message, &[echoed]);
+        assert!(!has_digit_run(&message, 20), "{message}");
+    }
+    let (_dir, map) = small_map();
+    let output = heightray_within_ten_seconds(&["view", &map, "--render-scale", "1e30"]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success());
+    assert_mentions(&stderr, &["--render-scale", "got 1e30"]);
+    assert!(!has_digit_run(&stderr, 20), "{stderr}");
 }

@@ -12,6 +12,7 @@ mod export;
 mod failed_loads;
 mod fog;
 mod georeferenced;
+mod huge_window;
 mod navigation;
 mod panel;
 mod special_paths;

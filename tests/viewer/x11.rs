@@ -20,16 +20,13 @@ pub struct Xvfb {
 
 impl Xvfb {
     pub fn start() -> Xvfb {
+        Xvfb::with_screen("1600x900x24")
+    }
+
+    /// Xvfb with a screen of `size` (`WIDTHxHEIGHTxDEPTH`).
+    pub fn with_screen(size: &str) -> Xvfb {
         let spawned = Command::new("Xvfb")
-            .args([
-                "-displayfd",
-                "1",
-                "-screen",
-                "0",
-                "1600x900x24",
-                "-nolisten",
-                "tcp",
-            ])
+            .args(["-displayfd", "1", "-screen", "0", size, "-nolisten", "tcp"])
             .stdout(Stdio::piped())
             .stderr(Stdio::null())
             .spawn();
@@ -190,6 +187,17 @@ impl X {
         (reply.dst_x, reply.dst_y)
     }
 
+    /// Sets the window's size, as a window manager would when the user drags its border.
+    pub fn resize(&self, window: u32, (width, height): (u32, u32)) {
+        let size = xproto::ConfigureWindowAux::new()
+            .width(width)
+            .height(height);
+        self.conn
+            .configure_window(window, &size)
+            .expect("send ConfigureWindow");
+        self.conn.flush().expect("flush");
+    }
+
     /// The window's pixels as the X server has them.
     pub fn capture(&self, window: u32) -> Shot {
         let geometry = self
@@ -198,10 +206,14 @@ impl X {
             .expect("send GetGeometry")
             .reply()
             .expect("geometry");
-        let (w, h) = (geometry.width, geometry.height);
+        self.capture_part(window, (0, 0), (geometry.width, geometry.height))
+    }
+
+    /// The pixels of a `w` x `h` rectangle of the window from `(x, y)`.
+    pub fn capture_part(&self, window: u32, (x, y): (i16, i16), (w, h): (u16, u16)) -> Shot {
         let image = self
             .conn
-            .get_image(ImageFormat::Z_PIXMAP, window, 0, 0, w, h, !0)
+            .get_image(ImageFormat::Z_PIXMAP, window, x, y, w, h, !0)
             .expect("send GetImage")
             .reply()
             .expect("GetImage reply");

@@ -3,6 +3,7 @@
 //! both it and the field have one, and sampled bilinearly between pixel centres in linear
 //! light. Outside the image the surface keeps the ramp's colour.
 
+mod jpeg;
 mod png;
 mod read;
 mod reproject;

@@ -1,9 +1,10 @@
-//! Reading a drape's image (PNG, JPEG or TIFF, through the `image` crate) and where it says it
-//! lies: a GeoTIFF's tags, or a world file beside it (`.pgw`, `.jgw`, `.tfw`, `.wld`: six
-//! lines, the pixel size along x, two rotation terms, the pixel size along y (negative for
-//! north up), and the map coordinates of the top-left pixel's centre).
+//! Reading a drape's image (PNG, JPEG or TIFF, each through its own decoder) and where it
+//! says it lies: a GeoTIFF's tags, or a world file beside it (`.pgw`, `.jgw`, `.tfw`, `.wld`:
+//! six lines, the pixel size along x, two rotation terms, the pixel size along y (negative
+//! for north up), and the map coordinates of the top-left pixel's centre).
 
 use super::tiff_rgba;
+use crate::compact::Compact;
 use crate::heightfield::georef::{Georef, Georeferencing, MapUnits};
 use crate::heightfield::load::geotiff;
 use crate::regular_file::{self, OpenError};
@@ -20,7 +21,7 @@ pub const MOST_OVERLAY_PIXELS: u64 = 1 << 26;
 #[derive(Debug, Error)]
 pub enum DrapeError {
     /// The opacity is not a number from 0 to 1.
-    #[error("overlay opacity must be a number from 0 to 1, got {0}")]
+    #[error("overlay opacity must be a number from 0 to 1, got {}", Compact(*.0))]
     Opacity(f64),
     /// The file could not be read.
     #[error("cannot read overlay {path}: {reason}; check that the file exists and can be read")]
@@ -163,6 +164,9 @@ pub fn read(path: &Path) -> Result<Image, DrapeError> {
     } else if format == Some(image::ImageFormat::Png) {
         let png = super::png::decode(reader.into_inner(), len, admit, decode)?;
         (png.width, png.height, png.rgba)
+    } else if format == Some(image::ImageFormat::Jpeg) {
+        let jpeg = super::jpeg::decode(reader.into_inner(), len, admit, decode)?;
+        (jpeg.width, jpeg.height, jpeg.rgba)
     } else {
         let decoder = reader.into_decoder().map_err(|e| decode(e.to_string()))?;
         let (width, height) = decoder.dimensions();

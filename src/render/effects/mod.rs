@@ -24,6 +24,7 @@ pub use time::{nanos_since, EffectTime, TimeShares};
 pub use water::{schlick, Reflection, Water, WaterPixel, NORMAL_REFLECTANCE};
 
 use super::scene::{EffectsSection, RenderSection, SunSection};
+use crate::compact::Compact;
 
 /// The most rays towards the sun's disc, or the sky, and samples per pixel a scene may ask.
 pub const MOST_RAYS: u32 = 1024;
@@ -89,7 +90,8 @@ impl Effects {
         if !(angle.is_finite() && (0.0..=WIDEST_SUN_DEG).contains(&angle)) {
             return Err(format!(
                 "[sun] angle_deg must be a number from 0 to {WIDEST_SUN_DEG} (degrees; the \
-                 real sun is 0.53), got {angle}"
+                 real sun is 0.53), got {}",
+                Compact(angle)
             ));
         }
         let count = |key: &str, value: Option<u32>| match value.unwrap_or(DEFAULT_RAYS) {
@@ -100,7 +102,8 @@ impl Effects {
         if sky_distance.is_nan() || sky_distance <= 0.0 {
             return Err(format!(
                 "[effects] sky_distance must be a distance above 0 (world units; inf looks \
-                 across the whole map), got {sky_distance}"
+                 across the whole map), got {}",
+                Compact(sky_distance)
             ));
         }
         Ok(Effects {

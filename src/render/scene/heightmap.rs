@@ -2,6 +2,7 @@
 //! relief (a z scale, or an exaggeration of a georeferenced map's true scale).
 
 use super::SceneFile;
+use crate::compact::Compact;
 use crate::heightfield::{
     self, relief, Builtin, HeightUnit, Heightfield, LoadError, LoadOptions, NoDataValue,
 };
@@ -107,7 +108,8 @@ impl HeightmapSection {
             }
             (_, Some(e)) if !(e.is_finite() && e >= 0.0) => {
                 return Err(invalid(format!(
-                    "[heightmap] exaggeration must be a finite number >= 0, got {e}"
+                    "[heightmap] exaggeration must be a finite number >= 0, got {}",
+                    Compact(e)
                 )))
             }
             (z, _) => z,

@@ -5,6 +5,7 @@
 //! [`Lighting::after_dark`].)
 
 use super::{Lighting, SunSection};
+use crate::compact::Compact;
 use crate::heightfield::{place, Heightfield};
 use crate::render::local_time;
 use crate::render::sun_position::SunPosition;
@@ -24,7 +25,9 @@ pub fn place_sun(
             if !(azimuth_deg.is_finite() && (-90.0..=90.0).contains(&elevation_deg)) {
                 return Err(format!(
                     "[sun] azimuth_deg must be finite and elevation_deg from -90 to 90, got \
-                     {azimuth_deg} and {elevation_deg}"
+                     {} and {}",
+                    Compact(azimuth_deg),
+                    Compact(elevation_deg)
                 ));
             }
             SunPosition {

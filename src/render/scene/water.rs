@@ -2,6 +2,7 @@
 //! shown exaggerated as its heights are) or, on a plain image, in scene units; and the
 //! water's colour as `#RRGGBB`.
 
+use crate::compact::Compact;
 use crate::heightfield::{Heightfield, Quantisation};
 use crate::render::effects::Water;
 use serde::Deserialize;
@@ -27,7 +28,7 @@ impl WaterSection {
         if !self.level.is_finite() {
             return Err(format!(
                 "[water] level must be a finite number, got {}",
-                self.level
+                Compact(self.level)
             ));
         }
         let text = self.colour.as_deref().unwrap_or(DEFAULT_WATER_COLOUR);
