@@ -332,6 +332,7 @@ impl<'a> Shader<'a> {
                 point: p.to_array(),
                 cell: [found.cell.0, found.cell.1],
                 triangle: found.triangle,
+                face: found.face,
             }));
         }
         let rgb = if self.lighting.effects.sky_light {
