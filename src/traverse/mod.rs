@@ -59,9 +59,9 @@ use num_rational::BigRational;
 pub use search::Found;
 use search::{LazyRaySpace, Search};
 use segment::{after_clearance, clearance_start, first_level, within_reach};
-use surface::{base_t_exact, trace_scalar};
 use std::ops::ControlFlow;
 use std::time::Duration;
+use surface::{base_t_exact, trace_scalar};
 use walks::{choose, Covering, Walk, WithWalk};
 
 /// The first hit of `ray` (the least `t >= 0` at which it touches the surface), in the

@@ -71,7 +71,10 @@ pub(super) fn base_t_exact(
     face: Face,
     after_start: bool,
 ) -> Option<(BigRational, [f64; 3])> {
-    let (o, d) = (ray.origin().map(Exact::from_f64), ray.dir().map(Exact::from_f64));
+    let (o, d) = (
+        ray.origin().map(Exact::from_f64),
+        ray.dir().map(Exact::from_f64),
+    );
     let query = BaseQuery {
         after_start,
         before: None,
