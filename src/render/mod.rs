@@ -1,3 +1,4 @@
+mod base_shading;
 mod camera;
 pub mod effects;
 pub mod framing;
@@ -23,7 +24,7 @@ pub use scene::{
     bytes_from_hex, bytes_from_linear, level_in_map_units, level_z, linear_from_bytes,
 };
 pub use scene::{
-    CameraSection, EffectsSection, HeightmapSection, Lighting, NoDataKey, Normals, Orbit,
+    BaseStyle, CameraSection, EffectsSection, HeightmapSection, Lighting, NoDataKey, Normals, Orbit,
     OverlaySection, Scene, SceneError, SceneFile, ShadingSection, SunSection, WaterSection,
     DEFAULT_SIZE, DEFAULT_WATER_COLOUR,
 };

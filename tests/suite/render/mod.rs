@@ -202,6 +202,7 @@ fn lighting(sun: [f64; 3], shadows: bool) -> Lighting {
         normals: Normals::Flat,
         ramp: Ramp::Gray,
         effects: Effects::default(),
+        base: heightray::render::BaseStyle::default(),
     }
 }
 
