@@ -84,7 +84,13 @@ impl Pixel {
             None => surface.shadow,
         };
         Sample {
-            rgb: shader.surface_rgb(&self.ray, (Face::Terrain, surface.p), surface.t, surface.facing, shadow),
+            rgb: shader.surface_rgb(
+                &self.ray,
+                (Face::Terrain, surface.p),
+                surface.t,
+                surface.facing,
+                shadow,
+            ),
             hit: true,
             shadow,
             ..missed

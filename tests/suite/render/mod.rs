@@ -12,6 +12,7 @@ use heightray::traverse::Exact;
 use heightray::{Arith, Heightfield, Method, Terrain};
 use std::path::{Path, PathBuf};
 
+mod base;
 mod effects;
 mod effects_frames;
 mod shadows;
