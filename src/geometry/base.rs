@@ -366,12 +366,9 @@ fn in_plane_touch<S: Scalar>(
         }
     }
     if let Some(hi) = &hi {
-        let empty = if query.after_start {
-            !(*hi > S::zero()) || lo > *hi
-        } else {
-            lo > *hi
-        };
-        if empty {
+        // (A shadow ray needs a touch after its start: the kept `t` must reach past zero.)
+        let reaches_past_start = !query.after_start || *hi > S::zero();
+        if !reaches_past_start || lo > *hi {
             return None;
         }
     }
