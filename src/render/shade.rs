@@ -24,8 +24,8 @@ use std::time::Instant;
 pub struct Sample {
     /// 0x00RRGGBB.
     pub rgb: u32,
-    /// The primary ray hit the terrain.
-    pub hit: bool,
+    /// What the primary ray hit: the terrain or the base, if anything.
+    pub hit: Option<Face>,
     /// What became of the shadow ray.
     pub shadow: Shadow,
     /// The primary ray's queries.
@@ -284,7 +284,7 @@ impl<'a> Shader<'a> {
         tally: &mut impl Tally,
     ) -> u32 {
         let primary = self.tracer().trace::<S>(ray, clearance);
-        tally.primary(&primary.counters, primary.hit.is_some());
+        tally.primary(&primary.counters, primary.hit.as_ref().map(|f| f.face));
         if let Some(water) = &self.lighting.effects.water {
             let field = self.terrain.field();
             let terrain_t = primary.hit.as_ref().map(|found| found.t.to_f64());

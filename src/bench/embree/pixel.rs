@@ -67,7 +67,7 @@ impl Pixel {
     pub fn sample(&self, shader: &Shader<'_>, shadowed: bool) -> Sample {
         let missed = Sample {
             rgb: shader.sky_rgb(&self.ray),
-            hit: false,
+            hit: None,
             shadow: Shadow::NotAsked,
             primary: Counters::default(),
             secondary: Counters::default(),
@@ -91,7 +91,7 @@ impl Pixel {
                 surface.facing,
                 shadow,
             ),
-            hit: true,
+            hit: Some(Face::Terrain),
             shadow,
             ..missed
         }

@@ -88,8 +88,17 @@ fn each_culling_rule_on_or_off_gives_the_same_image_over_the_base() {
         let render = |culling| render_by(Method::Mipmap, &terrain, camera, lit, arith, culling, 2);
         let all = render(Culling::default());
         for culling in each_rule() {
-            assert_eq!(render(culling).pixels, all.pixels, "{arith} {culling:?}");
+            let frame = render(culling);
+            assert_eq!(frame.pixels, all.pixels, "{arith} {culling:?}");
+            assert_eq!(
+                frame.totals.base_hits, all.totals.base_hits,
+                "{arith} {culling:?}"
+            );
         }
+        assert!(
+            all.totals.base_hits > 100,
+            "{arith}: the view shows the base"
+        );
         // The walls show: without them their pixels are sky or the floor beyond.
         let (_, no_walls) = low_view(false, Effects::default());
         let without = render_by(Method::Runs, &terrain, camera, no_walls, arith, NONE, 2);
