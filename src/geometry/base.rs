@@ -12,6 +12,7 @@
 //! products of the ray's components, sample heights and grid coordinates, so rationals are
 //! exact and intervals flag what they cannot settle.
 
+use super::base_screen::Screen;
 use crate::arith::Scalar;
 use crate::heightfield::Terrain;
 
@@ -89,6 +90,9 @@ impl Face {
 pub struct Base {
     floor: f64,
     walls: bool,
+    /// The highest sample on each side's edge line, in [`Side::ALL`]'s order: no wall rises
+    /// above it.
+    tops: [f64; 4],
 }
 
 // (The floor is finite: `Base::under` checks it.)
@@ -107,7 +111,20 @@ impl Base {
     pub fn under(terrain: &Terrain, depth: f64, walls: bool) -> Option<Base> {
         let (lo, _) = terrain.z_range();
         let floor = lo - depth;
-        (depth.is_finite() && floor.is_finite() && floor < lo).then_some(Base { floor, walls })
+        let field = terrain.field();
+        let tops = Side::ALL.map(|side| {
+            let (at, length) = wall_line(terrain, side);
+            let z = |k| match side.axis() {
+                0 => field.z(at, k),
+                _ => field.z(k, at),
+            };
+            (0..=length).map(z).fold(f64::NEG_INFINITY, f64::max)
+        });
+        (depth.is_finite() && floor.is_finite() && floor < lo).then_some(Base {
+            floor,
+            walls,
+            tops,
+        })
     }
 
     /// The floor's height.
@@ -194,14 +211,28 @@ pub fn base_hit<S: Scalar>(
             *best = Some(BaseHit { t, face });
         }
     };
+    // (In the arithmetics without rounding, a look in `f64` first: most rays miss most faces
+    // by far.)
+    let screen = Screen::new(o, d, query.before.as_ref());
+    let field = terrain.field();
+    let (w, h) = ((field.width() - 1) as f64, (field.height() - 1) as f64);
+    let may_touch = |axis: usize, at: f64, lo: [f64; 3], hi: [f64; 3]| {
+        screen.as_ref().is_none_or(|s| !s.misses(axis, at, lo, hi))
+    };
     if base.walls {
-        for side in Side::ALL {
-            let t = wall_touch(terrain, base, side, o, d, query);
-            consider(t, Face::Wall(side), &mut best);
+        for (side, top) in Side::ALL.into_iter().zip(base.tops) {
+            let (at, _) = wall_line(terrain, side);
+            let (lo, hi) = ([0.0, 0.0, base.floor], [w, h, top]);
+            if may_touch(side.axis(), at as f64, lo, hi) {
+                let t = wall_touch(terrain, base, side, o, d, query);
+                consider(t, Face::Wall(side), &mut best);
+            }
         }
     }
-    let t = floor_touch(terrain, base, o, d, query);
-    consider(t, Face::Floor, &mut best);
+    if may_touch(2, base.floor, [0.0; 3], [w, h, 0.0]) {
+        let t = floor_touch(terrain, base, o, d, query);
+        consider(t, Face::Floor, &mut best);
+    }
     best
 }
 

@@ -20,6 +20,7 @@
 //!   `T1`.
 
 mod base;
+mod base_screen;
 mod cell_lanes;
 mod certain_miss;
 mod clip;
