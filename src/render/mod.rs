@@ -1,4 +1,3 @@
-mod base_shading;
 mod camera;
 pub mod effects;
 pub mod framing;
@@ -13,6 +12,7 @@ mod shadow;
 mod sky_gradient;
 mod stats;
 pub mod sun_position;
+mod surface;
 mod tally;
 pub mod timing;
 mod versus_exact;

@@ -3,14 +3,12 @@
 
 use super::effects::{nanos_since, EffectTime, Reflection, SkyRays};
 use super::gamma;
-use super::normals;
-use super::ramp::HeightSpan;
-use super::scene::{Lighting, Normals};
+use super::scene::Lighting;
 use super::shadow::Shadow;
 use super::sky_gradient::{horizon, night_sky_colour, sky_colour, NIGHT_HORIZON};
 use super::tally::{Counting, Tally};
 use crate::arith::{with_numbers, Arith, Generic, Numbers, WithNumbers};
-use crate::geometry::{gradient, Base, Face};
+use crate::geometry::{Base, Face};
 use crate::heightfield::{SkyBounds, StripBounds, Terrain};
 use crate::traverse::{Clearance, Counters, Hit, Method, Profiles, Scalar, Tracer, Wedges};
 use crate::Ray;
@@ -362,17 +360,6 @@ impl<'a> Shader<'a> {
         rgb
     }
 
-    /// How the surface at `p` on `face` (triangle `triangle` of `cell` on the terrain) faces
-    /// the sun: the cosine of the angle between the shading normal and the sun (not positive
-    /// where it faces away).
-    // (This, `normal` and `surface_rgb` inlined by hand: every arithmetic's `sample_with`
-    // calls them once per pixel.)
-    #[inline(always)]
-    pub fn facing(&self, face: Face, cell: (usize, usize), triangle: u8, p: DVec3) -> f64 {
-        self.normal(face, cell, triangle, p)
-            .dot(DVec3::from(self.lighting.sun))
-    }
-
     /// The colour of the surface at `p` on `face`, `t` along `ray`, facing the sun as
     /// [`Shader::facing`] says, in shadow or not as `shadow` says.
     #[inline(always)]
@@ -414,21 +401,6 @@ impl<'a> Shader<'a> {
         self.fogged_rgb(ray, t, colour)
     }
 
-    /// The surface's colour at `p` on `face` before it is lit: on the terrain the ramp's,
-    /// under the drape where one lies.
-    #[inline(always)]
-    pub(super) fn albedo(&self, face: Face, p: DVec3) -> DVec3 {
-        if let Some(colour) = self.base_albedo(face, p) {
-            return colour;
-        }
-        let ramp = self.lighting.ramp.colour(p.z, HeightSpan::of(self.terrain));
-        let drape = self.terrain.field().drape();
-        match drape.and_then(|drape| drape.colour(p.x, p.y)) {
-            Some((rgb, cover)) => ramp.lerp(DVec3::from(rgb), cover),
-            None => ramp,
-        }
-    }
-
     /// A surface's linear `colour` seen along `ray` at `t`, through the fog, packed.
     #[inline(always)]
     pub(super) fn fogged_rgb(&self, ray: &Ray, t: f64, mut colour: DVec3) -> u32 {
@@ -443,29 +415,6 @@ impl<'a> Shader<'a> {
     /// The colour of a ray that misses the terrain.
     pub fn sky_rgb(&self, ray: &Ray) -> u32 {
         gamma::pack(self.sky(self.world_dir(ray.dir()).into()).to_array())
-    }
-
-    /// The (unnormalised) normal of the hit triangle's plane: `(-gx, -gy, 1)`.
-    fn geometric_normal(&self, (i, j): (usize, usize), triangle: u8) -> DVec3 {
-        let heights = self.terrain.corner_heights(i, j);
-        let (gx, gy) = gradient(triangle, heights);
-        DVec3::new(-gx, -gy, 1.0)
-    }
-
-    /// The shading normal at `p` on `face` (triangle `triangle` of cell `(i, j)` on the
-    /// terrain), in world coordinates (where cells may be non-square).
-    #[inline(always)]
-    pub(crate) fn normal(&self, face: Face, cell: (usize, usize), triangle: u8, p: DVec3) -> DVec3 {
-        let normal = match (Shader::base_normal(face), self.lighting.normals) {
-            (Some(normal), _) => normal,
-            (None, Normals::Flat) => self.geometric_normal(cell, triangle).normalize_or(DVec3::Z),
-            (None, Normals::Smooth) => normals::smooth_normal(self.terrain, cell, triangle, p),
-        };
-        // A normal maps by the inverse transpose of the points' map: divided per axis.
-        match self.terrain.world_from_grid() {
-            Some(scale) => (normal / DVec3::from(scale)).normalize_or(DVec3::Z),
-            None => normal,
-        }
     }
 
     /// The direction towards the sun in grid coordinates, where shadow rays are traced.

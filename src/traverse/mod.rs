@@ -192,11 +192,10 @@ impl Generic for Ask<'_> {
             if let Some(base) = self.tracer.base.filter(|_| found.face != Face::Terrain) {
                 let shadow = self.query == Query::Shadow;
                 let exact = base_t_exact(self.terrain, &base, ray, found.face, shadow);
-                let Some((t, point)) = exact else {
+                let Some((t, t_f64, point)) = exact else {
                     unsettled();
                     return None;
                 };
-                let t_f64 = num_traits::ToPrimitive::to_f64(&t).unwrap_or(f64::NAN);
                 return Some(hit(t_f64, Some(t), point));
             }
             let Some((above, closing)) = exact_t(self.terrain, ray, cell, found.triangle) else {

@@ -62,15 +62,15 @@ fn cell_under(terrain: &Terrain, [x, y]: [f64; 2]) -> (usize, usize) {
 }
 
 /// The exact `t` at which `ray` first touches `face` of `base` (from its start on, or after
-/// it for a shadow ray), and the point there to the nearest `f64`s: `None` where the first
-/// touch of the base is another face's.
+/// it for a shadow ray), its nearest `f64` and the point there to the nearest `f64`s: `None`
+/// where the first touch of the base is another face's.
 pub(super) fn base_t_exact(
     terrain: &Terrain,
     base: &Base,
     ray: &Ray,
     face: Face,
     after_start: bool,
-) -> Option<(BigRational, [f64; 3])> {
+) -> Option<(BigRational, f64, [f64; 3])> {
     let (o, d) = (
         ray.origin().map(Exact::from_f64),
         ray.dir().map(Exact::from_f64),
@@ -84,5 +84,6 @@ pub(super) fn base_t_exact(
         return None;
     }
     let point = [0, 1, 2].map(|k| (o[k].clone() + d[k].clone() * hit.t.clone()).to_f64());
-    Some((hit.t.0, point))
+    let t = hit.t.to_f64();
+    Some((hit.t.0, t, point))
 }
