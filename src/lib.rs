@@ -28,7 +28,7 @@ pub mod traverse;
 /// The interactive viewer: winit, softbuffer and egui, drawn on the CPU.
 pub mod viewer;
 
-pub use geometry::{Ray, RayError};
+pub use geometry::{Base, Face, Ray, RayError, Side};
 pub use heightfield::{Heightfield, HeightfieldError, LoadError, Terrain};
 pub use traverse::{occluded, trace, Arith, Counters, Hit, Method, Trace, TraceOptions};
 

@@ -19,6 +19,8 @@
 //!   order (the cells the projected path touches, in order of first contact), `T0` before
 //!   `T1`.
 
+mod base;
+mod base_screen;
 mod cell_lanes;
 mod certain_miss;
 mod clip;
@@ -27,6 +29,7 @@ mod ray;
 pub mod strategies;
 mod triangle;
 
+pub use base::{base_hit, Base, BaseHit, BaseQuery, Face, Side};
 pub use certain_miss::{CellImages, Certain, CertainMiss};
 pub use clip::{clip_to_box, Clipped};
 pub use ray::{times_power_of_two, Ray, RayError};

@@ -12,6 +12,7 @@ mod shadow;
 mod sky_gradient;
 mod stats;
 pub mod sun_position;
+mod surface;
 mod tally;
 pub mod timing;
 mod versus_exact;
@@ -23,8 +24,8 @@ pub use scene::{
     bytes_from_hex, bytes_from_linear, level_in_map_units, level_z, linear_from_bytes,
 };
 pub use scene::{
-    CameraSection, EffectsSection, HeightmapSection, Lighting, NoDataKey, Normals, Orbit,
-    OverlaySection, Scene, SceneError, SceneFile, ShadingSection, SunSection, WaterSection,
+    BaseStyle, CameraSection, EffectsSection, HeightmapSection, Lighting, NoDataKey, Normals,
+    Orbit, OverlaySection, Scene, SceneError, SceneFile, ShadingSection, SunSection, WaterSection,
     DEFAULT_SIZE, DEFAULT_WATER_COLOUR,
 };
 pub use shade::{Culling, Sample, Shader};

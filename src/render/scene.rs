@@ -23,7 +23,7 @@ mod water;
 use crate::compact::Compact;
 use heightmap::HeightmapError;
 pub use heightmap::{HeightmapSection, NoDataKey};
-pub use lighting::Lighting;
+pub use lighting::{BaseStyle, Lighting};
 pub use view::{CameraSection, Orbit, DEFAULT_SIZE};
 pub use water::{
     bytes_from_hex, bytes_from_linear, level_in_map_units, level_z, linear_from_bytes,
@@ -290,6 +290,14 @@ pub struct ShadingSection {
     /// `turbo`; the land ramps show a sea below height 0 (see [`Ramp`]).
     #[serde(default)]
     pub ramp: Ramp,
+    /// A solid base under the map: side walls from its edge down to a floor (default off;
+    /// a map with holes always shows the floor through them).
+    #[serde(default)]
+    pub base: bool,
+    /// How far the base's floor lies below the lowest sample, in height units (default 5%
+    /// of the relief, at least 1).
+    #[serde(default)]
+    pub base_depth: Option<f64>,
 }
 
 /// Surface normals: per triangle, or interpolated from vertex normals.
@@ -449,7 +457,8 @@ impl Scene {
             .arith
             .parse()
             .map_err(|e| invalid(format!("[render] arith: {e}")))?;
-        let lighting = Lighting::from_sections(sun, &file.effects, &file.shading);
+        let mut lighting = Lighting::from_sections(sun, &file.effects, &file.shading);
+        lighting.base = BaseStyle::from_section(&file.shading).map_err(invalid)?;
         let mut lighting = sun::place_sun(sun, &field, lighting).map_err(invalid)?;
         lighting.effects =
             Effects::from_sections(sun, &file.effects, &file.render).map_err(invalid)?;

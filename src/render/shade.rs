@@ -3,14 +3,12 @@
 
 use super::effects::{nanos_since, EffectTime, Reflection, SkyRays};
 use super::gamma;
-use super::normals;
-use super::ramp::HeightSpan;
-use super::scene::{Lighting, Normals};
+use super::scene::Lighting;
 use super::shadow::Shadow;
 use super::sky_gradient::{horizon, night_sky_colour, sky_colour, NIGHT_HORIZON};
 use super::tally::{Counting, Tally};
 use crate::arith::{with_numbers, Arith, Generic, Numbers, WithNumbers};
-use crate::geometry::gradient;
+use crate::geometry::{Base, Face};
 use crate::heightfield::{SkyBounds, StripBounds, Terrain};
 use crate::traverse::{Clearance, Counters, Hit, Method, Profiles, Scalar, Tracer, Wedges};
 use crate::Ray;
@@ -24,8 +22,8 @@ use std::time::Instant;
 pub struct Sample {
     /// 0x00RRGGBB.
     pub rgb: u32,
-    /// The primary ray hit the terrain.
-    pub hit: bool,
+    /// What the primary ray hit: the terrain or the base, if anything.
+    pub hit: Option<Face>,
     /// What became of the shadow ray.
     pub shadow: Shadow,
     /// The primary ray's queries.
@@ -108,6 +106,8 @@ pub struct Shader<'a> {
     /// The camera wedges' profiles made last, kept across a view's passes (clones share
     /// them).
     pub(super) wedges: Arc<Mutex<Option<Arc<Profiles>>>>,
+    /// The base under the terrain its rays meet, as the lighting's style makes it.
+    pub base: Option<Base>,
 }
 
 impl<'a> Shader<'a> {
@@ -123,6 +123,7 @@ impl<'a> Shader<'a> {
             strips: None,
             sky: None,
             wedges: Arc::default(),
+            base: lighting.base.for_terrain(terrain),
         };
         let hard_shadows =
             lighting.shadows && lighting.effects.sun_angle_deg <= 0.0 && lighting.sun_up();
@@ -212,7 +213,9 @@ impl<'a> Shader<'a> {
     /// The tracer of this shader's rays: its method, walking near the surface as the culling
     /// says.
     pub fn tracer(&self) -> Tracer<'a> {
-        Tracer::new(self.terrain, self.method).walking_near(self.culling.near_walk)
+        Tracer::new(self.terrain, self.method)
+            .walking_near(self.culling.near_walk)
+            .with_base(self.base)
     }
 
     /// The wedges of camera rays from `eye` traced in `arith`, where the culling asks for them,
@@ -279,7 +282,7 @@ impl<'a> Shader<'a> {
         tally: &mut impl Tally,
     ) -> u32 {
         let primary = self.tracer().trace::<S>(ray, clearance);
-        tally.primary(&primary.counters, primary.hit.is_some());
+        tally.primary(&primary.counters, primary.hit.as_ref().map(|f| f.face));
         if let Some(water) = &self.lighting.effects.water {
             let field = self.terrain.field();
             let terrain_t = primary.hit.as_ref().map(|found| found.t.to_f64());
@@ -310,14 +313,17 @@ impl<'a> Shader<'a> {
             let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
             DVec3::from(found.point(&o, &d).map(|c| c.to_f64()))
         };
-        let facing = self.facing(found.cell, found.triangle, p);
+        // (A hit on the base is shaded without the verdicts that hold only on the terrain.)
+        let on_base = self.on_face(found.face);
+        let this = on_base.as_ref().unwrap_or(self);
+        let facing = this.facing(found.face, found.cell, found.triangle, p);
         let mut redone = false;
         // Effects are timed as they run; hard shadows are not, so a plain frame reads no clock.
         let mut time = EffectTime::default();
         let soft = self.lighting.effects.sun_angle_deg > 0.0;
         let shadow = if self.lighting.shadows {
             let start = soft.then(Instant::now);
-            let (shadow, counters, exactly) = self.shadow::<S>(&found, ray, p, facing);
+            let (shadow, counters, exactly) = this.shadow::<S>(&found, ray, p, facing);
             tally.shadow(shadow, &counters);
             redone |= exactly;
             time.soft = start.map_or(0, nanos_since);
@@ -332,17 +338,18 @@ impl<'a> Shader<'a> {
                 point: p.to_array(),
                 cell: [found.cell.0, found.cell.1],
                 triangle: found.triangle,
+                face: found.face,
             }));
         }
         let rgb = if self.lighting.effects.sky_light {
             let start = Instant::now();
-            let (light, sky) = self.sky_light(&found, ray, p);
+            let (light, sky) = this.sky_light(&found, ray, p);
             tally.sky(&sky);
             redone |= sky.redone;
             time.sky = nanos_since(start);
-            self.lit_rgb(ray, p, t, facing, shadow, light)
+            self.lit_rgb(ray, (found.face, p), t, facing, shadow, light)
         } else {
-            self.surface_rgb(ray, p, t, facing, shadow)
+            self.surface_rgb(ray, (found.face, p), t, facing, shadow)
         };
         if redone {
             tally.redone();
@@ -353,26 +360,23 @@ impl<'a> Shader<'a> {
         rgb
     }
 
-    /// How the surface at `p` on triangle `triangle` of `cell` faces the sun: the cosine of
-    /// the angle between the shading normal and the sun (not positive where it faces away).
-    // (This, `normal` and `surface_rgb` inlined by hand: every arithmetic's `sample_with`
-    // calls them once per pixel.)
+    /// The colour of the surface at `p` on `face`, `t` along `ray`, facing the sun as
+    /// [`Shader::facing`] says, in shadow or not as `shadow` says.
     #[inline(always)]
-    pub fn facing(&self, cell: (usize, usize), triangle: u8, p: DVec3) -> f64 {
-        self.normal(cell, triangle, p)
-            .dot(DVec3::from(self.lighting.sun))
-    }
-
-    /// The colour of the surface at `p`, `t` along `ray`, facing the sun as [`Shader::facing`]
-    /// says, in shadow or not as `shadow` says.
-    #[inline(always)]
-    pub fn surface_rgb(&self, ray: &Ray, p: DVec3, t: f64, facing: f64, shadow: Shadow) -> u32 {
+    pub fn surface_rgb(
+        &self,
+        ray: &Ray,
+        (face, p): (Face, DVec3),
+        t: f64,
+        facing: f64,
+        shadow: Shadow,
+    ) -> u32 {
         let lit = match shadow {
             Shadow::Cast { shadowed: true } => 0.0,
             _ => facing.max(0.0),
         };
         let light = self.lighting.ambient + self.lighting.intensity * lit;
-        let colour = self.albedo(p) * light;
+        let colour = self.albedo(face, p) * light;
         self.fogged_rgb(ray, t, colour)
     }
 
@@ -381,7 +385,7 @@ impl<'a> Shader<'a> {
     fn lit_rgb(
         &self,
         ray: &Ray,
-        p: DVec3,
+        (face, p): (Face, DVec3),
         t: f64,
         facing: f64,
         shadow: Shadow,
@@ -393,20 +397,8 @@ impl<'a> Shader<'a> {
             _ => facing.max(0.0),
         };
         let light = ambient + DVec3::splat(self.lighting.intensity * lit);
-        let colour = self.albedo(p) * light;
+        let colour = self.albedo(face, p) * light;
         self.fogged_rgb(ray, t, colour)
-    }
-
-    /// The surface's colour at `p` before it is lit: the ramp's, under the drape where one
-    /// lies.
-    #[inline(always)]
-    pub(super) fn albedo(&self, p: DVec3) -> DVec3 {
-        let ramp = self.lighting.ramp.colour(p.z, HeightSpan::of(self.terrain));
-        let drape = self.terrain.field().drape();
-        match drape.and_then(|drape| drape.colour(p.x, p.y)) {
-            Some((rgb, cover)) => ramp.lerp(DVec3::from(rgb), cover),
-            None => ramp,
-        }
     }
 
     /// A surface's linear `colour` seen along `ray` at `t`, through the fog, packed.
@@ -423,28 +415,6 @@ impl<'a> Shader<'a> {
     /// The colour of a ray that misses the terrain.
     pub fn sky_rgb(&self, ray: &Ray) -> u32 {
         gamma::pack(self.sky(self.world_dir(ray.dir()).into()).to_array())
-    }
-
-    /// The (unnormalised) normal of the hit triangle's plane: `(-gx, -gy, 1)`.
-    fn geometric_normal(&self, (i, j): (usize, usize), triangle: u8) -> DVec3 {
-        let heights = self.terrain.corner_heights(i, j);
-        let (gx, gy) = gradient(triangle, heights);
-        DVec3::new(-gx, -gy, 1.0)
-    }
-
-    /// The shading normal at `p` on triangle `triangle` of cell `(i, j)`, in world
-    /// coordinates (where cells may be non-square).
-    #[inline(always)]
-    pub(crate) fn normal(&self, cell: (usize, usize), triangle: u8, p: DVec3) -> DVec3 {
-        let normal = match self.lighting.normals {
-            Normals::Flat => self.geometric_normal(cell, triangle).normalize_or(DVec3::Z),
-            Normals::Smooth => normals::smooth_normal(self.terrain, cell, triangle, p),
-        };
-        // A normal maps by the inverse transpose of the points' map: divided per axis.
-        match self.terrain.world_from_grid() {
-            Some(scale) => (normal / DVec3::from(scale)).normalize_or(DVec3::Z),
-            None => normal,
-        }
     }
 
     /// The direction towards the sun in grid coordinates, where shadow rays are traced.

@@ -5,6 +5,7 @@ use super::effects::SoftShadow;
 use super::normals;
 use super::scene::Normals;
 use super::shade::Shader;
+use crate::geometry::Face;
 use crate::traverse::{Counters, Found, Occlusion, Scalar, Start};
 use crate::Ray;
 use glam::DVec3;
@@ -106,7 +107,7 @@ impl Shader<'_> {
         if !self.culling.far_bounds {
             return (None, None);
         }
-        let start = self.occlusion_start(found.cell, found.triangle, p);
+        let start = self.occlusion_start(found, p);
         let near = strips.clear_beyond(start.to_array(), self.start_room::<S>(ray, start));
         (near, Some(near.is_some()))
     }
@@ -140,8 +141,8 @@ impl Shader<'_> {
         let skip_above = self.culling.above_terrain;
         match self.lighting.normals {
             // Smooth shading: from the curved surface the shading describes, which its own flat
-            // triangle may cross (see `normals`), skipping that triangle.
-            Normals::Smooth => {
+            // triangle may cross (see `normals`), skipping that triangle; the base is flat.
+            Normals::Smooth if found.face == Face::Terrain => {
                 let start = normals::shadow_origin(self.terrain, found.cell, found.triangle, p);
                 let from = Start::Near {
                     ray,
@@ -150,21 +151,18 @@ impl Shader<'_> {
                 };
                 tracer.occluded(&from, dir, skip_above)
             }
-            Normals::Flat => tracer.occluded(&Start::Hit { ray, hit: found }, dir, skip_above),
+            _ => tracer.occluded(&Start::Hit { ray, hit: found }, dir, skip_above),
         }
     }
 
     /// Where [`Shader::occluded`] starts its rays from the hit `found` shaded at `p`, in
     /// `f64`, before raising.
-    pub(super) fn occlusion_start(
-        &self,
-        found_cell: (usize, usize),
-        triangle: u8,
-        p: DVec3,
-    ) -> DVec3 {
-        match self.lighting.normals {
-            Normals::Smooth => normals::shadow_origin(self.terrain, found_cell, triangle, p),
-            Normals::Flat => p,
+    pub(super) fn occlusion_start<S>(&self, found: &Found<S>, p: DVec3) -> DVec3 {
+        match (self.lighting.normals, found.face) {
+            (Normals::Smooth, Face::Terrain) => {
+                normals::shadow_origin(self.terrain, found.cell, found.triangle, p)
+            }
+            _ => p,
         }
     }
 }

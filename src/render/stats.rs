@@ -77,8 +77,10 @@ pub struct Skipped {
 pub struct FrameStats {
     /// Primary rays traced (one per pixel).
     pub primary_rays: u64,
-    /// Primary rays that hit the terrain.
+    /// Primary rays that hit the surface.
     pub primary_hits: u64,
+    /// Of those, the rays that hit the base (its walls or its floor).
+    pub base_hits: u64,
     /// Shadow rays cast.
     pub shadow_rays: u64,
     /// Shadow rays that found the surface.
@@ -104,6 +106,7 @@ impl PartialEq for FrameStats {
         let FrameStats {
             primary_rays,
             primary_hits,
+            base_hits,
             shadow_rays,
             shadowed,
             skipped,
@@ -113,15 +116,21 @@ impl PartialEq for FrameStats {
             redone,
             time: _,
         } = *self;
-        (primary_rays, primary_hits, shadow_rays, shadowed, redone)
-            == (
-                b.primary_rays,
-                b.primary_hits,
-                b.shadow_rays,
-                b.shadowed,
-                b.redone,
-            )
-            && (skipped, primary, shadow, effects) == (b.skipped, b.primary, b.shadow, b.effects)
+        (
+            primary_rays,
+            primary_hits,
+            base_hits,
+            shadow_rays,
+            shadowed,
+            redone,
+        ) == (
+            b.primary_rays,
+            b.primary_hits,
+            b.base_hits,
+            b.shadow_rays,
+            b.shadowed,
+            b.redone,
+        ) && (skipped, primary, shadow, effects) == (b.skipped, b.primary, b.shadow, b.effects)
     }
 }
 
@@ -147,6 +156,7 @@ impl FrameStats {
         json!({
             "primary_rays": self.primary_rays,
             "primary_hits": self.primary_hits,
+            "base_hits": self.base_hits,
             "shadow_rays": self.shadow_rays,
             "shadowed": self.shadowed,
             "shadow_rays_skipped": {
@@ -213,6 +223,12 @@ impl FrameStats {
             self.skipped.no_shadow_possible,
             self.skipped.above_terrain
         );
+        if self.base_hits > 0 {
+            out += &format!(
+                "base: {} primary hits on its walls or floor\n",
+                self.base_hits
+            );
+        }
         let water = &self.effects.water;
         if water.points > 0 {
             out += &format!(
@@ -228,6 +244,7 @@ impl AddAssign for FrameStats {
     fn add_assign(&mut self, rhs: FrameStats) {
         self.primary_rays += rhs.primary_rays;
         self.primary_hits += rhs.primary_hits;
+        self.base_hits += rhs.base_hits;
         self.shadow_rays += rhs.shadow_rays;
         self.shadowed += rhs.shadowed;
         self.skipped.facing_away += rhs.skipped.facing_away;

@@ -9,6 +9,7 @@ use super::effects::{EffectTime, Reflection, SkyRays};
 use super::shade::Sample;
 use super::shadow::{Shadow, ShadowSkip};
 use super::stats::{FrameStats, PixelStats};
+use crate::geometry::Face;
 use crate::traverse::Counters;
 
 /// Counts what a sample's rays asked, as they are cast.
@@ -18,8 +19,8 @@ pub trait Tally {
     /// never trace a sample twice count straight into a frame (see
     /// [`Numbers::REDOES`](crate::arith::Numbers::REDOES)).
     fn restart(&mut self) {}
-    /// Its primary ray: the queries, and whether it hit.
-    fn primary(&mut self, counters: &Counters, hit: bool);
+    /// Its primary ray: the queries, and what it hit, if anything.
+    fn primary(&mut self, counters: &Counters, hit: Option<Face>);
     /// What became of its shadow, and the shadow rays' queries (a scene with shadows only).
     fn shadow(&mut self, shadow: Shadow, counters: &Counters);
     /// Its sky-light rays (a scene with sky light only).
@@ -53,7 +54,7 @@ impl<'a> Counting<'a> {
 
 impl Tally for Counting<'_> {
     #[inline(always)]
-    fn primary(&mut self, counters: &Counters, hit: bool) {
+    fn primary(&mut self, counters: &Counters, hit: Option<Face>) {
         self.frame.primary(counters, hit);
         self.pixel.add_queries(counters);
     }
@@ -84,9 +85,10 @@ impl Tally for Counting<'_> {
 
 impl Tally for FrameStats {
     #[inline(always)]
-    fn primary(&mut self, counters: &Counters, hit: bool) {
+    fn primary(&mut self, counters: &Counters, hit: Option<Face>) {
         self.primary_rays += 1;
-        self.primary_hits += u64::from(hit);
+        self.primary_hits += u64::from(hit.is_some());
+        self.base_hits += u64::from(hit.is_some_and(|face| face != Face::Terrain));
         self.primary += *counters;
     }
     #[inline(always)]
@@ -129,7 +131,7 @@ impl Tally for Sample {
     fn restart(&mut self) {
         *self = Sample::default();
     }
-    fn primary(&mut self, counters: &Counters, hit: bool) {
+    fn primary(&mut self, counters: &Counters, hit: Option<Face>) {
         (self.primary, self.hit) = (*counters, hit);
     }
     fn shadow(&mut self, shadow: Shadow, counters: &Counters) {

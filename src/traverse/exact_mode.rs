@@ -25,11 +25,15 @@ pub(super) fn occluded_settling<S: Scalar>(
         return answer;
     }
     let exact = |ray: &Ray, hit: &Found<S>| {
-        let t = plane_t_exact(tracer.terrain, ray, hit.cell, hit.triangle)?;
+        let t = match tracer.base.filter(|_| hit.face != Face::Terrain) {
+            Some(base) => base_t_exact(tracer.terrain, &base, ray, hit.face, false)?.0,
+            None => plane_t_exact(tracer.terrain, ray, hit.cell, hit.triangle)?,
+        };
         Some(Found {
             t: Exact(t),
             cell: hit.cell,
             triangle: hit.triangle,
+            face: hit.face,
         })
     };
     let again = match *from {

@@ -30,6 +30,7 @@ mod runs;
 mod search;
 mod segment;
 mod short_walk;
+mod surface;
 mod tracer;
 mod walks;
 mod wedges;
@@ -49,7 +50,7 @@ pub use crate::arith::{
 };
 use crate::arith::{unsettled, Generic};
 
-use crate::geometry::{plane_crossing, times_power_of_two, CertainMiss, Ray};
+use crate::geometry::{plane_crossing, times_power_of_two, CertainMiss, Face, Ray};
 use crate::heightfield::Terrain;
 use approximation::Approximation;
 use cell_log::{CellLog, Recorded, Unrecorded};
@@ -61,6 +62,7 @@ use search::{LazyRaySpace, Search};
 use segment::{after_clearance, clearance_start, first_level, within_reach};
 use std::ops::ControlFlow;
 use std::time::Duration;
+use surface::{base_t_exact, trace_scalar};
 use walks::{choose, Covering, Walk, WithWalk};
 
 /// The first hit of `ray` (the least `t >= 0` at which it touches the surface), in the
@@ -127,7 +129,7 @@ fn ask_behind(
     query: Query,
     clearance: Option<Clearance>,
 ) -> Trace {
-    let mut tracer = Tracer::new(terrain, options.method);
+    let mut tracer = Tracer::new(terrain, options.method).with_base(options.base);
     if options.record_cells {
         tracer = tracer.recording_cells();
     }
@@ -180,14 +182,23 @@ impl Generic for Ask<'_> {
                 point,
                 cell,
                 triangle: found.triangle,
+                face: found.face,
             };
             if !S::ENCLOSES {
                 let point = found.point(&o, &d).map(|c| c.to_f64());
                 return Some(hit(found.t.to_f64(), found.t.to_exact(), point));
             }
             // Settled decisions are the exact ones: only the hit's `t` remains to be solved
-            // exactly, on the one triangle hit; a ray in the triangle's plane is left to
-            // rationals.
+            // exactly, on the one face hit; a ray in a triangle's plane is left to rationals.
+            if let Some(base) = self.tracer.base.filter(|_| found.face != Face::Terrain) {
+                let shadow = self.query == Query::Shadow;
+                let exact = base_t_exact(self.terrain, &base, ray, found.face, shadow);
+                let Some((t, t_f64, point)) = exact else {
+                    unsettled();
+                    return None;
+                };
+                return Some(hit(t_f64, Some(t), point));
+            }
             let Some((above, closing)) = exact_t(self.terrain, ray, cell, found.triangle) else {
                 unsettled();
                 return None;
@@ -299,11 +310,11 @@ impl<S> ScalarTrace<S> {
     }
 }
 
-/// Traces a ray given in the traversal's own arithmetic (for rays that start where another
-/// ray hit: exact mode keeps the exact point). `dir_f64` is the direction as given, which
-/// picks the octant and axes identically in every arithmetic. For [`Rational`] the caller
-/// sets the bound (see [`run`](crate::arith::run)).
-fn trace_scalar<S: Scalar>(
+/// Traces a ray given in the traversal's own arithmetic over the terrain alone (for rays that
+/// start where another ray hit: exact mode keeps the exact point). `dir_f64` is the direction
+/// as given, which picks the octant and axes identically in every arithmetic. For
+/// [`Rational`] the caller sets the bound (see [`run`](crate::arith::run)).
+fn trace_terrain<S: Scalar>(
     terrain: &Terrain,
     o: &[S; 3],
     d: &[S; 3],
@@ -335,7 +346,7 @@ fn trace_scalar<S: Scalar>(
     trace_near(terrain, o, d, dir_f64, walk_options)
 }
 
-/// [`trace_scalar`] from the ray's own origin.
+/// [`trace_terrain`] from the ray's own origin.
 #[inline(always)]
 fn trace_near<S: Scalar>(
     terrain: &Terrain,
@@ -378,7 +389,7 @@ impl<S: Scalar> WithWalk for RayIn<'_, S> {
     }
 }
 
-/// [`trace_scalar`] along walk `W`, the cells it reaches listed if the options ask.
+/// [`trace_terrain`] along walk `W`, the cells it reaches listed if the options ask.
 fn trace_walk<S: Scalar, W: Walk>(
     terrain: &Terrain,
     o: &[S; 3],

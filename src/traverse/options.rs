@@ -3,6 +3,7 @@
 
 use super::{Clearance, Counters, PlanePoint};
 use crate::arith::Arith;
+use crate::geometry::{Base, Face};
 use num_rational::BigRational;
 use std::fmt;
 use std::str::FromStr;
@@ -70,6 +71,8 @@ pub(crate) struct WalkOptions {
     /// Walk the first cells one by one from a clearance (see
     /// [`near_walk`](super::mipmap::near_walk)); the answers are the same either way.
     pub near: bool,
+    /// The base under the terrain, part of the surface where given.
+    pub base: Option<Base>,
 }
 
 impl WalkOptions {
@@ -84,6 +87,7 @@ impl WalkOptions {
             exact_start: None,
             reach: None,
             near: true,
+            base: None,
         }
     }
 }
@@ -101,6 +105,9 @@ pub struct TraceOptions {
     /// Walk rays in packets where they can ([`trace_packets`](super::trace_packets)): the
     /// answers are the same, the work is shared.
     pub packets: bool,
+    /// The base under the terrain (a floor, and walls if it has them), part of the surface
+    /// where given; none by default.
+    pub base: Option<Base>,
 }
 
 impl TraceOptions {
@@ -111,6 +118,7 @@ impl TraceOptions {
             arith,
             record_cells: false,
             packets: false,
+            base: None,
         }
     }
 }
@@ -127,8 +135,11 @@ pub struct Hit {
     /// The cell `(i, j)` hit. Where the hit point is shared, the first in visiting order.
     pub cell: [usize; 2],
     /// The triangle hit (0: `P00 P10 P11`, 1: `P00 P11 P01`); `T0` where both share the
-    /// hit point.
+    /// hit point, and on the base.
     pub triangle: u8,
+    /// What was hit: the terrain, or a wall or the floor of the base (then `cell` is the cell
+    /// the point lies over, or beside on a wall).
+    pub face: Face,
 }
 
 /// The answer for one ray.

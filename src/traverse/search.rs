@@ -9,7 +9,7 @@ use super::mipmap::{run_sample, BlockRun, Part};
 use super::Query;
 use crate::arith::scalar::{max, min, Scalar};
 use crate::arith::{settled, SimdPath};
-use crate::geometry::{CellTriangles, Certain, CertainMiss, RaySpace, TriangleHit};
+use crate::geometry::{CellTriangles, Certain, CertainMiss, Face, RaySpace, TriangleHit};
 use crate::heightfield::Terrain;
 use std::cell::OnceCell;
 use std::cmp::Ordering;
@@ -22,8 +22,11 @@ pub struct Found<S> {
     pub t: S,
     /// The cell `(i, j)` hit.
     pub cell: (usize, usize),
-    /// The triangle hit, 0 or 1.
+    /// The triangle hit, 0 or 1 (0 on the base).
     pub triangle: u8,
+    /// What was hit: a triangle of the cell, or the base (then the cell is the one the hit
+    /// point lies over, or beside on a wall).
+    pub face: Face,
 }
 
 impl<S: Scalar> Found<S> {
@@ -385,6 +388,7 @@ impl<S: Scalar, C: CellLog> Search<'_, S, C> {
                 t: hit.t_first,
                 cell,
                 triangle,
+                face: Face::Terrain,
             });
         }
         if self.query == Query::Shadow {

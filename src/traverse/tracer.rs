@@ -6,7 +6,7 @@ use super::exact_mode::{crosses_plane, occluded_settling};
 use super::{trace_scalar, Clearance, Counters, Found, Method, PlanePoint, Query, ScalarTrace};
 use super::{Scalar, TraceOptions, WalkOptions};
 use crate::arith::{run, Generic};
-use crate::geometry::{gradient, plane_height, triangle_corners};
+use crate::geometry::{gradient, plane_height, triangle_corners, Base, Face, Side};
 use crate::heightfield::Terrain;
 use crate::Ray;
 use glam::DVec3;
@@ -21,6 +21,8 @@ pub struct Tracer<'a> {
     reach: Option<f64>,
     /// Walk the first cells of a path one by one (see [`Tracer::walking_near`]).
     near: bool,
+    /// The base under the terrain, part of the surface where given (see [`Tracer::with_base`]).
+    pub(super) base: Option<Base>,
 }
 
 /// Where an occlusion ray ([`Tracer::occluded`]) starts.
@@ -74,7 +76,19 @@ impl<'a> Tracer<'a> {
             record_cells: false,
             reach: None,
             near: true,
+            base: None,
         }
+    }
+
+    /// The same tracer, its rays meeting `base` (one made for this terrain, see
+    /// [`Base::under`]) as part of the surface, or the terrain alone with `None`.
+    pub fn with_base(self, base: Option<Base>) -> Self {
+        Tracer { base, ..self }
+    }
+
+    /// The base its rays meet, if any.
+    pub fn base(&self) -> Option<Base> {
+        self.base
     }
 
     /// The same tracer, its occlusion rays asking only whether the surface lies in the way
@@ -159,6 +173,11 @@ impl<'a> Tracer<'a> {
     ) -> Occlusion {
         let (origin, start_triangle, exact_start) = match *from {
             Start::Point(o) => (o.clone(), None, None),
+            Start::Hit { ray, hit } if hit.face != Face::Terrain => {
+                let [x, y, z] = self.base_point(hit, ray);
+                let origin = [x, y, z + S::from_f64(self.lift::<S>(ray, hit))];
+                (origin, None, None)
+            }
             Start::Hit { ray, hit } => {
                 let [x, y, z] = self.plane_point(hit, ray);
                 let origin = [x, y, z + S::from_f64(self.lift::<S>(ray, hit))];
@@ -202,7 +221,7 @@ impl<'a> Tracer<'a> {
     /// An `f64` occlusion ray with a short reach, answered by the
     /// [`short_walk`](super::short_walk) where it can be (with the near walk's switch, as it
     /// is the same idea: the first cells one by one), for the hierarchical methods whose
-    /// answers it reproduces.
+    /// answers it reproduces, over the terrain alone (a base is tested beside the full walk).
     #[inline(always)]
     fn short_walk<S: Scalar>(
         &self,
@@ -212,7 +231,8 @@ impl<'a> Tracer<'a> {
     ) -> Option<Occlusion> {
         let reach = self.reach?;
         let o = S::as_f64s(origin)?;
-        if !(self.near && self.method.is_hierarchical()) || self.record_cells {
+        if !(self.near && self.method.is_hierarchical()) || self.record_cells || self.base.is_some()
+        {
             return None;
         }
         let (occluded, counters) =
@@ -230,6 +250,7 @@ impl<'a> Tracer<'a> {
         WalkOptions {
             record_cells: self.record_cells,
             near: self.near,
+            base: self.base,
             ..WalkOptions::new(self.method, query)
         }
     }
@@ -270,6 +291,23 @@ impl<'a> Tracer<'a> {
         [x, y, z]
     }
 
+    /// The point where a ray hit the base, in arithmetic `S`, on the face's plane exactly.
+    fn base_point<S: Scalar>(&self, found: &Found<S>, ray: &Ray) -> [S; 3] {
+        let (ray_o, ray_d) = (ray.origin(), ray.dir());
+        let mut point = [0, 1, 2].map(|k| S::along(ray_o[k], ray_d[k], &found.t));
+        let field = self.terrain.field();
+        let (w, h) = (field.width() as i64 - 1, field.height() as i64 - 1);
+        match (found.face, self.base) {
+            (Face::Floor, Some(base)) => point[2] = S::from_f64(base.floor()),
+            (Face::Wall(Side::West), _) => point[0] = S::zero(),
+            (Face::Wall(Side::East), _) => point[0] = S::from_i64(w),
+            (Face::Wall(Side::South), _) => point[1] = S::zero(),
+            (Face::Wall(Side::North), _) => point[1] = S::from_i64(h),
+            _ => {}
+        }
+        point
+    }
+
     /// Whether a ray in direction `dir` leaves the hit triangle's plane at once, so that it
     /// touches the triangle it starts on only at its start (in floats decided with room to
     /// spare for rounding: when in doubt the triangle is tested like any other).
@@ -305,7 +343,7 @@ pub fn occluded_from_hit(
     dir: [f64; 3],
     options: &TraceOptions,
 ) -> Option<Occlusion> {
-    let mut tracer = Tracer::new(terrain, options.method);
+    let mut tracer = Tracer::new(terrain, options.method).with_base(options.base);
     if options.record_cells {
         tracer = tracer.recording_cells();
     }

@@ -228,6 +228,8 @@ fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         ui.radio_value(&mut s.normals, Normals::Flat, "flat");
         ui.radio_value(&mut s.normals, Normals::Smooth, "smooth");
     });
+    ui.checkbox(&mut s.base.walls, "solid base (side walls)")
+        .on_hover_text("walls from the map's edge down to a floor below its lowest sample");
     egui::ComboBox::from_label("colour ramp")
         .selected_text(s.ramp.name())
         .show_ui(ui, |ui| {

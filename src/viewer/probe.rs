@@ -4,7 +4,7 @@
 
 use crate::render::{Sample, Shader, Shadow};
 use crate::traverse::plane_t_exact;
-use crate::{Arith, Hit, Ray};
+use crate::{Arith, Face, Hit, Ray, TraceOptions};
 use std::time::{Duration, Instant};
 
 /// One pixel's rays and what they asked.
@@ -20,6 +20,21 @@ pub struct Probe {
     pub sample: Sample,
     /// Time both rays took.
     pub elapsed: Duration,
+}
+
+/// The exact `t` of `hit` of `ray`: on the terrain from its triangle's plane, on the base
+/// from the exact trace over it.
+fn exact_t(shader: &Shader<'_>, ray: &Ray, hit: &Hit) -> Option<num_rational::BigRational> {
+    if hit.face == Face::Terrain {
+        let cell = (hit.cell[0], hit.cell[1]);
+        return plane_t_exact(shader.terrain, ray, cell, hit.triangle);
+    }
+    let options = TraceOptions {
+        base: shader.base,
+        ..TraceOptions::new(shader.method, Arith::Exact)
+    };
+    let exact = crate::trace(shader.terrain, ray, &options).hit?;
+    (exact.face == hit.face).then_some(exact.t_exact).flatten()
 }
 
 impl Probe {
@@ -39,10 +54,7 @@ impl Probe {
         let elapsed = start.elapsed();
         let hit = hit.map(|hit| Hit {
             t_exact: (arith == Arith::Exact)
-                .then(|| {
-                    let cell = (hit.cell[0], hit.cell[1]);
-                    plane_t_exact(shader.terrain, &ray, cell, hit.triangle)
-                })
+                .then(|| exact_t(shader, &ray, &hit))
                 .flatten(),
             ..hit
         });
@@ -70,7 +82,9 @@ mod tests {
     use super::*;
     use crate::heightfield::Builtin;
     use crate::render::effects::Effects;
-    use crate::render::{Camera, Culling, Frame, Lighting, Normals, PixelStats, Ramp, Renderer};
+    use crate::render::{
+        BaseStyle, Camera, Culling, Frame, Lighting, Normals, PixelStats, Ramp, Renderer,
+    };
     use crate::{Method, Terrain};
 
     /// A low afternoon sun over the valley, so that many pixels lie in shadow and many shadow
@@ -85,6 +99,7 @@ mod tests {
             normals,
             ramp: Ramp::Gray,
             effects: Effects::default(),
+            base: BaseStyle::default(),
         }
     }
 
@@ -157,6 +172,7 @@ mod tests {
             normals: Normals::Flat,
             ramp: Ramp::Gray,
             effects: Effects::default(),
+            base: BaseStyle::default(),
         };
         let culling = Culling {
             no_shadow_possible: false,

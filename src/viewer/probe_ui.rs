@@ -4,7 +4,7 @@ use super::probe::Probe;
 use crate::heightfield::place;
 use crate::render::PixelStats;
 use crate::traverse::HitMiss;
-use crate::{Counters, Heightfield};
+use crate::{Counters, Face, Heightfield};
 use egui::Ui;
 
 /// The hovered ray's details, compact: where it hit, then a table of its queries (rows that
@@ -65,10 +65,12 @@ fn hit_ui(ui: &mut Ui, probe: &Probe, field: &Heightfield) {
         Some(false) => ", lit",
         None => "",
     };
-    ui.strong(format!(
-        "pixel ({px}, {py}): cell ({}, {}) T{}{shadow}",
-        hit.cell[0], hit.cell[1], hit.triangle
-    ));
+    let what = match hit.face {
+        Face::Terrain => format!("cell ({}, {}) T{}", hit.cell[0], hit.cell[1], hit.triangle),
+        Face::Wall(side) => format!("the base's {} wall", side.name()),
+        Face::Floor => "the base's floor (under no data)".to_owned(),
+    };
+    ui.strong(format!("pixel ({px}, {py}): {what}{shadow}"));
     ui.label(format!("at ({x:.2}, {y:.2}, {z:.2}), t = {:.4}", hit.t));
     if let Some(position) = place::describe_point(field, hit.point) {
         ui.label(position);

@@ -48,7 +48,7 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
          [sun]\n{}intensity = {:?}\nambient = {:?}\n\
          angle_deg = {:?}\nrays = {}\n\n\
          [effects]\nshadows = {}\nfog = {:?}\nsky_light = {}\nsky_rays = {}\nsky_distance = {:?}\n\n\
-         [shading]\nnormals = \"{}\"\nramp = \"{}\"\n\n\
+         [shading]\nnormals = \"{}\"\nramp = \"{}\"\nbase = {}\n{}\n\
          [render]\nmethod = \"{}\"\narith = \"{}\"\nsamples = {}\nadaptive = {}\n{}{}",
         orbit.yaw_deg,
         orbit.pitch_deg,
@@ -66,6 +66,11 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
         effects.sky_distance,
         format!("{:?}", lighting.normals).to_lowercase(),
         format!("{:?}", lighting.ramp).to_lowercase(),
+        lighting.base.walls,
+        lighting
+            .base
+            .depth
+            .map_or(String::new(), |depth| format!("base_depth = {depth:?}\n")),
         model.settings.method,
         model.settings.arith(),
         effects.samples,

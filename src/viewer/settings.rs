@@ -2,7 +2,7 @@
 
 use crate::render::effects::Effects;
 use crate::render::sun_position::SunPosition;
-use crate::render::{Lighting, Normals, Ramp};
+use crate::render::{BaseStyle, Lighting, Normals, Ramp};
 use crate::traverse::DEFAULT_BOUND;
 use crate::{Arith, Method};
 
@@ -136,6 +136,8 @@ pub struct Settings {
     pub fog: f64,
     pub normals: Normals,
     pub ramp: Ramp,
+    /// The base under the map: walls or not, and the floor's depth.
+    pub base: BaseStyle,
     pub method: Method,
     pub arith: ArithKind,
     pub rational_bound: u32,
@@ -158,6 +160,7 @@ impl Default for Settings {
             fog: 0.0,
             normals: Normals::Flat,
             ramp: Ramp::Terrain,
+            base: BaseStyle::default(),
             method: Method::Mipmap,
             arith: ArithKind::F64,
             rational_bound: DEFAULT_BOUND,
@@ -181,6 +184,7 @@ impl Settings {
         self.fog = lighting.fog;
         self.normals = lighting.normals;
         self.ramp = lighting.ramp;
+        self.base = lighting.base;
         self.effects = lighting.effects;
         self.method = method;
         self.arith = match arith {
@@ -233,6 +237,7 @@ impl Settings {
             normals: self.normals,
             ramp: self.ramp,
             effects: self.effects,
+            base: self.base,
         }
         .after_dark()
     }

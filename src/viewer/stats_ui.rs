@@ -91,6 +91,14 @@ fn totals_ui(ui: &mut Ui, totals: &FrameStats) {
                         percent(totals.primary_hits, totals.primary_rays)
                     ),
                 ),
+                (
+                    "of which the base",
+                    format!(
+                        "{} (walls or floor, {:.1}%)",
+                        totals.base_hits,
+                        percent(totals.base_hits, totals.primary_rays)
+                    ),
+                ),
                 ("shadow rays", totals.shadow_rays.to_string()),
                 (
                     "in shadow",

@@ -25,6 +25,7 @@ pub fn options(method: Method, arith: Arith) -> TraceOptions {
         arith,
         record_cells: true,
         packets: std::env::var("HEIGHTRAY_PACKETS").map_or(true, |v| v != "off"),
+        base: None,
     }
 }
 

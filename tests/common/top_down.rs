@@ -39,5 +39,6 @@ pub fn overhead_light(ramp: Ramp) -> Lighting {
         normals: Normals::Flat,
         ramp,
         effects: Effects::default(),
+        base: heightray::render::BaseStyle::default(),
     }
 }

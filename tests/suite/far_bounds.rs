@@ -225,6 +225,7 @@ fn render_with(
         normals: Normals::Flat,
         ramp: Ramp::Gray,
         effects,
+        base: heightray::render::BaseStyle::default(),
     };
     let (eye, target, up) = ([-12.0, -20.0, 40.0], [32.0, 32.0, 4.0], [0.0, 0.0, 1.0]);
     let camera = Camera::look_at(eye, target, up, 45.0, (64, 64)).unwrap();

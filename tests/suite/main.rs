@@ -7,6 +7,7 @@
 mod common;
 
 mod bad_input;
+mod base;
 mod cell_lanes;
 mod cli_bench;
 mod cli_compare;

@@ -97,7 +97,7 @@ fn render(scene: Scene) -> (Frame, Vec<bool>) {
     let hits = renderer
         .camera
         .rays()
-        .map(|ray| renderer.shader.traced(&ray, scene.arith).0.hit)
+        .map(|ray| renderer.shader.traced(&ray, scene.arith).0.hit.is_some())
         .collect();
     (frame, hits)
 }

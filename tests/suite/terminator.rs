@@ -46,6 +46,7 @@ fn render(terrain: &Terrain, camera: Camera, arith: Arith, shadows: bool) -> Fra
         normals: Normals::Smooth,
         ramp: Ramp::Gray,
         effects: Effects::default(),
+        base: heightray::render::BaseStyle::default(),
     };
     let renderer = Renderer {
         shader: Shader::new(terrain, lighting, Method::Mipmap, Culling::default()),

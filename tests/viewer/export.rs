@@ -243,6 +243,20 @@ fn a_saved_scene_keeps_the_overlay_and_the_water() {
 }
 
 #[test]
+fn a_saved_scene_keeps_the_base() {
+    let files = tempfile::tempdir().expect("a temporary directory");
+    let scene = files.path().join("based.toml");
+    let text = "[heightmap]\npath = \"builtin:small49\"\nz_scale = 12.0\n\
+                [shading]\nbase = true\nbase_depth = 3.0\n";
+    std::fs::write(&scene, text).expect("the scene written");
+    let mut session =
+        Session::start(&[scene.to_str().expect("a UTF-8 path"), "--export-dir", "out"]);
+    // (The export, walls and all, is what `render` makes of the saved scene.)
+    let saved = std::fs::read_to_string(save_and_export(&mut session)).expect("the saved scene");
+    assert!(saved.contains("base = true\nbase_depth = 3.0\n"), "{saved}");
+}
+
+#[test]
 fn render_of_a_map_alone_is_what_the_viewer_shows_on_opening_it() {
     // A georeferenced DEM: a 30 m UTM grid with a wall steeper than the default sun, so that
     // shadows show (the viewer opens it at true scale, shadows on).

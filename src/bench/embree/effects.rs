@@ -10,6 +10,7 @@ use super::{ffi, EmbreeScene};
 use crate::render::effects::pixel::per_sample;
 use crate::render::effects::sampling::{cone, cosine_hemisphere, point, seed_of};
 use crate::render::{Frame, Renderer};
+use crate::Face;
 use glam::DVec3;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -68,7 +69,7 @@ impl EmbreeScene {
                 if let (true, Some(hit)) = (effects.sky_light, hit) {
                     let p = DVec3::from(ray.origin()) + DVec3::from(ray.dir()) * hit.t;
                     let from = p + hit.up * (1e-6 * p.abs().max_element().max(1.0));
-                    let normal = shader.normal(hit.cell, hit.triangle, p);
+                    let normal = shader.normal(Face::Terrain, hit.cell, hit.triangle, p);
                     for k in 0..effects.sky_rays {
                         let (u, v) = point(k, seed ^ 1);
                         let grid = shader.grid_dir(cosine_hemisphere(normal, u, v));

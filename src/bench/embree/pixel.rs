@@ -7,6 +7,7 @@ use super::EmbreeHit;
 use crate::render::effects::{EffectTime, Reflection, SkyRays};
 use crate::render::{Frame, FrameStats, PixelStats, Sample, Shader, Shadow, ShadowSkip};
 use crate::traverse::Counters;
+use crate::Face;
 use crate::Ray;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -34,7 +35,7 @@ impl Pixel {
     pub fn new(shader: &Shader<'_>, ray: Ray, hit: Option<EmbreeHit>) -> Pixel {
         let surface = hit.map(|hit| {
             let p = DVec3::from(ray.origin()) + DVec3::from(ray.dir()) * hit.t;
-            let facing = shader.facing(hit.cell, hit.triangle, p);
+            let facing = shader.facing(Face::Terrain, hit.cell, hit.triangle, p);
             let (shadow, start) = if !shader.lighting.shadows {
                 (Shadow::NotAsked, None)
             } else if facing <= 0.0 {
@@ -66,7 +67,7 @@ impl Pixel {
     pub fn sample(&self, shader: &Shader<'_>, shadowed: bool) -> Sample {
         let missed = Sample {
             rgb: shader.sky_rgb(&self.ray),
-            hit: false,
+            hit: None,
             shadow: Shadow::NotAsked,
             primary: Counters::default(),
             secondary: Counters::default(),
@@ -83,8 +84,14 @@ impl Pixel {
             None => surface.shadow,
         };
         Sample {
-            rgb: shader.surface_rgb(&self.ray, surface.p, surface.t, surface.facing, shadow),
-            hit: true,
+            rgb: shader.surface_rgb(
+                &self.ray,
+                (Face::Terrain, surface.p),
+                surface.t,
+                surface.facing,
+                shadow,
+            ),
+            hit: Some(Face::Terrain),
             shadow,
             ..missed
         }

@@ -79,8 +79,8 @@ impl Shader<'_> {
         ray: &Ray,
         p: DVec3,
     ) -> (DVec3, SkyRays) {
-        let normal = self.normal(found.cell, found.triangle, p);
-        let start = self.occlusion_start(found.cell, found.triangle, p);
+        let normal = self.normal(found.face, found.cell, found.triangle, p);
+        let start = self.occlusion_start(found, p);
         let distance = self.lighting.effects.sky_distance;
         let scale = self.terrain.world_from_grid().unwrap_or([1.0; 3]);
         let reach = self.sky_reach();

@@ -66,7 +66,7 @@ impl Shader<'_> {
         if self.culling.no_shadow_possible && rises && lowest.tan() > steepest {
             return skip(ShadowSkip::NoShadowPossible);
         }
-        let start = self.occlusion_start(found.cell, found.triangle, p);
+        let start = self.occlusion_start(found, p);
         let (_, z_max) = self.terrain.z_range();
         if self.culling.above_terrain && rises && start.z > z_max {
             return skip(ShadowSkip::AboveTerrain);

@@ -158,9 +158,11 @@ impl Shader<'_> {
             );
         };
         let p = start + grid * found.t.to_f64();
-        let facing = self.facing(found.cell, found.triangle, p).max(0.0);
+        let facing = self
+            .facing(found.face, found.cell, found.triangle, p)
+            .max(0.0);
         let light = self.lighting.ambient + self.lighting.intensity * facing;
-        let colour = self.albedo(p) * light;
+        let colour = self.albedo(found.face, p) * light;
         (
             colour,
             Reflection::Cast { hit: true },

@@ -2,6 +2,8 @@
 //! ambient term, shadows, fog, normals, the ramp and the effects.
 
 use super::{EffectsSection, Normals, ShadingSection, SunSection};
+use crate::geometry::Base;
+use crate::heightfield::Terrain;
 use crate::render::effects::{Effects, DEFAULT_RAYS, DEFAULT_SKY_DISTANCE};
 use crate::render::ramp::Ramp;
 
@@ -24,6 +26,29 @@ pub struct Lighting {
     pub ramp: Ramp,
     /// Soft shadows, sky light and samples per pixel.
     pub effects: Effects,
+    /// The base under the terrain.
+    pub base: BaseStyle,
+}
+
+/// Which base a scene shows under its terrain: a floor wherever the map has holes (so holes
+/// show ground, not sky through the terrain), and the floor with side walls where asked.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BaseStyle {
+    /// A solid base: walls from the map's edge down to the floor.
+    pub walls: bool,
+    /// How far the floor lies below the lowest sample (default [`Base::default_depth`]).
+    pub depth: Option<f64>,
+}
+
+impl BaseStyle {
+    /// The base of `terrain` in this style: none on a map without holes unless it has walls.
+    pub fn for_terrain(&self, terrain: &Terrain) -> Option<Base> {
+        if !self.walls && terrain.field().nodata_count() == 0 {
+            return None;
+        }
+        let depth = self.depth.unwrap_or_else(|| Base::default_depth(terrain));
+        Base::under(terrain, depth, self.walls)
+    }
 }
 
 impl Lighting {
@@ -80,6 +105,23 @@ impl Lighting {
                 sky_distance: effects.sky_distance.unwrap_or(DEFAULT_SKY_DISTANCE),
                 ..Effects::default()
             },
+            // (Checked by the scene, see `BaseStyle::from_section`.)
+            base: BaseStyle::default(),
         }
+    }
+}
+
+impl BaseStyle {
+    /// The base a scene's `[shading]` section asks for, its depth checked.
+    pub fn from_section(shading: &ShadingSection) -> Result<BaseStyle, String> {
+        if let Some(depth) = shading.base_depth.filter(|d| !(d.is_finite() && *d > 0.0)) {
+            return Err(format!(
+                "[shading] base_depth must be a finite number > 0, got {depth}"
+            ));
+        }
+        Ok(BaseStyle {
+            walls: shading.base,
+            depth: shading.base_depth,
+        })
     }
 }

@@ -16,10 +16,12 @@
 //!   that order, T0 before T1;
 //! - the query counters follow the span/cell/triangle rules (see [`counters`]).
 
+mod base;
 mod cells;
 mod counters;
 mod numbers;
 
+pub use base::{solve_with_base, SurfaceHit};
 pub use cells::{passes_near, passes_near_box};
 pub use counters::counters;
 pub use numbers::{q, qi, ExactField, ExactRay, Q};

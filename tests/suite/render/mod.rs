@@ -12,6 +12,7 @@ use heightray::traverse::Exact;
 use heightray::{Arith, Heightfield, Method, Terrain};
 use std::path::{Path, PathBuf};
 
+mod base;
 mod effects;
 mod effects_frames;
 mod shadows;
@@ -202,6 +203,7 @@ fn lighting(sun: [f64; 3], shadows: bool) -> Lighting {
         normals: Normals::Flat,
         ramp: Ramp::Gray,
         effects: Effects::default(),
+        base: heightray::render::BaseStyle::default(),
     }
 }
 
