@@ -17,6 +17,7 @@ mod approximation;
 mod cell_log;
 mod certified;
 mod counters;
+mod cover;
 mod dda;
 mod degenerate;
 mod exact_mode;
@@ -36,6 +37,7 @@ mod walks;
 mod wedges;
 
 pub use counters::{Counters, HitMiss};
+pub use cover::covered_cells;
 pub use exact_mode::{crosses_plane, plane_t_exact};
 use exact_mode::{exact_t, f64_ray, point_over, trace_certified, walk_cleared, F64Ray};
 pub use exact_start::PlanePoint;
@@ -63,7 +65,7 @@ use segment::{after_clearance, clearance_start, first_level, within_reach};
 use std::ops::ControlFlow;
 use std::time::Duration;
 use surface::{base_t_exact, trace_scalar};
-use walks::{choose, Covering, Walk, WithWalk};
+use walks::{choose, Walk, WithWalk};
 
 /// The first hit of `ray` (the least `t >= 0` at which it touches the surface), in the
 /// options' method and arithmetic.
@@ -213,59 +215,6 @@ impl Generic for Ask<'_> {
             counters: answer.counters,
             cells: answer.cells,
         }
-    }
-}
-
-/// Every cell the walk of `method` covers for the whole clipped ray, in order, with no culling
-/// and no stop at a hit: in exact arithmetic, exactly the cells the projected segment touches.
-pub fn covered_cells(
-    terrain: &Terrain,
-    ray: &Ray,
-    method: Method,
-    arith: Arith,
-) -> Vec<[usize; 2]> {
-    let cover = Cover {
-        terrain,
-        ray,
-        method,
-    };
-    crate::arith::run(arith, &cover).0.output
-}
-
-/// The cells a walk covers, in whichever arithmetic [`run`](crate::arith::run) picks.
-struct Cover<'a> {
-    terrain: &'a Terrain,
-    ray: &'a Ray,
-    method: Method,
-}
-
-impl Generic for Cover<'_> {
-    type Output = Vec<[usize; 2]>;
-    fn run<S: Scalar>(&self) -> Self::Output {
-        let ray = self.ray;
-        let (mut o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
-        match far_start(self.terrain, &o, &d) {
-            FarStart::Given => {}
-            FarStart::Misses => return Vec::new(),
-            FarStart::Moved { origin, .. } => o = origin,
-        }
-        let Some(frame) = clip(self.terrain, &o, &d, ray.dir()) else {
-            return Vec::new();
-        };
-        choose(self.method, CoverWith(&frame)).cells
-    }
-}
-
-/// Lists the cells of a path in whichever walk [`choose`] picks.
-struct CoverWith<'f, S>(&'f Frame<S>);
-
-impl<S: Scalar> WithWalk for CoverWith<'_, S> {
-    type Output = Covering;
-    fn with<W: Walk>(self) -> Covering {
-        let mut covering = Covering::default();
-        // The walk ends by itself: nothing breaks it.
-        let _ = W::cover(self.0, &mut covering);
-        covering
     }
 }
 
