@@ -7,12 +7,18 @@ mod bench_effects;
 mod generate;
 mod knobs;
 mod loading;
+mod merge;
 mod render;
+mod render_frames;
 mod render_progress;
+mod render_tiles;
 mod speed_report;
+mod submit;
 mod trace;
+mod video;
 
 use clap::{Parser, Subcommand};
+use heightray::batch::{FrameSpec, Share, TileGrid};
 use heightray::heightfield::{ColourEncoding, NoDataValue};
 use heightray::render::MAX_PIXELS;
 use heightray::{Arith, Method};
@@ -51,6 +57,78 @@ pub enum Command {
     Bench(BenchCommand),
     /// Write a generated landscape (16-bit grayscale PNG) of the built-in generator.
     Generate(GenerateArgs),
+    /// Join tiles made by `render --tile` or `--tiles` into the whole picture.
+    Merge(MergeArgs),
+    /// Encode a folder of frames (`frame-00000.png`...) as an H.264 MP4 with ffmpeg.
+    Video(VideoArgs),
+    /// Hand frames or tiles to a cluster's scheduler as a job array.
+    #[command(subcommand)]
+    Submit(SubmitCommand),
+}
+
+#[derive(Subcommand, Debug)]
+pub enum SubmitCommand {
+    /// A Slurm job array (sbatch): task K renders share K/N, then one job encodes the video
+    /// (--video) or merges the tiles into DIR/poster.png.
+    Slurm(SlurmArgs),
+}
+
+#[derive(clap::Args, Debug)]
+pub struct SlurmArgs {
+    /// Scene file (TOML) with an [animation] for --frames.
+    pub scene: PathBuf,
+    /// The frames: N, A..B (B not included), A..=B, A..B/STEP or all.
+    #[arg(long, conflicts_with = "tiles")]
+    pub frames: Option<FrameSpec>,
+    /// Or the tiles of a poster, COLUMNSxROWS.
+    #[arg(long)]
+    pub tiles: Option<TileGrid>,
+    /// Output folder (made if missing); the scripts and logs go to its slurm/ folder.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Array tasks: task K renders every N-th frame or tile from the K-th.
+    #[arg(long)]
+    pub tasks: u64,
+    /// With --frames: encode the frames into this MP4 once every task has succeeded.
+    #[arg(long)]
+    pub video: Option<PathBuf>,
+    /// Image size, replacing the scene's.
+    #[arg(long, value_parser = parse_size, value_name = "WIDTHxHEIGHT")]
+    pub size: Option<(u32, u32)>,
+    /// Slurm partition (sbatch --partition).
+    #[arg(long)]
+    pub partition: Option<String>,
+    /// Time limit of each task, HH:MM:SS (sbatch --time).
+    #[arg(long, value_parser = parse_time)]
+    pub time: Option<String>,
+    /// Write and print the scripts without submitting them.
+    #[arg(long)]
+    pub dry_run: bool,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct MergeArgs {
+    /// Tiles (PNG files made by `render --tile` or `--tiles`), in any order.
+    #[arg(required = true)]
+    pub parts: Vec<PathBuf>,
+    /// The whole picture.
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct VideoArgs {
+    /// Folder of frames, frame-00000.png onwards without a gap.
+    pub folder: PathBuf,
+    /// Output video (MP4).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Frames per second.
+    #[arg(long, default_value_t = 30.0)]
+    pub fps: f64,
+    /// Quality: 0 lossless to 51 smallest (x264's constant rate factor).
+    #[arg(long, default_value_t = 18)]
+    pub crf: u32,
 }
 
 #[derive(clap::Args, Debug)]
@@ -286,6 +364,26 @@ pub struct RenderArgs {
     /// Walk neighbouring camera rays in packets (on) or each alone (off): the same image.
     #[arg(long, default_value = "off", value_parser = ["on", "off"])]
     pub packets: String,
+    /// Render the scene's [animation] frames into the folder -o: N, A..B (B not included),
+    /// A..=B, A..B/STEP or all. Frames already written are skipped.
+    #[arg(long, conflicts_with_all = ["stats", "tile", "tiles"])]
+    pub frames: Option<FrameSpec>,
+    /// With --frames: render only share I of N (every N-th frame from the I-th, I from 0).
+    #[arg(long, requires = "frames", value_name = "I/N")]
+    pub frame_of: Option<Share>,
+    /// Render frames or tiles again even where their files exist.
+    #[arg(long)]
+    pub force: bool,
+    /// Render one tile into -o: band I of N horizontal bands (I/N), or tile I of --tiles.
+    #[arg(long, value_name = "I/N or I", conflicts_with = "stats")]
+    pub tile: Option<render_tiles::TileArg>,
+    /// Cut the picture into COLUMNSxROWS tiles (numbered row by row from the top left);
+    /// without --tile, every tile (or --tile-of's share) goes into the folder -o.
+    #[arg(long, conflicts_with = "stats")]
+    pub tiles: Option<TileGrid>,
+    /// With --tiles: render only share I of N of the tiles into the folder -o.
+    #[arg(long, requires = "tiles", conflicts_with = "tile", value_name = "I/N")]
+    pub tile_of: Option<Share>,
 }
 
 /// How to read a height map.
@@ -341,6 +439,9 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Trace(args) => trace::run(&args),
         Command::Render(args) => render::run(&args),
         Command::Generate(args) => generate::run(&args),
+        Command::Merge(args) => merge::run(&args),
+        Command::Video(args) => video::run(&args),
+        Command::Submit(SubmitCommand::Slurm(args)) => submit::run(&args),
         Command::Bench(BenchCommand::Speed(args)) => bench::speed(&args),
         Command::Bench(BenchCommand::Accuracy(args)) => accuracy::run(&args),
         Command::Bench(BenchCommand::Textbook(args)) => bench::textbook(&args),
@@ -354,7 +455,8 @@ pub fn view(args: ViewArgs) -> anyhow::Result<ExitCode> {
     if let Some(source) = args.sources.iter().find(|p| !p.exists()) {
         // `heightray rendr` lands here too: say what else it could have meant.
         anyhow::bail!(
-            "no file '{}' to view (subcommands: view, render, trace, bench, generate)",
+            "no file '{}' to view (subcommands: view, render, trace, bench, generate, merge, \
+             video, submit)",
             source.display()
         );
     }
@@ -413,6 +515,18 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
         _ => Err(format!(
             "expected WIDTHxHEIGHT (1 to 16384 each), got '{s}'"
         )),
+    }
+}
+
+fn parse_time(s: &str) -> Result<String, String> {
+    let parts: Vec<&str> = s.split(':').collect();
+    let numbers = parts
+        .iter()
+        .all(|p| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit()));
+    if numbers && parts.len() == 3 {
+        Ok(s.to_owned())
+    } else {
+        Err(format!("expected HH:MM:SS, got '{s}'"))
     }
 }
 

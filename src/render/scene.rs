@@ -1,6 +1,7 @@
 //! Scene files (README, 'Formats'): TOML, paths relative to the file, unknown keys refused by
 //! name.
 
+use super::animation::{Animation, AnimationSection};
 use super::camera::{Camera, CameraError};
 use super::effects::Effects;
 use super::ramp::Ramp;
@@ -139,6 +140,9 @@ pub struct SceneFile {
     /// `[water]`: a water surface at a level.
     #[serde(default)]
     pub water: Option<WaterSection>,
+    /// `[animation]`: a camera path, rendered as frames.
+    #[serde(default)]
+    pub animation: Option<AnimationSection>,
     /// An image size replacing the scene's (`render --size`); not a key of the file.
     #[serde(skip)]
     pub size: Option<(u32, u32)>,
@@ -381,6 +385,8 @@ pub struct Scene {
     pub method: Method,
     /// The arithmetic.
     pub arith: Arith,
+    /// The camera path, if the scene has one.
+    pub animation: Option<Animation>,
 }
 
 impl Scene {
@@ -458,12 +464,24 @@ impl Scene {
             .transpose()
             .map_err(invalid)?;
         let lighting = lighting.after_dark();
+        let animation = file
+            .animation
+            .as_ref()
+            .map(|section| {
+                let camera = file.camera.as_ref();
+                let fov = camera.map_or(45.0, |c| c.fov_y_deg);
+                let up = camera.map_or([0.0, 0.0, 1.0], |c| c.up);
+                Animation::new(section, camera.and_then(|c| c.orbit), fov, up)
+            })
+            .transpose()
+            .map_err(invalid)?;
         Ok(Scene {
             field,
             camera,
             lighting,
             method,
             arith,
+            animation,
         })
     }
 }

@@ -90,6 +90,7 @@ impl SceneFile {
             render: Default::default(),
             overlay: None,
             water: None,
+            animation: None,
             size: None,
         }
     }
