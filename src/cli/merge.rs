@@ -10,9 +10,16 @@ use std::io::BufReader;
 use std::path::Path;
 use std::process::ExitCode;
 
+/// The picture being joined: its size, its pixels (0x00RRGGBB) and which are covered.
+struct Canvas {
+    size: (u32, u32),
+    pixels: Vec<u32>,
+    covered: Vec<bool>,
+}
+
 pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
     output_file::check_image(&args.output).map_err(anyhow::Error::msg)?;
-    let mut whole: Option<((u32, u32), Vec<u32>, Vec<u8>)> = None;
+    let mut whole: Option<Canvas> = None;
     for part in &args.parts {
         let place = place_of(part)?;
         let image = image::open(part)
@@ -28,9 +35,17 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
             window.width,
             window.height
         );
-        let (size, pixels, covered) = whole.get_or_insert_with(|| {
+        let Canvas {
+            size,
+            pixels,
+            covered,
+        } = whole.get_or_insert_with(|| {
             let n = place.whole.0 as usize * place.whole.1 as usize;
-            (place.whole, vec![0; n], vec![0; n])
+            Canvas {
+                size: place.whole,
+                pixels: vec![0; n],
+                covered: vec![false; n],
+            }
         });
         anyhow::ensure!(
             *size == place.whole,
@@ -44,21 +59,26 @@ pub fn run(args: &MergeArgs) -> anyhow::Result<ExitCode> {
         for (x, y, rgb) in image.enumerate_pixels() {
             let at = (y + window.y) as usize * size.0 as usize + (x + window.x) as usize;
             anyhow::ensure!(
-                covered[at] == 0,
+                !covered[at],
                 "tile {} overlaps another at pixel ({}, {}): give each tile once",
                 part.display(),
                 x + window.x,
                 y + window.y
             );
-            covered[at] = 1;
+            covered[at] = true;
             let [r, g, b] = rgb.0;
             pixels[at] = u32::from(r) << 16 | u32::from(g) << 8 | u32::from(b);
         }
     }
-    let Some((size, pixels, covered)) = whole else {
+    let Some(Canvas {
+        size,
+        pixels,
+        covered,
+    }) = whole
+    else {
         anyhow::bail!("no tiles given to merge");
     };
-    let missing = covered.iter().filter(|&&c| c == 0).count();
+    let missing = covered.iter().filter(|&&c| !c).count();
     anyhow::ensure!(
         missing == 0,
         "the tiles leave {missing} of the picture's {} pixels uncovered: a tile is missing",
