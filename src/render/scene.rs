@@ -4,7 +4,6 @@
 use super::animation::{Animation, AnimationSection};
 use super::camera::{Camera, CameraError};
 use super::effects::Effects;
-use super::ramp::Ramp;
 use crate::heightfield::{Drape, DrapeError, Heightfield, LoadError};
 use crate::regular_file::{self, OpenError};
 use crate::traverse::{Arith, Method};
@@ -17,6 +16,7 @@ use thiserror::Error;
 mod heightmap;
 mod lighting;
 mod sun;
+mod surface;
 mod triple;
 mod view;
 mod water;
@@ -24,6 +24,7 @@ mod water;
 use heightmap::HeightmapError;
 pub use heightmap::{HeightmapSection, NoDataKey};
 pub use lighting::Lighting;
+pub use surface::{Normals, OverlaySection, ShadingSection};
 pub use view::{CameraSection, Orbit, DEFAULT_SIZE};
 pub use water::{
     bytes_from_hex, bytes_from_linear, level_in_map_units, level_z, linear_from_bytes,
@@ -269,41 +270,6 @@ pub struct EffectsSection {
     /// How far sky-light rays look for terrain, in world units (default 64).
     #[serde(default)]
     pub sky_distance: Option<f64>,
-}
-
-/// A scene file's `[overlay]` section: an image (PNG, JPEG or TIFF) draped over the map.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct OverlaySection {
-    /// The image, relative to the scene file.
-    pub path: String,
-    /// How much of the ramp's colour the image replaces, 0 to 1 (default 1).
-    #[serde(default = "one")]
-    pub opacity: f64,
-}
-
-/// A scene file's `[shading]` section.
-#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct ShadingSection {
-    /// Flat or smooth normals (default flat).
-    #[serde(default)]
-    pub normals: Normals,
-    /// Colour by height: `terrain` (the default), `hypsometric`, `gray`, `viridis`, `magma` or
-    /// `turbo`; the land ramps show a sea below height 0 (see [`Ramp`]).
-    #[serde(default)]
-    pub ramp: Ramp,
-}
-
-/// Surface normals: per triangle, or interpolated from vertex normals.
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub enum Normals {
-    /// Each triangle's own normal.
-    #[default]
-    Flat,
-    /// Vertex normals (central differences) interpolated across the triangle.
-    Smooth,
 }
 
 /// A scene file's `[render]` section, as written (parsed when the scene is validated).
