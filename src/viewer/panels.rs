@@ -172,6 +172,7 @@ fn camera_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             actions.push(Action::Screenshot);
         }
     });
+    super::export::progress_ui(ui, &model.export);
     super::navigation::tools_ui(ui, actions);
     let settings = &mut model.settings;
     ui.add(
