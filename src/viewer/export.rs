@@ -176,7 +176,10 @@ pub fn progress_ui(ui: &mut egui::Ui, exports: &Exports) {
                 .text(format!("{w} x {h}: {:.0}%", 100.0 * fraction));
             ui.add(bar);
             let stopping = rendering.cancelled.load(Ordering::Relaxed);
-            if ui.add_enabled(!stopping, egui::Button::new("Cancel")).clicked() {
+            if ui
+                .add_enabled(!stopping, egui::Button::new("Cancel"))
+                .clicked()
+            {
                 rendering.cancelled.store(true, Ordering::Relaxed);
             }
         });

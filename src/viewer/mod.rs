@@ -13,6 +13,7 @@ mod compose;
 mod decoding;
 mod drops;
 mod export;
+mod flythrough;
 mod framing;
 mod ground;
 mod hooks;
