@@ -169,7 +169,7 @@ mod tests {
         assert!(grid.tile(6, size).is_err());
         assert!(TileGrid::bands(8).tile(0, (4, 4)).is_err());
         let grown = grid.tile(4, size).unwrap().grown(2);
-        assert_eq!((grown.x, grown.y, grown.width, grown.height), (1, 1, 9, 6));
+        assert_eq!((grown.x, grown.y, grown.width, grown.height), (1, 1, 7, 6));
         assert_eq!(TilePlace::from_text("0 0 5 5 4 4"), None);
     }
 }

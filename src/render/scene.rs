@@ -437,7 +437,8 @@ impl Scene {
                 let camera = file.camera.as_ref();
                 let fov = camera.map_or(45.0, |c| c.fov_y_deg);
                 let up = camera.map_or([0.0, 0.0, 1.0], |c| c.up);
-                Animation::new(section, camera.and_then(|c| c.orbit), fov, up)
+                let map = Some((base, &field));
+                Animation::new(section, camera.and_then(|c| c.orbit), fov, up, map)
             })
             .transpose()
             .map_err(invalid)?;

@@ -119,6 +119,7 @@ impl Flythrough {
             key: self.keys.iter().map(key).collect(),
             orbit_deg_per_s: None,
             duration_s: None,
+            track: None,
         })
     }
 
@@ -141,7 +142,7 @@ impl Flythrough {
     /// The keys as a path, or why they are none.
     fn animation(&self) -> Result<Animation, String> {
         let section = self.section().ok_or("no keys: add a view first (K)")?;
-        Animation::new(&section, None, 45.0, [0.0, 0.0, 1.0])
+        Animation::new(&section, None, 45.0, [0.0, 0.0, 1.0], None)
     }
 }
 

@@ -1,14 +1,18 @@
 //! Camera paths (a scene file's `[animation]`): keyframes the camera passes through, smoothly
-//! ([`spline`]), or an orbit turning around its target. Frame `k` shows the path at time
+//! ([`spline`]), an orbit turning around its target, or a track to follow ([`track`]). Frame `k` shows the path at time
 //! `k / fps`; the eye never goes below the surface (it is lifted above it as the viewer keeps
 //! its own eye, by the same clearance).
 
 mod spline;
+mod track;
+
+use track::Track;
+pub use track::TrackSection;
 
 use super::camera::{Camera, CameraError};
 use super::framing;
 use super::scene::Orbit;
-use crate::Terrain;
+use crate::{Heightfield, Terrain};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
@@ -31,6 +35,9 @@ pub struct AnimationSection {
     /// With `orbit_deg_per_s`: how long the path lasts (default: one whole turn).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub duration_s: Option<f64>,
+    /// Instead of keys or an orbit: a GPX or GeoJSON track to fly along.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub track: Option<TrackSection>,
 }
 
 /// One `[[animation.key]]`: a view at a time.
@@ -69,6 +76,8 @@ pub struct View {
 enum Path {
     /// Through views at times (increasing).
     Keys { times: Vec<f64>, views: Vec<View> },
+    /// Along a track on the map.
+    Track { track: Track, fov_y_deg: f64 },
     /// Around an orbit's target, its yaw turning at a rate.
     Orbit {
         orbit: Orbit,
@@ -90,12 +99,14 @@ pub struct Animation {
 
 impl Animation {
     /// Validates a section; `orbit` is the `[camera]` orbit (which `orbit_deg_per_s` turns),
-    /// `fov_y_deg` and `up` the `[camera]`'s. Errors name the key at fault.
+    /// `fov_y_deg` and `up` the `[camera]`'s; `map` the scene's folder and map, which a track
+    /// is read from and placed on. Errors name the key at fault.
     pub fn new(
         section: &AnimationSection,
         orbit: Option<Orbit>,
         fov_y_deg: f64,
         up: [f64; 3],
+        map: Option<(&std::path::Path, &Heightfield)>,
     ) -> Result<Animation, String> {
         let fps = section.fps;
         if !(fps.is_finite() && fps > 0.0 && fps <= 1000.0) {
@@ -104,6 +115,19 @@ impl Animation {
             ));
         }
         let (path, duration) = match (&section.key[..], section.orbit_deg_per_s) {
+            ([], None) if section.track.is_some() => {
+                let (Some(track), Some((base, field))) = (&section.track, map) else {
+                    return Err("[animation.track] needs the scene's map".into());
+                };
+                let track = Track::load(track, base, field)?;
+                let duration = track.duration();
+                (Path::Track { track, fov_y_deg }, duration)
+            }
+            (_, _) if section.track.is_some() => {
+                return Err("[animation] takes one of [[animation.key]] entries, \
+                            orbit_deg_per_s or [animation.track]"
+                    .into())
+            }
             ([], Some(deg_per_s)) => {
                 let orbit = orbit.ok_or(
                     "[animation] orbit_deg_per_s turns the [camera] orbit: give [camera] \
@@ -127,7 +151,7 @@ impl Animation {
             ([], None) => {
                 return Err(
                     "[animation] needs [[animation.key]] entries (time_s, and eye and \
-                            target or orbit) or orbit_deg_per_s"
+                            target or orbit), orbit_deg_per_s or [animation.track]"
                         .into(),
                 )
             }
@@ -137,7 +161,7 @@ impl Animation {
                     .into())
             }
         };
-        if section.duration_s.is_some() && matches!(path, Path::Keys { .. }) {
+        if section.duration_s.is_some() && !matches!(path, Path::Orbit { .. }) {
             return Err(
                 "[animation] duration_s is for an orbit; keys end at the last key's \
                         time_s"
@@ -179,6 +203,7 @@ impl Animation {
                     fov_y_deg: fov_at(times, views, time_s),
                 }
             }
+            Path::Track { track, fov_y_deg } => track.view_at(time_s, *fov_y_deg),
             Path::Orbit {
                 orbit,
                 deg_per_s,

@@ -5,6 +5,7 @@ mod frames;
 mod paths;
 mod slurm;
 mod tiles;
+mod tracks;
 mod video;
 
 use std::path::{Path, PathBuf};

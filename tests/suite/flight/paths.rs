@@ -22,7 +22,7 @@ fn keyed(times: &[f64], eyes: &[[f64; 3]]) -> Animation {
             e[0], e[1], e[2]
         );
     }
-    Animation::new(&section(&text), None, 45.0, [0.0, 0.0, 1.0]).expect("a valid path")
+    Animation::new(&section(&text), None, 45.0, [0.0, 0.0, 1.0], None).expect("a valid path")
 }
 
 #[test]
@@ -90,6 +90,7 @@ fn an_orbit_turns_at_its_rate_on_its_circle() {
         Some(orbit),
         50.0,
         [0.0, 0.0, 1.0],
+        None,
     )
     .expect("a valid orbit");
     // One whole turn by default: 24 s, frames 0 to 576.
