@@ -83,7 +83,7 @@ impl Track {
             along.push(along[along.len() - 1] + pair[0].distance(pair[1]));
         }
         let total = along[along.len() - 1];
-        if !(total > 0.0) {
+        if total.is_nan() || total <= 0.0 {
             return Err(format!(
                 "[animation.track] {} has fewer than two distinct points",
                 path.display()

@@ -53,7 +53,7 @@ fn the_camera_flies_over_the_track_looking_ahead() {
     let scene = Scene::from_file(&file, dir.path(), &path).unwrap();
     let path_of = scene.animation.expect("a track");
     let field = scene.field.clone();
-    let georef = field.georef().expect("degrees").clone();
+    let georef = *field.georef().expect("degrees");
     let terrain = Terrain::new(scene.field);
     // Where a world point lies, in longitude and latitude, by the map's own georeferencing.
     let lonlat = |p: glam::DVec3| {
