@@ -25,7 +25,7 @@ impl Progress {
     pub fn new(pixels: u64) -> Progress {
         let bar = std::io::stderr().is_terminal().then(|| {
             let style = ProgressStyle::with_template(
-                "{bar:40} {human_pos}/{human_len} pixels, {elapsed} so far, about {eta} left",
+                "{bar:40} {human_pos}/{human_len} pixels, {elapsed} so far, about {eta} left {msg}",
             )
             .unwrap_or_else(|_| ProgressStyle::default_bar());
             ProgressBar::with_draw_target(Some(pixels), ProgressDrawTarget::stderr())

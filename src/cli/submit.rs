@@ -146,7 +146,7 @@ pub fn run(args: &SlurmArgs) -> anyhow::Result<ExitCode> {
         "follow with: squeue -j {jobs}   (and, with accounting, sacct -j {jobs}); logs in {}",
         slurm.display()
     );
-    println!("after a failure, submit the same command again: frames written are kept");
+    println!("after a failure, submit the same command again: frames and tiles written are kept");
     Ok(ExitCode::SUCCESS)
 }
 
