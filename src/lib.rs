@@ -9,6 +9,9 @@
 /// Numbers: the scalar trait, intervals, bounded and exact rationals, the `Arith` a user picks
 /// and the one way from it to generic code.
 pub mod arith;
+/// Work split into numbered pieces for independent workers: a flythrough's frames, a
+/// poster's tiles, and the share `I/N` each worker takes.
+pub mod batch;
 /// Benchmarks: methods, arithmetics and thread counts measured side by side in one run.
 pub mod bench;
 /// Numbers echoed in messages, written compactly (`1e300`, not 301 digits).

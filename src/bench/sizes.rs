@@ -51,5 +51,6 @@ pub fn sized_scene(samples: usize, image: u32) -> Result<Scene, SizedSceneError>
         ),
         method: Method::Mipmap,
         arith: Arith::F64,
+        animation: None,
     })
 }

@@ -4,15 +4,23 @@ mod accuracy;
 mod bench;
 mod bench_compare;
 mod bench_effects;
+mod flight_args;
 mod generate;
 mod knobs;
 mod loading;
+mod merge;
 mod render;
+mod render_frames;
 mod render_progress;
+mod render_tiles;
 mod speed_report;
+mod submit;
 mod trace;
+mod video;
 
 use clap::{Parser, Subcommand};
+pub use flight_args::{MergeArgs, SlurmArgs, SubmitCommand, VideoArgs};
+use heightray::batch::{FrameSpec, Share, TileGrid};
 use heightray::compact::Compact;
 use heightray::heightfield::{ColourEncoding, NoDataValue};
 use heightray::render::MAX_PIXELS;
@@ -52,6 +60,13 @@ pub enum Command {
     Bench(BenchCommand),
     /// Write a generated landscape (16-bit grayscale PNG) of the built-in generator.
     Generate(GenerateArgs),
+    /// Join tiles made by `render --tile` or `--tiles` into the whole picture.
+    Merge(MergeArgs),
+    /// Encode a folder of frames (`frame-00000.png`...) as an H.264 MP4 with ffmpeg.
+    Video(VideoArgs),
+    /// Hand frames or tiles to a cluster's scheduler as a job array.
+    #[command(subcommand)]
+    Submit(SubmitCommand),
 }
 
 #[derive(clap::Args, Debug)]
@@ -287,6 +302,26 @@ pub struct RenderArgs {
     /// Walk neighbouring camera rays in packets (on) or each alone (off): the same image.
     #[arg(long, default_value = "off", value_parser = ["on", "off"])]
     pub packets: String,
+    /// Render the scene's [animation] frames into the folder -o: N, A..B (B not included),
+    /// A..=B, A..B/STEP or all. Frames already written are skipped.
+    #[arg(long, conflicts_with_all = ["stats", "tile", "tiles"])]
+    pub frames: Option<FrameSpec>,
+    /// With --frames: render only share I of N (every N-th frame from the I-th, I from 0).
+    #[arg(long, requires = "frames", value_name = "I/N")]
+    pub frame_of: Option<Share>,
+    /// Render frames or tiles again even where their files exist.
+    #[arg(long)]
+    pub force: bool,
+    /// Render one tile into -o: band I of N horizontal bands (I/N), or tile I of --tiles.
+    #[arg(long, value_name = "I/N or I", conflicts_with = "stats")]
+    pub tile: Option<render_tiles::TileArg>,
+    /// Cut the picture into COLUMNSxROWS tiles (numbered row by row from the top left);
+    /// without --tile, every tile (or --tile-of's share) goes into the folder -o.
+    #[arg(long, conflicts_with = "stats")]
+    pub tiles: Option<TileGrid>,
+    /// With --tiles: render only share I of N of the tiles into the folder -o.
+    #[arg(long, requires = "tiles", conflicts_with = "tile", value_name = "I/N")]
+    pub tile_of: Option<Share>,
 }
 
 /// How to read a height map.
@@ -342,6 +377,9 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Trace(args) => trace::run(&args),
         Command::Render(args) => render::run(&args),
         Command::Generate(args) => generate::run(&args),
+        Command::Merge(args) => merge::run(&args),
+        Command::Video(args) => video::run(&args),
+        Command::Submit(SubmitCommand::Slurm(args)) => submit::run(&args),
         Command::Bench(BenchCommand::Speed(args)) => bench::speed(&args),
         Command::Bench(BenchCommand::Accuracy(args)) => accuracy::run(&args),
         Command::Bench(BenchCommand::Textbook(args)) => bench::textbook(&args),
@@ -355,7 +393,8 @@ pub fn view(args: ViewArgs) -> anyhow::Result<ExitCode> {
     if let Some(source) = args.sources.iter().find(|p| !p.exists()) {
         // `heightray rendr` lands here too: say what else it could have meant.
         anyhow::bail!(
-            "no file '{}' to view (subcommands: view, render, trace, bench, generate)",
+            "no file '{}' to view (subcommands: view, render, trace, bench, generate, merge, \
+             video, submit)",
             source.display()
         );
     }
@@ -406,7 +445,7 @@ pub fn view(args: ViewArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
+pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let parsed = s
         .split_once(['x', 'X'])
         .and_then(|(w, h)| Some((w.trim().parse::<u32>().ok()?, h.trim().parse::<u32>().ok()?)));

@@ -1,60 +1,107 @@
 //! `heightray render`: a scene (or a height map alone) to a PNG and statistics in the paper's
-//! shape.
+//! shape; with `--frames`, a flythrough's frames ([`super::render_frames`]); with `--tile` or
+//! `--tiles`, a poster's tiles ([`super::render_tiles`]).
 
-use super::{loading, render_progress, RenderArgs};
+use super::{loading, render_frames, render_progress, render_tiles, RenderArgs};
 use heightray::output_file;
+use heightray::render::animation::Animation;
 use heightray::render::effects::MOST_RAYS;
 use heightray::render::sun_position::SunPosition;
-use heightray::render::{Culling, Frame, Renderer, Scene, SceneError, SceneFile, Shader};
+use heightray::render::{
+    Camera, Culling, Frame, Lighting, Renderer, Scene, SceneError, SceneFile, Shader,
+};
 use heightray::traverse::prepare;
-use heightray::Terrain;
+use heightray::{Arith, Method, Terrain};
 use serde_json::json;
 use std::io::Write;
 use std::process::ExitCode;
 use std::time::Instant;
 
+/// A scene loaded and its terrain built, with the command line's overrides: what every kind of
+/// render starts from.
+pub struct Setup {
+    /// The scene's camera (world coordinates) at the image size asked for.
+    pub camera: Camera,
+    /// The scene's camera path, if it has one.
+    pub animation: Option<Animation>,
+    pub terrain: Terrain,
+    pub lighting: Lighting,
+    pub method: Method,
+    pub arith: Arith,
+    pub pool: rayon::ThreadPool,
+}
+
+impl Setup {
+    /// Loads the scene of `args`, builds its terrain and applies the overrides.
+    pub fn new(args: &RenderArgs) -> anyhow::Result<Setup> {
+        let start = Instant::now();
+        let scene = loading::stage(&format!("loading {}", args.scene.display()), || {
+            load_scene(args)
+        })?;
+        let read_time = start.elapsed();
+        let method = args.method.unwrap_or(scene.method);
+        let arith = args.arith.unwrap_or(scene.arith);
+        let pool = super::knobs::worker_pool(args.threads)?;
+        let field = scene.field;
+        let terrain = loading::stage("building acceleration data", || Terrain::new(field));
+        loading::summary(&args.scene, &terrain, read_time);
+        let mut lighting = scene.lighting;
+        if let Some(samples) = args.samples {
+            anyhow::ensure!(
+                (1..=MOST_RAYS).contains(&samples),
+                "--samples must be from 1 to {MOST_RAYS}, got {samples}"
+            );
+            lighting.effects.samples = samples;
+        }
+        lighting.effects.adaptive |= args.adaptive;
+        Ok(Setup {
+            camera: scene.camera,
+            animation: scene.animation,
+            terrain,
+            lighting,
+            method,
+            arith,
+            pool,
+        })
+    }
+
+    /// The renderer of `camera` (in world coordinates) over the terrain.
+    pub fn renderer(&self, camera: Camera) -> Renderer<'_> {
+        Renderer {
+            shader: Shader::new(
+                &self.terrain,
+                self.lighting,
+                self.method,
+                Culling::default(),
+            ),
+            camera: camera.in_grid(self.terrain.world_from_grid()),
+            arith: self.arith,
+        }
+    }
+}
+
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
+    if args.frames.is_some() {
+        return render_frames::run(args);
+    }
+    if args.tile.is_some() || args.tiles.is_some() {
+        return render_tiles::run(args);
+    }
     // Before any work: a render that fails to be written only at its end is time lost.
     output_file::check_image(&args.output).map_err(anyhow::Error::msg)?;
     if let Some(path) = &args.stats {
         output_file::check(path, "stats.json").map_err(anyhow::Error::msg)?;
     }
-    let start = Instant::now();
-    let scene = loading::stage(&format!("loading {}", args.scene.display()), || {
-        load_scene(args)
-    })?;
-    let read_time = start.elapsed();
-    let method = args.method.unwrap_or(scene.method);
-    let arith = args.arith.unwrap_or(scene.arith);
-    let pool = super::knobs::worker_pool(args.threads)?;
-
-    let terrain = loading::stage("building acceleration data", || Terrain::new(scene.field));
-    loading::summary(&args.scene, &terrain, read_time);
-    let mut lighting = scene.lighting;
-    if let Some(samples) = args.samples {
-        anyhow::ensure!(
-            (1..=MOST_RAYS).contains(&samples),
-            "--samples must be from 1 to {MOST_RAYS}, got {samples}"
-        );
-        lighting.effects.samples = samples;
-    }
-    lighting.effects.adaptive |= args.adaptive;
-    let renderer = Renderer {
-        shader: Shader::new(&terrain, lighting, method, Culling::default()),
-        camera: scene.camera.in_grid(terrain.world_from_grid()),
-        arith,
-    };
-    let (width, height) = scene.camera.size();
+    let setup = Setup::new(args)?;
+    let (terrain, method, arith, pool) = (&setup.terrain, setup.method, setup.arith, &setup.pool);
+    let renderer = setup.renderer(setup.camera);
+    let (width, height) = setup.camera.size();
     let mut frame = Frame::new(width, height);
     // Built before the clock starts, so the render time is the render's alone.
-    let build_ms = prepare(&terrain, method).0.as_secs_f64() * 1e3;
+    let build_ms = prepare(terrain, method).0.as_secs_f64() * 1e3;
     let start = Instant::now();
-    let effects = &renderer.shader.lighting.effects;
-    let adaptive = effects.adaptive && effects.samples > 1;
     match args.packets.as_str() {
         "on" => pool.install(|| renderer.render_in_packets(&mut frame)),
-        // Traced in rounds over the whole frame, not in passes.
-        _ if adaptive => pool.install(|| renderer.render(&mut frame)),
         _ => pool.install(|| render_progress::render_with_estimate(&renderer, &mut frame)),
     }
     let render_ms = start.elapsed().as_secs_f64() * 1e3;

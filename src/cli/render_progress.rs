@@ -1,12 +1,84 @@
-//! A long render says so before it starts: the first pass (one pixel in 64) is timed, the
-//! whole frame estimated from it, and a frame that looks to take longer than a minute is
-//! traced pass by pass with its progress on stderr. A short one runs its remaining passes
-//! in one go, as it always did; the image is the same either way.
+//! Progress of long renders on stderr. On a terminal, a bar of pixels done with the time
+//! taken and left ([`Progress`]). Otherwise (a log file, a scheduler's output) one line per
+//! frame or tile, and a long still says so before it starts: the first pass (one pixel in 64)
+//! is timed, the whole frame estimated from it, and a frame that looks to take longer than a
+//! minute is traced pass by pass with a line every few seconds. The image is the same either
+//! way.
 
 use heightray::render::{Frame, Renderer, PASS_BLOCKS};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::IsTerminal;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
+
+/// Pixels done over a run of frames or tiles: a bar on a terminal, else a line per item.
+pub struct Progress {
+    /// `None` when stderr is not a terminal.
+    bar: Option<ProgressBar>,
+    start: Instant,
+    items: AtomicU64,
+}
+
+impl Progress {
+    /// Progress over `pixels` pixels in all.
+    pub fn new(pixels: u64) -> Progress {
+        let bar = std::io::stderr().is_terminal().then(|| {
+            let style = ProgressStyle::with_template(
+                "{bar:40} {human_pos}/{human_len} pixels, {elapsed} so far, about {eta} left {msg}",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar());
+            ProgressBar::with_draw_target(Some(pixels), ProgressDrawTarget::stderr())
+                .with_style(style)
+        });
+        Progress {
+            bar,
+            start: Instant::now(),
+            items: AtomicU64::new(0),
+        }
+    }
+
+    /// Renders `frame` whole, moving the bar as its tiles are traced.
+    pub fn render(&self, renderer: &Renderer, frame: &mut Frame) {
+        let Some(bar) = &self.bar else {
+            return renderer.render(frame);
+        };
+        let pixels = u64::from(frame.width) * u64::from(frame.height);
+        let ticks = renderer.ticks(frame).max(1);
+        let seen = AtomicU64::new(0);
+        let before = bar.position();
+        renderer.render_watched(frame, &|| {
+            let k = seen.fetch_add(1, Ordering::Relaxed) + 1;
+            bar.set_position(before + (pixels * k / ticks).min(pixels));
+        });
+        bar.set_position(before + pixels);
+    }
+
+    /// Says that an item (a frame or tile, written to `name`) is done: a line when there is
+    /// no bar.
+    pub fn finished(&self, name: &str) {
+        let n = self.items.fetch_add(1, Ordering::Relaxed) + 1;
+        match &self.bar {
+            Some(bar) => bar.set_message(name.to_owned()),
+            None => eprintln!(
+                "{n}: {name} written, {:.1} s so far",
+                self.start.elapsed().as_secs_f64()
+            ),
+        }
+    }
+
+    /// Clears the bar and says how long it all took.
+    pub fn done(&self) {
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
+        eprintln!(
+            "{} written in {:.1} s",
+            self.items.load(Ordering::Relaxed),
+            self.start.elapsed().as_secs_f64()
+        );
+    }
+}
 
 /// An estimate above this is said up front, and progress shown.
 const LONG: Duration = Duration::from_secs(60);
@@ -27,8 +99,22 @@ fn share(pass: usize) -> f64 {
     mine - coarser
 }
 
-/// Renders all passes of `frame`, first timing the first to say how long the rest may take.
+/// Renders all passes of `frame`: with a bar on a terminal; otherwise first timing the first
+/// pass to say how long the rest may take.
 pub fn render_with_estimate(renderer: &Renderer, frame: &mut Frame) {
+    if std::io::stderr().is_terminal() {
+        let progress = Progress::new(u64::from(frame.width) * u64::from(frame.height));
+        progress.render(renderer, frame);
+        if let Some(bar) = &progress.bar {
+            bar.finish_and_clear();
+        }
+        return;
+    }
+    let effects = &renderer.shader.lighting.effects;
+    if effects.adaptive && effects.samples > 1 {
+        // Traced in rounds over the whole frame, not in passes.
+        return renderer.render(frame);
+    }
     let tiles = AtomicU64::new(0);
     let start = Instant::now();
     renderer.render_pass(frame, &|| {

@@ -40,6 +40,7 @@ pub use mipmap::Mipmap;
 pub use nodata::NoDataMask;
 pub use sky_bounds::{SkyBounds, SKY_SECTORS};
 pub use strips::{StripBounds, BLOCK as STRIP_BLOCK, STRIP};
+pub(crate) use terrain::world_from_grid;
 pub use terrain::{Lines, Terrain};
 
 use crate::compact::Compact;

@@ -308,7 +308,7 @@ fn larger(a: f64, b: f64) -> f64 {
 
 /// World coordinates per grid coordinate of a field with non-square cells (see
 /// [`Terrain::world_from_grid`]).
-fn world_from_grid(field: &Heightfield) -> Option<[f64; 3]> {
+pub(crate) fn world_from_grid(field: &Heightfield) -> Option<[f64; 3]> {
     let [x, y] = field.cell_metres()?;
     let stretch = x / y;
     (stretch.is_finite() && stretch > 0.0 && stretch != 1.0).then_some([stretch, 1.0, 1.0])

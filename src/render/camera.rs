@@ -2,6 +2,10 @@
 //! with `f = normalize(target - eye)`, `r = normalize(f x up)`, `u = r x f`,
 //! `a = width/height`, `h = tan(fov_y/2)`:
 //! `direction = f + (2(px+0.5)/width - 1)*h*a*r + (1 - 2(py+0.5)/height)*h*u`.
+//!
+//! A camera may be a window onto its image ([`Camera::window`]): a tile of a poster, or a band
+//! with a margin. Its pixels are then the whole image's pixels in that rectangle, the same rays
+//! bit for bit, and sample positions are seeded by their place in the whole image.
 
 use crate::compact::Compact;
 use crate::geometry::Ray;
@@ -61,8 +65,28 @@ pub struct Camera {
     forward: DVec3,
     right: DVec3,
     up: DVec3,
+    /// The window's size in pixels.
     width: u32,
     height: u32,
+    /// The window's top-left pixel in the whole image.
+    offset: (u32, u32),
+    /// The whole image's size, which the rays are spread over.
+    whole: (u32, u32),
+    /// Which frame of a flythrough this is: sample positions are seeded with it too.
+    frame: u64,
+}
+
+/// A rectangle of an image's pixels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Window {
+    /// Its left column.
+    pub x: u32,
+    /// Its top row.
+    pub y: u32,
+    /// Columns.
+    pub width: u32,
+    /// Rows.
+    pub height: u32,
 }
 
 impl Camera {
@@ -108,6 +132,9 @@ impl Camera {
             up: right.cross(forward) * h,
             width,
             height,
+            offset: (0, 0),
+            whole: (width, height),
+            frame: 0,
         })
     }
 
@@ -148,9 +175,46 @@ impl Camera {
         }
     }
 
-    /// Image width and height in pixels.
+    /// Image width and height in pixels (the window's, for a window).
     pub fn size(&self) -> (u32, u32) {
         (self.width, self.height)
+    }
+
+    /// The whole image's width and height, of which a window shows a part.
+    pub fn whole_size(&self) -> (u32, u32) {
+        self.whole
+    }
+
+    /// The same view showing only `window` of its whole image: pixel `(px, py)` of the result
+    /// is pixel `(window.x + px, window.y + py)` of the whole. `None` if the window is empty or
+    /// reaches beyond the image.
+    pub fn window(self, window: Window) -> Option<Camera> {
+        let (w, h) = self.whole;
+        let fits = |start: u32, len: u32, whole: u32| {
+            len > 0 && start.checked_add(len).is_some_and(|end| end <= whole)
+        };
+        (fits(window.x, window.width, w) && fits(window.y, window.height, h)).then_some(Camera {
+            width: window.width,
+            height: window.height,
+            offset: (window.x, window.y),
+            ..self
+        })
+    }
+
+    /// The same view as frame `frame` of a flythrough: its sample positions are seeded with
+    /// the frame's number as well as the pixel's place (frame 0 is a still's).
+    pub fn for_frame(self, frame: u64) -> Camera {
+        Camera { frame, ..self }
+    }
+
+    /// The frame number sample positions are seeded with (see [`Camera::for_frame`]).
+    pub fn frame(&self) -> u64 {
+        self.frame
+    }
+
+    /// Where pixel `(px, py)` of this window lies in the whole image.
+    pub fn in_image(&self, px: u32, py: u32) -> (u32, u32) {
+        (px + self.offset.0, py + self.offset.1)
     }
 
     /// The eye, every primary ray's origin.
@@ -158,16 +222,17 @@ impl Camera {
         self.eye.into()
     }
 
-    /// The primary ray through the centre of pixel `(px, py)`.
+    /// The primary ray through the centre of pixel `(px, py)` (of the window).
     pub fn ray(&self, px: u32, py: u32) -> Ray {
-        self.ray_at(f64::from(px) + 0.5, f64::from(py) + 0.5)
+        let (x, y) = self.in_image(px, py);
+        self.ray_at(f64::from(x) + 0.5, f64::from(y) + 0.5)
     }
 
-    /// The ray through the point `(x, y)` of the image, in pixels from its top-left corner
-    /// (a pixel's centre is at `+0.5`), for several samples per pixel.
+    /// The ray through the point `(x, y)` of the whole image, in pixels from its top-left
+    /// corner (a pixel's centre is at `+0.5`), for several samples per pixel.
     pub fn ray_at(&self, x: f64, y: f64) -> Ray {
-        let sx = 2.0 * x / f64::from(self.width) - 1.0;
-        let sy = 1.0 - 2.0 * y / f64::from(self.height);
+        let sx = 2.0 * x / f64::from(self.whole.0) - 1.0;
+        let sy = 1.0 - 2.0 * y / f64::from(self.whole.1);
         let dir = self.forward + sx * self.right + sy * self.up;
         // `forward` is a unit vector orthogonal to `right` and `up`, so `dir` is never zero,
         // and every input was checked finite.

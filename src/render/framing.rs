@@ -59,6 +59,10 @@ fn block_corners(terrain: &Terrain) -> Vec<DVec3> {
     points
 }
 
+/// How far above the surface a camera's eye stays, as a fraction of the map's [`scale`]: the
+/// viewer's moves and a flythrough's path keep it there.
+pub const EYE_CLEARANCE: f64 = 5e-4;
+
 /// A length for the map's size that does not depend on the view: about the distance that
 /// frames it. Zooming is bounded in multiples of it.
 pub fn scale(terrain: &Terrain) -> f64 {

@@ -1,3 +1,4 @@
+pub mod animation;
 mod camera;
 pub mod effects;
 pub mod framing;
@@ -17,7 +18,7 @@ mod tally;
 pub mod timing;
 mod versus_exact;
 
-pub use camera::{Camera, CameraError, MAX_PIXELS};
+pub use camera::{Camera, CameraError, Window, MAX_PIXELS};
 pub use passes::{Frame, Renderer, PASS_BLOCKS};
 pub use ramp::{HeightSpan, Ramp};
 pub use scene::{

@@ -3,7 +3,8 @@
 //! threads. A caller-supplied check lets a newer camera cancel the work between bands.
 
 use super::camera::Camera;
-use super::effects::{nanos_since, pixel};
+use super::effects::nanos_since;
+use super::effects::pixel::{self, FIRST_BATCH};
 use super::scene::Lighting;
 use super::shade::Shader;
 use super::stats::{FrameStats, PixelStats};
@@ -126,6 +127,33 @@ impl Renderer<'_> {
         }
         let remaining = frame.passes_done..PASS_BLOCKS.len();
         self.passes(frame, remaining, &|| false, Paint::Pixels, Walking::Packets);
+    }
+
+    /// [`Renderer::render`], calling `tick` before each tile of each pass (each row of each
+    /// batch with adaptive samples; [`Renderer::ticks`] of them in all, or fewer where adaptive
+    /// pixels stop early): for progress shown while a long frame renders. The same image.
+    pub fn render_watched(&self, frame: &mut Frame, tick: &(dyn Fn() + Sync)) {
+        let ticked = || {
+            tick();
+            false
+        };
+        if self.adaptive() {
+            self.render_cancellable(frame, &ticked);
+            return;
+        }
+        let remaining = frame.passes_done..PASS_BLOCKS.len();
+        self.passes(frame, remaining, &ticked, Paint::Pixels, Walking::Singly);
+    }
+
+    /// How many times [`Renderer::render_watched`] ticks for `frame` at most.
+    pub fn ticks(&self, frame: &Frame) -> u64 {
+        let (w, h) = (u64::from(frame.width), u64::from(frame.height));
+        if self.adaptive() {
+            let batches = self.shader.lighting.effects.samples.div_ceil(FIRST_BATCH);
+            return h * u64::from(batches);
+        }
+        let remaining = (PASS_BLOCKS.len() - frame.passes_done) as u64;
+        h.div_ceil(u64::from(BAND)) * w.div_ceil(u64::from(TILE)) * remaining
     }
 
     /// Whether pixels take adaptive samples: they are then traced in rounds over the whole

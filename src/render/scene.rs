@@ -1,9 +1,9 @@
 //! Scene files (README, 'Formats'): TOML, paths relative to the file, unknown keys refused by
 //! name.
 
+use super::animation::{Animation, AnimationSection};
 use super::camera::{Camera, CameraError};
 use super::effects::Effects;
-use super::ramp::Ramp;
 use crate::heightfield::{Drape, DrapeError, Heightfield, LoadError};
 use crate::regular_file::{self, OpenError};
 use crate::traverse::{Arith, Method};
@@ -16,6 +16,7 @@ use thiserror::Error;
 mod heightmap;
 mod lighting;
 mod sun;
+mod surface;
 mod triple;
 mod view;
 mod water;
@@ -24,6 +25,7 @@ use crate::compact::Compact;
 use heightmap::HeightmapError;
 pub use heightmap::{HeightmapSection, NoDataKey};
 pub use lighting::{BaseStyle, Lighting};
+pub use surface::{Normals, OverlaySection, ShadingSection};
 pub use view::{CameraSection, Orbit, DEFAULT_SIZE};
 pub use water::{
     bytes_from_hex, bytes_from_linear, level_in_map_units, level_z, linear_from_bytes,
@@ -140,6 +142,9 @@ pub struct SceneFile {
     /// `[water]`: a water surface at a level.
     #[serde(default)]
     pub water: Option<WaterSection>,
+    /// `[animation]`: a camera path, rendered as frames.
+    #[serde(default)]
+    pub animation: Option<AnimationSection>,
     /// An image size replacing the scene's (`render --size`); not a key of the file.
     #[serde(skip)]
     pub size: Option<(u32, u32)>,
@@ -268,49 +273,6 @@ pub struct EffectsSection {
     pub sky_distance: Option<f64>,
 }
 
-/// A scene file's `[overlay]` section: an image (PNG, JPEG or TIFF) draped over the map.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct OverlaySection {
-    /// The image, relative to the scene file.
-    pub path: String,
-    /// How much of the ramp's colour the image replaces, 0 to 1 (default 1).
-    #[serde(default = "one")]
-    pub opacity: f64,
-}
-
-/// A scene file's `[shading]` section.
-#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct ShadingSection {
-    /// Flat or smooth normals (default flat).
-    #[serde(default)]
-    pub normals: Normals,
-    /// Colour by height: `terrain` (the default), `hypsometric`, `gray`, `viridis`, `magma` or
-    /// `turbo`; the land ramps show a sea below height 0 (see [`Ramp`]).
-    #[serde(default)]
-    pub ramp: Ramp,
-    /// A solid base under the map: side walls from its edge down to a floor (default off;
-    /// a map with holes always shows the floor through them).
-    #[serde(default)]
-    pub base: bool,
-    /// How far the base's floor lies below the lowest sample, in height units (default 5%
-    /// of the relief, at least 1).
-    #[serde(default)]
-    pub base_depth: Option<f64>,
-}
-
-/// Surface normals: per triangle, or interpolated from vertex normals.
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub enum Normals {
-    /// Each triangle's own normal.
-    #[default]
-    Flat,
-    /// Vertex normals (central differences) interpolated across the triangle.
-    Smooth,
-}
-
 /// A scene file's `[render]` section, as written (parsed when the scene is validated).
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -390,6 +352,8 @@ pub struct Scene {
     pub method: Method,
     /// The arithmetic.
     pub arith: Arith,
+    /// The camera path, if the scene has one.
+    pub animation: Option<Animation>,
 }
 
 impl Scene {
@@ -469,12 +433,25 @@ impl Scene {
             .transpose()
             .map_err(invalid)?;
         let lighting = lighting.after_dark();
+        let animation = file
+            .animation
+            .as_ref()
+            .map(|section| {
+                let camera = file.camera.as_ref();
+                let fov = camera.map_or(45.0, |c| c.fov_y_deg);
+                let up = camera.map_or([0.0, 0.0, 1.0], |c| c.up);
+                let map = Some((base, &field));
+                Animation::new(section, camera.and_then(|c| c.orbit), fov, up, map)
+            })
+            .transpose()
+            .map_err(invalid)?;
         Ok(Scene {
             field,
             camera,
             lighting,
             method,
             arith,
+            animation,
         })
     }
 }

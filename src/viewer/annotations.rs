@@ -314,6 +314,10 @@ const HELP: &[(&str, &str)] = &[
     ("R", "reset the view (the whole map)"),
     ("S", "export the rendered image (PNG, no panels)"),
     (
+        "K",
+        "add the view to the flythrough (played and edited in its section)",
+    ),
+    (
         "H",
         "hide or show the panel (it hides itself in narrow windows)",
     ),

@@ -304,6 +304,7 @@ impl App {
             actions.clear();
             model.widget_rects.clear();
             keys_ui(ui, model, &mut actions);
+            super::flythrough::play_ui(ui, model);
             panels::fit_to_window(ui, model);
             if model.panels_visible {
                 panels::side_panel_ui(ui, model, &mut actions);

@@ -11,6 +11,7 @@ use crate::render::Frame;
 use std::fs::{File, OpenOptions};
 use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
 use winit::event_loop::EventLoopProxy;
 
@@ -32,6 +33,28 @@ pub struct Exports {
     pub last: Option<PathBuf>,
     /// The last scene file saved.
     pub last_scene: Option<PathBuf>,
+    /// Exports rendering anew, with their progress.
+    pub rendering: Vec<Arc<Rendering>>,
+}
+
+/// An export rendering anew, off the window's thread: how far it is, and whether the user
+/// asked it to stop.
+#[derive(Debug, Default)]
+pub struct Rendering {
+    size: (u32, u32),
+    /// Tiles (or rows of a batch of samples) traced, of `total`.
+    done: AtomicU64,
+    total: AtomicU64,
+    cancelled: AtomicBool,
+    finished: AtomicBool,
+}
+
+impl Rendering {
+    /// The fraction done, 0 to 1.
+    fn fraction(&self) -> f32 {
+        let total = self.total.load(Ordering::Relaxed).max(1);
+        (self.done.load(Ordering::Relaxed) as f64 / total as f64).min(1.0) as f32
+    }
 }
 
 /// An image written.
@@ -62,11 +85,16 @@ impl Exports {
         std::path::absolute(&dir).unwrap_or(dir)
     }
 
-    /// Records a finished export and says where it went.
-    pub fn finished(model: &mut Model, result: Result<Exported, String>) {
+    /// Records a finished export and says where it went (`None`: cancelled).
+    pub fn finished(model: &mut Model, result: Result<Option<Exported>, String>) {
         model.export.running = model.export.running.saturating_sub(1);
+        model
+            .export
+            .rendering
+            .retain(|r| !r.finished.load(Ordering::Relaxed));
         match result {
-            Ok(exported) => {
+            Ok(None) => model.notify("Export cancelled"),
+            Ok(Some(exported)) => {
                 let (w, h) = exported.size;
                 model.notify(format!("Saved {} ({w} x {h})", exported.path.display()));
                 model.export.saved += 1;
@@ -90,31 +118,76 @@ pub fn start(
     let folder = model.export.folder();
     let stem = stem(model);
     let fresh = ready.is_none();
+    let rendering = Arc::new(Rendering {
+        size,
+        ..Rendering::default()
+    });
+    let progress = Arc::clone(&rendering);
     let spawned = std::thread::Builder::new()
         .name("heightray-export".into())
         .spawn(move || {
             let pixels = match ready {
-                Some(frame) => frame.frame.pixels.clone(),
-                None => {
-                    let mut frame = Frame::new(size.0, size.1);
-                    job.renderer(job.arith).render(&mut frame);
-                    frame.pixels
-                }
+                Some(frame) => Some(frame.frame.pixels.clone()),
+                None => render_fresh(&job, size, &progress),
             };
-            let saved = save_numbered(&folder, &stem, &pixels, size);
+            let saved = pixels
+                .map(|pixels| save_numbered(&folder, &stem, &pixels, size))
+                .transpose();
+            progress.finished.store(true, Ordering::Relaxed);
             // The window may be gone at exit; then nobody needs the news.
             let _ = proxy.send_event(UserEvent::Exported(
-                saved.map(|path| Exported { path, size }),
+                saved.map(|path| path.map(|path| Exported { path, size })),
             ));
         });
     match spawned {
         Ok(_) => {
             model.export.running += 1;
             if fresh {
+                model.export.rendering.push(rendering);
                 model.notify(format!("Rendering {} x {} to export…", size.0, size.1));
             }
         }
         Err(e) => model.error = Some(format!("cannot start exporting: {e}")),
+    }
+}
+
+/// Renders `job` at `size`, counting its progress in `rendering`; `None` if cancelled.
+fn render_fresh(job: &RenderJob, size: (u32, u32), rendering: &Rendering) -> Option<Vec<u32>> {
+    let mut frame = Frame::new(size.0, size.1);
+    let renderer = job.renderer(job.arith);
+    rendering
+        .total
+        .store(renderer.ticks(&frame), Ordering::Relaxed);
+    let finished = renderer.render_cancellable(&mut frame, &|| {
+        rendering.done.fetch_add(1, Ordering::Relaxed);
+        rendering.cancelled.load(Ordering::Relaxed)
+    });
+    finished.then_some(frame.pixels)
+}
+
+/// The exports rendering anew: a bar for each, and a button that cancels it.
+pub fn progress_ui(ui: &mut egui::Ui, exports: &Exports) {
+    for rendering in &exports.rendering {
+        let (w, h) = rendering.size;
+        let fraction = rendering.fraction();
+        ui.horizontal(|ui| {
+            let bar = egui::ProgressBar::new(fraction)
+                .desired_width(ui.available_width() - 70.0)
+                .text(format!("{w} x {h}: {:.0}%", 100.0 * fraction));
+            ui.add(bar);
+            let stopping = rendering.cancelled.load(Ordering::Relaxed);
+            if ui
+                .add_enabled(!stopping, egui::Button::new("Cancel"))
+                .clicked()
+            {
+                rendering.cancelled.store(true, Ordering::Relaxed);
+            }
+        });
+    }
+    if !exports.rendering.is_empty() {
+        // The render's threads do not wake the window: the bar asks to be drawn again.
+        ui.ctx()
+            .request_repaint_after(std::time::Duration::from_millis(200));
     }
 }
 

@@ -3,15 +3,13 @@
 //! eye above the surface under it (so the camera never looks at the terrain from below).
 
 use super::orbit::{Orbit, MIN_PITCH_DEG, PITCH_LIMIT_DEG};
+use crate::render::framing::EYE_CLEARANCE;
 pub use crate::render::framing::{on_map, surface_z};
 use crate::Terrain;
 
-/// How far above the surface the eye stays, as a fraction of the orbit's scale.
-const CLEARANCE: f64 = 5e-4;
-
 /// The height the eye keeps above the surface.
 pub fn clearance(orbit: &Orbit) -> f64 {
-    CLEARANCE * orbit.scale
+    EYE_CLEARANCE * orbit.scale
 }
 
 /// How far the eye is below where it may be (negative or zero: it is fine).

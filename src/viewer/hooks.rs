@@ -82,6 +82,9 @@ fn report(model: &Model, counts: &Counts) -> Value {
             "saved": model.export.saved, "last": model.export.last,
             "scene": model.export.last_scene,
         },
+        "flythrough": {
+            "keys": model.flythrough.keys.len(), "playing": model.flythrough.playing(),
+        },
         "shadows": model.settings.shadows,
         "arith": model.settings.arith().to_string(),
         "accuracy": accuracy_report(&model.accuracy),

@@ -111,7 +111,7 @@ impl LoadRequest {
 }
 
 /// A scene file's camera, lighting and traversal.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct SceneSetup {
     pub orbit: Orbit,
     pub lighting: Lighting,
@@ -119,6 +119,8 @@ pub struct SceneSetup {
     pub arith: Arith,
     /// The local date and time that placed the sun, if the scene gave one.
     pub clock: Option<SceneClock>,
+    /// The scene's `[animation]` keys, to play and edit.
+    pub flythrough: Option<super::flythrough::Flythrough>,
 }
 
 /// A scene's `[sun]` local time, its zone (none: the place's own) and place (none: the

@@ -14,6 +14,7 @@ mod compose;
 mod decoding;
 mod drops;
 mod export;
+mod flythrough;
 mod framing;
 mod ground;
 mod hooks;
@@ -102,8 +103,8 @@ pub enum UserEvent {
     Accuracy,
     /// The loader's progress, or its result.
     Load(LoadEvent),
-    /// An export was written, or why not.
-    Exported(Result<export::Exported, String>),
+    /// An export was written (`None`: cancelled), or why not.
+    Exported(Result<Option<export::Exported>, String>),
 }
 
 /// Opens the window and runs until it is closed.

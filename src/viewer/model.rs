@@ -106,6 +106,8 @@ pub struct Model {
     pub view_aspect: f64,
     /// Where and how large images are exported.
     pub export: Exports,
+    /// The flythrough's keys, and its preview.
+    pub flythrough: super::flythrough::Flythrough,
     pub settings: Settings,
     /// The Light panel's date and time.
     pub sun_clock: SunClock,
@@ -168,6 +170,9 @@ impl Model {
         self.settings
             .adopt_scene(&scene.lighting, scene.method, scene.arith);
         self.sun_clock.on = false;
+        if let Some(flythrough) = &scene.flythrough {
+            self.flythrough = flythrough.clone();
+        }
         if let Some(clock) = scene.clock {
             self.sun_clock.set(clock);
             // Placed again by the clock, as the scene was: the same sun to the last bit.
@@ -194,6 +199,7 @@ impl Model {
             }),
             view_aspect: 16.0 / 9.0,
             export: Exports::default(),
+            flythrough: Default::default(),
             settings,
             sun_clock: SunClock::default(),
             path_text: String::new(),

@@ -102,6 +102,11 @@ fn sections_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         traversal_ui(ui, model, actions)
     });
     named(model, "traversal_section", traversal);
+    let title = format!("Flythrough: {} keys", model.flythrough.keys.len());
+    let flythrough = section(ui, "Flythrough", &title, false, |ui| {
+        super::flythrough::flythrough_ui(ui, model)
+    });
+    named(model, "flythrough_section", flythrough);
     let effects = section(ui, "Effects", "Effects", false, |ui| effects_ui(ui, model));
     named(model, "effects_section", effects);
     let statistics = section(ui, "Statistics", "Statistics and probe", false, |ui| {
@@ -172,6 +177,7 @@ fn camera_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             actions.push(Action::Screenshot);
         }
     });
+    super::export::progress_ui(ui, &model.export);
     super::navigation::tools_ui(ui, actions);
     let settings = &mut model.settings;
     ui.add(

@@ -40,6 +40,7 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
     let heightmap = heightmap_keys(&model.shown.source, model)?;
     let [tx, ty, tz] = orbit.target;
     let effects = lighting.effects;
+    let animation = model.flythrough.scene_text()?;
     Ok(format!(
         "[heightmap]\n{heightmap}z_scale = {z_scale:?}\n\n\
          [camera]\norbit = {{ target = [{tx:?}, {ty:?}, {tz:?}], yaw_deg = {:?}, \
@@ -49,7 +50,7 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
          angle_deg = {:?}\nrays = {}\n\n\
          [effects]\nshadows = {}\nfog = {:?}\nsky_light = {}\nsky_rays = {}\nsky_distance = {:?}\n\n\
          [shading]\nnormals = \"{}\"\nramp = \"{}\"\nbase = {}\n{}\n\
-         [render]\nmethod = \"{}\"\narith = \"{}\"\nsamples = {}\nadaptive = {}\n{}{}",
+         [render]\nmethod = \"{}\"\narith = \"{}\"\nsamples = {}\nadaptive = {}\n{}{}{animation}",
         orbit.yaw_deg,
         orbit.pitch_deg,
         orbit.distance,

@@ -2,6 +2,7 @@
 //! plain ones with a z scale that makes their relief visible) and scene files (with their
 //! camera and lighting); rescaling, and laying an image over the map.
 
+use super::flythrough::Flythrough;
 use super::loader::{LoadRequest, Loaded, OverlayChange, SceneClock, SceneSetup, Source, Stage};
 use super::orbit::Orbit;
 use crate::heightfield::{self, relief, Builtin, Drape, LoadOptions};
@@ -157,6 +158,10 @@ fn scene_setup(parts: &SceneParts, terrain: &Terrain) -> SceneSetup {
         method: parts.method,
         arith: parts.arith,
         clock,
+        flythrough: parts.file.animation.as_ref().map(|section| {
+            let fov = parts.file.camera.as_ref().map_or(45.0, |c| c.fov_y_deg);
+            Flythrough::from_section(section, fov, framing.scale)
+        }),
     }
 }
 

@@ -20,6 +20,7 @@ mod exact_paths;
 mod exact_reference;
 mod far_bounds;
 mod far_rays;
+mod flight;
 mod float_modes;
 mod formats;
 mod georeferencing;

@@ -10,6 +10,7 @@ mod app;
 mod decoding;
 mod export;
 mod failed_loads;
+mod flythrough;
 mod fog;
 mod georeferenced;
 mod huge_window;

@@ -82,6 +82,19 @@ impl Accumulation {
     }
 }
 
+/// How far, in pixels, what lies outside a window can change the window's pixels: each
+/// settling looks one pixel further (at the neighbours' means, which depend on their own
+/// settling before), and a frame of `effects` settles at most once a batch. Zero without
+/// adaptive samples, where every pixel is its own. A tile rendered with this margin around it
+/// has the pixels of the whole image.
+pub fn reach(effects: &super::Effects) -> u32 {
+    if effects.adaptive && effects.samples > 1 {
+        effects.samples.div_ceil(FIRST_BATCH)
+    } else {
+        0
+    }
+}
+
 impl Renderer<'_> {
     /// Renders the frame in rounds of samples to the end, each pixel's batch of a round taken
     /// at once (the terrain its rays cross is then still in the caches): the image of
@@ -189,7 +202,7 @@ impl Renderer<'_> {
                         if index == 1 && first == 0 {
                             later = Some(Instant::now());
                         }
-                        let (px, py) = position(x as u32, y as u32, index);
+                        let (px, py) = position(&self.camera, x as u32, y as u32, index);
                         let ray = self.camera.ray_at(px, py);
                         let clearance = clearance(wedges.as_ref(), &ray, &mut totals);
                         let (sample, _) = shader.traced_from(&ray, self.arith, clearance);

@@ -15,7 +15,7 @@ mod sun_cone;
 mod time;
 mod water;
 
-pub use accumulate::Accumulation;
+pub use accumulate::{reach, Accumulation};
 pub use horizon::{climbs_above, slope_bound};
 pub use sky::{open_sky_mean, SkyRays};
 pub use soft_shadow::SoftShadow;

@@ -50,9 +50,17 @@ pub fn refines(own: u32, neighbour: impl Fn(isize, isize) -> Option<u32>) -> boo
 /// The purpose a pixel's positions are seeded with.
 const PURPOSE: u64 = 0x05a3_b1e5;
 
-/// The sub-pixel position of sample `index` of pixel `(x, y)`, in pixel units from its corner.
-pub fn position(x: u32, y: u32, index: u32) -> (f64, f64) {
-    let seed = mix(mix(PURPOSE ^ u64::from(x)) ^ (u64::from(y) << 32));
+/// Spreads frame numbers over the seed's bits (an odd constant: frame 0 adds nothing, so a
+/// still keeps its samples).
+const FRAME_STRIDE: u64 = 0x9e37_79b9_7f4a_7c15;
+
+/// The position of sample `index` of pixel `(x, y)` of `camera`'s window, in pixel units from
+/// the whole image's corner: seeded by the pixel's place in the whole image and the camera's
+/// frame, so a tile, a band or a frame rendered alone takes the samples of the whole.
+pub fn position(camera: &Camera, x: u32, y: u32, index: u32) -> (f64, f64) {
+    let (x, y) = camera.in_image(x, y);
+    let frame = camera.frame().wrapping_mul(FRAME_STRIDE);
+    let seed = mix(mix(PURPOSE ^ frame ^ u64::from(x)) ^ (u64::from(y) << 32));
     let (u, v) = point(index, seed);
     (f64::from(x) + u, f64::from(y) + v)
 }
@@ -82,7 +90,7 @@ pub fn shade(
     let mut estimate = Estimate::default();
     let mut later = None;
     for index in 0..effects.samples.max(1) {
-        let (px, py) = position(x, y, index);
+        let (px, py) = position(camera, x, y, index);
         estimate.add(trace(&camera.ray_at(px, py)));
         later.get_or_insert_with(Instant::now);
     }

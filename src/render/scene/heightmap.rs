@@ -91,6 +91,7 @@ impl SceneFile {
             render: Default::default(),
             overlay: None,
             water: None,
+            animation: None,
             size: None,
         }
     }

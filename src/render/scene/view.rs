@@ -6,7 +6,7 @@ use super::SceneError;
 use crate::render::camera::Camera;
 use crate::render::framing;
 use crate::{Heightfield, Terrain};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 /// The image size of a scene without a `[camera]` section, nor a size given.
@@ -37,7 +37,7 @@ pub struct CameraSection {
 }
 
 /// A camera given as an orbit around a target (see [`Camera::orbit`]).
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Orbit {
     /// The point looked at.

@@ -107,7 +107,7 @@ impl App {
     }
 }
 
-/// The navigation keys, S, H and F1, unless a text field has the keyboard.
+/// The navigation keys, S, K, H and F1, unless a text field has the keyboard.
 pub(super) fn keys_ui(ui: &egui::Ui, model: &mut Model, actions: &mut Vec<Action>) {
     if ui.ctx().egui_wants_keyboard_input() {
         return;
@@ -135,6 +135,10 @@ pub(super) fn keys_ui(ui: &egui::Ui, model: &mut Model, actions: &mut Vec<Action
             .count()
     });
     actions.extend((0..exports).map(|_| Action::Screenshot));
+    if pressed(egui::Key::K) {
+        let orbit = model.orbit;
+        model.flythrough.add(orbit);
+    }
     if pressed(egui::Key::H) {
         model.panels_visible = !model.panels_visible;
     }

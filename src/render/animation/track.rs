@@ -1,0 +1,269 @@
+//! A track to follow (`[animation.track]`): the points of a GPX track or route, or of a
+//! GeoJSON LineString, in longitude and latitude, placed on a georeferenced map. The camera
+//! flies along it at a constant speed, `height` above the ground beneath (interpolated between
+//! the points), looking at the track `look_ahead_s` seconds ahead.
+
+use super::View;
+use crate::heightfield::{world_from_grid, Heightfield, MapUnits};
+use glam::{DVec2, DVec3};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// The longest track file read: a track of a million points is far smaller.
+const MOST_TRACK_BYTES: u64 = 64 << 20;
+
+/// `[animation.track]`.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct TrackSection {
+    /// A `.gpx` or `.geojson` (`.json`) file, relative to the scene.
+    pub path: String,
+    /// How high above the ground the eye flies, in world units (grid units up).
+    pub height: f64,
+    /// World units a second along the track (default: the whole track in 30 s).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub speed: Option<f64>,
+    /// How far ahead the camera looks, in seconds of travel (default 2).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub look_ahead_s: Option<f64>,
+}
+
+/// A track placed on a map.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Track {
+    /// The points in world x and y, their distance along the track and the ground under them.
+    points: Vec<DVec2>,
+    along: Vec<f64>,
+    ground: Vec<f64>,
+    height: f64,
+    speed: f64,
+    ahead: f64,
+}
+
+impl Track {
+    /// Reads the track file (relative to `base`) and places it on `field`.
+    pub fn load(section: &TrackSection, base: &Path, field: &Heightfield) -> Result<Track, String> {
+        let path = base.join(&section.path);
+        let lonlat = read_points(&path)?;
+        let georef = field.georef().ok_or(
+            "[animation.track] needs a georeferenced map (a GeoTIFF, .hgt or .asc) to place its \
+             longitudes and latitudes on",
+        )?;
+        let to_map = |[lon, lat]: [f64; 2]| match (georef.crs, georef.units) {
+            (Some(crs), _) => crs.to_lonlat().ok()?.map_point([lon, lat]),
+            (None, MapUnits::Degrees) => Some([lon, lat]),
+            (None, MapUnits::Linear { .. }) => None,
+        };
+        let stretch = world_from_grid(field).map_or(1.0, |s| s[0]);
+        let (w, h) = ((field.width() - 1) as f64, (field.height() - 1) as f64);
+        let (mut points, mut ground) = (Vec::new(), Vec::new());
+        for (n, &point) in lonlat.iter().enumerate() {
+            let [mx, my] = to_map(point).ok_or(format!(
+                "[animation.track] cannot place longitude and latitude on this map's {}",
+                georef.crs_label()
+            ))?;
+            let gx = (mx - georef.origin[0]) / georef.spacing[0];
+            let gy = (my - georef.origin[1]) / georef.spacing[1];
+            if !(gx >= 0.0 && gy >= 0.0 && gx <= w && gy <= h) {
+                return Err(format!(
+                    "[animation.track] point {} (longitude {}, latitude {}) of {} lies off the map",
+                    n + 1,
+                    point[0],
+                    point[1],
+                    path.display()
+                ));
+            }
+            let i = (gx.floor() as usize).min(field.width() - 2);
+            let j = (gy.floor() as usize).min(field.height() - 2);
+            ground.push(field.surface_z((i, j), (gx - i as f64, gy - j as f64)));
+            points.push(DVec2::new(gx * stretch, gy));
+        }
+        let mut along = vec![0.0];
+        for pair in points.windows(2) {
+            along.push(along[along.len() - 1] + pair[0].distance(pair[1]));
+        }
+        let total = along[along.len() - 1];
+        if total.is_nan() || total <= 0.0 {
+            return Err(format!(
+                "[animation.track] {} has fewer than two distinct points",
+                path.display()
+            ));
+        }
+        let speed = section.speed.unwrap_or(total / 30.0);
+        let look = section.look_ahead_s.unwrap_or(2.0);
+        let fine = |v: f64| v.is_finite() && v > 0.0;
+        if !(fine(speed) && section.height.is_finite() && look.is_finite() && look >= 0.0) {
+            return Err(
+                "[animation.track] height must be finite, speed above 0, look_ahead_s \
+                        at least 0"
+                    .into(),
+            );
+        }
+        Ok(Track {
+            points,
+            along,
+            ground,
+            height: section.height,
+            speed,
+            ahead: (speed * look).max(1e-6 * total),
+        })
+    }
+
+    /// Seconds from the start to the end of the track.
+    pub fn duration(&self) -> f64 {
+        self.along[self.along.len() - 1] / self.speed
+    }
+
+    /// The view at `time_s`: the eye over the track, looking at it further on.
+    pub fn view_at(&self, time_s: f64, fov_y_deg: f64) -> View {
+        let s = (self.speed * time_s).max(0.0);
+        let (eye, eye_ground) = self.at(s);
+        let (mut target, target_ground) = self.at(s + self.ahead);
+        if target.distance(eye) < 0.5 * self.ahead {
+            // At the end, the last leg's direction carries on.
+            let n = self.points.len();
+            let last = (self.points[n - 1] - self.points[n - 2]).normalize_or_zero();
+            target = eye + last * self.ahead;
+        }
+        View {
+            eye: DVec3::new(eye.x, eye.y, eye_ground + self.height),
+            target: DVec3::new(target.x, target.y, target_ground + 0.5 * self.height),
+            fov_y_deg,
+        }
+    }
+
+    /// The point `s` along the track (clamped to it) and the ground there.
+    fn at(&self, s: f64) -> (DVec2, f64) {
+        let n = self.points.len();
+        let s = s.clamp(0.0, self.along[n - 1]);
+        let k = self.along.partition_point(|&a| a <= s).clamp(1, n - 1) - 1;
+        let span = self.along[k + 1] - self.along[k];
+        let u = if span > 0.0 {
+            (s - self.along[k]) / span
+        } else {
+            0.0
+        };
+        let point = self.points[k].lerp(self.points[k + 1], u);
+        let ground = self.ground[k] + (self.ground[k + 1] - self.ground[k]) * u;
+        (point, ground)
+    }
+}
+
+/// The longitude and latitude of every point of a GPX or GeoJSON file, in order.
+fn read_points(path: &Path) -> Result<Vec<[f64; 2]>, String> {
+    use std::io::Read;
+    let cannot = |e: &dyn std::fmt::Display| format!("cannot read track {}: {e}", path.display());
+    let (file, _) = crate::regular_file::open(path).map_err(|e| match e {
+        crate::regular_file::OpenError::NotAFile(what) => cannot(&format!("it is {what}")),
+        crate::regular_file::OpenError::Io(e) => cannot(&e),
+    })?;
+    let mut text = String::new();
+    file.take(MOST_TRACK_BYTES)
+        .read_to_string(&mut text)
+        .map_err(|e| cannot(&e))?;
+    let extension = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let points = match extension.as_deref() {
+        Some("gpx") => gpx_points(&text),
+        Some("geojson" | "json") => geojson_points(&text).map_err(|e| cannot(&e))?,
+        _ => return Err(cannot(&"name a .gpx or .geojson file")),
+    };
+    if points.len() < 2 {
+        return Err(cannot(&"it holds fewer than two track points"));
+    }
+    Ok(points)
+}
+
+/// The points of a GPX file's tracks (`trkpt`), or else its routes (`rtept`): their `lat` and
+/// `lon` attributes.
+fn gpx_points(text: &str) -> Vec<[f64; 2]> {
+    let points = |tag: &str| -> Vec<[f64; 2]> {
+        let open = format!("<{tag}");
+        text.match_indices(&open)
+            .filter_map(|(at, _)| {
+                let element = &text[at + open.len()..];
+                let element = &element[..element.find('>')?];
+                Some([attribute(element, "lon")?, attribute(element, "lat")?])
+            })
+            .collect()
+    };
+    let track = points("trkpt");
+    if track.is_empty() {
+        points("rtept")
+    } else {
+        track
+    }
+}
+
+/// The number in attribute `name="..."` (or single quotes) of an element's text.
+fn attribute(element: &str, name: &str) -> Option<f64> {
+    let mut rest = element;
+    while let Some(at) = rest.find(name) {
+        let before = rest[..at].chars().last();
+        let after = rest[at + name.len()..].trim_start();
+        rest = &rest[at + name.len()..];
+        if before.is_some_and(|c| !c.is_whitespace()) {
+            continue;
+        }
+        let Some(value) = after.strip_prefix('=') else {
+            continue;
+        };
+        let value = value.trim_start();
+        let quote = value.chars().next()?;
+        let value = value.get(1..)?;
+        return value[..value.find(quote)?].trim().parse().ok();
+    }
+    None
+}
+
+/// The points of a GeoJSON LineString or MultiLineString, alone, in a Feature, or the first in
+/// a FeatureCollection.
+fn geojson_points(text: &str) -> Result<Vec<[f64; 2]>, String> {
+    let json: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
+    let geometry = match json["type"].as_str() {
+        Some("FeatureCollection") => json["features"]
+            .as_array()
+            .and_then(|features| {
+                features
+                    .iter()
+                    .map(|f| &f["geometry"])
+                    .find(|g| matches!(g["type"].as_str(), Some("LineString" | "MultiLineString")))
+            })
+            .ok_or("its features hold no LineString")?,
+        Some("Feature") => &json["geometry"],
+        _ => &json,
+    };
+    let lines: Vec<&serde_json::Value> = match geometry["type"].as_str() {
+        Some("LineString") => vec![&geometry["coordinates"]],
+        Some("MultiLineString") => geometry["coordinates"]
+            .as_array()
+            .map(|lines| lines.iter().collect())
+            .unwrap_or_default(),
+        other => return Err(format!("a {other:?} is not a LineString")),
+    };
+    let point = |p: &serde_json::Value| Some([p.get(0)?.as_f64()?, p.get(1)?.as_f64()?]);
+    lines
+        .into_iter()
+        .flat_map(|line| line.as_array().cloned().unwrap_or_default())
+        .map(|p| point(&p).ok_or_else(|| format!("{p} is not a [longitude, latitude] point")))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gpx_and_geojson_give_their_points_in_order() {
+        let gpx = r#"<gpx><trk><trkseg><trkpt lat="45.5" lon="-122.25"><ele>3</ele></trkpt>
+            <trkpt lon='-122.5'  lat = "45.75"/></trkseg></trk></gpx>"#;
+        assert_eq!(gpx_points(gpx), [[-122.25, 45.5], [-122.5, 45.75]]);
+        let route = r#"<gpx><rte><rtept lat="1" lon="2"/><rtept lat="3" lon="4"/></rte></gpx>"#;
+        assert_eq!(gpx_points(route), [[2.0, 1.0], [4.0, 3.0]]);
+        let feature = r#"{"type": "FeatureCollection", "features": [{"type": "Feature",
+            "geometry": {"type": "LineString", "coordinates": [[7, 46, 1200], [7.5, 46.25]]}}]}"#;
+        assert_eq!(geojson_points(feature), Ok(vec![[7.0, 46.0], [7.5, 46.25]]));
+        assert!(geojson_points(r#"{"type": "Point", "coordinates": [1, 2]}"#).is_err());
+    }
+}

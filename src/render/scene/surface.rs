@@ -1,0 +1,48 @@
+//! How a scene's surface looks: `[shading]` (normals and the colour ramp) and `[overlay]` (an
+//! image draped over the map).
+
+use crate::render::ramp::Ramp;
+use serde::Deserialize;
+
+/// A scene file's `[overlay]` section: an image (PNG, JPEG or TIFF) draped over the map.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct OverlaySection {
+    /// The image, relative to the scene file.
+    pub path: String,
+    /// How much of the ramp's colour the image replaces, 0 to 1 (default 1).
+    #[serde(default = "super::one")]
+    pub opacity: f64,
+}
+
+/// A scene file's `[shading]` section.
+#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ShadingSection {
+    /// Flat or smooth normals (default flat).
+    #[serde(default)]
+    pub normals: Normals,
+    /// Colour by height: `terrain` (the default), `hypsometric`, `gray`, `viridis`, `magma` or
+    /// `turbo`; the land ramps show a sea below height 0 (see [`Ramp`]).
+    #[serde(default)]
+    pub ramp: Ramp,
+    /// A solid base under the map: side walls from its edge down to a floor (default off;
+    /// a map with holes always shows the floor through them).
+    #[serde(default)]
+    pub base: bool,
+    /// How far the base's floor lies below the lowest sample, in height units (default 5%
+    /// of the relief, at least 1).
+    #[serde(default)]
+    pub base_depth: Option<f64>,
+}
+
+/// Surface normals: per triangle, or interpolated from vertex normals.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Normals {
+    /// Each triangle's own normal.
+    #[default]
+    Flat,
+    /// Vertex normals (central differences) interpolated across the triangle.
+    Smooth,
+}
