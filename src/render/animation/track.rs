@@ -165,7 +165,7 @@ fn read_points(path: &Path) -> Result<Vec<[f64; 2]>, String> {
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
     let points = match extension.as_deref() {
-        Some("gpx") => gpx_points(&text),
+        Some("gpx") => gpx_points(&text).map_err(|e| cannot(&e))?,
         Some("geojson" | "json") => geojson_points(&text).map_err(|e| cannot(&e))?,
         _ => return Err(cannot(&"name a .gpx or .geojson file")),
     };
@@ -175,46 +175,30 @@ fn read_points(path: &Path) -> Result<Vec<[f64; 2]>, String> {
     Ok(points)
 }
 
-/// The points of a GPX file's tracks (`trkpt`), or else its routes (`rtept`): their `lat` and
-/// `lon` attributes.
-fn gpx_points(text: &str) -> Vec<[f64; 2]> {
-    let points = |tag: &str| -> Vec<[f64; 2]> {
-        let open = format!("<{tag}");
-        text.match_indices(&open)
-            .filter_map(|(at, _)| {
-                let element = &text[at + open.len()..];
-                let element = &element[..element.find('>')?];
-                Some([attribute(element, "lon")?, attribute(element, "lat")?])
-            })
-            .collect()
+/// The points of a GPX file's tracks (`trkpt`), or else its routes (`rtept`), read by the
+/// `gpx` crate: their longitudes and latitudes.
+fn gpx_points(text: &str) -> Result<Vec<[f64; 2]>, String> {
+    let gpx = gpx::read(text.as_bytes()).map_err(|e| format!("not a GPX file: {e}"))?;
+    let lon_lat = |w: &gpx::Waypoint| {
+        let p = w.point();
+        [p.x(), p.y()]
     };
-    let track = points("trkpt");
-    if track.is_empty() {
-        points("rtept")
-    } else {
-        track
+    let track: Vec<[f64; 2]> = gpx
+        .tracks
+        .iter()
+        .flat_map(|t| &t.segments)
+        .flat_map(|s| &s.points)
+        .map(lon_lat)
+        .collect();
+    if !track.is_empty() {
+        return Ok(track);
     }
-}
-
-/// The number in attribute `name="..."` (or single quotes) of an element's text.
-fn attribute(element: &str, name: &str) -> Option<f64> {
-    let mut rest = element;
-    while let Some(at) = rest.find(name) {
-        let before = rest[..at].chars().last();
-        let after = rest[at + name.len()..].trim_start();
-        rest = &rest[at + name.len()..];
-        if before.is_some_and(|c| !c.is_whitespace()) {
-            continue;
-        }
-        let Some(value) = after.strip_prefix('=') else {
-            continue;
-        };
-        let value = value.trim_start();
-        let quote = value.chars().next()?;
-        let value = value.get(1..)?;
-        return value[..value.find(quote)?].trim().parse().ok();
-    }
-    None
+    Ok(gpx
+        .routes
+        .iter()
+        .flat_map(|r| &r.points)
+        .map(lon_lat)
+        .collect())
 }
 
 /// The points of a GeoJSON LineString or MultiLineString, alone, in a Feature, or the first in
@@ -256,11 +240,14 @@ mod tests {
 
     #[test]
     fn gpx_and_geojson_give_their_points_in_order() {
-        let gpx = r#"<gpx><trk><trkseg><trkpt lat="45.5" lon="-122.25"><ele>3</ele></trkpt>
+        let gpx = r#"<gpx version="1.1" creator="t"><trk><trkseg>
+            <trkpt lat="45.5" lon="-122.25"><ele>3</ele></trkpt>
             <trkpt lon='-122.5'  lat = "45.75"/></trkseg></trk></gpx>"#;
-        assert_eq!(gpx_points(gpx), [[-122.25, 45.5], [-122.5, 45.75]]);
-        let route = r#"<gpx><rte><rtept lat="1" lon="2"/><rtept lat="3" lon="4"/></rte></gpx>"#;
-        assert_eq!(gpx_points(route), [[2.0, 1.0], [4.0, 3.0]]);
+        assert_eq!(gpx_points(gpx), Ok(vec![[-122.25, 45.5], [-122.5, 45.75]]));
+        let route = r#"<gpx version="1.1" creator="t"><rte><rtept lat="1" lon="2"/>
+            <rtept lat="3" lon="4"/></rte></gpx>"#;
+        assert_eq!(gpx_points(route), Ok(vec![[2.0, 1.0], [4.0, 3.0]]));
+        assert!(gpx_points("<gpx version=\"1.1\"><trk><trkseg><trkpt lat=").is_err());
         let feature = r#"{"type": "FeatureCollection", "features": [{"type": "Feature",
             "geometry": {"type": "LineString", "coordinates": [[7, 46, 1200], [7.5, 46.25]]}}]}"#;
         assert_eq!(geojson_points(feature), Ok(vec![[7.0, 46.0], [7.5, 46.25]]));

@@ -91,7 +91,7 @@ fn the_camera_flies_over_the_track_looking_ahead() {
         .collect();
     std::fs::write(
         dir.path().join("route.gpx"),
-        format!("<gpx><trk><trkseg>{gpx}</trkseg></trk></gpx>"),
+        format!("<gpx version=\"1.1\" creator=\"test\"><trk><trkseg>{gpx}</trkseg></trk></gpx>"),
     )
     .unwrap();
     let other = write_scene(dir.path(), "route.gpx");
