@@ -158,23 +158,6 @@ fn nan_samples_are_holes_and_counted() {
     assert!(!Terrain::new(field).summary().contains("no holes"));
 }
 
-/// A random field with a random set of no-data samples.
-fn holed_field(field: &Heightfield, holes: &[bool]) -> Option<Heightfield> {
-    let mut mask = NoDataMask::new(field.samples().len());
-    for (k, _) in holes.iter().enumerate().filter(|(_, &hole)| hole) {
-        mask.insert(k);
-    }
-    Heightfield::new(
-        field.width(),
-        field.height(),
-        field.samples().to_vec(),
-        Quantisation::Maxval(field.maxval()),
-        field.z_scale(),
-        Some(mask),
-    )
-    .ok()
-}
-
 proptest! {
     #![proptest_config(ProptestConfig {
         cases: 3_000,
@@ -188,7 +171,7 @@ proptest! {
         (field, ray) in field_and_ray_up_to(12),
         holes in proptest::collection::vec(proptest::bool::weighted(0.2), 144),
     ) {
-        let Some(field) = holed_field(&field, &holes[..field.samples().len()]) else {
+        let Some(field) = crate::base::holed(&field, &holes[..field.samples().len()]) else {
             return Ok(()); // every sample was a hole: nothing to load
         };
         let problems = check_exact(&Terrain::new(field.clone()), &ray);

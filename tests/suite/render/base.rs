@@ -50,16 +50,7 @@ fn low_view(walls: bool, effects: Effects) -> (Camera, Lighting) {
     (camera, lighting)
 }
 
-const NONE: Culling = Culling {
-    facing_away: false,
-    no_shadow_possible: false,
-    above_terrain: false,
-    horizon_clear: false,
-    cone_blocked: false,
-    far_bounds: false,
-    camera_clearance: false,
-    near_walk: false,
-};
+const NONE: Culling = super::NO_CULLING;
 
 fn each_rule() -> Vec<Culling> {
     let off = |f: fn(&mut Culling)| {

@@ -39,16 +39,7 @@ fn each_effect_culling_rule_on_or_off_gives_the_same_image() {
         )
     };
     let all = render(Culling::default());
-    let none = Culling {
-        facing_away: false,
-        no_shadow_possible: false,
-        above_terrain: false,
-        horizon_clear: false,
-        cone_blocked: false,
-        far_bounds: false,
-        camera_clearance: false,
-        near_walk: false,
-    };
+    let none = super::NO_CULLING;
     for culling in [
         Culling {
             horizon_clear: false,

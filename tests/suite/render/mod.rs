@@ -12,6 +12,18 @@ use heightray::traverse::Exact;
 use heightray::{Arith, Heightfield, Method, Terrain};
 use std::path::{Path, PathBuf};
 
+/// Every culling rule off: the frames each rule must reproduce.
+pub(crate) const NO_CULLING: Culling = Culling {
+    facing_away: false,
+    no_shadow_possible: false,
+    above_terrain: false,
+    horizon_clear: false,
+    cone_blocked: false,
+    far_bounds: false,
+    camera_clearance: false,
+    near_walk: false,
+};
+
 mod base;
 mod effects;
 mod effects_frames;

@@ -42,16 +42,7 @@ fn no_shadow_rays_where_no_shadow_is_possible() {
         Culling::default(),
         2,
     );
-    let none = Culling {
-        facing_away: false,
-        no_shadow_possible: false,
-        above_terrain: false,
-        horizon_clear: false,
-        cone_blocked: false,
-        far_bounds: false,
-        camera_clearance: false,
-        near_walk: false,
-    };
+    let none = super::NO_CULLING;
     let brute = render_by(
         Method::Runs,
         &terrain,
