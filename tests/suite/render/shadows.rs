@@ -92,16 +92,7 @@ fn each_culling_rule_on_or_off_gives_the_same_image() {
             far_bounds: false,
             ..Culling::default()
         },
-        Culling {
-            facing_away: false,
-            no_shadow_possible: false,
-            above_terrain: false,
-            horizon_clear: false,
-            cone_blocked: false,
-            far_bounds: false,
-            camera_clearance: false,
-            near_walk: false,
-        },
+        super::NO_CULLING,
         Culling {
             near_walk: false,
             ..Culling::default()
