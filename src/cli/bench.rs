@@ -223,7 +223,8 @@ fn sun_strips(scene: &Scene, terrain: &Terrain) -> Option<StripsReport> {
         Tracer::Heightray(Method::Mipmap, Arith::F64),
         true,
     );
-    let dir = renderer.shader.strip_bounds()?.dir();
+    let strips = renderer.shader.strip_bounds()?;
+    let (dir, half) = (strips.dir(), strips.half());
     let start = Instant::now();
     let mut fastest = (Duration::MAX, 0);
     for built in 0.. {
@@ -231,7 +232,7 @@ fn sun_strips(scene: &Scene, terrain: &Terrain) -> Option<StripsReport> {
             break;
         }
         let ((), time) = timed(|| {
-            let bounds = StripBounds::build(terrain.field(), dir);
+            let bounds = StripBounds::build(terrain.field(), dir, half);
             fastest.1 = bounds.map_or(0, |b| b.bytes());
         });
         fastest.0 = fastest.0.min(time);

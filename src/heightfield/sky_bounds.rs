@@ -125,7 +125,8 @@ impl SkyBounds {
         dir: [f64; 3],
         room: f64,
     ) -> Option<f64> {
-        let across = dir[0].hypot(dir[1]);
+        // (Not `hypot`: a direction cannot overflow, and `hypot` costs as much as the look-up.)
+        let across = (dir[0] * dir[0] + dir[1] * dir[1]).sqrt();
         let climb = dir[2] / across;
         if !(climb > 0.0 && climb.is_finite() && start.iter().all(|c| c.is_finite())) {
             return None;

@@ -1,7 +1,8 @@
 //! Strip bounds: for one direction of travel (the sun's), an upper bound on how high the
 //! terrain ahead rises against a ray climbing at the direction's slope, so that most rays
 //! towards it are known clear beyond a few cells without a walk (the exact, conservative
-//! form of the line-sweep horizons of Timonen & Westerholm 2010).
+//! form of the line-sweep horizons of Timonen & Westerholm 2010). Built for the sun's disc,
+//! they serve every direction within it: soft shadows look up the same bounds.
 //!
 //! In the direction's frame, `u` runs along its dominant horizontal axis (towards it) and `v`
 //! along the other; a ray's path keeps `w = v - m*u` fixed (`m` the slope across) and climbs
@@ -17,6 +18,12 @@
 //! most `C(c) + kappa*(u - u_c)` high, and a ray whose height at `u_c` exceeds `C(c)` stays
 //! above it all the way. Strips are grown by [`PAD`] across, bounds are rounded up to whole
 //! samples, and the caller's room covers the rounding of the ray's own start.
+//!
+//! A disc of directions around the axis: the bounds are built along the axis's `m` with the
+//! lowest `kappa` of any direction in the disc, so they bound the terrain against every such
+//! ray's climb too. A ray of slope `m'` drifts across strips, `w` changing by `(m' - m)` per
+//! unit of `u`; it need only be followed until it rises above the highest sample, so its look-up
+//! takes the largest bound over the strips its `w` passes through up to there.
 
 use super::Heightfield;
 
@@ -34,6 +41,8 @@ const PAD: f64 = 1e-4;
 #[derive(Clone, Debug)]
 pub struct StripBounds {
     dir: [f64; 3],
+    /// The disc's half-angle around `dir` (radians; 0 for one direction).
+    half: f64,
     frame: DirFrame,
     /// `m`: change of `v` per unit of `u` along a path.
     slope: f64,
@@ -50,8 +59,10 @@ pub struct StripBounds {
     per_step: f64,
     /// How far a path climbs across the whole map (samples), for the rounding of `climb`.
     climb_across: f64,
-    /// `t` per unit of `u` along the direction.
+    /// `t` per unit of `u` along `dir`.
     per_du: f64,
+    /// The highest sample: a ray above it is above all the terrain.
+    top: f64,
 }
 
 /// The blocks of one strip that meet the map, `first..first + len`, stored from `at` on.
@@ -87,6 +98,13 @@ impl DirFrame {
         (u, b)
     }
 
+    /// How far `dir` (grid coordinates) runs along `u` (positive towards higher `u`) and `v`.
+    #[inline]
+    fn along(&self, [dx, dy, _]: [f64; 3]) -> (f64, f64) {
+        let (a, b) = if self.along_y { (dy, dx) } else { (dx, dy) };
+        (if self.reversed { -a } else { a }, b)
+    }
+
     /// The index in the field's samples of the vertex `(u, v)`.
     fn index(&self, u: usize, v: usize, width: usize) -> usize {
         let a = if self.reversed { self.nu - 1 - u } else { u };
@@ -96,12 +114,16 @@ impl DirFrame {
 }
 
 impl StripBounds {
-    /// The bounds for rays travelling in `dir` (grid coordinates) over `field`; `None` where
-    /// they cannot help: a direction that does not climb, is vertical or not finite, or a
-    /// flat field.
-    pub fn build(field: &Heightfield, dir: [f64; 3]) -> Option<StripBounds> {
+    /// The bounds for rays travelling in `dir` (grid coordinates), or in any direction within
+    /// `half` (radians) of it, over `field`; `None` where they cannot help: a disc that does
+    /// not climb all round, holds a vertical or not finite direction or half a turn of
+    /// azimuths, or a flat field.
+    pub fn build(field: &Heightfield, dir: [f64; 3], half: f64) -> Option<StripBounds> {
         let [dx, dy, dz] = dir;
         if !(dir.iter().all(|c| c.is_finite()) && dz > 0.0 && field.step() > 0.0) {
+            return None;
+        }
+        if !(half.is_finite() && half >= 0.0) {
             return None;
         }
         let along_y = dy.abs() > dx.abs();
@@ -120,8 +142,8 @@ impl StripBounds {
             nv,
         };
         let slope = dv / du.abs();
-        let climb = dz / du.abs() / field.step();
-        if !(slope.is_finite() && climb.is_finite()) {
+        let climb = lowest_climb(du.abs(), dv.abs(), dz, half)? / field.step();
+        if !(slope.is_finite() && climb.is_finite() && climb > 0.0) {
             return None;
         }
         // `w` over the map: `v` from 0 to `nv - 1` less `m*u` from 0 to `m*(nu - 1)`.
@@ -129,8 +151,11 @@ impl StripBounds {
         let (w_min, w_max) = (-far.max(0.0), (nv - 1) as f64 - far.min(0.0));
         let count = ((w_max - w_min) / STRIP as f64).floor() as usize + 1;
         let blocks = (nu - 1).div_ceil(BLOCK).max(1);
+        let samples = field.samples();
+        let top = samples.iter().copied().max().map_or(0.0, f64::from);
         let mut bounds = StripBounds {
             dir,
+            half,
             frame,
             slope,
             climb,
@@ -141,8 +166,8 @@ impl StripBounds {
             per_step: 1.0 / field.step(),
             climb_across: climb * nu as f64,
             per_du: 1.0 / du.abs(),
+            top,
         };
-        let samples = field.samples();
         let mut column = Vec::with_capacity(blocks);
         for j in 0..count {
             column.clear();
@@ -179,6 +204,11 @@ impl StripBounds {
         self.dir
     }
 
+    /// The half-angle (radians) of the disc around [`StripBounds::dir`] they serve.
+    pub fn half(&self) -> f64 {
+        self.half
+    }
+
     /// Bytes held.
     pub fn bytes(&self) -> usize {
         self.bounds.len() * 2 + self.strips.len() * std::mem::size_of::<StripRange>()
@@ -211,19 +241,29 @@ impl StripBounds {
         Some(best)
     }
 
-    /// Whether a ray from `start` (grid coordinates) in the bounds' direction certainly
-    /// touches no triangle beyond a few cells ahead: `Some(t)` where it is clear from
-    /// `start + t * dir` on, so that only `[0, t]` is left to walk. `room` is how far (in
-    /// height) the ray's true start may lie below `start` or across from it.
-    #[inline]
-    pub fn clear_beyond(&self, start: [f64; 3], room: f64) -> Option<f64> {
+    /// Whether a ray from `start` (grid coordinates) towards `dir` (a direction of the disc
+    /// the bounds serve) certainly touches no triangle beyond a few cells ahead: `Some(t)`
+    /// where it is clear from `start + t * dir` on, so that only `[0, t]` is left to walk.
+    /// `room` is how far (in height) the ray's true start may lie below `start` or across.
+    #[inline(always)]
+    pub fn clear_beyond(&self, start: [f64; 3], dir: [f64; 3], room: f64) -> Option<f64> {
         let (u, v) = self.frame.uv(start[0], start[1]);
-        let strip = (v - self.slope * u - self.w_min) * (1.0 / STRIP as f64);
+        let (du, dv) = self.frame.along(dir);
         // (Both non-negative here, so truncation is the floor: no call to `floor`.)
-        if !(strip >= 0.0 && u >= 0.0 && u < self.frame.nu as f64) {
+        if !(u >= 0.0 && u < self.frame.nu as f64 && du > 0.0) {
             return None;
         }
-        let range = *self.strips.get(strip as usize)?;
+        let (slope, per_du) = if dir == self.dir {
+            (self.slope, self.per_du)
+        } else {
+            let per_du = 1.0 / du;
+            // The bounds hold against climbs of at least their own.
+            if dir[2] * per_du * self.per_step < self.climb {
+                return None;
+            }
+            (dv * per_du, per_du)
+        };
+        let w = v - self.slope * u;
         // The next column line more than one cell ahead: the start's own cells are walked.
         let c = ((u + 1.0) * (1.0 / BLOCK as f64)) as usize + 1;
         let u_c = (c * BLOCK) as f64;
@@ -231,8 +271,39 @@ impl StripBounds {
         let rise = self.climb * (u_c - u);
         let error = 1e-9 * (z.abs() + rise + self.climb_across + f64::from(u16::MAX))
             + room * self.per_step * (1.0 + self.climb);
+        let own = self.strip_of(w).filter(|&j| j < self.strips.len())?;
+        let bound = if slope == self.slope {
+            self.bound_at(own, c)
+        } else {
+            // Where the ray leaves the map or rises above every sample, and how far across
+            // it drifts until then.
+            let above = (self.top - z + error).max(0.0) / self.climb;
+            let u_end = (u + above).min(self.frame.nu as f64);
+            let drift = [u_c, u_end].map(|at| w + (slope - self.slope) * (at - u));
+            let (lo, hi) = (drift[0].min(drift[1]), drift[0].max(drift[1]));
+            let first = self.strip_of(lo - PAD).unwrap_or(0);
+            let last = self.strip_of(hi + PAD).unwrap_or(self.strips.len());
+            (first..=last.min(self.strips.len() - 1))
+                .map(|j| self.bound_at(j, c))
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
+        (z + rise - error > bound).then_some((u_c - u + 1e-3) * per_du)
+    }
+
+    /// The strip holding paths with `w`; `None` below the first one.
+    fn strip_of(&self, w: f64) -> Option<usize> {
+        let strip = (w - self.w_min) * (1.0 / STRIP as f64);
+        // (Non-negative here, so truncation is the floor.)
+        (strip >= 0.0).then_some(strip as usize)
+    }
+
+    /// The bound of strip `j` from block `c` on (`-inf` where no terrain lies ahead).
+    fn bound_at(&self, j: usize, c: usize) -> f64 {
+        let Some(range) = self.strips.get(j) else {
+            return f64::NEG_INFINITY;
+        };
         let (first, len) = (range.first as usize, range.len as usize);
-        let bound = if len == 0 || c >= first + len {
+        if len == 0 || c >= first + len {
             // No terrain ahead: the strip has left the map (or never meets it).
             f64::NEG_INFINITY
         } else if c < first {
@@ -241,7 +312,28 @@ impl StripBounds {
             f64::from(self.bounds[range.at as usize]) - gap * self.climb
         } else {
             f64::from(self.bounds[range.at as usize + c - first])
-        };
-        (z + rise - error > bound).then_some((u_c - u + 1e-3) * self.per_du)
+        }
     }
+}
+
+/// The lowest climb `dz / |du|` of any direction within `half` of `(du, dv, dz)` (`du` the
+/// dominant horizontal part, all three non-negative), rounded down; `None` where the disc
+/// does not climb all round or spans too wide a turn of azimuths for `du` to keep its sign.
+fn lowest_climb(du: f64, dv: f64, dz: f64, half: f64) -> Option<f64> {
+    if half == 0.0 {
+        return Some(dz / du);
+    }
+    let across = du.hypot(dv);
+    let elevation = dz.atan2(across) - half * (1.0 + 1e-6);
+    // How far the disc's azimuths turn from the axis's, as the soft shadow's sector does.
+    let turn = half.sin() * dz.hypot(across) / across;
+    if !(elevation > 0.0 && turn < 0.9) {
+        return None;
+    }
+    let turn = turn.asin() * (1.0 + 1e-6) + 1e-9;
+    let nearest = ((dv / du).atan() - turn).max(0.0);
+    if dv.atan2(du) + turn >= 1.5 {
+        return None;
+    }
+    Some(elevation.tan() / nearest.cos() * (1.0 - 1e-9))
 }

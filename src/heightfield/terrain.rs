@@ -13,7 +13,7 @@ pub struct Terrain {
     mipmap: Mipmap,
     lines: OnceLock<Lines>,
     /// The strip bounds of the last direction asked for (see [`Terrain::strip_bounds`]).
-    strips: Memo<[f64; 3], StripBounds>,
+    strips: Memo<([f64; 3], f64), StripBounds>,
     /// The sky bounds of the last reach asked for (see [`Terrain::sky_bounds`]).
     sky: Memo<f64, SkyBounds>,
     max_slope: f64,
@@ -149,12 +149,12 @@ impl Terrain {
     pub fn lines(&self) -> &Lines {
         self.lines.get_or_init(|| Lines::build(&self.field))
     }
-    /// The strip bounds for rays in `dir` (grid coordinates), built on first use and kept
-    /// while the same direction is asked for (a sun that stays put while the camera moves);
-    /// `None` where they cannot help (see [`StripBounds::build`]).
-    pub fn strip_bounds(&self, dir: [f64; 3]) -> Option<Arc<StripBounds>> {
+    /// The strip bounds for rays in `dir` (grid coordinates) or within `half` (radians) of it,
+    /// built on first use and kept while the same disc is asked for (a sun that stays put
+    /// while the camera moves); `None` where they cannot help (see [`StripBounds::build`]).
+    pub fn strip_bounds(&self, dir: [f64; 3], half: f64) -> Option<Arc<StripBounds>> {
         self.strips
-            .get_or_make(dir, || StripBounds::build(&self.field, dir))
+            .get_or_make((dir, half), || StripBounds::build(&self.field, dir, half))
     }
     /// The sky bounds for sky-light rays that look `reach` far (grid units, horizontally),
     /// kept while the same reach is asked for; each block's are made when a ray first asks.

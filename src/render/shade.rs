@@ -125,10 +125,8 @@ impl<'a> Shader<'a> {
             wedges: Arc::default(),
             base: lighting.base.for_terrain(terrain),
         };
-        let hard_shadows =
-            lighting.shadows && lighting.effects.sun_angle_deg <= 0.0 && lighting.sun_up();
-        if hard_shadows && culling.far_bounds {
-            shader.strips = terrain.strip_bounds(shader.grid_sun());
+        if lighting.shadows && lighting.sun_up() && culling.far_bounds {
+            shader.strips = terrain.strip_bounds(shader.grid_sun(), shader.sun_half());
         }
         if lighting.effects.sky_light && culling.far_bounds {
             shader.sky = terrain.sky_bounds(shader.sky_reach());
@@ -136,7 +134,7 @@ impl<'a> Shader<'a> {
         shader
     }
 
-    /// The strip bounds the sun's shadow rays look up, if the scene has hard shadows and the
+    /// The strip bounds the sun's shadow rays look up, if the scene has shadows and the
     /// bounds can help (see [`StripBounds::build`]).
     pub fn strip_bounds(&self) -> Option<&StripBounds> {
         self.strips.as_deref()
@@ -420,6 +418,16 @@ impl<'a> Shader<'a> {
     /// The direction towards the sun in grid coordinates, where shadow rays are traced.
     pub(crate) fn grid_sun(&self) -> [f64; 3] {
         self.grid_dir(DVec3::from(self.lighting.sun)).into()
+    }
+
+    /// The sun disc's half-angle (radians) in the grid, with room for rounding: every soft
+    /// shadow's direction lies within it of [`Shader::grid_sun`]; 0 for hard shadows.
+    pub(crate) fn sun_half(&self) -> f64 {
+        let angle = self.lighting.effects.sun_angle_deg;
+        match angle > 0.0 {
+            true => (angle / 2.0).to_radians() * (1.0 + 1e-6),
+            false => 0.0,
+        }
     }
 
     /// A unit direction in the world as a unit direction in grid coordinates, where rays are

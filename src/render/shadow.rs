@@ -72,11 +72,8 @@ impl Shader<'_> {
         if self.culling.no_shadow_possible && climbs_steeper {
             return skip(ShadowSkip::NoShadowPossible);
         }
-        let (near, looked_up) = self.clear_beyond(found, ray, p, sun);
-        let mut occlusion = self.occluded(found, ray, p, sun, near);
-        if let Some(far_clear) = looked_up {
-            occlusion.counters.bound.record(!far_clear);
-        }
+        let start = self.occlusion_start(found, p);
+        let occlusion = self.occluded_beyond(found, ray, p, start, (sun, sun));
         match occlusion.occluded {
             Some(shadowed) => (
                 Shadow::Cast { shadowed },
@@ -91,25 +88,29 @@ impl Shader<'_> {
         }
     }
 
-    /// Where the sun's strip bounds ([`StripBounds`](crate::heightfield::StripBounds)) prove the shadow ray of the hit `found`
-    /// (shaded at `p`) clear beyond its first cells: the `t` its walk may stop at, if so, and
-    /// whether the look-up was made (`Some(true)`: the far part is clear).
-    fn clear_beyond<S: Scalar>(
+    /// The occlusion ray of the hit `found` (shaded at `p`, its rays starting from `start`)
+    /// towards `dir`, a direction of the sun's disc around `axis` (the sun in the grid):
+    /// walked only as far as the sun's strip bounds
+    /// ([`StripBounds`](crate::heightfield::StripBounds)) leave it unsettled, with the look-up
+    /// counted.
+    #[inline(always)]
+    pub(super) fn occluded_beyond<S: Scalar>(
         &self,
         found: &Found<S>,
         ray: &Ray,
         p: DVec3,
-        sun: [f64; 3],
-    ) -> (Option<f64>, Option<bool>) {
-        let Some(strips) = self.strips.as_ref().filter(|s| s.dir() == sun) else {
-            return (None, None);
+        start: DVec3,
+        (axis, dir): ([f64; 3], [f64; 3]),
+    ) -> Occlusion {
+        let strips = self.strips.as_ref().filter(|s| s.dir() == axis);
+        let Some(strips) = strips.filter(|_| self.culling.far_bounds) else {
+            return self.occluded(found, ray, p, dir, None);
         };
-        if !self.culling.far_bounds {
-            return (None, None);
-        }
-        let start = self.occlusion_start(found, p);
-        let near = strips.clear_beyond(start.to_array(), self.start_room::<S>(ray, start));
-        (near, Some(near.is_some()))
+        let room = self.start_room::<S>(ray, start);
+        let near = strips.clear_beyond(start.to_array(), dir, room);
+        let mut occlusion = self.occluded(found, ray, p, dir, near);
+        occlusion.counters.bound.record(near.is_none());
+        occlusion
     }
 
     /// How far (in height) the true start of an occlusion ray from the hit of `ray` may lie

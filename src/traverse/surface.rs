@@ -17,6 +17,7 @@ use num_rational::BigRational;
 
 /// The answer for the ray `o + t*d` given in the traversal's arithmetic, over the terrain and
 /// the base the options carry (see [`trace_terrain`] for the terrain's part).
+#[inline]
 pub(super) fn trace_scalar<S: Scalar>(
     terrain: &Terrain,
     o: &[S; 3],

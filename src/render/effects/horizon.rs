@@ -152,7 +152,8 @@ fn near_rise(
 
 /// Whether direction `d` climbs strictly more steeply than `slope` (a [`slope_bound`]).
 pub fn climbs_above(d: DVec3, slope: f64) -> bool {
-    d.z > 0.0 && d.z > slope * d.x.hypot(d.y)
+    // (Not `hypot`: a unit direction cannot overflow; the bound's room covers the rounding.)
+    d.z > 0.0 && d.z > slope * (d.x * d.x + d.y * d.y).sqrt()
 }
 
 /// The height of the surface at `o`'s horizontal position, on cell `(i, j)` (a position off

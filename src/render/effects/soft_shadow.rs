@@ -110,7 +110,7 @@ impl Shader<'_> {
                 soft.clear += 1;
                 continue;
             }
-            let answer = self.occluded(found, ray, p, dir.into(), None);
+            let answer = self.occluded_beyond(found, ray, p, start, (axis.into(), dir.into()));
             // (Not traced: it starts above the terrain and rises.)
             let Some(occluded) = answer.occluded else {
                 soft.clear += 1;
