@@ -28,7 +28,8 @@ pub mod render;
 /// Answering rays (first hit, occlusion) by walking the grid: the methods, exact mode's
 /// strategy, query counters.
 pub mod traverse;
-/// The interactive viewer: winit, softbuffer and egui, drawn on the CPU.
+/// The interactive viewer: winit, softbuffer and egui, drawn on the CPU (feature `viewer`).
+#[cfg(feature = "viewer")]
 pub mod viewer;
 
 pub use geometry::{Base, Face, Ray, RayError, Side};

@@ -2,6 +2,7 @@ mod accuracy;
 mod effects;
 #[cfg(feature = "embree")]
 pub mod embree;
+#[cfg(feature = "bench")]
 pub mod plot;
 mod ray_sets;
 mod sizes;
