@@ -2,9 +2,9 @@
 //! the exact ray does not touch.
 
 use super::counters::{Counters, HitMiss};
-use super::exact_mode::F64Ray;
+use super::frame::start_level;
 use super::frame::Frame;
-use super::mipmap::start_level;
+use super::near_ray::F64Ray;
 use super::search::moves_away;
 use super::Query;
 use crate::arith::scalar::F64_TOLERANCE;

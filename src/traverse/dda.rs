@@ -5,8 +5,7 @@
 //! order, as the run walk.
 
 use super::degenerate::{is_point, walk_level, walk_point};
-use super::frame::{Frame, Span};
-use super::search::Follower;
+use super::frame::{Follower, Frame, Span};
 use crate::arith::scalar::{min, Scalar};
 use std::cmp::Ordering;
 use std::ops::ControlFlow;

@@ -1,8 +1,7 @@
 //! The two paths both walkers share: a path that is a single point (a vertical ray, or a
 //! segment clipped to length zero in the plane) and a path parallel to the rows.
 
-use super::frame::{Frame, Span};
-use super::search::Follower;
+use super::frame::{Follower, Frame, Span};
 use crate::arith::scalar::{max, min, Scalar};
 use std::ops::ControlFlow;
 

@@ -1,118 +1,26 @@
-//! Exact arithmetic's strategy beyond intervals first and rationals where they cannot settle
-//! (see [`Settling`](crate::arith::Settling)): an `f64` walk that answers exact rays alone
-//! where it can certify them ([`certified`](super::certified)), or clears the way for the
-//! exact walk; the hit's `t` solved exactly from its triangle's plane; and a shadow ray from a
-//! hit cast again in rationals from the exact hit point when intervals cannot settle it (its
-//! single unsettled triangle tests are decided in [`exact_start`](super::exact_start)).
+//! Exact arithmetic's walks before intervals and rationals (see
+//! [`Settling`](crate::arith::Settling)): an `f64` walk that answers exact rays alone where it
+//! can certify them ([`certified`](super::certified)), or clears the way for the exact walk.
+//! (The hit's `t` is solved exactly in [`exact_plane`](super::exact_plane); a shadow ray that
+//! intervals cannot settle is cast again from the exact hit point by the
+//! [`Tracer`](super::Tracer).)
 
+use super::answer::ScalarTrace;
+use super::approximation::Approximation;
 use super::cell_log::CellLog;
+use super::certified;
+use super::counters::Counters;
+use super::frame::{clip_grown, Frame};
+use super::mipmap;
+use super::mipmap::stretches;
+use super::near_ray::F64Ray;
+use super::options::{Query, WalkOptions};
+use super::search::{new_search, Search};
+use super::segment::{after_clearance, clearance_start};
 use super::walks::Walk;
-use super::*;
-use crate::arith::dyadic::Dyadic;
-use crate::arith::settled;
-
-/// [`Tracer::occluded`] in intervals: a ray with a decision they cannot settle is cast again
-/// in rationals from the exact hit point (where the start is a hit), and its answer marked
-/// as made exactly; otherwise the intervals are left unsettled for the caller to run again.
-pub(super) fn occluded_settling<S: Scalar>(
-    tracer: &Tracer<'_>,
-    from: &Start<'_, S>,
-    dir: [f64; 3],
-    skip_above: bool,
-) -> Occlusion {
-    let (answer, is_settled) = settled(|| tracer.occluded_in(from, dir, skip_above));
-    if is_settled {
-        return answer;
-    }
-    let exact = |ray: &Ray, hit: &Found<S>| {
-        let t = match tracer.base.filter(|_| hit.face != Face::Terrain) {
-            Some(base) => base_t_exact(tracer.terrain, &base, ray, hit.face, false)?.0,
-            None => plane_t_exact(tracer.terrain, ray, hit.cell, hit.triangle)?,
-        };
-        Some(Found {
-            t: Exact(t),
-            cell: hit.cell,
-            triangle: hit.triangle,
-            face: hit.face,
-        })
-    };
-    let again = match *from {
-        // (The caller runs the whole ray again in rationals, see `run`.)
-        Start::Point(_) => None,
-        Start::Hit { ray, hit } => exact(ray, hit)
-            .map(|hit| tracer.occluded_in(&Start::Hit { ray, hit: &hit }, dir, skip_above)),
-        Start::Near { ray, hit, point } => exact(ray, hit).map(|hit| {
-            let from = Start::Near {
-                ray,
-                hit: &hit,
-                point,
-            };
-            tracer.occluded_in(&from, dir, skip_above)
-        }),
-    };
-    match again {
-        Some(answer) => Occlusion {
-            exactly: true,
-            ..answer
-        },
-        None => {
-            unsettled();
-            answer
-        }
-    }
-}
-
-/// The `t` where the ray meets the plane of triangle `k` of `cell`, exactly; `None` if it
-/// runs parallel.
-pub fn plane_t_exact(
-    terrain: &Terrain,
-    ray: &Ray,
-    cell: (usize, usize),
-    k: u8,
-) -> Option<BigRational> {
-    let (above, closing) = exact_t(terrain, ray, [cell.0, cell.1], k)?;
-    Some(above.over(&closing))
-}
-
-/// Whether a ray of direction `dir` crosses the plane of triangle `k` of `cell` (does not
-/// run parallel to it), decided exactly.
-pub fn crosses_plane(terrain: &Terrain, cell: (usize, usize), k: u8, dir: [f64; 3]) -> bool {
-    let zero = || Dyadic::from_i64(0);
-    let (_, closing) = plane_crossing(
-        k,
-        terrain.corner_heights(cell.0, cell.1).map(Dyadic::from_f64),
-        (zero(), zero()),
-        [zero(), zero(), zero()],
-        dir.map(Dyadic::from_f64),
-    );
-    !closing.is_zero()
-}
-
-/// Where the ray meets the plane of triangle `k` of `cell`, exactly, as `t = above / closing`;
-/// `None` if it runs parallel.
-pub(super) fn exact_t(
-    terrain: &Terrain,
-    ray: &Ray,
-    [i, j]: [usize; 2],
-    k: u8,
-) -> Option<(Dyadic, Dyadic)> {
-    let (above, closing) = plane_crossing(
-        k,
-        terrain.corner_heights(i, j).map(Dyadic::from_f64),
-        (Dyadic::from_i64(i as i64), Dyadic::from_i64(j as i64)),
-        ray.origin().map(Dyadic::from_f64),
-        ray.dir().map(Dyadic::from_f64),
-    );
-    (!closing.is_zero()).then_some((above, closing))
-}
-
-/// The point `o + d * above/closing` of `ray`: each coordinate's numerator over `closing`,
-/// exactly.
-pub(super) fn point_over(ray: &Ray, above: &Dyadic, closing: &Dyadic) -> [Dyadic; 3] {
-    let (o, d) = (ray.origin(), ray.dir());
-    [0, 1, 2]
-        .map(|k| Dyadic::from_f64(o[k]) * closing.clone() + Dyadic::from_f64(d[k]) * above.clone())
-}
+use crate::arith::Scalar;
+use crate::heightfield::Terrain;
+use std::ops::ControlFlow;
 
 /// A ray in an arithmetic without rounding, answered from an `f64` walk alone (see
 /// [`certified::certify`]), its cells noted in a `C`: `None` where that cannot answer (the
@@ -145,9 +53,18 @@ pub(super) fn trace_certified<S: Scalar, C: CellLog, W: Walk>(
         return Some(ScalarTrace::missed(counters));
     }
     let near_ray = Approximation::along(frame, near, start);
-    let mut search = new_search::<S, C, W>(terrain, o, d, dir, Some(near), options, counters);
+    let mut search = new_search::<S, C>(
+        terrain,
+        o,
+        d,
+        dir,
+        Some(near),
+        options,
+        counters,
+        W::TESTS_RUNS,
+    );
     // Ends by itself or at the answer; both are fine here.
-    let _ = certified::certify::<S, C, W>(&near_ray, &mut search)?;
+    let _ = certified::certify(&near_ray, &mut search, W::certify)?;
     if search.tied && options.query == Query::FirstHit {
         return None;
     }
@@ -160,7 +77,7 @@ pub(super) fn trace_certified<S: Scalar, C: CellLog, W: Walk>(
 }
 
 /// The mipmap walk in an arithmetic without rounding, where an `f64` walk clears the way
-/// (see [`mipmap::clear_way`]): the exact walk follows only the stretches the `f64` walk
+/// (see [`clear_way`](stretches::clear_way)): the exact walk follows only the stretches the `f64` walk
 /// could not clear (the cells it reaches noted, as the exact walk's everywhere). `false` where
 /// it cannot help (the ray is not near enough an `f64` ray).
 pub(super) fn walk_cleared<S: Scalar, C: CellLog>(
@@ -175,7 +92,7 @@ pub(super) fn walk_cleared<S: Scalar, C: CellLog>(
     };
     let mut clearing = Counters::default();
     // Ends by itself or at the answer; both are fine here.
-    let _ = mipmap::clear_way(
+    let _ = stretches::clear_way(
         &near,
         terrain,
         search.query,
@@ -200,23 +117,6 @@ pub(super) fn walk_cleared<S: Scalar, C: CellLog>(
     );
     search.counters += clearing;
     true
-}
-
-/// Origin, radius per axis and direction of an `f64` ray near an exact one (see [`f64_ray`]).
-pub(super) type F64Ray = ([f64; 3], [f64; 3], [f64; 3]);
-
-/// An `f64` ray near one in an arithmetic without rounding: its origin, how far the exact
-/// origin may be from it per axis, and its direction, which must be the exact one. `None`
-/// for the rounding arithmetics, and where the direction is not an `f64` exactly.
-pub(super) fn f64_ray<S: Scalar>(o: &[S; 3], d: &[S; 3]) -> Option<F64Ray> {
-    if !S::EXACT {
-        return None;
-    }
-    let exact = |c: &S| c.f64_enclosure().filter(|&(_, r)| r == 0.0).map(|(x, _)| x);
-    let dir = [exact(&d[0])?, exact(&d[1])?, exact(&d[2])?];
-    let [x, y, z] = [&o[0], &o[1], &o[2]].map(|c| c.f64_enclosure());
-    let [(x, rx), (y, ry), (z, rz)] = [x?, y?, z?];
-    Some(([x, y, z], [rx, ry, rz], dir))
 }
 
 /// The `f64` ray near an exact one (see [`f64_ray`]) clipped to the terrain's box grown so

@@ -2,7 +2,7 @@
 //! decided exactly on its own: one test in integers, where casting the whole ray again in
 //! rationals costs about sixty times as much.
 
-use super::exact_mode::{exact_t, point_over};
+use super::exact_plane::{exact_t, point_over};
 use crate::arith::dyadic::Dyadic;
 use crate::geometry::{ray_space_axes, triangle_corners};
 use crate::heightfield::Terrain;

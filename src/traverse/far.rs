@@ -7,8 +7,6 @@
 //! start lies exactly on the ray, before the box, so the walk answers for the same ray: its
 //! `t` is the far ray's less the start's.
 
-use super::options::WalkOptions;
-use super::{trace_near, ScalarTrace};
 use crate::arith::scalar::exact_from_f64;
 use crate::arith::{unsettled, Exact, Scalar};
 use crate::geometry::clip_to_box;
@@ -103,31 +101,4 @@ fn moved_start<S: Scalar>(terrain: &Terrain, o: &[S; 3], d: &[S; 3]) -> FarStart
 fn exact_all<S>(v: &[S; 3], exact: impl Fn(&S) -> Option<Exact>) -> Option<[Exact; 3]> {
     let [x, y, z] = [&v[0], &v[1], &v[2]].map(exact);
     Some([x?, y?, z?])
-}
-
-/// [`trace_scalar`] for a ray from far off, walked from `origin`, its point at `t` (see
-/// [`far_start`]): its hit's `t` is the walk's plus `t`.
-// (Out of line: far rays are rare.)
-#[inline(never)]
-pub(super) fn trace_moved<S: Scalar>(
-    terrain: &Terrain,
-    (origin, t): (&[S; 3], BigRational),
-    d: &[S; 3],
-    dir_f64: [f64; 3],
-    walk_options: WalkOptions,
-) -> ScalarTrace<S> {
-    // (A clearance is a `t` of the ray as given, in `f64`, as a reach is: the walk makes its
-    // own way.)
-    let walk_options = WalkOptions {
-        clearance: None,
-        ..walk_options
-    };
-    let mut answer = trace_near(terrain, origin, d, dir_f64, walk_options);
-    if let Some(hit) = answer.hit.as_mut() {
-        match S::from_exact(&t) {
-            Some(t) => hit.t = t + hit.t.clone(),
-            None => unsettled(),
-        }
-    }
-    answer
 }

@@ -3,10 +3,10 @@
 //! exchanging x and y. Cells are named by frame indices `(cu, cv)` until they are reported. A
 //! ray comes into its frame clipped to the terrain's box ([`clip`]).
 
-use super::search::Follower;
 use crate::arith::scalar::Scalar;
 use crate::geometry::{clip_to_box, Clipped};
 use crate::heightfield::Terrain;
+use std::ops::ControlFlow;
 
 /// A span of cells the walk reached, in visiting order: one row of cells (`rows == 1`), or
 /// two rows walked side by side column by column when the path runs along the grid line
@@ -264,4 +264,127 @@ fn clip_to<S: Scalar>(
         clipped,
         (field.width(), field.height()),
     ))
+}
+
+/// What every walk asks of whoever follows it: the block walks ask for their block, run and
+/// cell tests and hand over the cells they cannot skip; the run walk and the DDA hand over
+/// spans of cells ([`Follower::span`]).
+pub(in crate::traverse) trait Follower<S: Scalar> {
+    /// Breaks when nothing at or after `t` can change the answer.
+    fn stop_before(&mut self, t: &S) -> ControlFlow<()>;
+    /// Whether block `(bi, bj)` of level `k` (a cell when `k` is 0) may be touched by the
+    /// path over `[t_lo, t_hi]`.
+    fn may_hit(&mut self, k: u32, block: (usize, usize), t_lo: &S, t_hi: &S) -> bool;
+    /// Whether a run of blocks of frame `f` may be touched by the path over `[t_lo, t_hi]`
+    /// (the hierarchical run walk, [`descend_runs`](super::mipmap::run_levels::descend_runs)). By default every run may be (a
+    /// follower of the block walk only, which never asks).
+    fn run_may_hit(&mut self, _f: &Frame<S>, _run: &BlockRun, _t_lo: &S, _t_hi: &S) -> bool {
+        true
+    }
+    /// A cell that may be hit, crossed from `at` to `exit` (to the path's end if
+    /// `ends_inside`); `alone`: no other cell touches that part where no other part covers
+    /// it, so the cell's own triangles are all there is to test.
+    fn cell(&mut self, cell: (usize, usize), part: Part<'_, S>) -> ControlFlow<()>;
+    /// A span of cells of frame `f` in visiting order, from the walks that go row by row
+    /// or cell by cell ([`super::runs`], [`super::dda`]), which the block walks end in.
+    fn span(&mut self, f: &Frame<S>, span: Span<S>) -> ControlFlow<()>;
+    /// A cell the walk passed by at level 0 without testing its triangles.
+    fn passed(&mut self, cell: (usize, usize));
+    /// Whether the ray moves away from the samples its block test compares it with (or keeps
+    /// level): the highest samples when it climbs above the surface, the lowest when it
+    /// descends under it. Then its nearest point to them in a block is where the walk is, and
+    /// moves as the walk moves through the block.
+    fn moves_away(&self) -> bool;
+    /// The path left the grid before its end, at the start of `part` (a path lengthened by
+    /// rounding, or grown to cover an exact ray near it); by default nothing is left to do.
+    fn left_grid(&mut self, _part: Part<'_, S>) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
+}
+
+/// A point on the path: its ray parameter and frame coordinates, the frame cell they floor
+/// to, and whether it lies on the `u` or `v` face of the block it leaves (the start lies on
+/// neither).
+// (The cell is kept with the point, so that the tests of a descent do not work its two
+// floors out again.)
+#[derive(Clone)]
+pub(in crate::traverse) struct Point<S> {
+    pub t: S,
+    pub(in crate::traverse) u: S,
+    pub(in crate::traverse) v: S,
+    pub(in crate::traverse) cell: (i64, i64),
+    pub(in crate::traverse) on_u: bool,
+    pub(in crate::traverse) on_v: bool,
+}
+
+/// A cell's part of the path.
+pub(in crate::traverse) struct Part<'a, S> {
+    pub frame: &'a Frame<S>,
+    /// The cell in frame indices.
+    pub uv: (i64, i64),
+    pub at: &'a Point<S>,
+    pub(in crate::traverse) exit: &'a Point<S>,
+    pub(in crate::traverse) ends_inside: bool,
+    pub(in crate::traverse) alone: bool,
+}
+
+/// A run of the hierarchical run walk: the level-`k` blocks (cells at level 0) in frame row
+/// of blocks `row` over frame columns of blocks `blocks` (inclusive).
+pub(in crate::traverse) struct BlockRun {
+    pub k: u32,
+    pub row: i64,
+    pub blocks: (i64, i64),
+}
+
+/// The highest sample of a run's blocks, or with `lowest` a lower bound of their samples
+/// ([`crate::heightfield::Mipmap::lowest`]).
+// (Inlined by hand, and a plain loop rather than an iterator's fold: it is most of a run
+// test. Block by block: most runs hold one or two blocks, too few for a reduction over slices
+// to pay.)
+#[inline(always)]
+pub(in crate::traverse) fn run_sample<S: Scalar>(
+    terrain: &Terrain,
+    f: &Frame<S>,
+    &BlockRun { k, row, blocks }: &BlockRun,
+    lowest: bool,
+) -> u16 {
+    let mipmap = terrain.mipmap();
+    let mut extreme = if lowest { u16::MAX } else { 0 };
+    for col in blocks.0..blocks.1 + 1 {
+        // Any frame cell of a frame block names the block: mirroring maps multiples of 2^k
+        // to multiples of 2^k (a block's first frame cell may lie past a mirrored grid's
+        // edge, in the block all the same).
+        let (i, j) = f.cell(col << k, row << k);
+        let (bi, bj) = (i >> k, j >> k);
+        let sample = match (k, lowest) {
+            (0, _) => {
+                let (lo, hi) = terrain.cell_sample_range(bi, bj);
+                if lowest {
+                    lo
+                } else {
+                    hi
+                }
+            }
+            (_, true) => mipmap.lowest(k, bi, bj),
+            (_, false) => mipmap.highest(k, bi, bj),
+        };
+        extreme = if lowest {
+            extreme.min(sample)
+        } else {
+            extreme.max(sample)
+        };
+    }
+    extreme
+}
+
+/// The level a walk starts at: [`first_level`], or lower where the caller knows better.
+pub(in crate::traverse) fn start_level(top: u32, level: Option<u32>) -> u32 {
+    let first = first_level(top);
+    level.map_or(first, |k| k.min(first))
+}
+
+/// Blocks an eighth of the grid wide: the two levels above them seldom pass a test (the ray
+/// is inside the box, so the top block always fails), and climbing is cheap.
+fn first_level(top: u32) -> u32 {
+    top.saturating_sub(3)
 }

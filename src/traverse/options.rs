@@ -69,7 +69,7 @@ pub(crate) struct WalkOptions {
     /// [`Tracer::within`](super::Tracer::within)).
     pub reach: Option<f64>,
     /// Walk the first cells one by one from a clearance (see
-    /// [`near_walk`](super::mipmap::near_walk)); the answers are the same either way.
+    /// [`near_walk`](super::mipmap::near::near_walk)); the answers are the same either way.
     pub near: bool,
     /// The base under the terrain, part of the surface where given.
     pub base: Option<Base>,

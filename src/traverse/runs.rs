@@ -14,8 +14,7 @@
 //! the cells the segment touches, in order of first contact.
 
 use super::degenerate::{is_point, walk_level, walk_point};
-use super::frame::{Frame, Span};
-use super::search::Follower;
+use super::frame::{Follower, Frame, Span};
 use crate::arith::scalar::{min, Scalar};
 use std::ops::ControlFlow;
 

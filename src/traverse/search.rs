@@ -4,9 +4,10 @@
 use super::cell_log::CellLog;
 use super::counters::Counters;
 use super::exact_start::PlanePoint;
-use super::frame::{Frame, Span};
-use super::mipmap::{run_sample, BlockRun, Part};
-use super::Query;
+use super::frame::{run_sample, BlockRun, Follower, Frame, Part, Span};
+use super::near_ray::F64Ray;
+use super::options::{Query, WalkOptions};
+use super::runs;
 use crate::arith::scalar::{max, min, Scalar};
 use crate::arith::{settled, SimdPath};
 use crate::geometry::{CellTriangles, Certain, CertainMiss, Face, RaySpace, TriangleHit};
@@ -33,42 +34,6 @@ impl<S: Scalar> Found<S> {
     /// The hit point `o + t*d`, in the ray's arithmetic.
     pub fn point(&self, o: &[S; 3], d: &[S; 3]) -> [S; 3] {
         [0, 1, 2].map(|k| o[k].clone() + d[k].clone() * self.t.clone())
-    }
-}
-
-/// What every walk asks of whoever follows it: the block walks ask for their block, run and
-/// cell tests and hand over the cells they cannot skip; the run walk and the DDA hand over
-/// spans of cells ([`Follower::span`]).
-pub(super) trait Follower<S: Scalar> {
-    /// Breaks when nothing at or after `t` can change the answer.
-    fn stop_before(&mut self, t: &S) -> ControlFlow<()>;
-    /// Whether block `(bi, bj)` of level `k` (a cell when `k` is 0) may be touched by the
-    /// path over `[t_lo, t_hi]`.
-    fn may_hit(&mut self, k: u32, block: (usize, usize), t_lo: &S, t_hi: &S) -> bool;
-    /// Whether a run of blocks of frame `f` may be touched by the path over `[t_lo, t_hi]`
-    /// (the hierarchical run walk, [`descend_runs`](super::mipmap::descend_runs)). By default every run may be (a
-    /// follower of the block walk only, which never asks).
-    fn run_may_hit(&mut self, _f: &Frame<S>, _run: &BlockRun, _t_lo: &S, _t_hi: &S) -> bool {
-        true
-    }
-    /// A cell that may be hit, crossed from `at` to `exit` (to the path's end if
-    /// `ends_inside`); `alone`: no other cell touches that part where no other part covers
-    /// it, so the cell's own triangles are all there is to test.
-    fn cell(&mut self, cell: (usize, usize), part: Part<'_, S>) -> ControlFlow<()>;
-    /// A span of cells of frame `f` in visiting order, from the walks that go row by row
-    /// or cell by cell ([`super::runs`], [`super::dda`]), which the block walks end in.
-    fn span(&mut self, f: &Frame<S>, span: Span<S>) -> ControlFlow<()>;
-    /// A cell the walk passed by at level 0 without testing its triangles.
-    fn passed(&mut self, cell: (usize, usize));
-    /// Whether the ray moves away from the samples its block test compares it with (or keeps
-    /// level): the highest samples when it climbs above the surface, the lowest when it
-    /// descends under it. Then its nearest point to them in a block is where the walk is, and
-    /// moves as the walk moves through the block.
-    fn moves_away(&self) -> bool;
-    /// The path left the grid before its end, at the start of `part` (a path lengthened by
-    /// rounding, or grown to cover an exact ray near it); by default nothing is left to do.
-    fn left_grid(&mut self, _part: Part<'_, S>) -> ControlFlow<()> {
-        ControlFlow::Continue(())
     }
 }
 
@@ -476,4 +441,87 @@ pub fn span_cells<'f, S: Scalar>(
     span: &Span<S>,
 ) -> impl Iterator<Item = (usize, usize)> + 'f {
     frame_cells(span).map(move |(cu, cv)| frame.cell(cu, cv))
+}
+
+/// A search for the ray's answer, before any walk.
+// (Inlined by hand: called once per ray, but `Search` is large, and out of line its
+// construction costs every ray.)
+#[inline(always)]
+pub(super) fn new_search<'a, S: Scalar, C: CellLog>(
+    terrain: &'a Terrain,
+    o: &'a [S; 3],
+    d: &'a [S; 3],
+    dir_f64: [f64; 3],
+    near: Option<F64Ray>,
+    options: &WalkOptions,
+    counters: Counters,
+    run_test: bool,
+) -> Search<'a, S, C> {
+    Search {
+        terrain,
+        ray: LazyRaySpace::new(o, d, dir_f64),
+        certain_miss: near
+            .map(|(origin, [rx, ry, rz], dir)| CertainMiss::new(origin, rx.max(ry).max(rz), dir)),
+        oz: o[2].clone(),
+        oz_raised: o[2].clone(),
+        dz: d[2].clone(),
+        under: false,
+        moves_away: moves_away(&d[2], false),
+        query: options.query,
+        run_test,
+        counters,
+        found: None,
+        tied: false,
+        cells: C::default(),
+        start_triangle: options.start_triangle,
+        // (`S::EXACT` is asked here as well as where the start is used, which compiles it out
+        // of the rounding arithmetics, `f64` included.)
+        exact_start: options
+            .exact_start
+            .filter(|_| S::EXACT && options.query == Query::Shadow),
+        decided_exactly: false,
+    }
+}
+
+impl<S: Scalar, C: CellLog> Follower<S> for Search<'_, S, C> {
+    fn stop_before(&mut self, t: &S) -> ControlFlow<()> {
+        Search::stop_before(self, t)
+    }
+    // Inlined by hand: a call costs a fifth of the walk's time, and whether the compiler
+    // inlines it by itself depends on unrelated code elsewhere in the crate.
+    #[inline(always)]
+    fn may_hit(&mut self, k: u32, (bi, bj): (usize, usize), t_lo: &S, t_hi: &S) -> bool {
+        if k == 0 {
+            self.cell_may_hit(bi, bj, t_lo, t_hi)
+        } else {
+            let may_hit = self.block_may_hit(k, (bi, bj), t_lo, t_hi);
+            if may_hit {
+                self.terrain.fetch_below(k, bi, bj);
+            }
+            may_hit
+        }
+    }
+    fn run_may_hit(&mut self, f: &Frame<S>, run: &BlockRun, t_lo: &S, t_hi: &S) -> bool {
+        self.blocks_run_may_hit(f, run, t_lo, t_hi)
+    }
+    // (Inlined by hand too: the run walk calls it as well, and out of line it would slow the
+    // block walk.)
+    #[inline(always)]
+    fn cell(&mut self, (i, j): (usize, usize), part: Part<'_, S>) -> ControlFlow<()> {
+        if part.alone {
+            self.reached(i, j);
+            return self.triangles(i, j);
+        }
+        runs::walk(&part.path(), self)
+    }
+    #[inline(always)]
+    fn span(&mut self, f: &Frame<S>, span: Span<S>) -> ControlFlow<()> {
+        Search::span(self, f, span)
+    }
+    fn passed(&mut self, (i, j): (usize, usize)) {
+        self.reached(i, j);
+    }
+    fn moves_away(&self) -> bool {
+        self.moves_away
+    }
 }

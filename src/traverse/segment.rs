@@ -1,8 +1,10 @@
 //! Cutting a ray's segment before its walk: from where a clearance proves it clear, up to
 //! where an occlusion ray stops looking, and the level the walk starts at.
 
+use super::frame::Frame;
 use super::options::{Query, WalkOptions};
-use super::{Clearance, Frame, Scalar};
+use super::wedges::Clearance;
+use crate::arith::Scalar;
 
 /// Where the hierarchical walk starts when the ray is known clear of the surface up to some
 /// `t` ([`WalkOptions::clearance`]): `t` moved down by more than the rounding to `S` (the walk

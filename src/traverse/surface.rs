@@ -8,7 +8,10 @@
 //! (within its reach: whatever proves the terrain clear beyond it proves the base clear too,
 //! as a wall never rises above the terrain's edge and the floor lies below every sample).
 
-use super::{trace_terrain, Found, Query, ScalarTrace, WalkOptions};
+use super::answer::ScalarTrace;
+use super::engine::trace_terrain;
+use super::options::{Query, WalkOptions};
+use super::search::Found;
 use crate::arith::{Exact, Scalar};
 use crate::geometry::{base_hit, Base, BaseQuery, Face};
 use crate::heightfield::Terrain;

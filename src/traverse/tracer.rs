@@ -2,13 +2,18 @@
 //! [`Tracer`] answers both questions in one arithmetic `S`, for code that runs per arithmetic
 //! through [`run`](crate::arith::run) (the renderer's pixels).
 
-use super::exact_mode::{crosses_plane, occluded_settling};
-use super::{trace_scalar, Clearance, Counters, Found, Method, PlanePoint, Query, ScalarTrace};
-use super::{Scalar, TraceOptions, WalkOptions};
-use crate::arith::{run, Generic};
+use super::answer::ScalarTrace;
+use super::counters::Counters;
+use super::exact_plane::{crosses_plane, plane_t_exact};
+use super::exact_start::PlanePoint;
+use super::options::{Method, Query, TraceOptions, WalkOptions};
+use super::search::Found;
+use super::surface::{base_t_exact, trace_scalar};
+use super::wedges::Clearance;
+use crate::arith::{run, settled, unsettled, Exact, Generic, Scalar};
+use crate::geometry::Ray;
 use crate::geometry::{gradient, plane_height, triangle_corners, Base, Face, Side};
 use crate::heightfield::Terrain;
-use crate::Ray;
 use glam::DVec3;
 
 /// Traces rays over one terrain with one method, in any arithmetic.
@@ -371,5 +376,56 @@ impl Generic for FromHit<'_> {
             hit: &hit,
         };
         Some(self.tracer.occluded(&from, self.dir, false))
+    }
+}
+
+/// [`Tracer::occluded`] in intervals: a ray with a decision they cannot settle is cast again
+/// in rationals from the exact hit point (where the start is a hit), and its answer marked
+/// as made exactly; otherwise the intervals are left unsettled for the caller to run again.
+fn occluded_settling<S: Scalar>(
+    tracer: &Tracer<'_>,
+    from: &Start<'_, S>,
+    dir: [f64; 3],
+    skip_above: bool,
+) -> Occlusion {
+    let (answer, is_settled) = settled(|| tracer.occluded_in(from, dir, skip_above));
+    if is_settled {
+        return answer;
+    }
+    let exact = |ray: &Ray, hit: &Found<S>| {
+        let t = match tracer.base.filter(|_| hit.face != Face::Terrain) {
+            Some(base) => base_t_exact(tracer.terrain, &base, ray, hit.face, false)?.0,
+            None => plane_t_exact(tracer.terrain, ray, hit.cell, hit.triangle)?,
+        };
+        Some(Found {
+            t: Exact(t),
+            cell: hit.cell,
+            triangle: hit.triangle,
+            face: hit.face,
+        })
+    };
+    let again = match *from {
+        // (The caller runs the whole ray again in rationals, see `run`.)
+        Start::Point(_) => None,
+        Start::Hit { ray, hit } => exact(ray, hit)
+            .map(|hit| tracer.occluded_in(&Start::Hit { ray, hit: &hit }, dir, skip_above)),
+        Start::Near { ray, hit, point } => exact(ray, hit).map(|hit| {
+            let from = Start::Near {
+                ray,
+                hit: &hit,
+                point,
+            };
+            tracer.occluded_in(&from, dir, skip_above)
+        }),
+    };
+    match again {
+        Some(answer) => Occlusion {
+            exactly: true,
+            ..answer
+        },
+        None => {
+            unsettled();
+            answer
+        }
     }
 }

@@ -5,9 +5,11 @@
 use super::approximation::Approximation;
 use super::cell_log::CellLog;
 use super::certified::Certifying;
+use super::frame::Follower;
+use super::frame::Part;
 use super::frame::{Frame, Span};
-use super::mipmap::{self, Part};
-use super::search::{span_cells, Follower, Search};
+use super::mipmap;
+use super::search::{span_cells, Search};
 use super::{dda, runs, Method};
 use crate::arith::scalar::Scalar;
 use std::ops::ControlFlow;
@@ -15,7 +17,7 @@ use std::ops::ControlFlow;
 /// One way to walk the grid along a ray's path.
 pub(super) trait Walk {
     /// Whether an `f64` walk clears the way for this walk in the arithmetics without rounding
-    /// (see [`mipmap::clear_way`]).
+    /// (see [`clear_way`](mipmap::stretches::clear_way)).
     const CLEARS_WAY: bool = false;
     /// Whether the search tests each span the walk hands over as a whole before its cells
     /// (the run test, [`Search::span`]).

@@ -27,21 +27,22 @@ mod runs;
 
 use super::approximation::{Approximation, Bounds};
 use super::cell_log::CellLog;
-use super::mipmap::{descend, descend_runs, run_sample, BlockRun, Part};
-use super::walks::Walk;
+use super::frame::{run_sample, BlockRun, Follower, Part};
+use super::mipmap::descend;
+use super::mipmap::run_levels::descend_runs;
 use crate::arith::scalar::Scalar;
 use crate::traverse::frame::{Frame, Span};
-use crate::traverse::search::Follower;
 use crate::traverse::search::{Found, Search};
 use std::ops::ControlFlow;
 
-/// Searches the exact ray near `ray` for its answer, walking `W` only in `f64`; breaks when
-/// the answer is known. The path must cross blocks ([`super::mipmap::has_blocks`]: a path
+/// Searches the exact ray near `ray` for its answer, walking only in `f64` with `walk` (a
+/// method's [`Walk::certify`](super::walks::Walk::certify)); breaks when the answer is known. The path must cross blocks ([`super::mipmap::has_blocks`]: a path
 /// along a row or a point is left to the exact walk). `None`, before any walk, where the
 /// bounds do not hold (see [`Bounds::new`]).
-pub fn certify<S: Scalar, C: CellLog, W: Walk>(
+pub fn certify<S: Scalar, C: CellLog>(
     ray: &Approximation,
     search: &mut Search<'_, S, C>,
+    walk: impl FnOnce(&Approximation, &mut Certifying<'_, '_, S, C>) -> ControlFlow<()>,
 ) -> Option<ControlFlow<()>> {
     let mut certifying = Certifying {
         bounds: Bounds::new(ray, search.terrain)?,
@@ -50,7 +51,7 @@ pub fn certify<S: Scalar, C: CellLog, W: Walk>(
         recent: [(i64::MIN, i64::MIN); RECENT],
         oldest: 0,
     };
-    Some(W::certify(ray, &mut certifying))
+    Some(walk(ray, &mut certifying))
 }
 
 impl<S: Scalar, C: CellLog> Certifying<'_, '_, S, C> {

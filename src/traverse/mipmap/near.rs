@@ -9,10 +9,11 @@
 //! outside the grid), the near walk stops before that part and the block walk takes the
 //! rest of the path from there.
 
-use super::{on_a_grid_line, Point};
+use super::path::on_a_grid_line;
 use crate::arith::scalar::Scalar;
 use crate::traverse::cell_log::CellLog;
 use crate::traverse::frame::Frame;
+use crate::traverse::frame::Point;
 use crate::traverse::options::WalkOptions;
 use crate::traverse::search::Search;
 

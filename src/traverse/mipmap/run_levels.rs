@@ -19,11 +19,10 @@
 //! the run). Points where the path leaves a row are snapped onto the row's face, as the
 //! mipmap walk snaps its exit points, so rounding never steps back into a row it passed.
 
-use super::{cell_in_grid, ends_inside, exit_point, Part, Point};
+use super::path::{cell_in_grid, ends_inside, exit_point};
 use crate::arith::scalar::Scalar;
-use crate::heightfield::Terrain;
-use crate::traverse::frame::Frame;
-use crate::traverse::search::Follower;
+use crate::traverse::frame::{BlockRun, Follower, Frame};
+use crate::traverse::frame::{Part, Point};
 use std::ops::ControlFlow;
 
 /// The run walk from level `k` down to cells and up again (at most to `top`).
@@ -125,53 +124,4 @@ pub(in crate::traverse) fn descend_runs<S: Scalar>(
         at = exit;
         first_part = false;
     }
-}
-
-/// A run of the hierarchical run walk: the level-`k` blocks (cells at level 0) in frame row
-/// of blocks `row` over frame columns of blocks `blocks` (inclusive).
-pub(in crate::traverse) struct BlockRun {
-    pub k: u32,
-    pub row: i64,
-    pub blocks: (i64, i64),
-}
-
-/// The highest sample of a run's blocks, or with `lowest` a lower bound of their samples
-/// ([`crate::heightfield::Mipmap::lowest`]).
-// (Inlined by hand, and a plain loop rather than an iterator's fold: it is most of a run
-// test. Block by block: most runs hold one or two blocks, too few for a reduction over slices
-// to pay.)
-#[inline(always)]
-pub(in crate::traverse) fn run_sample<S: Scalar>(
-    terrain: &Terrain,
-    f: &Frame<S>,
-    &BlockRun { k, row, blocks }: &BlockRun,
-    lowest: bool,
-) -> u16 {
-    let mipmap = terrain.mipmap();
-    let mut extreme = if lowest { u16::MAX } else { 0 };
-    for col in blocks.0..blocks.1 + 1 {
-        // Any frame cell of a frame block names the block: mirroring maps multiples of 2^k
-        // to multiples of 2^k (a block's first frame cell may lie past a mirrored grid's
-        // edge, in the block all the same).
-        let (i, j) = f.cell(col << k, row << k);
-        let (bi, bj) = (i >> k, j >> k);
-        let sample = match (k, lowest) {
-            (0, _) => {
-                let (lo, hi) = terrain.cell_sample_range(bi, bj);
-                if lowest {
-                    lo
-                } else {
-                    hi
-                }
-            }
-            (_, true) => mipmap.lowest(k, bi, bj),
-            (_, false) => mipmap.highest(k, bi, bj),
-        };
-        extreme = if lowest {
-            extreme.min(sample)
-        } else {
-            extreme.max(sample)
-        };
-    }
-    extreme
 }

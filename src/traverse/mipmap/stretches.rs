@@ -5,8 +5,7 @@ use super::{descend, has_blocks, Part};
 use crate::heightfield::Terrain;
 use crate::traverse::approximation::{Approximation, Bounds};
 use crate::traverse::counters::Counters;
-use crate::traverse::frame::{Frame, Span};
-use crate::traverse::search::Follower;
+use crate::traverse::frame::{Follower, Frame, Span};
 use crate::traverse::Query;
 use std::ops::ControlFlow;
 

@@ -3,7 +3,7 @@
 //! steps are the same in each (additions, multiplications and comparisons, never fused), so
 //! every path gives the same answers.
 
-use super::lanes::{Lanes, NodeTest, Packet};
+use super::lanes::{Kernel, Lanes, NodeTest, Packet};
 use super::walk::walk as walk_inline;
 #[cfg(target_arch = "x86_64")]
 use super::x86;
@@ -20,11 +20,6 @@ pub(super) fn walk(path: SimdPath, p: &Packet<'_>, out: &mut PacketClearance) {
         SimdPath::Avx2 => unsafe { walk_avx2(p, out) },
         _ => walk_inline::<Portable>(p, out),
     }
-}
-
-/// A node test for all lanes at once ([`Lanes::test`], in some instruction set).
-pub(super) trait Kernel {
-    fn test(lanes: &Lanes, room: f64, faces: [f64; 4], highest: f64) -> NodeTest;
 }
 
 /// The portable test, SIMD as far as the compiler makes it.

@@ -1,11 +1,12 @@
 //! A packet's rays in lanes, and the node test made for all of them at once.
 
-use super::LANES;
 use crate::heightfield::Terrain;
-use crate::traverse::clip;
-use crate::traverse::frame::Frame;
+use crate::traverse::frame::{clip, Frame};
 use crate::traverse::mipmap::has_blocks;
 use crate::Ray;
+
+/// The most rays a packet holds (one AVX-512 register of `f64`).
+pub const LANES: usize = 8;
 
 /// Room, relative to the largest coordinate involved, left around every block face and every
 /// height: far more than the few roundings of `f64` each computation makes.
@@ -177,4 +178,9 @@ fn bits(lanes: &[bool; LANES]) -> u32 {
         .iter()
         .enumerate()
         .fold(0, |m, (l, &b)| m | (u32::from(b) << l))
+}
+
+/// A node test for all lanes at once ([`Lanes::test`], in some instruction set).
+pub(super) trait Kernel {
+    fn test(lanes: &Lanes, room: f64, faces: [f64; 4], highest: f64) -> NodeTest;
 }

@@ -31,9 +31,7 @@ use super::Clearance;
 use crate::heightfield::Terrain;
 use crate::Ray;
 use lanes::Packet;
-
-/// The most rays a packet holds (one AVX-512 register of `f64`).
-pub const LANES: usize = 8;
+pub use lanes::LANES;
 
 /// Rays left in a packet when all of them leave it for their own walks.
 const HANDOFF: u32 = 1;

@@ -1,8 +1,7 @@
 //! The packet's walk: depth first down the mipmap, each block's four children tested together
 //! and the ones a ray may touch pushed far first, so that the near one is walked first.
 
-use super::dispatch::Kernel;
-use super::lanes::Packet;
+use super::lanes::{Kernel, Packet};
 use super::{PacketClearance, HANDOFF, LANES};
 use crate::traverse::Clearance;
 

@@ -1,0 +1,219 @@
+//! The way a ray goes in one arithmetic, from its start to its answer: a start far off
+//! moved in exactly, exact mode's certified `f64` walk tried first, then the clip to the
+//! terrain's box, the clearance and reach cut off, and the walk of the method (near cells
+//! first where that is exact).
+
+use super::answer::ScalarTrace;
+use super::cell_log::{CellLog, Recorded, Unrecorded};
+use super::counters::Counters;
+use super::exact_mode::{trace_certified, walk_cleared};
+use super::far::{far_start, FarStart};
+use super::frame::clip;
+use super::mipmap::near;
+use super::near_ray::f64_ray;
+use super::options::WalkOptions;
+use super::search::{new_search, slack};
+use super::segment::{after_clearance, clearance_start, first_level, within_reach};
+use super::walks::{choose, Walk, WithWalk};
+use crate::arith::{unsettled, Scalar};
+use crate::heightfield::Terrain;
+use num_rational::BigRational;
+
+/// Traces a ray given in the traversal's own arithmetic over the terrain alone (for rays that
+/// start where another ray hit: exact mode keeps the exact point). `dir_f64` is the direction
+/// as given, which picks the octant and axes identically in every arithmetic. For
+/// [`Rational`] the caller sets the bound (see [`run`](crate::arith::run)).
+pub(super) fn trace_terrain<S: Scalar>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+) -> ScalarTrace<S> {
+    // (A shadow ray from a hit given exactly starts on the surface, never far off.)
+    if walk_options.exact_start.is_none() {
+        match far_start(terrain, o, d) {
+            FarStart::Given => {}
+            FarStart::Misses => {
+                let mut counters = Counters::default();
+                counters.bbox.record(false);
+                return ScalarTrace::missed(counters);
+            }
+            // A reach is a `t` of the ray as given, in `f64`, which a start moved by a
+            // fraction keeps only approximately: rationals walk such a ray as given.
+            FarStart::Moved { .. } if walk_options.reach.is_some() => {
+                if S::ENCLOSES {
+                    unsettled();
+                    return ScalarTrace::missed(Counters::default());
+                }
+            }
+            FarStart::Moved { origin, t } => {
+                return trace_moved(terrain, (&origin, t), d, dir_f64, walk_options);
+            }
+        }
+    }
+    trace_near(terrain, o, d, dir_f64, walk_options)
+}
+
+/// [`trace_terrain`] from the ray's own origin.
+#[inline(always)]
+fn trace_near<S: Scalar>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+) -> ScalarTrace<S> {
+    let ray = RayIn {
+        terrain,
+        o,
+        d,
+        dir_f64,
+        walk_options,
+    };
+    choose(walk_options.method, ray)
+}
+
+/// A ray to trace, in the traversal's arithmetic, and how.
+struct RayIn<'a, S> {
+    terrain: &'a Terrain,
+    o: &'a [S; 3],
+    d: &'a [S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+}
+
+impl<S: Scalar> WithWalk for RayIn<'_, S> {
+    type Output = ScalarTrace<S>;
+    #[inline(always)]
+    fn with<W: Walk>(self) -> ScalarTrace<S> {
+        let RayIn {
+            terrain,
+            o,
+            d,
+            dir_f64,
+            walk_options,
+        } = self;
+        trace_walk::<S, W>(terrain, o, d, dir_f64, walk_options)
+    }
+}
+
+/// [`trace_terrain`] along walk `W`, the cells it reaches listed if the options ask.
+fn trace_walk<S: Scalar, W: Walk>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+) -> ScalarTrace<S> {
+    if walk_options.record_cells {
+        return trace_recorded::<S, W>(terrain, o, d, dir_f64, walk_options);
+    }
+    trace_logged::<S, Unrecorded, W>(terrain, o, d, dir_f64, walk_options)
+}
+
+/// [`trace_walk`] listing the cells.
+// (Out of line: the renderer's rays list none.)
+#[inline(never)]
+fn trace_recorded<S: Scalar, W: Walk>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+) -> ScalarTrace<S> {
+    trace_logged::<S, Recorded, W>(terrain, o, d, dir_f64, walk_options)
+}
+
+/// [`trace_walk`] noting the cells it reaches in a `C`: the same walks whatever `C` is.
+#[inline(always)]
+fn trace_logged<S: Scalar, C: CellLog, W: Walk>(
+    terrain: &Terrain,
+    o: &[S; 3],
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+) -> ScalarTrace<S> {
+    // (Once per ray: for rationals each component's enclosure is a fraction's subtraction.)
+    let near = f64_ray(o, d);
+    let certified =
+        near.and_then(|near| trace_certified::<S, C, W>(terrain, o, d, near, &walk_options));
+    if let Some(answer) = certified {
+        return answer;
+    }
+    let mut counters = Counters::default();
+    let frame = clip(terrain, o, d, dir_f64);
+    let Some(mut frame) = frame else {
+        counters.bbox.record(false);
+        return ScalarTrace::missed(counters);
+    };
+    counters.bbox.record(true);
+    let start = clearance_start::<S>(&walk_options);
+    // (The clearance covers the whole segment, or it lies beyond the reach.)
+    if !after_clearance(&mut frame, start) || !within_reach(&mut frame, &walk_options) {
+        return ScalarTrace::missed(counters);
+    }
+    let mut search = new_search::<S, C>(
+        terrain,
+        o,
+        d,
+        dir_f64,
+        near,
+        &walk_options,
+        counters,
+        W::TESTS_RUNS,
+    );
+    search.widen_by(slack(&o[2], &d[2], &frame.t1));
+    let cleared = W::CLEARS_WAY
+        && S::EXACT
+        && walk_options.reach.is_none()
+        && near
+            .is_some_and(|near| walk_cleared(terrain, (near, start), dir_f64, &frame, &mut search));
+    let near = !cleared && near::starts_near::<S>(&walk_options, start.is_some(), &frame);
+    let walked_near = near
+        && match near::near_walk(&frame, &mut search, near::NEAR_CELLS) {
+            near::Near::Done => true,
+            near::Near::From(at) => {
+                frame.resume(at);
+                false
+            }
+        };
+    if !cleared && !walked_near {
+        let level = first_level(&walk_options, start);
+        // Ends by itself or at the answer; both are fine here.
+        let _ = W::walk(&frame, level, &mut search);
+    }
+    ScalarTrace {
+        hit: search.found,
+        counters: search.counters,
+        cells: search.cells.into_cells(),
+        decided_exactly: search.decided_exactly,
+    }
+}
+
+/// [`trace_scalar`] for a ray from far off, walked from `origin`, its point at `t` (see
+/// [`far_start`]): its hit's `t` is the walk's plus `t`.
+// (Out of line: far rays are rare.)
+#[inline(never)]
+fn trace_moved<S: Scalar>(
+    terrain: &Terrain,
+    (origin, t): (&[S; 3], BigRational),
+    d: &[S; 3],
+    dir_f64: [f64; 3],
+    walk_options: WalkOptions,
+) -> ScalarTrace<S> {
+    // (A clearance is a `t` of the ray as given, in `f64`, as a reach is: the walk makes its
+    // own way.)
+    let walk_options = WalkOptions {
+        clearance: None,
+        ..walk_options
+    };
+    let mut answer = trace_near(terrain, origin, d, dir_f64, walk_options);
+    if let Some(hit) = answer.hit.as_mut() {
+        match S::from_exact(&t) {
+            Some(t) => hit.t = t + hit.t.clone(),
+            None => unsettled(),
+        }
+    }
+    answer
+}
