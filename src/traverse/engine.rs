@@ -155,9 +155,7 @@ fn trace_logged<S: Scalar, C: CellLog, W: Walk>(
     }
     let mut search = new_search::<S, C>(
         terrain,
-        o,
-        d,
-        dir_f64,
+        (o, d, dir_f64),
         near,
         &walk_options,
         counters,

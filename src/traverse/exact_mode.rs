@@ -55,9 +55,7 @@ pub(super) fn trace_certified<S: Scalar, C: CellLog, W: Walk>(
     let near_ray = Approximation::along(frame, near, start);
     let mut search = new_search::<S, C>(
         terrain,
-        o,
-        d,
-        dir,
+        (o, d, dir),
         Some(near),
         options,
         counters,

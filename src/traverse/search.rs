@@ -449,9 +449,7 @@ pub fn span_cells<'f, S: Scalar>(
 #[inline(always)]
 pub(super) fn new_search<'a, S: Scalar, C: CellLog>(
     terrain: &'a Terrain,
-    o: &'a [S; 3],
-    d: &'a [S; 3],
-    dir_f64: [f64; 3],
+    (o, d, dir_f64): (&'a [S; 3], &'a [S; 3], [f64; 3]),
     near: Option<F64Ray>,
     options: &WalkOptions,
     counters: Counters,
