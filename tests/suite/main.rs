@@ -6,6 +6,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod annotations;
 mod bad_input;
 mod base;
 mod cell_lanes;
