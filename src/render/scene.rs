@@ -462,7 +462,13 @@ impl Scene {
             })
             .transpose()
             .map_err(invalid)?;
-        let contours = contours(file.overlay.as_ref(), &field).map_err(invalid)?;
+        let contours = file
+            .overlay
+            .as_ref()
+            .map(|overlay| overlay.contours(&field))
+            .transpose()
+            .map_err(invalid)?
+            .flatten();
         let vectors = file
             .vector
             .iter()
@@ -481,24 +487,6 @@ impl Scene {
             contours,
         })
     }
-}
-
-/// The contour lines `[overlay] contours` asks for, the interval in the map's height unit.
-fn contours(
-    overlay: Option<&OverlaySection>,
-    field: &Heightfield,
-) -> Result<Option<Contours>, String> {
-    let Some((interval, index)) = overlay.and_then(|o| Some((o.contours?, o.index_every))) else {
-        return Ok(None);
-    };
-    Contours::new(level_z(field, interval), index)
-        .map(Some)
-        .ok_or_else(|| {
-            format!(
-                "[overlay] contours must be a finite height interval > 0, got {}",
-                Compact(interval)
-            )
-        })
 }
 
 #[cfg(test)]

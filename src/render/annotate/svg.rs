@@ -100,7 +100,7 @@ impl Svg {
         self.label([x0, y - 0.35 * em], "0", 0.8, "middle");
         self.label([x0 + length, y - 0.35 * em], &bar.label, 0.8, "middle");
         let note = "at the view's target (perspective)";
-        self.label([x0, y + thick + 1.0 * em], note, 0.6, "start");
+        self.label([x0, y + thick + 1.0 * em], note, 0.65, "start");
     }
 
     /// The north arrow in the top-right corner: grid north as the image shows it at the
@@ -130,7 +130,7 @@ impl Svg {
             -half,
         );
         let (s, c) = angle.to_radians().sin_cos();
-        let at = [cx + s * 1.95 * em, cy - c * 1.95 * em + 0.32 * em];
+        let at = [cx + s * 2.1 * em, cy - c * 2.1 * em + 0.32 * em];
         self.label(at, "N", 0.9, "middle");
     }
 

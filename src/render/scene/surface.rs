@@ -1,6 +1,10 @@
 //! How a scene's surface looks: `[shading]` (normals and the colour ramp) and `[overlay]` (an
 //! image draped over the map).
 
+use super::level_z;
+use crate::compact::Compact;
+use crate::heightfield::Heightfield;
+use crate::render::contours::Contours;
 use crate::render::ramp::Ramp;
 use serde::Deserialize;
 
@@ -25,6 +29,23 @@ pub struct OverlaySection {
 
 fn default_index() -> u32 {
     5
+}
+
+impl OverlaySection {
+    /// The contour lines `contours` asks for on `field`, the interval in its height unit.
+    pub fn contours(&self, field: &Heightfield) -> Result<Option<Contours>, String> {
+        let Some(interval) = self.contours else {
+            return Ok(None);
+        };
+        Contours::new(level_z(field, interval), self.index_every)
+            .map(Some)
+            .ok_or_else(|| {
+                format!(
+                    "[overlay] contours must be a finite height interval > 0, got {}",
+                    Compact(interval)
+                )
+            })
+    }
 }
 
 /// A scene file's `[shading]` section.
