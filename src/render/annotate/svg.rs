@@ -25,7 +25,7 @@ pub fn compose(annotations: &Annotations, sheet: &Sheet<'_>) -> String {
     let (w, h) = (f64::from(w), f64::from(h));
     let mut svg = Svg {
         text: String::new(),
-        em: (h / 40.0).clamp(10.0, 120.0),
+        em: (h / 40.0).clamp(14.0, 120.0),
         size: DVec2::new(w, h),
     };
     for layer in &annotations.vectors {
