@@ -33,6 +33,7 @@ mod mosaics;
 mod near_walk;
 mod orthophotos;
 mod packets;
+mod poster;
 mod ramps;
 mod recorded_cells;
 mod render;

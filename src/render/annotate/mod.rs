@@ -8,6 +8,7 @@
 
 mod fonts;
 mod layout;
+mod raster;
 mod sight;
 mod svg;
 mod vectors;
@@ -23,7 +24,6 @@ pub use vectors::{
 use crate::heightfield::Terrain;
 use crate::render::{Camera, Ramp, Window};
 use crate::traverse::{Arith, Method};
-use resvg::tiny_skia::{Pixmap, Transform};
 use serde::Deserialize;
 
 /// A scene file's `[annotations]` section: which marks are drawn into the picture.
@@ -135,21 +135,6 @@ impl Annotations {
         if self.is_empty() {
             return Ok(());
         }
-        let tree = resvg::usvg::Tree::from_str(&self.svg(sheet), &svg_options())
-            .map_err(|e| format!("cannot draw the annotations: {e}"))?;
-        let mut pixmap = Pixmap::new(window.width, window.height)
-            .ok_or("cannot draw the annotations: the picture is empty")?;
-        let shift = Transform::from_translate(-(window.x as f32), -(window.y as f32));
-        resvg::render(&tree, shift, &mut pixmap.as_mut());
-        // Over the picture: the marks' colours are premultiplied by their cover.
-        for (pixel, mark) in pixels.iter_mut().zip(pixmap.pixels()) {
-            let keep = 255 - u32::from(mark.alpha());
-            let over = |shift: u32, value: u8| {
-                let below = (*pixel >> shift) & 0xff;
-                (u32::from(value) + (below * keep + 127) / 255).min(255) << shift
-            };
-            *pixel = over(16, mark.red()) | over(8, mark.green()) | over(0, mark.blue());
-        }
-        Ok(())
+        raster::draw_over(&self.svg(sheet), pixels, window)
     }
 }

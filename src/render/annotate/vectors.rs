@@ -154,15 +154,15 @@ fn grid_of(
 
 /// The places and lines of a GeoJSON or GPX file, by its extension.
 pub fn read(path: &Path) -> Result<VectorFile, String> {
-    let text = read_text(path)?;
     let extension = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    match extension.as_deref() {
-        Some("gpx") => from_gpx(&text),
-        Some("geojson" | "json") => from_geojson(&text),
-        _ => Err("name a .geojson or .gpx file".into()),
-    }
+    let read: fn(&str) -> Result<VectorFile, String> = match extension.as_deref() {
+        Some("gpx") => from_gpx,
+        Some("geojson" | "json") => from_geojson,
+        _ => return Err("name a .geojson or .gpx file".into()),
+    };
+    read(&read_text(path)?)
 }
 
 /// A GeoJSON text's named points (the `name` property) and lines (LineStrings and polygon
