@@ -257,7 +257,7 @@ impl Camera {
     pub fn project(&self, point: [f64; 3]) -> Option<[f64; 2]> {
         let v = DVec3::from(point) - self.eye;
         let depth = v.dot(self.forward);
-        if !(depth > 0.0) {
+        if depth.is_nan() || depth <= 0.0 {
             return None;
         }
         let sx = v.dot(self.right) / (self.right.length_squared() * depth);
