@@ -90,6 +90,13 @@ impl Exports {
         }
     }
 
+    /// A scene's annotations, to draw into exports (its places and lines too).
+    pub fn adopt(&mut self, annotations: &Annotations) {
+        self.title = annotations.title.clone().unwrap_or_default();
+        self.attribution = annotations.attribution.clone().unwrap_or_default();
+        self.marks = annotations.clone();
+    }
+
     /// The export folder in full.
     pub fn folder(&self) -> PathBuf {
         let typed = self.dir.trim();
