@@ -142,3 +142,27 @@ fn vector_files_are_checked_as_they_are_read() {
         .to_string();
     assert!(directory.contains("it is a directory"), "{directory}");
 }
+
+/// The poster's places are given in degrees on a map in degrees: its summit was written at the
+/// centre of the sample holding the map's highest height (column 219, row 297 from the top of
+/// 344), so it lies at grid point (219, 46), on a 1076 m sample.
+#[test]
+fn places_in_degrees_land_on_the_samples_they_were_taken_from() {
+    let scene = heightray::render::Scene::load(&poster_scene()).unwrap();
+    let places = &scene.annotations.vectors[0].places;
+    let summit = places.iter().find(|p| p.name == "Summit 1076 m").unwrap();
+    let [x, y] = summit.at;
+    assert!(
+        (x - 219.0).abs() < 0.01 && (y - 46.0).abs() < 0.01,
+        "{:?}",
+        summit.at
+    );
+    let field = &scene.field;
+    let highest = (0..field.height())
+        .flat_map(|j| (0..field.width()).map(move |i| (i, j)))
+        .map(|(i, j)| field.z(i, j))
+        .fold(f64::MIN, f64::max);
+    assert_eq!(field.z(219, 46), highest);
+    let metres = heightray::heightfield::place::elevation_metres(field, highest).unwrap();
+    assert!((metres - 1076.0).abs() < 1e-6, "{metres}");
+}
