@@ -144,19 +144,7 @@ fn draw_svg(points: &[Point]) -> anyhow::Result<String> {
 }
 
 fn rasterise(svg: &str) -> anyhow::Result<Vec<u8>> {
-    let mut fonts = resvg::usvg::fontdb::Database::new();
-    fonts.load_font_data(epaint_default_fonts::UBUNTU_LIGHT.to_vec());
-    let family = fonts
-        .faces()
-        .next()
-        .and_then(|f| f.families.first())
-        .map(|f| f.0.clone())
-        .unwrap_or_default();
-    fonts.set_sans_serif_family(family);
-    let options = resvg::usvg::Options {
-        fontdb: std::sync::Arc::new(fonts),
-        ..Default::default()
-    };
+    let options = crate::render::annotate::svg_options();
     let tree = resvg::usvg::Tree::from_str(svg, &options).context("plot SVG")?;
     let size = tree.size().to_int_size();
     let mut pixmap =

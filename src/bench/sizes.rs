@@ -52,5 +52,7 @@ pub fn sized_scene(samples: usize, image: u32) -> Result<Scene, SizedSceneError>
         method: Method::Mipmap,
         arith: Arith::F64,
         animation: None,
+        annotations: Default::default(),
+        contours: None,
     })
 }

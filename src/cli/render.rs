@@ -5,10 +5,12 @@
 use super::{loading, render_frames, render_progress, render_tiles, RenderArgs};
 use heightray::output_file;
 use heightray::render::animation::Animation;
+use heightray::render::annotate::{Annotations, Sheet};
 use heightray::render::effects::MOST_RAYS;
 use heightray::render::sun_position::SunPosition;
 use heightray::render::{
-    Camera, Culling, Frame, Lighting, Renderer, Scene, SceneError, SceneFile, Shader,
+    Camera, Contours, Culling, Frame, Lighting, Renderer, Scene, SceneError, SceneFile, Shader,
+    Window,
 };
 use heightray::traverse::prepare;
 use heightray::{Arith, Method, Terrain};
@@ -29,6 +31,10 @@ pub struct Setup {
     pub method: Method,
     pub arith: Arith,
     pub pool: rayon::ThreadPool,
+    /// What is drawn over each picture.
+    pub annotations: Annotations,
+    /// Contour lines on the terrain.
+    pub contours: Option<Contours>,
 }
 
 impl Setup {
@@ -62,21 +68,46 @@ impl Setup {
             method,
             arith,
             pool,
+            annotations: scene.annotations,
+            contours: scene.contours,
         })
     }
 
     /// The renderer of `camera` (in world coordinates) over the terrain.
     pub fn renderer(&self, camera: Camera) -> Renderer<'_> {
+        let camera = camera.in_grid(self.terrain.world_from_grid());
+        let mut shader = Shader::new(
+            &self.terrain,
+            self.lighting,
+            self.method,
+            Culling::default(),
+        );
+        shader.contours = self.contours.map(|c| c.seen_by(&camera));
         Renderer {
-            shader: Shader::new(
-                &self.terrain,
-                self.lighting,
-                self.method,
-                Culling::default(),
-            ),
-            camera: camera.in_grid(self.terrain.world_from_grid()),
+            shader,
+            camera,
             arith: self.arith,
         }
+    }
+
+    /// Draws the scene's annotations into `pixels`, `window` of the whole image of `camera`
+    /// (in world coordinates).
+    pub fn annotate(
+        &self,
+        camera: Camera,
+        pixels: &mut [u32],
+        window: Window,
+    ) -> anyhow::Result<()> {
+        let sheet = Sheet {
+            terrain: &self.terrain,
+            camera,
+            ramp: self.lighting.ramp,
+            method: self.method,
+            arith: self.arith,
+        };
+        self.annotations
+            .draw(&sheet, pixels, window)
+            .map_err(anyhow::Error::msg)
     }
 }
 
@@ -105,6 +136,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         _ => pool.install(|| render_progress::render_with_estimate(&renderer, &mut frame)),
     }
     let render_ms = start.elapsed().as_secs_f64() * 1e3;
+    let whole = Window {
+        x: 0,
+        y: 0,
+        width,
+        height,
+    };
+    setup.annotate(setup.camera, &mut frame.pixels, whole)?;
 
     output_file::save_rgb(&args.output, &frame.pixels, (width, height))
         .map_err(anyhow::Error::msg)?;

@@ -9,7 +9,7 @@ use super::render_progress::Progress;
 use super::RenderArgs;
 use heightray::batch::{frame_file, Share};
 use heightray::output_file;
-use heightray::render::Frame;
+use heightray::render::{Frame, Window};
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -60,6 +60,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         setup
             .pool
             .install(|| progress.render(&renderer, &mut frame));
+        let whole = Window {
+            x: 0,
+            y: 0,
+            width,
+            height,
+        };
+        setup.annotate(camera, &mut frame.pixels, whole)?;
         output_file::save_rgb(&path, &frame.pixels, size).map_err(anyhow::Error::msg)?;
         progress.finished(&path.display().to_string());
     }

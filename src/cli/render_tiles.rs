@@ -115,6 +115,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         setup
             .pool
             .install(|| progress.render(&renderer, &mut frame));
+        // The whole picture's annotations, this tile's part of them.
+        setup.annotate(setup.camera, &mut frame.pixels, grown)?;
         let pixels = crop(
             &frame,
             place.window.x - grown.x,

@@ -200,6 +200,26 @@ impl Georef {
             self.origin[1] + y * self.spacing[1],
         ]
     }
+
+    /// The grid point (fractional sample positions) at map coordinates `[x, y]`: the inverse
+    /// of [`Georef::map_point`].
+    pub fn grid_point(&self, [x, y]: [f64; 2]) -> [f64; 2] {
+        [
+            (x - self.origin[0]) / self.spacing[0],
+            (y - self.origin[1]) / self.spacing[1],
+        ]
+    }
+
+    /// The map coordinates of a longitude and latitude in degrees: through the CRS's
+    /// projection, or as they are on a map in degrees; `None` on a projected map of unknown
+    /// CRS, or where the projection fails.
+    pub fn map_of_lonlat(&self, lonlat: [f64; 2]) -> Option<[f64; 2]> {
+        match (self.crs, self.units) {
+            (Some(crs), _) => crs.to_lonlat().ok()?.map_point(lonlat),
+            (None, MapUnits::Degrees) => Some(lonlat),
+            (None, MapUnits::Linear { .. }) => None,
+        }
+    }
 }
 
 /// What a file says about its place on the Earth.

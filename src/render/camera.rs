@@ -74,6 +74,8 @@ pub struct Camera {
     whole: (u32, u32),
     /// Which frame of a flythrough this is: sample positions are seeded with it too.
     frame: u64,
+    /// How far ahead of the eye the target it was aimed at lies (in its coordinates when made).
+    target_distance: f64,
 }
 
 /// A rectangle of an image's pixels.
@@ -135,6 +137,7 @@ impl Camera {
             offset: (0, 0),
             whole: (width, height),
             frame: 0,
+            target_distance: (target - eye).length(),
         })
     }
 
@@ -237,6 +240,47 @@ impl Camera {
         // `forward` is a unit vector orthogonal to `right` and `up`, so `dir` is never zero,
         // and every input was checked finite.
         Ray::new_checked_by_caller(self.eye.into(), dir.into())
+    }
+
+    /// The distance from the eye to the target the camera was aimed at.
+    pub fn target_distance(&self) -> f64 {
+        self.target_distance
+    }
+
+    /// The unit direction the camera looks in.
+    pub fn forward(&self) -> [f64; 3] {
+        self.forward.into()
+    }
+
+    /// Where `point` shows in the whole image, in pixels from its top-left corner (the inverse
+    /// of [`Camera::ray_at`]); `None` for a point level with the eye or behind it.
+    pub fn project(&self, point: [f64; 3]) -> Option<[f64; 2]> {
+        let v = DVec3::from(point) - self.eye;
+        let depth = v.dot(self.forward);
+        if depth.is_nan() || depth <= 0.0 {
+            return None;
+        }
+        let sx = v.dot(self.right) / (self.right.length_squared() * depth);
+        let sy = v.dot(self.up) / (self.up.length_squared() * depth);
+        let (w, h) = (f64::from(self.whole.0), f64::from(self.whole.1));
+        Some([(sx + 1.0) * 0.5 * w, (1.0 - sy) * 0.5 * h])
+    }
+
+    /// The viewing direction (unit in the world, not in grid coordinates) and the steps of the
+    /// ray direction from one pixel to the next across and up the image: pixel `(x, y)`'s ray
+    /// runs along `forward + (x - W/2) * across - (y - H/2) * up` (see [`Camera::ray_at`]).
+    pub fn pixel_steps(&self) -> [[f64; 3]; 3] {
+        let (w, h) = (f64::from(self.whole.0), f64::from(self.whole.1));
+        [
+            self.forward.into(),
+            (self.right * (2.0 / w)).into(),
+            (self.up * (2.0 / h)).into(),
+        ]
+    }
+
+    /// World length one pixel spans, across the view, at `depth` along the viewing direction.
+    pub fn pixel_span_at(&self, depth: f64) -> f64 {
+        2.0 * depth * self.up.length() / f64::from(self.whole.1)
     }
 
     /// Every pixel's primary ray, row by row from the top.

@@ -1,5 +1,7 @@
 pub mod animation;
+pub mod annotate;
 mod camera;
+mod contours;
 pub mod effects;
 pub mod framing;
 mod gamma;
@@ -19,6 +21,7 @@ pub mod timing;
 mod versus_exact;
 
 pub use camera::{Camera, CameraError, Window, MAX_PIXELS};
+pub use contours::Contours;
 pub use passes::{Frame, Renderer, PASS_BLOCKS};
 pub use ramp::{HeightSpan, Ramp};
 pub use scene::{

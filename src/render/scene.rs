@@ -2,7 +2,9 @@
 //! name.
 
 use super::animation::{Animation, AnimationSection};
+use super::annotate::{Annotations, AnnotationsSection, VectorLayer, VectorSection};
 use super::camera::{Camera, CameraError};
+use super::contours::Contours;
 use super::effects::Effects;
 use crate::heightfield::{Drape, DrapeError, Heightfield, LoadError};
 use crate::regular_file::{self, OpenError};
@@ -145,6 +147,12 @@ pub struct SceneFile {
     /// `[animation]`: a camera path, rendered as frames.
     #[serde(default)]
     pub animation: Option<AnimationSection>,
+    /// `[annotations]`: marks drawn into the picture.
+    #[serde(default)]
+    pub annotations: Option<AnnotationsSection>,
+    /// `[[vector]]`: places and lines drawn over the picture.
+    #[serde(default)]
+    pub vector: Vec<VectorSection>,
     /// An image size replacing the scene's (`render --size`); not a key of the file.
     #[serde(skip)]
     pub size: Option<(u32, u32)>,
@@ -354,6 +362,10 @@ pub struct Scene {
     pub arith: Arith,
     /// The camera path, if the scene has one.
     pub animation: Option<Animation>,
+    /// What is drawn over the picture.
+    pub annotations: Annotations,
+    /// Contour lines on the terrain (not yet seen by a camera, see [`Contours::seen_by`]).
+    pub contours: Option<Contours>,
 }
 
 impl Scene {
@@ -380,13 +392,18 @@ impl Scene {
                 source,
             },
         })?;
-        let field = match &file.overlay {
-            Some(overlay) => {
-                let drape = Drape::load(&base.join(&overlay.path), &field, overlay.opacity)
-                    .map_err(|source| SceneError::Overlay {
+        let drape_path = file
+            .overlay
+            .as_ref()
+            .and_then(|o| Some((o.path.as_ref()?, o)));
+        let field = match drape_path {
+            Some((drape_path, overlay)) => {
+                let drape = Drape::load(&base.join(drape_path), &field, overlay.opacity).map_err(
+                    |source| SceneError::Overlay {
                         path: path.to_owned(),
                         source,
-                    })?;
+                    },
+                )?;
                 field.with_drape(Some(Arc::new(drape)))
             }
             None => field,
@@ -445,6 +462,20 @@ impl Scene {
             })
             .transpose()
             .map_err(invalid)?;
+        let contours = file
+            .overlay
+            .as_ref()
+            .map(|overlay| overlay.contours(&field))
+            .transpose()
+            .map_err(invalid)?
+            .flatten();
+        let vectors = file
+            .vector
+            .iter()
+            .map(|section| VectorLayer::load(section, base, &field))
+            .collect::<Result<_, _>>()
+            .map_err(invalid)?;
+        let annotations = Annotations::new(file.annotations.as_ref(), vectors);
         Ok(Scene {
             field,
             camera,
@@ -452,6 +483,8 @@ impl Scene {
             method,
             arith,
             animation,
+            annotations,
+            contours,
         })
     }
 }

@@ -1,6 +1,7 @@
 //! From a ray to a colour: the primary ray, the shadow ray only where it can change the pixel,
 //! Lambert shading with an elevation ramp, sky and fog.
 
+use super::contours::Contours;
 use super::effects::{nanos_since, EffectTime, Reflection, SkyRays};
 use super::gamma;
 use super::scene::Lighting;
@@ -108,6 +109,8 @@ pub struct Shader<'a> {
     pub(super) wedges: Arc<Mutex<Option<Arc<Profiles>>>>,
     /// The base under the terrain its rays meet, as the lighting's style makes it.
     pub base: Option<Base>,
+    /// Contour lines drawn on the terrain, as the camera sees them (none from [`Shader::new`]).
+    pub contours: Option<Contours>,
 }
 
 impl<'a> Shader<'a> {
@@ -124,6 +127,7 @@ impl<'a> Shader<'a> {
             sky: None,
             wedges: Arc::default(),
             base: lighting.base.for_terrain(terrain),
+            contours: None,
         };
         if lighting.shadows && lighting.sun_up() && culling.far_bounds {
             shader.strips = terrain.strip_bounds(shader.grid_sun(), shader.sun_half());
@@ -374,7 +378,7 @@ impl<'a> Shader<'a> {
             _ => facing.max(0.0),
         };
         let light = self.lighting.ambient + self.lighting.intensity * lit;
-        let colour = self.albedo(face, p) * light;
+        let colour = self.marked_albedo(ray, (face, p), t) * light;
         self.fogged_rgb(ray, t, colour)
     }
 
@@ -395,7 +399,7 @@ impl<'a> Shader<'a> {
             _ => facing.max(0.0),
         };
         let light = ambient + DVec3::splat(self.lighting.intensity * lit);
-        let colour = self.albedo(face, p) * light;
+        let colour = self.marked_albedo(ray, (face, p), t) * light;
         self.fogged_rgb(ray, t, colour)
     }
 

@@ -7,7 +7,8 @@ use super::model::Model;
 use super::worker::{RenderJob, RenderedFrame};
 use super::UserEvent;
 use crate::output_file;
-use crate::render::Frame;
+use crate::render::annotate::{Annotations, Sheet};
+use crate::render::{Frame, Window};
 use std::fs::{File, OpenOptions};
 use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
@@ -35,6 +36,11 @@ pub struct Exports {
     pub last_scene: Option<PathBuf>,
     /// Exports rendering anew, with their progress.
     pub rendering: Vec<Arc<Rendering>>,
+    /// Marks drawn into exported images: scale bar, north arrow, legend.
+    pub marks: Annotations,
+    /// The title and attribution as typed (empty: none).
+    pub title: String,
+    pub attribution: String,
 }
 
 /// An export rendering anew, off the window's thread: how far it is, and whether the user
@@ -72,6 +78,23 @@ impl Exports {
         } else {
             "view size".into()
         }
+    }
+
+    /// What is drawn into an exported image.
+    fn annotations(&self) -> Annotations {
+        let typed = |text: &str| Some(text.trim().to_owned()).filter(|t| !t.is_empty());
+        Annotations {
+            title: typed(&self.title),
+            attribution: typed(&self.attribution),
+            ..self.marks.clone()
+        }
+    }
+
+    /// A scene's annotations, to draw into exports (its places and lines too).
+    pub fn adopt(&mut self, annotations: &Annotations) {
+        self.title = annotations.title.clone().unwrap_or_default();
+        self.attribution = annotations.attribution.clone().unwrap_or_default();
+        self.marks = annotations.clone();
     }
 
     /// The export folder in full.
@@ -123,6 +146,7 @@ pub fn start(
         ..Rendering::default()
     });
     let progress = Arc::clone(&rendering);
+    let annotations = model.export.annotations();
     let spawned = std::thread::Builder::new()
         .name("heightray-export".into())
         .spawn(move || {
@@ -131,7 +155,10 @@ pub fn start(
                 None => render_fresh(&job, size, &progress),
             };
             let saved = pixels
-                .map(|pixels| save_numbered(&folder, &stem, &pixels, size))
+                .map(|mut pixels| {
+                    annotate(&job, &annotations, &mut pixels)?;
+                    save_numbered(&folder, &stem, &pixels, size)
+                })
                 .transpose();
             progress.finished.store(true, Ordering::Relaxed);
             // The window may be gone at exit; then nobody needs the news.
@@ -163,6 +190,25 @@ fn render_fresh(job: &RenderJob, size: (u32, u32), rendering: &Rendering) -> Opt
         rendering.cancelled.load(Ordering::Relaxed)
     });
     finished.then_some(frame.pixels)
+}
+
+/// Draws `annotations` into `pixels`, the whole image of `job`'s camera.
+fn annotate(job: &RenderJob, annotations: &Annotations, pixels: &mut [u32]) -> Result<(), String> {
+    let (width, height) = job.camera.size();
+    let sheet = Sheet {
+        terrain: &job.terrain,
+        camera: job.camera,
+        ramp: job.lighting.ramp,
+        method: job.method,
+        arith: job.arith,
+    };
+    let whole = Window {
+        x: 0,
+        y: 0,
+        width,
+        height,
+    };
+    annotations.draw(&sheet, pixels, whole)
 }
 
 /// The exports rendering anew: a bar for each, and a button that cancels it.
@@ -299,6 +345,23 @@ pub fn settings_ui(ui: &mut egui::Ui, exports: &mut Exports, render_size: Option
             egui::DragValue::new(&mut exports.size.1).range(1..=16384),
         );
     });
+    // Drawn into the exported image at its size, not into the view.
+    ui.label("drawn into the image");
+    ui.horizontal_wrapped(|ui| {
+        ui.checkbox(&mut exports.marks.scale_bar, "scale bar");
+        ui.checkbox(&mut exports.marks.north_arrow, "north arrow");
+        ui.checkbox(&mut exports.marks.legend, "legend");
+    });
+    for (text, hint) in [
+        (&mut exports.title, "title"),
+        (&mut exports.attribution, "attribution"),
+    ] {
+        ui.add(
+            egui::TextEdit::singleline(text)
+                .hint_text(hint)
+                .desired_width(ui.available_width()),
+        );
+    }
 }
 
 #[cfg(test)]

@@ -117,6 +117,8 @@ pub struct SceneSetup {
     pub lighting: Lighting,
     pub method: Method,
     pub arith: Arith,
+    /// What the scene draws over its pictures: exports draw it too.
+    pub annotations: crate::render::annotate::Annotations,
     /// The local date and time that placed the sun, if the scene gave one.
     pub clock: Option<SceneClock>,
     /// The scene's `[animation]` keys, to play and edit.

@@ -169,6 +169,7 @@ impl Model {
         self.framed = None;
         self.settings
             .adopt_scene(&scene.lighting, scene.method, scene.arith);
+        self.export.adopt(&scene.annotations);
         self.sun_clock.on = false;
         if let Some(flythrough) = &scene.flythrough {
             self.flythrough = flythrough.clone();

@@ -6,6 +6,7 @@ use super::flythrough::Flythrough;
 use super::loader::{LoadRequest, Loaded, OverlayChange, SceneClock, SceneSetup, Source, Stage};
 use super::orbit::Orbit;
 use crate::heightfield::{self, relief, Builtin, Drape, LoadOptions};
+use crate::render::annotate::Annotations;
 use crate::render::{local_time, Lighting, Scene, SceneFile};
 use crate::{Arith, Heightfield, Method, Terrain};
 use std::ops::ControlFlow;
@@ -94,6 +95,7 @@ struct SceneParts {
     lighting: Lighting,
     method: Method,
     arith: Arith,
+    annotations: Annotations,
 }
 
 /// Reads a scene file: its height field, lighting, traversal and camera section.
@@ -105,6 +107,7 @@ fn load_scene(path: &Path) -> Result<(Heightfield, Option<SceneParts>), String> 
         lighting,
         method,
         arith,
+        annotations,
         ..
     } = Scene::from_file(&file, Scene::base(path), path).map_err(|e| e.to_string())?;
     let parts = SceneParts {
@@ -112,6 +115,7 @@ fn load_scene(path: &Path) -> Result<(Heightfield, Option<SceneParts>), String> 
         lighting,
         method,
         arith,
+        annotations,
     };
     Ok((field, Some(parts)))
 }
@@ -157,6 +161,7 @@ fn scene_setup(parts: &SceneParts, terrain: &Terrain) -> SceneSetup {
         lighting: parts.lighting,
         method: parts.method,
         arith: parts.arith,
+        annotations: parts.annotations.clone(),
         clock,
         flythrough: parts.file.animation.as_ref().map(|section| {
             let fov = parts.file.camera.as_ref().map_or(45.0, |c| c.fov_y_deg);

@@ -6,6 +6,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod annotations;
 mod bad_input;
 mod base;
 mod cell_lanes;
@@ -32,6 +33,7 @@ mod mosaics;
 mod near_walk;
 mod orthophotos;
 mod packets;
+mod poster;
 mod ramps;
 mod recorded_cells;
 mod render;

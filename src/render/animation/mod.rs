@@ -8,6 +8,7 @@ mod track;
 
 use track::Track;
 pub use track::TrackSection;
+pub(crate) use track::{gpx_points, read_text};
 
 use super::camera::{Camera, CameraError};
 use super::framing;

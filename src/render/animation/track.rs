@@ -4,7 +4,7 @@
 //! the points), looking at the track `look_ahead_s` seconds ahead.
 
 use super::View;
-use crate::heightfield::{world_from_grid, Heightfield, MapUnits};
+use crate::heightfield::{world_from_grid, Heightfield};
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -49,21 +49,15 @@ impl Track {
             "[animation.track] needs a georeferenced map (a GeoTIFF, .hgt or .asc) to place its \
              longitudes and latitudes on",
         )?;
-        let to_map = |[lon, lat]: [f64; 2]| match (georef.crs, georef.units) {
-            (Some(crs), _) => crs.to_lonlat().ok()?.map_point([lon, lat]),
-            (None, MapUnits::Degrees) => Some([lon, lat]),
-            (None, MapUnits::Linear { .. }) => None,
-        };
         let stretch = world_from_grid(field).map_or(1.0, |s| s[0]);
         let (w, h) = ((field.width() - 1) as f64, (field.height() - 1) as f64);
         let (mut points, mut ground) = (Vec::new(), Vec::new());
         for (n, &point) in lonlat.iter().enumerate() {
-            let [mx, my] = to_map(point).ok_or(format!(
+            let map = georef.map_of_lonlat(point).ok_or(format!(
                 "[animation.track] cannot place longitude and latitude on this map's {}",
                 georef.crs_label()
             ))?;
-            let gx = (mx - georef.origin[0]) / georef.spacing[0];
-            let gy = (my - georef.origin[1]) / georef.spacing[1];
+            let [gx, gy] = georef.grid_point(map);
             if !(gx >= 0.0 && gy >= 0.0 && gx <= w && gy <= h) {
                 return Err(format!(
                     "[animation.track] point {} (longitude {}, latitude {}) of {} lies off the map",
@@ -151,16 +145,8 @@ impl Track {
 
 /// The longitude and latitude of every point of a GPX or GeoJSON file, in order.
 fn read_points(path: &Path) -> Result<Vec<[f64; 2]>, String> {
-    use std::io::Read;
     let cannot = |e: &dyn std::fmt::Display| format!("cannot read track {}: {e}", path.display());
-    let (file, _) = crate::regular_file::open(path).map_err(|e| match e {
-        crate::regular_file::OpenError::NotAFile(what) => cannot(&format!("it is {what}")),
-        crate::regular_file::OpenError::Io(e) => cannot(&e),
-    })?;
-    let mut text = String::new();
-    file.take(MOST_TRACK_BYTES)
-        .read_to_string(&mut text)
-        .map_err(|e| cannot(&e))?;
+    let text = read_text(path).map_err(|e| cannot(&e))?;
     let extension = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
@@ -175,9 +161,23 @@ fn read_points(path: &Path) -> Result<Vec<[f64; 2]>, String> {
     Ok(points)
 }
 
+/// A track or vector file's text, at most [`MOST_TRACK_BYTES`] of it; the error says why not.
+pub(crate) fn read_text(path: &Path) -> Result<String, String> {
+    use std::io::Read;
+    let (file, _) = crate::regular_file::open(path).map_err(|e| match e {
+        crate::regular_file::OpenError::NotAFile(what) => format!("it is {what}"),
+        crate::regular_file::OpenError::Io(e) => e.to_string(),
+    })?;
+    let mut text = String::new();
+    file.take(MOST_TRACK_BYTES)
+        .read_to_string(&mut text)
+        .map_err(|e| e.to_string())?;
+    Ok(text)
+}
+
 /// The points of a GPX file's tracks (`trkpt`), or else its routes (`rtept`), read by the
 /// `gpx` crate: their longitudes and latitudes.
-fn gpx_points(text: &str) -> Result<Vec<[f64; 2]>, String> {
+pub(crate) fn gpx_points(text: &str) -> Result<Vec<[f64; 2]>, String> {
     let gpx = gpx::read(text.as_bytes()).map_err(|e| format!("not a GPX file: {e}"))?;
     let lon_lat = |w: &gpx::Waypoint| {
         let p = w.point();

@@ -92,6 +92,8 @@ impl SceneFile {
             overlay: None,
             water: None,
             animation: None,
+            annotations: None,
+            vector: Vec::new(),
             size: None,
         }
     }

@@ -1,18 +1,51 @@
 //! How a scene's surface looks: `[shading]` (normals and the colour ramp) and `[overlay]` (an
 //! image draped over the map).
 
+use super::level_z;
+use crate::compact::Compact;
+use crate::heightfield::Heightfield;
+use crate::render::contours::Contours;
 use crate::render::ramp::Ramp;
 use serde::Deserialize;
 
-/// A scene file's `[overlay]` section: an image (PNG, JPEG or TIFF) draped over the map.
+/// A scene file's `[overlay]` section: an image (PNG, JPEG or TIFF) draped over the map, and
+/// contour lines drawn on it.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct OverlaySection {
-    /// The image, relative to the scene file.
-    pub path: String,
+    /// The image, relative to the scene file (none: the ramp's colours).
+    #[serde(default)]
+    pub path: Option<String>,
     /// How much of the ramp's colour the image replaces, 0 to 1 (default 1).
     #[serde(default = "super::one")]
     pub opacity: f64,
+    /// Contour lines every this much height, in the map's height unit (metres on most DEMs).
+    #[serde(default)]
+    pub contours: Option<f64>,
+    /// Every this many contour lines is a wider index line (default 5; 0 for none).
+    #[serde(default = "default_index")]
+    pub index_every: u32,
+}
+
+fn default_index() -> u32 {
+    5
+}
+
+impl OverlaySection {
+    /// The contour lines `contours` asks for on `field`, the interval in its height unit.
+    pub fn contours(&self, field: &Heightfield) -> Result<Option<Contours>, String> {
+        let Some(interval) = self.contours else {
+            return Ok(None);
+        };
+        Contours::new(level_z(field, interval), self.index_every)
+            .map(Some)
+            .ok_or_else(|| {
+                format!(
+                    "[overlay] contours must be a finite height interval > 0, got {}",
+                    Compact(interval)
+                )
+            })
+    }
 }
 
 /// A scene file's `[shading]` section.

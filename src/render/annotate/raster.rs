@@ -1,0 +1,53 @@
+//! An SVG of the whole image drawn over a window of its pixels. It is rasterised in blocks
+//! fixed in the whole image (each with a border around it), so that every pixel is drawn the
+//! same way whichever window holds it: a poster's tiles merge into the whole picture's bytes.
+
+use super::svg_options;
+use crate::render::Window;
+use resvg::tiny_skia::{Pixmap, Transform};
+use resvg::usvg::Tree;
+
+/// The side of a block, in pixels.
+const BLOCK: u32 = 256;
+/// Pixels drawn around a block and dropped: marks crossing its edge are drawn whole.
+const BORDER: u32 = 4;
+
+/// Draws `svg` (of the whole image) over `pixels` (0x00RRGGBB, row by row), which hold
+/// `window` of the whole image.
+pub fn draw_over(svg: &str, pixels: &mut [u32], window: Window) -> Result<(), String> {
+    let tree = Tree::from_str(svg, &svg_options())
+        .map_err(|e| format!("cannot draw the annotations: {e}"))?;
+    let side = BLOCK + 2 * BORDER;
+    let mut pixmap = Pixmap::new(side, side).ok_or("cannot draw the annotations")?;
+    let (x_end, y_end) = (window.x + window.width, window.y + window.height);
+    for by in (window.y / BLOCK)..y_end.div_ceil(BLOCK) {
+        for bx in (window.x / BLOCK)..x_end.div_ceil(BLOCK) {
+            let (x0, y0) = (bx * BLOCK, by * BLOCK);
+            pixmap.fill(resvg::tiny_skia::Color::TRANSPARENT);
+            let shift = |start: u32| -(start as f32 - BORDER as f32);
+            let transform = Transform::from_translate(shift(x0), shift(y0));
+            resvg::render(&tree, transform, &mut pixmap.as_mut());
+            let marks = pixmap.pixels();
+            // The block's pixels the window holds.
+            for y in y0.max(window.y)..(y0 + BLOCK).min(y_end) {
+                for x in x0.max(window.x)..(x0 + BLOCK).min(x_end) {
+                    let mark = marks[((y - y0 + BORDER) * side + (x - x0 + BORDER)) as usize];
+                    let pixel =
+                        &mut pixels[((y - window.y) * window.width + x - window.x) as usize];
+                    *pixel = over(*pixel, mark);
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A mark (its colour premultiplied by its cover) over a 0x00RRGGBB pixel.
+fn over(pixel: u32, mark: resvg::tiny_skia::PremultipliedColorU8) -> u32 {
+    let keep = 255 - u32::from(mark.alpha());
+    let channel = |shift: u32, value: u8| {
+        let below = (pixel >> shift) & 0xff;
+        (u32::from(value) + (below * keep + 127) / 255).min(255) << shift
+    };
+    channel(16, mark.red()) | channel(8, mark.green()) | channel(0, mark.blue())
+}

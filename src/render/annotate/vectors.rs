@@ -1,0 +1,277 @@
+//! Vector layers (`[[vector]]`): named places and lines read from a GeoJSON file (the
+//! `geojson` crate) or a GPX file (the `gpx` crate: waypoints, and the track the camera paths
+//! read), placed on the map's grid.
+
+use crate::heightfield::Heightfield;
+use crate::render::animation::{gpx_points, read_text};
+use crate::render::bytes_from_hex;
+use geojson::{GeoJson, Geometry, Value};
+use serde::Deserialize;
+use std::path::Path;
+
+/// A scene file's `[[vector]]` section.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct VectorSection {
+    /// A `.geojson` (`.json`) or `.gpx` file, relative to the scene.
+    pub path: String,
+    /// What its coordinates are: `degrees` (longitude and latitude, as GeoJSON and GPX
+    /// define them; the default), `map` (the map's own CRS) or `grid` (sample positions, for
+    /// a map without georeferencing).
+    #[serde(default)]
+    pub coordinates: Coordinates,
+    /// The lines' colour, `#RRGGBB` (default a bright red).
+    #[serde(default)]
+    pub colour: Option<String>,
+    /// How high above the ground a place's marker stands, in world units: the point whose
+    /// sight from the eye decides whether the place shows (default 0.5).
+    #[serde(default)]
+    pub lift: Option<f64>,
+}
+
+/// What a vector file's coordinates are.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Coordinates {
+    /// Longitude and latitude in degrees, converted to the map's CRS.
+    #[default]
+    Degrees,
+    /// The map's own coordinates.
+    Map,
+    /// Grid sample positions: column `x`, row from the south `y`.
+    Grid,
+}
+
+/// A named point on the map.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Place {
+    /// Its name, as its label shows it.
+    pub name: String,
+    /// Where it lies, in grid coordinates.
+    pub at: [f64; 2],
+}
+
+/// A layer's places and lines on the map's grid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VectorLayer {
+    /// Named points (points without a name are left out).
+    pub places: Vec<Place>,
+    /// Lines, each at least two points, in grid coordinates; parts off the map are cut out.
+    pub lines: Vec<Vec<[f64; 2]>>,
+    /// The lines' colour, display bytes.
+    pub colour: [u8; 3],
+    /// A marker's height above the ground, in world units.
+    pub lift: f64,
+}
+
+/// The default line colour.
+const LINE_COLOUR: [u8; 3] = [0xe0, 0x30, 0x20];
+/// The default marker height.
+const DEFAULT_LIFT: f64 = 0.5;
+
+/// What a vector file holds, in its own coordinates.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct VectorFile {
+    /// Named points.
+    pub places: Vec<(String, [f64; 2])>,
+    /// Lines and polygon rings.
+    pub lines: Vec<Vec<[f64; 2]>>,
+}
+
+impl VectorLayer {
+    /// Reads the section's file (relative to `base`) and places it on `field`.
+    pub fn load(section: &VectorSection, base: &Path, field: &Heightfield) -> Result<Self, String> {
+        let path = base.join(&section.path);
+        let key = |what: &str| format!("[[vector]] {}: {what}", path.display());
+        let file = read(&path).map_err(|e| key(&e))?;
+        let to_grid = grid_of(section.coordinates, field).map_err(|e| key(&e))?;
+        let colour = match &section.colour {
+            None => LINE_COLOUR,
+            Some(text) => bytes_from_hex(text)
+                .ok_or_else(|| key(&format!("colour {text:?} is not #RRGGBB")))?,
+        };
+        let lift = section.lift.unwrap_or(DEFAULT_LIFT);
+        if !(lift.is_finite() && lift >= 0.0) {
+            return Err(key(&format!(
+                "lift must be a finite number >= 0, got {lift}"
+            )));
+        }
+        let (w, h) = ((field.width() - 1) as f64, (field.height() - 1) as f64);
+        let on_map = |p: &[f64; 2]| p[0] >= 0.0 && p[1] >= 0.0 && p[0] <= w && p[1] <= h;
+        let places = file
+            .places
+            .into_iter()
+            .filter_map(|(name, p)| Some((name, to_grid(p)?)))
+            .filter(|(_, p)| on_map(p))
+            .map(|(name, at)| Place { name, at })
+            .collect();
+        let mut lines = Vec::new();
+        for line in file.lines {
+            // Runs of points on the map, each a line of its own.
+            let mut run: Vec<[f64; 2]> = Vec::new();
+            for point in line.into_iter().map(|p| to_grid(p).filter(on_map)) {
+                match point {
+                    Some(p) => run.push(p),
+                    None => lines.push(std::mem::take(&mut run)),
+                }
+            }
+            lines.push(run);
+        }
+        lines.retain(|line| line.len() >= 2);
+        Ok(VectorLayer {
+            places,
+            lines,
+            colour,
+            lift,
+        })
+    }
+}
+
+/// How a file's coordinates become grid coordinates on `field`.
+fn grid_of(
+    coordinates: Coordinates,
+    field: &Heightfield,
+) -> Result<impl Fn([f64; 2]) -> Option<[f64; 2]> + '_, String> {
+    let georef = field.georef();
+    if coordinates != Coordinates::Grid && georef.is_none() {
+        return Err(
+            "the map has no georeferencing to place longitudes and latitudes or map \
+             coordinates on: give coordinates = \"grid\" (sample positions)"
+                .into(),
+        );
+    }
+    Ok(move |p: [f64; 2]| {
+        let finite = p.iter().all(|c| c.is_finite());
+        match (coordinates, georef) {
+            _ if !finite => None,
+            (Coordinates::Grid, _) => Some(p),
+            (Coordinates::Map, Some(g)) => Some(g.grid_point(p)),
+            (Coordinates::Degrees, Some(g)) => Some(g.grid_point(g.map_of_lonlat(p)?)),
+            (_, None) => None,
+        }
+    })
+}
+
+/// The places and lines of a GeoJSON or GPX file, by its extension.
+pub fn read(path: &Path) -> Result<VectorFile, String> {
+    let extension = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let read: fn(&str) -> Result<VectorFile, String> = match extension.as_deref() {
+        Some("gpx") => from_gpx,
+        Some("geojson" | "json") => from_geojson,
+        _ => return Err("name a .geojson or .gpx file".into()),
+    };
+    read(&read_text(path)?)
+}
+
+/// A GeoJSON text's named points (the `name` property) and lines (LineStrings and polygon
+/// rings).
+pub fn from_geojson(text: &str) -> Result<VectorFile, String> {
+    let json: GeoJson = text.parse().map_err(|e| format!("not GeoJSON: {e}"))?;
+    let mut file = VectorFile::default();
+    match json {
+        GeoJson::FeatureCollection(collection) => {
+            for feature in collection.features {
+                let name = feature.property("name").map(name_text);
+                if let Some(geometry) = &feature.geometry {
+                    add_geometry(geometry, name.as_deref(), &mut file);
+                }
+            }
+        }
+        GeoJson::Feature(feature) => {
+            let name = feature.property("name").map(name_text);
+            if let Some(geometry) = &feature.geometry {
+                add_geometry(geometry, name.as_deref(), &mut file);
+            }
+        }
+        GeoJson::Geometry(geometry) => add_geometry(&geometry, None, &mut file),
+    }
+    Ok(file)
+}
+
+/// A `name` property as text: a string as it is, anything else as JSON.
+fn name_text(value: &serde_json::Value) -> String {
+    match value {
+        serde_json::Value::String(text) => text.clone(),
+        other => other.to_string(),
+    }
+}
+
+/// Adds a geometry's points (if named) and lines to `file`.
+fn add_geometry(geometry: &Geometry, name: Option<&str>, file: &mut VectorFile) {
+    let xy = |p: &Vec<f64>| [p.first().copied(), p.get(1).copied()];
+    let point = |p: &Vec<f64>| match xy(p) {
+        [Some(x), Some(y)] => Some([x, y]),
+        _ => None,
+    };
+    let line = |l: &Vec<Vec<f64>>| l.iter().filter_map(point).collect::<Vec<_>>();
+    match &geometry.value {
+        Value::Point(p) => file
+            .places
+            .extend(name.zip(point(p)).map(|(n, p)| (n.to_owned(), p))),
+        Value::MultiPoint(points) => {
+            for p in points.iter().filter_map(point) {
+                file.places.extend(name.map(|n| (n.to_owned(), p)));
+            }
+        }
+        Value::LineString(l) => file.lines.push(line(l)),
+        Value::MultiLineString(ls) | Value::Polygon(ls) => file.lines.extend(ls.iter().map(line)),
+        Value::MultiPolygon(polygons) => file
+            .lines
+            .extend(polygons.iter().flat_map(|rings| rings.iter().map(line))),
+        Value::GeometryCollection(geometries) => {
+            for g in geometries {
+                add_geometry(g, name, file);
+            }
+        }
+    }
+}
+
+/// A GPX text's waypoints (named ones) and its track (or route), as the camera paths read it.
+pub fn from_gpx(text: &str) -> Result<VectorFile, String> {
+    let gpx = gpx::read(text.as_bytes()).map_err(|e| format!("not a GPX file: {e}"))?;
+    let places = gpx
+        .waypoints
+        .iter()
+        .filter_map(|w| {
+            let p = w.point();
+            Some((w.name.clone()?, [p.x(), p.y()]))
+        })
+        .collect();
+    let track = gpx_points(text)?;
+    Ok(VectorFile {
+        places,
+        lines: vec![track],
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn geojson_gives_named_points_and_lines() {
+        let text = r#"{"type": "FeatureCollection", "features": [
+            {"type": "Feature", "properties": {"name": "Summit"},
+             "geometry": {"type": "Point", "coordinates": [7.5, 46.25, 3000]}},
+            {"type": "Feature", "properties": {},
+             "geometry": {"type": "Point", "coordinates": [1, 2]}},
+            {"type": "Feature", "properties": {"name": "Trail"},
+             "geometry": {"type": "LineString", "coordinates": [[7, 46], [7.5, 46.5]]}}]}"#;
+        let file = from_geojson(text).unwrap();
+        assert_eq!(file.places, vec![("Summit".to_owned(), [7.5, 46.25])]);
+        assert_eq!(file.lines, vec![vec![[7.0, 46.0], [7.5, 46.5]]]);
+        assert!(from_geojson("{\"type\": \"Feature\"").is_err());
+    }
+
+    #[test]
+    fn gpx_gives_waypoints_and_its_track() {
+        let text = r#"<gpx version="1.1" creator="t"><wpt lat="45.5" lon="-122.25">
+            <name>Hut</name></wpt><trk><trkseg><trkpt lat="1" lon="2"/><trkpt lat="3" lon="4"/>
+            </trkseg></trk></gpx>"#;
+        let file = from_gpx(text).unwrap();
+        assert_eq!(file.places, vec![("Hut".to_owned(), [-122.25, 45.5])]);
+        assert_eq!(file.lines, vec![vec![[2.0, 1.0], [4.0, 3.0]]]);
+    }
+}
