@@ -2,7 +2,7 @@
 //! shape; with `--frames`, a flythrough's frames ([`super::render_frames`]); with `--tile` or
 //! `--tiles`, a poster's tiles ([`super::render_tiles`]).
 
-use super::{loading, render_frames, render_progress, render_tiles, RenderArgs};
+use super::{loading, render_frames, render_ortho, render_progress, render_tiles, RenderArgs};
 use heightray::output_file;
 use heightray::render::animation::Animation;
 use heightray::render::effects::MOST_RAYS;
@@ -87,8 +87,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     if args.tile.is_some() || args.tiles.is_some() {
         return render_tiles::run(args);
     }
+    if args.ortho.ortho {
+        return render_ortho::run(args);
+    }
     // Before any work: a render that fails to be written only at its end is time lost.
     output_file::check_image(&args.output).map_err(anyhow::Error::msg)?;
+    render_ortho::check_tiff_options(args)?;
     if let Some(path) = &args.stats {
         output_file::check(path, "stats.json").map_err(anyhow::Error::msg)?;
     }
@@ -106,8 +110,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     let render_ms = start.elapsed().as_secs_f64() * 1e3;
 
-    output_file::save_rgb(&args.output, &frame.pixels, (width, height))
-        .map_err(anyhow::Error::msg)?;
+    if render_ortho::is_tiff(&args.output) {
+        render_ortho::save_tiff(args, &frame.pixels, (width, height))?;
+    } else {
+        output_file::save_rgb(&args.output, &frame.pixels, (width, height))
+            .map_err(anyhow::Error::msg)?;
+    }
     let effects = &frame.totals.effects;
     let rays =
         frame.totals.primary_rays + frame.totals.shadow_rays + effects.soft.rays + effects.sky.rays;

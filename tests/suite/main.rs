@@ -32,6 +32,8 @@ mod mosaics;
 mod near_walk;
 mod orthophotos;
 mod packets;
+mod products;
+mod products_cli;
 mod ramps;
 mod recorded_cells;
 mod render;
