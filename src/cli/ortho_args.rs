@@ -1,7 +1,7 @@
 //! The arguments of `render --ortho` (map products) and of TIFF output.
 
 /// Products made straight down over the map, and how TIFFs are written.
-#[derive(clap::Args, Debug, Default)]
+#[derive(clap::Args, Debug)]
 pub struct OrthoArgs {
     /// Render straight down, one pixel per cell of the map's own grid (or per --cell): a
     /// product, written as a GeoTIFF (.tif: georeferenced where the map is) or a PNG picture.
@@ -14,7 +14,12 @@ pub struct OrthoArgs {
     pub product: String,
     /// With --ortho: pixel size in the map's units (metres or feet of a projected map,
     /// degrees of a geographic one, cells of a plain image); default: the map's own cells.
-    #[arg(long, requires = "ortho", value_name = "SIZE", allow_hyphen_values = true)]
+    #[arg(
+        long,
+        requires = "ortho",
+        value_name = "SIZE",
+        allow_hyphen_values = true
+    )]
     pub cell: Option<f64>,
     /// With --product sunlight-hours: the day, YYYY-MM-DD, midnight to midnight on the map's
     /// local clocks.

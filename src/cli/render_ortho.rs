@@ -10,7 +10,7 @@ use heightray::products::tiff_out::{self, Depth, GeoTags, TiffTags};
 use heightray::products::{Horizon, Maker, OrthoGrid, Raster, SkyView, SunPath, Sunlight};
 use heightray::render::{local_time, Culling, Shader};
 use heightray::TraceOptions;
-use image::{ImageFormat, Rgba, RgbaImage};
+use image::{DynamicImage, GrayAlphaImage, ImageFormat, LumaA, Rgba, RgbaImage};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::Path;
 use std::process::ExitCode;
@@ -163,7 +163,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         })
         .map_err(anyhow::Error::msg)?;
     } else {
-        save_png(&args.output, size, &raster, range)?;
+        let shown = match &raster {
+            Raster::Values(values) => stretch(values),
+            Raster::Colour(_) => None,
+        };
+        save_png(&args.output, size, &raster, shown)?;
     }
     let transform = grid
         .geotransform()
@@ -212,32 +216,47 @@ fn value_range(values: &[f32]) -> Option<(f32, f32)> {
         })
 }
 
-/// A product as a picture: colour as it is, a quantity in grey from its least (black) to its
-/// greatest value (white); no surface transparent.
+/// The 2nd and 98th percentiles of the values that are not NaN: a picture's grey scale,
+/// which a few extreme pixels (a pit, a peak) would otherwise flatten.
+fn stretch(values: &[f32]) -> Option<(f32, f32)> {
+    let mut finite: Vec<f32> = values.iter().copied().filter(|v| !v.is_nan()).collect();
+    finite.sort_unstable_by(f32::total_cmp);
+    let at = |share: f64| finite[((finite.len() - 1) as f64 * share).round() as usize];
+    (!finite.is_empty()).then(|| (at(0.02), at(0.98)))
+}
+
+/// A product as a picture: colour as it is, a quantity in grey from the least (black) to the
+/// greatest value of `range` (white); no surface transparent.
 fn save_png(
     path: &Path,
     (width, height): (u32, u32),
     raster: &Raster,
     range: Option<(f32, f32)>,
 ) -> anyhow::Result<()> {
-    let pixel = |k: usize| -> [u8; 4] {
-        match raster {
-            Raster::Colour(pixels) => pixels[k].map(|c| ((u32::from(c) + 128) / 257) as u8),
-            Raster::Values(values) => {
-                let (lo, hi) = range.unwrap_or((0.0, 1.0));
-                let v = values[k];
+    let at = |x: u32, y: u32| y as usize * width as usize + x as usize;
+    let image = match raster {
+        Raster::Colour(pixels) => {
+            DynamicImage::ImageRgba8(RgbaImage::from_fn(width, height, |x, y| {
+                Rgba(pixels[at(x, y)].map(|c| ((u32::from(c) + 128) / 257) as u8))
+            }))
+        }
+        // (Grey and alpha: a quarter of the bytes of colour, and as many shades.)
+        Raster::Values(values) => {
+            let (lo, hi) = range.unwrap_or((0.0, 1.0));
+            DynamicImage::ImageLumaA8(GrayAlphaImage::from_fn(width, height, |x, y| {
+                let v = values[at(x, y)];
                 if v.is_nan() {
-                    return [0; 4];
+                    return LumaA([0, 0]);
                 }
-                let grey = if hi > lo { (v - lo) / (hi - lo) } else { 1.0 };
-                let byte = (grey * 255.0).round() as u8;
-                [byte, byte, byte, 255]
-            }
+                let grey = if hi > lo {
+                    ((v - lo) / (hi - lo)).clamp(0.0, 1.0)
+                } else {
+                    1.0
+                };
+                LumaA([(grey * 255.0).round() as u8, 255])
+            }))
         }
     };
-    let image = RgbaImage::from_fn(width, height, |x, y| {
-        Rgba(pixel(y as usize * width as usize + x as usize))
-    });
     output_file::write(path, |out| {
         image
             .write_to(out, ImageFormat::Png)

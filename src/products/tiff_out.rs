@@ -180,7 +180,10 @@ where
     if let Some(dpi) = tags.dpi {
         // Whole resolutions as n/1, others to a hundredth of a dot.
         let value = if dpi.fract() == 0.0 {
-            Rational { n: dpi as u32, d: 1 }
+            Rational {
+                n: dpi as u32,
+                d: 1,
+            }
         } else {
             Rational {
                 n: (dpi * 100.0).round() as u32,
