@@ -81,6 +81,7 @@ impl Setup {
 }
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
+    render_ortho::check_tiff_options(args)?;
     if args.frames.is_some() {
         return render_frames::run(args);
     }
@@ -92,7 +93,6 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     // Before any work: a render that fails to be written only at its end is time lost.
     output_file::check_image(&args.output).map_err(anyhow::Error::msg)?;
-    render_ortho::check_tiff_options(args)?;
     if let Some(path) = &args.stats {
         output_file::check(path, "stats.json").map_err(anyhow::Error::msg)?;
     }

@@ -41,7 +41,7 @@ fn dpi(args: &OrthoArgs) -> anyhow::Result<Option<f64>> {
     }
 }
 
-/// Checks that `--depth` and `--dpi` go with a TIFF output.
+/// Checks that `--depth` and `--dpi` go with a TIFF output (not frames, tiles or a PNG).
 pub fn check_tiff_options(args: &RenderArgs) -> anyhow::Result<()> {
     let asked = args.ortho.depth != "8" || args.ortho.dpi.is_some();
     anyhow::ensure!(
@@ -85,7 +85,6 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         );
         output_file::check(&args.output, "relief.png").map_err(anyhow::Error::msg)?;
     }
-    check_tiff_options(args)?;
     let sky_view =
         SkyView::new(ortho.svf_directions, ortho.svf_radius).map_err(anyhow::Error::msg)?;
     anyhow::ensure!(
