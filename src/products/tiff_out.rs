@@ -4,27 +4,16 @@
 //! the resolution in dots per inch where asked. Deflate-compressed.
 
 use super::grid::GeoTransform;
+use crate::heightfield::geokeys::{
+    unit_code, ANGULAR_UNITS, GEOGRAPHIC_TYPE, LINEAR_UNITS, MODEL_GEOGRAPHIC, MODEL_PROJECTED,
+    MODEL_TYPE, PROJECTED_TYPE, RASTER_PIXEL_IS_AREA, RASTER_TYPE, UNIT_DEGREE,
+};
 use crate::heightfield::{Georef, MapUnits};
 use std::io::{Seek, Write};
 use tiff::encoder::colortype::{ColorType, Gray32Float, RGB16, RGB8, RGBA16, RGBA8};
 use tiff::encoder::compression::DeflateLevel;
 use tiff::encoder::{Compression, Predictor, Rational, TiffEncoder, TiffValue};
 use tiff::tags::{ResolutionUnit, Tag};
-
-// GeoKey ids and values (GeoTIFF 1.1, section 7).
-const MODEL_TYPE: u16 = 1024;
-const RASTER_TYPE: u16 = 1025;
-const GEOGRAPHIC_TYPE: u16 = 2048;
-const ANGULAR_UNITS: u16 = 2054;
-const PROJECTED_TYPE: u16 = 3072;
-const LINEAR_UNITS: u16 = 3076;
-const MODEL_PROJECTED: u16 = 1;
-const MODEL_GEOGRAPHIC: u16 = 2;
-const RASTER_PIXEL_IS_AREA: u16 = 1;
-const UNIT_METRE: u16 = 9001;
-const UNIT_FOOT: u16 = 9002;
-const UNIT_US_SURVEY_FOOT: u16 = 9003;
-const UNIT_DEGREE: u16 = 9102;
 
 /// Where a raster lies on the map, as GeoTIFF tags.
 #[derive(Clone, Debug, PartialEq)]
@@ -53,7 +42,7 @@ impl GeoTags {
                 keys.push((MODEL_TYPE, MODEL_PROJECTED));
                 match georef.crs {
                     Some(crs) => keys.push((PROJECTED_TYPE, crs.epsg)),
-                    None => keys.push((LINEAR_UNITS, linear_unit(metres))),
+                    None => keys.push((LINEAR_UNITS, unit_code(metres))),
                 }
             }
         }
@@ -67,15 +56,6 @@ impl GeoTags {
             tiepoint: [0.0, 0.0, 0.0, transform[0], transform[3], 0.0],
             keys: directory,
         }
-    }
-}
-
-/// The EPSG code of a unit of `metres` metres (metres unless it is a foot).
-fn linear_unit(metres: f64) -> u16 {
-    match crate::heightfield::unit_symbol(metres) {
-        "ft" => UNIT_FOOT,
-        "US ft" => UNIT_US_SURVEY_FOOT,
-        _ => UNIT_METRE,
     }
 }
 
@@ -207,4 +187,50 @@ where
             .map_err(failed)?;
     }
     image.write_data(data).map_err(failed)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::heightfield::geokeys::{unit_metres, UNIT_FOOT};
+    use crate::heightfield::{load_bytes, Georeferencing, Heightfield};
+    use crate::products::OrthoGrid;
+    use std::io::Cursor;
+
+    #[test]
+    fn tags_read_back_as_the_maps_georeferencing_in_each_unit() {
+        let foot = unit_metres(UNIT_FOOT).unwrap();
+        let cases = [
+            (
+                [500_000.5, 4_200_000.25],
+                [2.0, 3.0],
+                MapUnits::Linear { metres: 1.0 },
+            ),
+            (
+                [1_000.0, 2_000.0],
+                [5.0, 5.0],
+                MapUnits::Linear { metres: foot },
+            ),
+            ([7.25, 46.5], [0.001, 0.002], MapUnits::Degrees),
+        ];
+        for (origin, spacing, units) in cases {
+            let georef = Georef::new(origin, spacing, units).unwrap();
+            let field = Heightfield::from_fn(4, 3, 1, 1.0, |_, _| 0)
+                .unwrap()
+                .with_georeferencing(Georeferencing::Map(georef));
+            let grid = OrthoGrid::over(&field, None).unwrap();
+            let tags = TiffTags {
+                geo: Some(GeoTags::new(&grid.geotransform().unwrap(), &georef)),
+                dpi: None,
+            };
+            let mut bytes = Cursor::new(Vec::new());
+            write_values(&mut bytes, (4, 3), &[1.0; 12], &tags).unwrap();
+            let back = load_bytes(bytes.get_ref(), 1.0, "product.tif").unwrap();
+            let read = back.georef().expect("georeferenced");
+            assert_eq!((read.units, read.spacing), (units, spacing));
+            for (got, want) in read.origin.iter().zip(origin) {
+                assert!((got - want).abs() <= 1e-9 * want.abs(), "{read:?}");
+            }
+        }
+    }
 }
