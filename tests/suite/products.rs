@@ -1,8 +1,10 @@
 //! Map products against analytic values: the sky-view factor of an open plane is 1 and of a V
-//! valley the sum RVT's definition gives for its two planar flanks; hours of sun on flat ground
+//! valley the sum RVT's definition gives for its two planar flanks; horizons of random fields
+//! against a dense brute-force search along the line; hours of sun on flat ground
 //! at the equator on an equinox are 12 within the step, and a slope facing away from a low
 //! winter sun gets none.
 
+use crate::common::random::Rng;
 use chrono::NaiveDate;
 use heightray::products::{Horizon, SkyView, SunPath, Sunlight};
 use heightray::{Arith, Heightfield, Method, Terrain, TraceOptions};
@@ -125,4 +127,57 @@ fn a_steep_north_slope_gets_no_winter_sun_and_a_wall_shades_its_foot() {
         * path.step_hours;
     assert_eq!(far, expected);
     assert!(far > 0.0 && far < flat_hours, "{far} of {flat_hours}");
+}
+
+#[test]
+fn horizons_of_random_fields_match_a_dense_search_along_the_line() {
+    let mut rng = Rng(0x5eed_cafe);
+    for _ in 0..20 {
+        let (w, h) = (5 + rng.below(12), 5 + rng.below(12));
+        let heights: Vec<u16> = (0..w * h).map(|_| rng.below(1000) as u16).collect();
+        let field = Heightfield::from_fn(w, h, 999, 6.0, |i, j| heights[j * w + i]).unwrap();
+        let terrain = Terrain::new(field.clone());
+        let horizon = Horizon::new(&terrain);
+        // The surface by its definition: the triangle of the cell holding the point.
+        let z = |x: f64, y: f64| {
+            let (i, j) = (
+                (x.floor() as usize).min(w - 2),
+                (y.floor() as usize).min(h - 2),
+            );
+            field.surface_z((i, j), (x - i as f64, y - j as f64))
+        };
+        for _ in 0..10 {
+            let at = [
+                rng.within(0.0, (w - 1) as f64),
+                rng.within(0.0, (h - 1) as f64),
+            ];
+            let bearing = rng.within(0.0, std::f64::consts::TAU);
+            let toward = [bearing.sin(), bearing.cos()];
+            let (reach, z0) = (rng.within(0.5, 8.0), z(at[0], at[1]));
+            let exact = horizon.rise(at, z0, toward, reach);
+            // Every 1/4000 of the reach, as far as the line stays on the map.
+            let dense = (1..=4000)
+                .map(|k| reach * f64::from(k) / 4000.0)
+                .map(|d| (d, [at[0] + d * toward[0], at[1] + d * toward[1]]))
+                .take_while(|(_, [x, y])| {
+                    (0.0..=(w - 1) as f64).contains(x) && (0.0..=(h - 1) as f64).contains(y)
+                })
+                .map(|(d, [x, y])| (z(x, y) - z0) / d)
+                .fold(None, |best: Option<f64>, r| {
+                    Some(best.map_or(r, |b| b.max(r)))
+                });
+            let (Some(exact), Some(dense)) = (exact, dense) else {
+                continue;
+            };
+            // The exact maximum is never below a sample of it, and a dense search comes close.
+            assert!(
+                exact >= dense - 1e-9 * (1.0 + dense.abs()),
+                "{exact} below {dense}"
+            );
+            assert!(
+                exact - dense < 0.02 * (1.0 + exact.abs()),
+                "{exact} against {dense}"
+            );
+        }
+    }
 }
