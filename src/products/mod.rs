@@ -46,44 +46,39 @@ impl Maker<'_> {
     /// Every pixel of `grid`, rows in parallel on rayon's threads; `progress` is told of each
     /// row done.
     pub fn raster(&self, grid: &OrthoGrid, progress: &(dyn Fn() + Sync)) -> Raster {
-        let rows = |make: &(dyn Fn(u32, u32) -> f32 + Sync)| -> Vec<f32> {
-            let mut values = vec![f32::NAN; grid.pixels()];
-            values
-                .par_chunks_mut(grid.width as usize)
-                .enumerate()
-                .for_each(|(row, line)| {
-                    for (column, value) in line.iter_mut().enumerate() {
-                        *value = make(column as u32, row as u32);
-                    }
-                    progress();
-                });
-            values
-        };
         let centre = |column, row| grid.point(column, row, (0.5, 0.5));
+        let value = |v: Option<f64>| v.map_or(f32::NAN, |v| v as f32);
         match self {
-            Maker::Shaded(shader, arith) => {
-                let mut pixels = vec![[0u16; 4]; grid.pixels()];
-                pixels
-                    .par_chunks_mut(grid.width as usize)
-                    .enumerate()
-                    .for_each(|(row, line)| {
-                        for (column, pixel) in line.iter_mut().enumerate() {
-                            *pixel = shaded::pixel(shader, *arith, grid, column as u32, row as u32);
-                        }
-                        progress();
-                    });
-                Raster::Colour(pixels)
-            }
-            Maker::SkyView(measure, horizon) => Raster::Values(rows(&|column, row| {
-                measure
-                    .at(horizon, centre(column, row))
-                    .map_or(f32::NAN, |v| v as f32)
+            Maker::Shaded(shader, arith) => Raster::Colour(fill(grid, progress, |column, row| {
+                shaded::pixel(shader, *arith, grid, column, row)
             })),
-            Maker::Sunlight(sunlight) => Raster::Values(rows(&|column, row| {
-                sunlight
-                    .hours_at(centre(column, row))
-                    .map_or(f32::NAN, |v| v as f32)
+            Maker::SkyView(measure, horizon) => {
+                Raster::Values(fill(grid, progress, |column, row| {
+                    value(measure.at(horizon, centre(column, row)))
+                }))
+            }
+            Maker::Sunlight(sunlight) => Raster::Values(fill(grid, progress, |column, row| {
+                value(sunlight.hours_at(centre(column, row)))
             })),
         }
     }
+}
+
+/// The pixels `make(column, row)` of `grid` row by row from the north, rows in parallel.
+fn fill<T: Copy + Default + Send>(
+    grid: &OrthoGrid,
+    progress: &(dyn Fn() + Sync),
+    make: impl Fn(u32, u32) -> T + Sync,
+) -> Vec<T> {
+    let mut pixels = vec![T::default(); grid.pixels()];
+    pixels
+        .par_chunks_mut(grid.width as usize)
+        .enumerate()
+        .for_each(|(row, line)| {
+            for (column, pixel) in line.iter_mut().enumerate() {
+                *pixel = make(column as u32, row as u32);
+            }
+            progress();
+        });
+    pixels
 }
