@@ -22,6 +22,9 @@ pub mod geometry;
 pub mod heightfield;
 /// Writing a file a user names: checked first, then written whole or not at all.
 pub mod output_file;
+/// Map products made straight down: shaded relief, sky-view factor and hours of sunlight, as
+/// GeoTIFFs on the map's own grid.
+pub mod products;
 mod regular_file;
 /// Turning rays into pixels: cameras, scene files, shading, progressive passes, statistics.
 pub mod render;

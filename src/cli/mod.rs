@@ -9,8 +9,10 @@ mod generate;
 mod knobs;
 mod loading;
 mod merge;
+mod ortho_args;
 mod render;
 mod render_frames;
+mod render_ortho;
 mod render_progress;
 mod render_tiles;
 mod speed_report;
@@ -278,7 +280,7 @@ pub struct RenderArgs {
     /// Image size, replacing the scene's (default for a map alone: 1280x720).
     #[arg(long, value_parser = parse_size, value_name = "WIDTHxHEIGHT")]
     pub size: Option<(u32, u32)>,
-    /// Output PNG.
+    /// Output image (PNG; .tif writes a TIFF, see --depth and --dpi).
     #[arg(short, long)]
     pub output: PathBuf,
     /// Worker threads (default: all cores; at most 4 a core are used).
@@ -322,6 +324,8 @@ pub struct RenderArgs {
     /// With --tiles: render only share I of N of the tiles into the folder -o.
     #[arg(long, requires = "tiles", conflicts_with = "tile", value_name = "I/N")]
     pub tile_of: Option<Share>,
+    #[command(flatten)]
+    pub ortho: ortho_args::OrthoArgs,
 }
 
 /// How to read a height map.

@@ -2,7 +2,7 @@
 //! shape; with `--frames`, a flythrough's frames ([`super::render_frames`]); with `--tile` or
 //! `--tiles`, a poster's tiles ([`super::render_tiles`]).
 
-use super::{loading, render_frames, render_progress, render_tiles, RenderArgs};
+use super::{loading, render_frames, render_ortho, render_progress, render_tiles, RenderArgs};
 use heightray::output_file;
 use heightray::render::animation::Animation;
 use heightray::render::annotate::{Annotations, Sheet};
@@ -112,11 +112,15 @@ impl Setup {
 }
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
+    render_ortho::check_tiff_options(args)?;
     if args.frames.is_some() {
         return render_frames::run(args);
     }
     if args.tile.is_some() || args.tiles.is_some() {
         return render_tiles::run(args);
+    }
+    if args.ortho.ortho {
+        return render_ortho::run(args);
     }
     // Before any work: a render that fails to be written only at its end is time lost.
     output_file::check_image(&args.output).map_err(anyhow::Error::msg)?;
@@ -144,8 +148,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     };
     setup.annotate(setup.camera, &mut frame.pixels, whole)?;
 
-    output_file::save_rgb(&args.output, &frame.pixels, (width, height))
-        .map_err(anyhow::Error::msg)?;
+    if render_ortho::is_tiff(&args.output) {
+        render_ortho::save_tiff(args, &frame.pixels, (width, height))?;
+    } else {
+        output_file::save_rgb(&args.output, &frame.pixels, (width, height))
+            .map_err(anyhow::Error::msg)?;
+    }
     let effects = &frame.totals.effects;
     let rays =
         frame.totals.primary_rays + frame.totals.shadow_rays + effects.soft.rays + effects.sky.rays;

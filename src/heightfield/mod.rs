@@ -11,6 +11,7 @@ pub mod crs;
 mod drape;
 mod fetch;
 mod generate;
+pub mod geokeys;
 mod georef;
 pub mod ground;
 mod limits;

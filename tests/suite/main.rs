@@ -34,6 +34,8 @@ mod near_walk;
 mod orthophotos;
 mod packets;
 mod poster;
+mod products;
+mod products_cli;
 mod ramps;
 mod recorded_cells;
 mod render;

@@ -6,29 +6,14 @@
 //! that is not a metre, a foot or a degree leaves the field a plain image, with the reason.
 
 use crate::heightfield::crs::Crs;
-use crate::heightfield::georef::{
-    Georef, Georeferencing, HeightUnit, HeightUnitSource, MapUnits, METRES_PER_FOOT,
-    METRES_PER_US_SURVEY_FOOT,
+use crate::heightfield::geokeys::{
+    unit_metres, ANGULAR_UNITS, GEOGRAPHIC_TYPE, LINEAR_UNITS, MODEL_GEOGRAPHIC, MODEL_PROJECTED,
+    MODEL_TYPE, PROJECTED_TYPE, RASTER_PIXEL_IS_POINT, RASTER_TYPE, UNIT_DEGREE, VERTICAL_UNITS,
 };
+use crate::heightfield::georef::{Georef, Georeferencing, HeightUnit, HeightUnitSource, MapUnits};
 use std::io::{Read, Seek};
 use tiff::decoder::Decoder;
 use tiff::tags::Tag;
-
-// GeoKey ids and values (GeoTIFF 1.1, section 7).
-const MODEL_TYPE: u16 = 1024;
-const RASTER_TYPE: u16 = 1025;
-const GEOGRAPHIC_TYPE: u16 = 2048;
-const ANGULAR_UNITS: u16 = 2054;
-const PROJECTED_TYPE: u16 = 3072;
-const LINEAR_UNITS: u16 = 3076;
-const VERTICAL_UNITS: u16 = 4099;
-const MODEL_PROJECTED: u16 = 1;
-const MODEL_GEOGRAPHIC: u16 = 2;
-const RASTER_PIXEL_IS_POINT: u16 = 2;
-const UNIT_METRE: u16 = 9001;
-const UNIT_FOOT: u16 = 9002;
-const UNIT_US_SURVEY_FOOT: u16 = 9003;
-const UNIT_DEGREE: u16 = 9102;
 
 /// The georeferencing of the current image of `decoder`, `height` rows high.
 pub fn georeferencing<R: Read + Seek>(decoder: &mut Decoder<R>, height: u32) -> Georeferencing {
@@ -55,16 +40,6 @@ pub fn georeferencing<R: Read + Seek>(decoder: &mut Decoder<R>, height: u32) -> 
         corner_transform(scale, tiepoint, transformation)
             .and_then(|corner| georef(&corner, &keys, height)),
     )
-}
-
-/// Metres in a linear unit by its EPSG code (metre, foot, US survey foot).
-fn unit_metres(code: u16) -> Option<f64> {
-    match code {
-        UNIT_METRE => Some(1.0),
-        UNIT_FOOT => Some(METRES_PER_FOOT),
-        UNIT_US_SURVEY_FOOT => Some(METRES_PER_US_SURVEY_FOOT),
-        _ => None,
-    }
 }
 
 /// The affine map from raster space (column, row; corners of pixel `(0, 0)` at `(0, 0)`) to

@@ -1,0 +1,49 @@
+//! The arguments of `render --ortho` (map products) and of TIFF output.
+
+/// Products made straight down over the map, and how TIFFs are written.
+#[derive(clap::Args, Debug)]
+pub struct OrthoArgs {
+    /// Render straight down, one pixel per cell of the map's own grid (or per --cell): a
+    /// product, written as a GeoTIFF (.tif: georeferenced where the map is) or a PNG picture.
+    #[arg(long, conflicts_with_all = ["frames", "tile", "tiles", "stats", "size"])]
+    pub ortho: bool,
+    /// With --ortho: shaded (the scene's shading with cast shadows, colour), sky-view (the
+    /// sky-view factor, 0 to 1) or sunlight-hours (hours of direct sun on --date); the last
+    /// two as 32-bit float values.
+    #[arg(long, requires = "ortho", default_value = "shaded", value_parser = ["shaded", "sky-view", "sunlight-hours"])]
+    pub product: String,
+    /// With --ortho: pixel size in the map's units (metres or feet of a projected map,
+    /// degrees of a geographic one, cells of a plain image); default: the map's own cells.
+    #[arg(
+        long,
+        requires = "ortho",
+        value_name = "SIZE",
+        allow_hyphen_values = true
+    )]
+    pub cell: Option<f64>,
+    /// With --product sunlight-hours: the day, YYYY-MM-DD, midnight to midnight on the map's
+    /// local clocks.
+    #[arg(long, requires = "ortho", value_name = "YYYY-MM-DD", value_parser = parse_date)]
+    pub date: Option<chrono::NaiveDate>,
+    /// With --product sunlight-hours: minutes between the sun's positions (divides 60).
+    #[arg(long, requires = "ortho", default_value_t = 10, value_name = "MINUTES")]
+    pub sun_step: u32,
+    /// With --product sky-view: compass directions searched for the horizon.
+    #[arg(long, requires = "ortho", default_value_t = heightray::products::sky_view::DEFAULT_DIRECTIONS)]
+    pub svf_directions: u32,
+    /// With --product sky-view: how far the horizon is searched, in cells (along y where
+    /// cells are not square).
+    #[arg(long, requires = "ortho", default_value_t = heightray::products::sky_view::DEFAULT_RADIUS_CELLS, value_name = "CELLS")]
+    pub svf_radius: f64,
+    /// Bits per channel of a colour TIFF (-o out.tif): 8 or 16.
+    #[arg(long, default_value = "8", value_parser = ["8", "16"])]
+    pub depth: String,
+    /// Resolution written into a TIFF, in dots per inch.
+    #[arg(long)]
+    pub dpi: Option<f64>,
+}
+
+fn parse_date(text: &str) -> Result<chrono::NaiveDate, String> {
+    chrono::NaiveDate::parse_from_str(text.trim(), "%Y-%m-%d")
+        .map_err(|e| format!("'{text}' is not a date such as 2026-03-20 ({e})"))
+}
