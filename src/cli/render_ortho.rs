@@ -115,7 +115,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         _ => {
             let mut shader = Shader::new(terrain, lighting, setup.method, Culling::default());
             shader.base = None;
-            Maker::Shaded(shader, setup.arith)
+            Maker::Shaded(Box::new(shader), setup.arith)
         }
     };
     if let Some(exaggeration) = heightray::heightfield::relief::exaggeration(terrain.field()) {

@@ -35,7 +35,7 @@ pub enum Raster {
 /// How a product's pixel is made.
 pub enum Maker<'a> {
     /// Shaded relief by this shader, rays traced in this arithmetic.
-    Shaded(Shader<'a>, Arith),
+    Shaded(Box<Shader<'a>>, Arith),
     /// The sky-view factor.
     SkyView(SkyView, Horizon<'a>),
     /// Hours of direct sun.
