@@ -78,7 +78,41 @@ fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, Stri
         effects.adaptive,
         overlay_keys(model),
         water_keys(model),
-    ))
+    ) + &annotation_keys(model))
+}
+
+/// The `[annotations]` section and the `[[vector]]` layers that exports draw, if any.
+fn annotation_keys(model: &Model) -> String {
+    let marks = &model.export.marks;
+    let (title, attribution) = (model.export.title.trim(), model.export.attribution.trim());
+    let mut keys = String::new();
+    if marks.scale_bar
+        || marks.north_arrow
+        || marks.legend
+        || !(title.is_empty() && attribution.is_empty())
+    {
+        keys += &format!(
+            "\n[annotations]\nscale_bar = {}\nnorth_arrow = {}\nlegend = {}\n",
+            marks.scale_bar, marks.north_arrow, marks.legend
+        );
+    }
+    if !title.is_empty() {
+        keys += &format!("title = {title:?}\n");
+    }
+    if !attribution.is_empty() {
+        keys += &format!("attribution = {attribution:?}\n");
+    }
+    for layer in &marks.vectors {
+        let section = &layer.section;
+        let [r, g, b] = layer.colour;
+        keys += &format!(
+            "\n[[vector]]\npath = {:?}\ncoordinates = \"{}\"\ncolour = \"#{r:02x}{g:02x}{b:02x}\"\nlift = {:?}\n",
+            section.path,
+            format!("{:?}", section.coordinates).to_lowercase(),
+            layer.lift
+        );
+    }
+    keys
 }
 
 /// The `[sun]` keys that place the sun: the local time and zone the clock set it by; a

@@ -4,7 +4,8 @@
 use crate::common::reference;
 use crate::common::top_down::overhead_light;
 use heightray::render::annotate::{
-    north_angle_deg, Annotations, Place, ScaleBar, Sheet, Sight, VectorLayer,
+    north_angle_deg, Annotations, Coordinates, Place, ScaleBar, Sheet, Sight, VectorLayer,
+    VectorSection,
 };
 use heightray::render::{Camera, Contours, Culling, Frame, Ramp, Renderer, Shader};
 use heightray::{Arith, Heightfield, Method, Ray, Terrain};
@@ -199,6 +200,12 @@ fn a_place_behind_a_ridge_is_hidden_and_one_in_front_shows() {
                 lines: Vec::new(),
                 colour: [255, 0, 0],
                 lift: 1.0,
+                section: VectorSection {
+                    path: "places.geojson".into(),
+                    coordinates: Coordinates::Grid,
+                    colour: None,
+                    lift: Some(1.0),
+                },
             }],
             ..Annotations::default()
         };

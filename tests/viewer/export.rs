@@ -257,6 +257,40 @@ fn a_saved_scene_keeps_the_base() {
 }
 
 #[test]
+fn a_saved_scene_keeps_the_annotations_and_the_places_exports_draw() {
+    let files = tempfile::tempdir().expect("a temporary directory");
+    let places = files.path().join("places.geojson");
+    let geojson = r#"{"type": "FeatureCollection", "features": [
+        {"type": "Feature", "properties": {"name": "Middle"},
+         "geometry": {"type": "Point", "coordinates": [24.0, 24.0]}},
+        {"type": "Feature", "properties": {},
+         "geometry": {"type": "LineString", "coordinates": [[5.0, 5.0], [40.0, 30.0]]}}]}"#;
+    std::fs::write(&places, geojson).expect("the places written");
+    let scene = files.path().join("annotated.toml");
+    let text = "[heightmap]\npath = \"builtin:small49\"\nz_scale = 12.0\n\
+                [annotations]\nscale_bar = true\nnorth_arrow = true\ntitle = \"A \\\"quoted\\\" hill\"\n\
+                [[vector]]\npath = \"places.geojson\"\ncoordinates = \"grid\"\ncolour = \"#20a040\"\n";
+    std::fs::write(&scene, text).expect("the scene written");
+    let mut session =
+        Session::start(&[scene.to_str().expect("a UTF-8 path"), "--export-dir", "out"]);
+    // (The export draws the marks and places; `render` of the saved scene must draw the same.)
+    let saved = std::fs::read_to_string(save_and_export(&mut session)).expect("the saved scene");
+    assert!(
+        saved.contains("[annotations]\nscale_bar = true\nnorth_arrow = true\nlegend = false\n"),
+        "{saved}"
+    );
+    assert!(
+        saved.contains("title = \"A \\\"quoted\\\" hill\"\n"),
+        "{saved}"
+    );
+    let vector = format!(
+        "[[vector]]\npath = {:?}\ncoordinates = \"grid\"\ncolour = \"#20a040\"\nlift = 0.5\n",
+        places.display().to_string()
+    );
+    assert!(saved.contains(&vector), "{saved}");
+}
+
+#[test]
 fn render_of_a_map_alone_is_what_the_viewer_shows_on_opening_it() {
     // A georeferenced DEM: a 30 m UTM grid with a wall steeper than the default sun, so that
     // shadows show (the viewer opens it at true scale, shadows on).

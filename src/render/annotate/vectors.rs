@@ -62,6 +62,8 @@ pub struct VectorLayer {
     pub colour: [u8; 3],
     /// A marker's height above the ground, in world units.
     pub lift: f64,
+    /// The section it was read from, its path made absolute (a scene saved elsewhere keeps it).
+    pub section: VectorSection,
 }
 
 /// The default line colour.
@@ -123,6 +125,13 @@ impl VectorLayer {
             lines,
             colour,
             lift,
+            section: VectorSection {
+                path: std::path::absolute(&path)
+                    .unwrap_or(path)
+                    .display()
+                    .to_string(),
+                ..section.clone()
+            },
         })
     }
 }
