@@ -87,53 +87,35 @@ impl<S: Scalar> WithWalk for RayIn<'_, S> {
     type Output = ScalarTrace<S>;
     #[inline(always)]
     fn with<W: Walk>(self) -> ScalarTrace<S> {
-        let RayIn {
-            terrain,
-            o,
-            d,
-            dir_f64,
-            walk_options,
-        } = self;
-        trace_walk::<S, W>(terrain, o, d, dir_f64, walk_options)
+        trace_walk::<S, W>(self)
     }
 }
 
 /// [`trace_terrain`] along walk `W`, the cells it reaches listed if the options ask.
-fn trace_walk<S: Scalar, W: Walk>(
-    terrain: &Terrain,
-    o: &[S; 3],
-    d: &[S; 3],
-    dir_f64: [f64; 3],
-    walk_options: WalkOptions,
-) -> ScalarTrace<S> {
-    if walk_options.record_cells {
-        return trace_recorded::<S, W>(terrain, o, d, dir_f64, walk_options);
+fn trace_walk<S: Scalar, W: Walk>(ray: RayIn<'_, S>) -> ScalarTrace<S> {
+    if ray.walk_options.record_cells {
+        return trace_recorded::<S, W>(ray);
     }
-    trace_logged::<S, Unrecorded, W>(terrain, o, d, dir_f64, walk_options)
+    trace_logged::<S, Unrecorded, W>(ray)
 }
 
 /// [`trace_walk`] listing the cells.
 // (Out of line: the renderer's rays list none.)
 #[inline(never)]
-fn trace_recorded<S: Scalar, W: Walk>(
-    terrain: &Terrain,
-    o: &[S; 3],
-    d: &[S; 3],
-    dir_f64: [f64; 3],
-    walk_options: WalkOptions,
-) -> ScalarTrace<S> {
-    trace_logged::<S, Recorded, W>(terrain, o, d, dir_f64, walk_options)
+fn trace_recorded<S: Scalar, W: Walk>(ray: RayIn<'_, S>) -> ScalarTrace<S> {
+    trace_logged::<S, Recorded, W>(ray)
 }
 
 /// [`trace_walk`] noting the cells it reaches in a `C`: the same walks whatever `C` is.
 #[inline(always)]
-fn trace_logged<S: Scalar, C: CellLog, W: Walk>(
-    terrain: &Terrain,
-    o: &[S; 3],
-    d: &[S; 3],
-    dir_f64: [f64; 3],
-    walk_options: WalkOptions,
-) -> ScalarTrace<S> {
+fn trace_logged<S: Scalar, C: CellLog, W: Walk>(ray: RayIn<'_, S>) -> ScalarTrace<S> {
+    let RayIn {
+        terrain,
+        o,
+        d,
+        dir_f64,
+        walk_options,
+    } = ray;
     // (Once per ray: for rationals each component's enclosure is a fraction's subtraction.)
     let near = f64_ray(o, d);
     let certified =
