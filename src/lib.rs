@@ -35,9 +35,10 @@ pub mod traverse;
 #[cfg(feature = "viewer")]
 pub mod viewer;
 
+pub use arith::Arith;
 pub use geometry::{Base, Face, Ray, RayError, Side};
 pub use heightfield::{Heightfield, HeightfieldError, LoadError, Terrain};
-pub use traverse::{occluded, trace, Arith, Counters, Hit, Method, Trace, TraceOptions};
+pub use traverse::{occluded, trace, Counters, Hit, Method, Trace, TraceOptions};
 
 // The README's Rust example runs as a doctest.
 #[cfg(doctest)]

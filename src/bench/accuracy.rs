@@ -2,9 +2,10 @@
 //! how far the answers are from exact arithmetic on the same rays.
 
 use super::ray_sets::RaySet;
+use crate::arith::Arith;
 use crate::render::timing::{fastest, timed, TIMING_BUDGET};
 use crate::render::{view_pixel_differences, PixelRow, Scene, View};
-use crate::traverse::{covered_cells, trace, Arith, Counters, Hit, Method, TraceOptions};
+use crate::traverse::{covered_cells, trace, Counters, Hit, Method, TraceOptions};
 use crate::Terrain;
 use std::collections::HashSet;
 use std::time::Duration;

@@ -2,10 +2,11 @@
 //! numerically hard rays (through lattice points, along grid lines and cell diagonals,
 //! grazing flat plateaus, near-vertical, long and shallow, random).
 
+use crate::arith::Arith;
 use crate::geometry::Ray;
 use crate::heightfield::{landscape, Heightfield, Terrain};
 use crate::render::Scene;
-use crate::traverse::{trace, Arith, Method, TraceOptions};
+use crate::traverse::{trace, Method, TraceOptions};
 
 /// A scene's camera rays, and rays from where they hit (found in `f64`, lifted by a
 /// relative 1e-9) towards the sun: the shadow rays of the scene, as plain first-hit queries

@@ -1,11 +1,12 @@
 //! The same landscape at several sizes, seen from the same oblique view: how build time,
 //! memory and time per ray grow with the terrain.
 
+use crate::arith::Arith;
 use crate::heightfield::{landscape, HeightfieldError};
 use crate::render::{
     Camera, CameraError, EffectsSection, Lighting, Scene, ShadingSection, SunSection,
 };
-use crate::traverse::{Arith, Method};
+use crate::traverse::Method;
 use thiserror::Error;
 
 /// The seed of every generated size (the built-in valley's).

@@ -1,9 +1,10 @@
 //! Rays per second of whole frames: primary and shadow rays, per scene, method, arithmetic
 //! and thread count, measured in one run so the rows compare as ratios.
 
+use crate::arith::Arith;
 use crate::render::timing::{fastest, timed};
 use crate::render::{Culling, Frame, FrameStats, Renderer, Scene, Shader};
-use crate::traverse::{Arith, Counters, Method};
+use crate::traverse::{Counters, Method};
 use crate::Terrain;
 use std::time::Duration;
 

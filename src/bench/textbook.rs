@@ -8,9 +8,10 @@
 //! hits at lattice points and on level ground a ray grazes (see [`hard_cases_versus_exact`]).
 
 use super::ray_sets::{hard_cases, RaySet};
+use crate::arith::Arith;
 use crate::render::timing::{fastest, timed};
 use crate::render::Scene;
-use crate::traverse::{trace, Arith, Method, TraceOptions};
+use crate::traverse::{trace, Method, TraceOptions};
 use crate::{Ray, Terrain};
 use std::time::Duration;
 

@@ -2,10 +2,11 @@
 
 use super::bench::{progress_bar, scene_at_size, scenes_or_builtins};
 use super::AccuracyArgs;
+use heightray::arith::Arith;
 use heightray::bench::{accuracy, hard_cases, pixel_differences, plot, scene_sets, AccuracyRow};
 use heightray::output_file;
 use heightray::render::{PixelRow, Scene};
-use heightray::traverse::{Arith, Method};
+use heightray::traverse::Method;
 use heightray::Terrain;
 use std::fmt::Write as _;
 use std::io::{self, Write as _};

@@ -5,6 +5,7 @@ use super::speed_report::{
     LEVELS_APART,
 };
 use super::{SpeedArgs, TextbookArgs};
+use heightray::arith::Arith;
 use heightray::bench::{
     hard_cases_versus_exact, render_as, sized_scene, throughput, versus_textbook, view,
     HardCaseRow, Reference, ThroughputRow, Tracer, ROUNDS, SEED,
@@ -14,7 +15,7 @@ use heightray::output_file;
 use heightray::render::timing::timed;
 use heightray::render::Frame;
 use heightray::render::{Scene, SceneFile};
-use heightray::traverse::{Arith, Method};
+use heightray::traverse::Method;
 use heightray::traverse::{SimdPath, SIMD_VARIABLE};
 use heightray::Terrain;
 use indicatif::ProgressBar;

@@ -1,8 +1,9 @@
 //! What `bench speed` measured, as one value: printed as Markdown tables on stdout and written
 //! as JSON with `--out`, so the tables and the file always hold the same figures.
 
+use heightray::arith::Arith;
 use heightray::bench::{ThroughputRow, Tracer};
-use heightray::traverse::{prepare, Arith, HitMiss};
+use heightray::traverse::{prepare, HitMiss};
 use heightray::Terrain;
 use serde::Serialize;
 use std::io::{self, Write};

@@ -7,10 +7,11 @@
 //! arithmetic (exactly in exact mode).
 
 use super::horizon::Horizon;
+use crate::arith::Scalar;
 use crate::arith::{run, Generic};
 use crate::render::local_time;
 use crate::render::sun_position::SunPosition;
-use crate::traverse::{Scalar, Start, Tracer};
+use crate::traverse::{Start, Tracer};
 use crate::{Ray, Terrain, TraceOptions};
 use chrono::{Duration, NaiveDate, NaiveTime};
 use chrono_tz::Tz;

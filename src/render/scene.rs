@@ -6,9 +6,10 @@ use super::annotate::{Annotations, AnnotationsSection, VectorLayer, VectorSectio
 use super::camera::{Camera, CameraError};
 use super::contours::Contours;
 use super::effects::Effects;
+use crate::arith::Arith;
 use crate::heightfield::{Drape, DrapeError, Heightfield, LoadError};
 use crate::regular_file::{self, OpenError};
-use crate::traverse::{Arith, Method};
+use crate::traverse::Method;
 use serde::Deserialize;
 use std::io::Read;
 use std::path::{Path, PathBuf};

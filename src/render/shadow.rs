@@ -5,9 +5,10 @@ use super::effects::SoftShadow;
 use super::normals;
 use super::scene::Normals;
 use super::shade::Shader;
+use crate::arith::Scalar;
 use crate::geometry::Face;
-use crate::traverse::{Counters, Found, Occlusion, Scalar, Start};
-use crate::Ray;
+use crate::geometry::Ray;
+use crate::traverse::{Counters, Found, Occlusion, Start};
 use glam::DVec3;
 
 /// Why a shadow ray was not cast although the scene has shadows.

@@ -2,11 +2,11 @@
 //! the exact ray does not touch.
 
 use super::counters::{Counters, HitMiss};
-use super::frame::start_level;
 use super::frame::Frame;
+use super::frame::Levels;
 use super::near_ray::F64Ray;
+use super::options::Query;
 use super::search::moves_away;
-use super::Query;
 use crate::arith::scalar::F64_TOLERANCE;
 use crate::heightfield::Terrain;
 
@@ -42,7 +42,11 @@ impl Approximation {
         if query == Query::Shadow {
             0
         } else {
-            start_level(top, self.level)
+            Levels {
+                top,
+                start: self.level,
+            }
+            .first()
         }
     }
 }

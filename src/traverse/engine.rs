@@ -8,7 +8,7 @@ use super::cell_log::{CellLog, Recorded, Unrecorded};
 use super::counters::Counters;
 use super::exact_mode::{trace_certified, walk_cleared};
 use super::far::{far_start, FarStart};
-use super::frame::clip;
+use super::frame::{clip, Levels};
 use super::mipmap::near;
 use super::near_ray::f64_ray;
 use super::options::WalkOptions;
@@ -159,9 +159,12 @@ fn trace_logged<S: Scalar, C: CellLog, W: Walk>(ray: RayIn<'_, S>) -> ScalarTrac
             }
         };
     if !cleared && !walked_near {
-        let level = first_level(&walk_options, start);
+        let levels = Levels {
+            top: terrain.mipmap().top(),
+            start: first_level(&walk_options, start),
+        };
         // Ends by itself or at the answer; both are fine here.
-        let _ = W::walk(&frame, level, &mut search);
+        let _ = W::walk(&frame, levels, &mut search);
     }
     ScalarTrace {
         hit: search.found,

@@ -10,7 +10,7 @@ use super::approximation::Approximation;
 use super::cell_log::CellLog;
 use super::certified;
 use super::counters::Counters;
-use super::frame::{clip_grown, Frame};
+use super::frame::{clip_grown, Frame, Levels};
 use super::mipmap;
 use super::mipmap::stretches;
 use super::near_ray::F64Ray;
@@ -102,7 +102,11 @@ pub(super) fn walk_cleared<S: Scalar, C: CellLog>(
                 return ControlFlow::Break(());
             }
             if let Some(part) = frame.stretch(from, to) {
-                mipmap::walk(&part, search, Some(0))?;
+                let levels = Levels {
+                    top: search.terrain.mipmap().top(),
+                    start: Some(0),
+                };
+                mipmap::walk(&part, search, levels)?;
             }
             // The walk covered every cell the path touches up to `to`: a hit before that is
             // the first. One past it (in a cell the walk ended in) waits for the next

@@ -4,9 +4,9 @@
 
 use super::exact_plane::{exact_t, point_over};
 use crate::arith::dyadic::Dyadic;
+use crate::geometry::Ray;
 use crate::geometry::{ray_space_axes, triangle_corners};
 use crate::heightfield::Terrain;
-use crate::Ray;
 
 /// Where `ray` meets the plane of triangle `triangle` of `cell`: a hit point, given by what
 /// makes it exactly rather than by its coordinates.

@@ -377,10 +377,20 @@ pub(in crate::traverse) fn run_sample<S: Scalar>(
     extreme
 }
 
-/// The level a walk starts at: [`first_level`], or lower where the caller knows better.
-pub(in crate::traverse) fn start_level(top: u32, level: Option<u32>) -> u32 {
-    let first = first_level(top);
-    level.map_or(first, |k| k.min(first))
+/// How high a hierarchical walk may climb (the mipmap's top level) and, where the caller
+/// knows better than the default, the level it starts at.
+#[derive(Clone, Copy, Debug)]
+pub(in crate::traverse) struct Levels {
+    pub top: u32,
+    pub start: Option<u32>,
+}
+
+impl Levels {
+    /// The level the walk starts at: [`first_level`], or lower where the caller knows better.
+    pub fn first(self) -> u32 {
+        let first = first_level(self.top);
+        self.start.map_or(first, |k| k.min(first))
+    }
 }
 
 /// Blocks an eighth of the grid wide: the two levels above them seldom pass a test (the ray

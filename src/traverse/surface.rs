@@ -13,9 +13,9 @@ use super::engine::trace_terrain;
 use super::options::{Query, WalkOptions};
 use super::search::Found;
 use crate::arith::{Exact, Scalar};
+use crate::geometry::Ray;
 use crate::geometry::{base_hit, Base, BaseQuery, Face};
 use crate::heightfield::Terrain;
-use crate::Ray;
 use num_rational::BigRational;
 
 /// The answer for the ray `o + t*d` given in the traversal's arithmetic, over the terrain and

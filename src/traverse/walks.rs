@@ -5,11 +5,9 @@
 use super::approximation::Approximation;
 use super::cell_log::CellLog;
 use super::certified::Certifying;
-use super::frame::Follower;
-use super::frame::Part;
-use super::frame::{Frame, Span};
+use super::frame::{Follower, Frame, Levels, Part, Span};
 use super::mipmap;
-use super::search::{span_cells, Search};
+use super::search::span_cells;
 use super::{dda, runs, Method};
 use crate::arith::scalar::Scalar;
 use std::ops::ControlFlow;
@@ -20,14 +18,15 @@ pub(super) trait Walk {
     /// (see [`clear_way`](mipmap::stretches::clear_way)).
     const CLEARS_WAY: bool = false;
     /// Whether the search tests each span the walk hands over as a whole before its cells
-    /// (the run test, [`Search::span`]).
+    /// (the run test, [`Search::span`](super::search::Search::span)).
     const TESTS_RUNS: bool = false;
-    /// Walks the path of `f`, handing what it reaches to `search`, until it breaks; `level`:
-    /// where a hierarchical walk starts when the caller knows better (see [`mipmap::walk`]).
-    fn walk<S: Scalar, C: CellLog>(
+    /// Walks the path of `f`, handing what it reaches to `follower`, until it breaks;
+    /// `levels`: how high a hierarchical walk may climb and where it starts (see
+    /// [`mipmap::walk`]).
+    fn walk<S: Scalar>(
         f: &Frame<S>,
-        level: Option<u32>,
-        search: &mut Search<'_, S, C>,
+        levels: Levels,
+        follower: &mut impl Follower<S>,
     ) -> ControlFlow<()>;
     /// The same walk in `f64` along an `f64` ray near an exact one, for the exact ray's
     /// answer (see [`certify`](super::certified::certify)).
@@ -53,12 +52,12 @@ pub(super) struct Cells;
 
 impl Walk for Blocks {
     const CLEARS_WAY: bool = true;
-    fn walk<S: Scalar, C: CellLog>(
+    fn walk<S: Scalar>(
         f: &Frame<S>,
-        level: Option<u32>,
-        search: &mut Search<'_, S, C>,
+        levels: Levels,
+        follower: &mut impl Follower<S>,
     ) -> ControlFlow<()> {
-        mipmap::walk(f, search, level)
+        mipmap::walk(f, follower, levels)
     }
     fn certify<S: Scalar, C: CellLog>(
         ray: &Approximation,
@@ -69,12 +68,12 @@ impl Walk for Blocks {
 }
 
 impl Walk for BlockRuns {
-    fn walk<S: Scalar, C: CellLog>(
+    fn walk<S: Scalar>(
         f: &Frame<S>,
-        level: Option<u32>,
-        search: &mut Search<'_, S, C>,
+        levels: Levels,
+        follower: &mut impl Follower<S>,
     ) -> ControlFlow<()> {
-        mipmap::walk_runs(f, search, level)
+        mipmap::walk_runs(f, follower, levels)
     }
     fn certify<S: Scalar, C: CellLog>(
         ray: &Approximation,
@@ -86,12 +85,12 @@ impl Walk for BlockRuns {
 
 impl Walk for Runs {
     const TESTS_RUNS: bool = true;
-    fn walk<S: Scalar, C: CellLog>(
+    fn walk<S: Scalar>(
         f: &Frame<S>,
-        _level: Option<u32>,
-        search: &mut Search<'_, S, C>,
+        _levels: Levels,
+        follower: &mut impl Follower<S>,
     ) -> ControlFlow<()> {
-        runs::walk(f, search)
+        runs::walk(f, follower)
     }
     fn certify<S: Scalar, C: CellLog>(
         ray: &Approximation,
@@ -102,12 +101,12 @@ impl Walk for Runs {
 }
 
 impl Walk for Cells {
-    fn walk<S: Scalar, C: CellLog>(
+    fn walk<S: Scalar>(
         f: &Frame<S>,
-        _level: Option<u32>,
-        search: &mut Search<'_, S, C>,
+        _levels: Levels,
+        follower: &mut impl Follower<S>,
     ) -> ControlFlow<()> {
-        dda::walk(f, search)
+        dda::walk(f, follower)
     }
     fn certify<S: Scalar, C: CellLog>(
         ray: &Approximation,

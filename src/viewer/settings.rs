@@ -1,9 +1,9 @@
 //! What the panels edit besides the camera: light, shading, effects, traversal, display.
 
+use crate::arith::DEFAULT_BOUND;
 use crate::render::effects::Effects;
 use crate::render::sun_position::SunPosition;
 use crate::render::{BaseStyle, Lighting, Normals, Ramp};
-use crate::traverse::DEFAULT_BOUND;
 use crate::{Arith, Method};
 
 /// Which arithmetic, with the rational bound kept apart so switching away and back keeps it.

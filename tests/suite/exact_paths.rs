@@ -4,7 +4,8 @@
 //! mode, on random rays that favour degenerate cases (so both paths are taken).
 
 use crate::common::random::field_and_ray;
-use heightray::traverse::{settled, Exact, Interval, Scalar, Tracer};
+use heightray::arith::{settled, Exact, Interval, Scalar};
+use heightray::traverse::Tracer;
 use heightray::{trace, Arith, Method, TraceOptions};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;

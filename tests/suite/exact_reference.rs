@@ -8,10 +8,8 @@ use crate::common::families::{self, ray, terrain};
 use crate::common::random::{field_and_ray, field_and_ray_up_to};
 use crate::common::reference::{self, q, Q};
 use crate::common::{assert_family, check_exact, describe, options};
-use heightray::traverse::{
-    covered_cells, occluded, occluded_from_hit, settled, Exact, HitMiss, Interval, Scalar, Start,
-    Tracer,
-};
+use heightray::arith::{settled, Exact, Interval, Scalar};
+use heightray::traverse::{covered_cells, occluded, occluded_from_hit, HitMiss, Start, Tracer};
 use heightray::{trace, Arith, Counters, Heightfield, Method, Ray, Terrain, TraceOptions};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;

@@ -24,11 +24,12 @@ pub use vectors::{
     from_geojson, from_gpx, Coordinates, Place, VectorFile, VectorLayer, VectorSection,
 };
 
+use crate::arith::Arith;
 use crate::heightfield::Terrain;
 #[cfg(feature = "annotate")]
 use crate::render::Window;
 use crate::render::{Camera, Ramp};
-use crate::traverse::{Arith, Method};
+use crate::traverse::Method;
 use serde::Deserialize;
 
 /// A scene file's `[annotations]` section: which marks are drawn into the picture.

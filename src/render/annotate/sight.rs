@@ -4,8 +4,9 @@
 //! a ridge it grazes included.
 
 use crate::arith::{run, Generic};
+use crate::arith::{Arith, Scalar};
 use crate::heightfield::Terrain;
-use crate::traverse::{Arith, Method, Scalar, Start, Tracer};
+use crate::traverse::{Method, Start, Tracer};
 
 /// Sight lines over one terrain from one eye (in grid coordinates).
 #[derive(Clone, Copy, Debug)]

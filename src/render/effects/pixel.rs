@@ -9,9 +9,9 @@
 use super::sampling::{mix, point};
 use super::time::nanos_since;
 use super::Effects;
+use crate::geometry::Ray;
 use crate::render::camera::Camera;
 use crate::render::gamma;
-use crate::Ray;
 use std::time::Instant;
 
 /// Samples every adaptive pixel takes before it may stop; also the batch it adds at a time.

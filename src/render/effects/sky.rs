@@ -7,10 +7,11 @@
 
 use super::horizon::{climbs_above, level_within, sector_of, slope_bound_within, Sector};
 use super::sampling::{cosine_hemisphere, point, seed_of};
+use crate::arith::Scalar;
+use crate::geometry::Ray;
 use crate::render::shade::Shader;
 use crate::render::sky_gradient::{horizon, sky_colour, zenith};
-use crate::traverse::{Counters, Found, Scalar};
-use crate::Ray;
+use crate::traverse::{Counters, Found};
 use glam::DVec3;
 
 /// Sectors of azimuth the terrain's rise around a point is bounded in.

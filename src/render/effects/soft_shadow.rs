@@ -9,10 +9,11 @@
 use super::horizon::{climbs_above, slope_bound, Sector};
 use super::sampling::{cone, point, seed_of};
 use super::sun_cone::{self, Cone};
+use crate::arith::Scalar;
+use crate::geometry::Ray;
 use crate::render::shade::Shader;
 use crate::render::shadow::{Cast, Shadow, ShadowSkip};
-use crate::traverse::{Counters, Found, Scalar};
-use crate::Ray;
+use crate::traverse::{Counters, Found};
 use glam::{DVec2, DVec3};
 
 /// The purpose a soft shadow's samples are seeded with (see [`seed_of`]).

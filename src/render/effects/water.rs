@@ -6,10 +6,11 @@
 //! camera rays are, in the frame's arithmetic.
 
 use super::horizon::{climbs_above, slope_bound, Sector};
+use crate::arith::Scalar;
+use crate::geometry::Ray;
 use crate::heightfield::Heightfield;
 use crate::render::shade::Shader;
-use crate::traverse::{Counters, Scalar};
-use crate::Ray;
+use crate::traverse::Counters;
 use glam::{DVec2, DVec3};
 
 /// A scene's water, validated.

@@ -30,56 +30,40 @@ pub(super) mod stretches;
 use path::{cell_in_grid, ends_inside, exit_point};
 use run_levels::descend_runs;
 
-use super::cell_log::CellLog;
 use super::degenerate::is_point;
-use super::frame::{start_level, Follower, Frame, Part, Point};
+use super::frame::{Follower, Frame, Levels, Part, Point};
 use super::runs;
-use super::search::Search;
 use crate::arith::scalar::Scalar;
 use std::ops::ControlFlow;
 
-/// Walks the path block by block, handing the cells of blocks that may be hit to `search`.
-/// `level`: the level to start at where the caller knows better than the default: 0 where the
-/// path starts next to the surface (on it, or just before a cell an `f64` walk found may be
-/// hit), where every block around the start would fail its test, or the level a ray's
-/// clearance names.
-pub fn walk<S: Scalar, C: CellLog>(
+/// Walks the path block by block, handing the cells of blocks that may be hit to
+/// `follower`. `levels.start`: the level to start at where the caller knows better than the
+/// default: 0 where the path starts next to the surface (on it, or just before a cell an `f64`
+/// walk found may be hit), where every block around the start would fail its test, or the
+/// level a ray's clearance names.
+pub fn walk<S: Scalar>(
     f: &Frame<S>,
-    search: &mut Search<'_, S, C>,
-    level: Option<u32>,
+    follower: &mut impl Follower<S>,
+    levels: Levels,
 ) -> ControlFlow<()> {
-    walk_with(f, search, level, |f, top, k, search| {
-        descend(f, top, k, search)
-    })
+    if !has_blocks(f) {
+        return runs::walk(f, follower);
+    }
+    descend(f, levels.top, levels.first(), follower)
 }
 
 /// The hierarchical run walk ([`descend_runs`]), started as [`walk`] starts the block walk.
 // (Out of line: inlined beside the block walk into the trace, it would slow the block walk.)
 #[inline(never)]
-pub fn walk_runs<S: Scalar, C: CellLog>(
+pub fn walk_runs<S: Scalar>(
     f: &Frame<S>,
-    search: &mut Search<'_, S, C>,
-    level: Option<u32>,
-) -> ControlFlow<()> {
-    walk_with(f, search, level, |f, top, k, search| {
-        descend_runs(f, top, k, search)
-    })
-}
-
-/// Starts a hierarchical walk (`descend` from its start level), or the run walk where the
-/// path crosses no blocks.
-#[inline(always)]
-fn walk_with<'a, S: Scalar, C: CellLog>(
-    f: &Frame<S>,
-    search: &mut Search<'a, S, C>,
-    level: Option<u32>,
-    descend: impl FnOnce(&Frame<S>, u32, u32, &mut Search<'a, S, C>) -> ControlFlow<()>,
+    follower: &mut impl Follower<S>,
+    levels: Levels,
 ) -> ControlFlow<()> {
     if !has_blocks(f) {
-        return runs::walk(f, search);
+        return runs::walk(f, follower);
     }
-    let top = search.terrain.mipmap().top();
-    descend(f, top, start_level(top, level), search)
+    descend_runs(f, levels.top, levels.first(), follower)
 }
 
 /// Whether the path crosses blocks: a point or a path along a row has nothing to skip over

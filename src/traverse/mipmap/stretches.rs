@@ -6,7 +6,7 @@ use crate::heightfield::Terrain;
 use crate::traverse::approximation::{Approximation, Bounds};
 use crate::traverse::counters::Counters;
 use crate::traverse::frame::{Follower, Frame, Span};
-use crate::traverse::Query;
+use crate::traverse::options::Query;
 use std::ops::ControlFlow;
 
 /// A stretch of the path that may touch the surface, as an `f64` walk found it: `t` from

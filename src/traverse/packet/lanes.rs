@@ -1,9 +1,9 @@
 //! A packet's rays in lanes, and the node test made for all of them at once.
 
+use crate::geometry::Ray;
 use crate::heightfield::Terrain;
 use crate::traverse::frame::{clip, Frame};
 use crate::traverse::mipmap::has_blocks;
-use crate::Ray;
 
 /// The most rays a packet holds (one AVX-512 register of `f64`).
 pub const LANES: usize = 8;

@@ -28,8 +28,8 @@ pub use crate::arith::{SimdPath, SIMD_VARIABLE};
 
 use super::counters::HitMiss;
 use super::Clearance;
+use crate::geometry::Ray;
 use crate::heightfield::Terrain;
-use crate::Ray;
 use lanes::Packet;
 pub use lanes::LANES;
 

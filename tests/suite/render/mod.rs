@@ -4,11 +4,11 @@
 //! Golden images are regenerated with `HEIGHTRAY_BLESS=1 cargo test --profile release-tests --test suite render::`.
 
 use crate::common::scenes::{load_scene_text, SMALL_SCENE};
+use heightray::arith::Exact;
 use heightray::render::effects::Effects;
 use heightray::render::{
     Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Scene, SceneFile, Shader,
 };
-use heightray::traverse::Exact;
 use heightray::{Arith, Heightfield, Method, Terrain};
 use std::path::{Path, PathBuf};
 
