@@ -11,7 +11,7 @@ use super::render_progress::Progress;
 use super::RenderArgs;
 use heightray::batch::{Share, TileGrid, TilePlace, TILE_KEYWORD};
 use heightray::output_file;
-use heightray::render::effects::reach;
+use heightray::render::reach;
 use heightray::render::Frame;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;

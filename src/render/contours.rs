@@ -9,11 +9,10 @@
 //! `τ (R - d (n·R) / (n·d))` for a step `R` of the direction, and the height by its `z`. Where
 //! contours crowd closer than a few pixels they fade out, rather than fill the ground.
 
-use super::shade::Shader;
 use super::Camera;
-use crate::geometry::{gradient, Face};
+use crate::geometry::gradient;
+use crate::geometry::Ray;
 use crate::heightfield::Terrain;
-use crate::Ray;
 use glam::DVec3;
 
 /// The lines' colour (linear light): a dark brown, as printed maps draw contours.
@@ -125,17 +124,20 @@ fn plane_normal(terrain: &Terrain, p: DVec3) -> DVec3 {
     DVec3::new(-gx, -gy, 1.0)
 }
 
-impl Shader<'_> {
-    /// The surface's colour at `p` on `face` before it is lit ([`Shader::albedo`]), with the
-    /// contour lines over it where asked, `p` seen `t` along `ray`.
+impl Contours {
+    /// `albedo` at `p` on the terrain with the contour lines over it, `p` seen `t` along
+    /// `ray`.
     #[inline(always)]
-    pub(super) fn marked_albedo(&self, ray: &Ray, (face, p): (Face, DVec3), t: f64) -> DVec3 {
-        let albedo = self.albedo(face, p);
-        let Some(contours) = self.contours.filter(|_| face == Face::Terrain) else {
-            return albedo;
-        };
-        let n = plane_normal(self.terrain, p);
-        let per_pixel = contours.height_per_pixel(DVec3::from(ray.dir()), t, n);
-        albedo.lerp(INK, contours.cover(p.z, per_pixel))
+    pub(super) fn mark(
+        &self,
+        terrain: &Terrain,
+        albedo: DVec3,
+        ray: &Ray,
+        p: DVec3,
+        t: f64,
+    ) -> DVec3 {
+        let n = plane_normal(terrain, p);
+        let per_pixel = self.height_per_pixel(DVec3::from(ray.dir()), t, n);
+        albedo.lerp(INK, self.cover(p.z, per_pixel))
     }
 }

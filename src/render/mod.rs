@@ -1,6 +1,8 @@
+mod accumulate;
 pub mod animation;
 pub mod annotate;
 mod camera;
+mod context;
 mod contours;
 pub mod effects;
 pub mod framing;
@@ -9,9 +11,9 @@ pub mod local_time;
 mod normals;
 mod passes;
 mod ramp;
+mod sample;
 mod scene;
 mod shade;
-mod shadow;
 mod sky_gradient;
 mod stats;
 pub mod sun_position;
@@ -20,10 +22,13 @@ mod tally;
 pub mod timing;
 mod versus_exact;
 
+pub use accumulate::{reach, Accumulation};
 pub use camera::{Camera, CameraError, Window, MAX_PIXELS};
+pub use context::{Context, Culling};
 pub use contours::Contours;
 pub use passes::{Frame, Renderer, PASS_BLOCKS};
 pub use ramp::{HeightSpan, Ramp};
+pub use sample::{Reflection, Sample, Shadow, ShadowSkip, SkyRays, SoftShadow, WaterPixel};
 pub use scene::{
     bytes_from_hex, bytes_from_linear, level_in_map_units, level_z, linear_from_bytes,
 };
@@ -32,8 +37,7 @@ pub use scene::{
     Orbit, OverlaySection, Scene, SceneError, SceneFile, ShadingSection, SunSection, WaterSection,
     DEFAULT_SIZE, DEFAULT_WATER_COLOUR,
 };
-pub use shade::{Culling, Sample, Shader};
-pub use shadow::{Shadow, ShadowSkip};
+pub use shade::Shader;
 pub use stats::{FrameStats, PixelStats};
 pub use tally::{Counting, Tally};
 pub use versus_exact::{

@@ -5,7 +5,6 @@
 use super::camera::Camera;
 use super::effects::nanos_since;
 use super::effects::pixel::{self, FIRST_BATCH};
-use super::scene::Lighting;
 use super::shade::Shader;
 use super::stats::{FrameStats, PixelStats};
 use super::tally::Counting;
@@ -184,13 +183,7 @@ impl Renderer<'_> {
     ) -> bool {
         let width = frame.width as usize;
         let rows = BAND as usize * width;
-        let per_sample = Shader {
-            lighting: Lighting {
-                effects: pixel::per_sample(&self.shader.lighting.effects),
-                ..self.shader.lighting
-            },
-            ..self.shader.clone()
-        };
+        let per_sample = self.shader.per_sample();
         let wedges = self.wedges();
         let bands: Vec<Option<FrameStats>> = frame
             .pixels

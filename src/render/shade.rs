@@ -1,152 +1,69 @@
 //! From a ray to a colour: the primary ray, the shadow ray only where it can change the pixel,
 //! Lambert shading with an elevation ramp, sky and fog.
 
+use super::context::{Context, Culling};
 use super::contours::Contours;
-use super::effects::{nanos_since, EffectTime, Reflection, SkyRays};
-use super::gamma;
+use super::effects::pixel::per_sample;
+use super::effects::{
+    nanos_since, At, Effect, EffectTime, SkyLight, SoftShadows, SunShadow, WaterReflection,
+};
+use super::sample::{Cast, Sample, Shadow, ShadowSkip};
 use super::scene::Lighting;
-use super::shadow::Shadow;
-use super::sky_gradient::{horizon, night_sky_colour, sky_colour, NIGHT_HORIZON};
 use super::tally::{Counting, Tally};
-use crate::arith::Scalar;
-use crate::arith::{with_numbers, Arith, Generic, Numbers, WithNumbers};
-use crate::geometry::Ray;
-use crate::geometry::{Base, Face};
-use crate::heightfield::{SkyBounds, StripBounds, Terrain};
-use crate::traverse::{Clearance, Counters, Hit, Method, Profiles, Tracer, Wedges};
+use crate::arith::{with_numbers, Arith, Generic, Numbers, Scalar, WithNumbers};
+use crate::geometry::{Face, Ray};
+use crate::heightfield::Terrain;
+use crate::traverse::{Clearance, Counters, Hit, Method, Profiles, Wedges};
 use glam::DVec3;
 use std::cell::{Cell, RefCell};
+use std::ops::{Deref, DerefMut};
 use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Instant;
 
-/// One traced sample, recorded on its own (see [`Tally`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Sample {
-    /// 0x00RRGGBB.
-    pub rgb: u32,
-    /// What the primary ray hit: the terrain or the base, if anything.
-    pub hit: Option<Face>,
-    /// What became of the shadow ray.
-    pub shadow: Shadow,
-    /// The primary ray's queries.
-    pub primary: Counters,
-    /// The shadow rays' queries (towards the sun, or its disc), or the reflected ray's.
-    pub secondary: Counters,
-    /// The sky-light rays.
-    pub sky: SkyRays,
-    /// What became of the reflection of water the pixel shows.
-    pub reflection: Reflection,
-    /// Intervals left a decision unsettled, and exact mode made it again exactly: it traced
-    /// the pixel again in rationals, or cast only its shadow ray again, or decided one of the
-    /// shadow ray's triangle tests on its own.
-    pub redone: bool,
-    /// The time its effects took.
-    pub time: EffectTime,
-}
-
-/// Which shadow rays to leave out where they cannot change the pixel (all on by default;
-/// switching one off must not change the image, only the work).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Culling {
-    /// Leave out shadow rays of surfaces facing away from the sun ([`ShadowSkip::FacingAway`]).
-    pub facing_away: bool,
-    /// Leave out every shadow ray when the sun climbs steeper than any slope
-    /// ([`ShadowSkip::NoShadowPossible`]).
-    pub no_shadow_possible: bool,
-    /// Leave out shadow rays that start above the terrain and rise
-    /// ([`ShadowSkip::AboveTerrain`]).
-    pub above_terrain: bool,
-    /// Leave out soft-shadow and sky-light rays that climb more steeply than the terrain can
-    /// rise around their start ([`ShadowSkip::HorizonClear`], [`SkyRays::cast`]).
-    pub horizon_clear: bool,
-    /// Leave out the soft-shadow rays of a cone provably blocked whole
-    /// ([`SoftShadow::blocked`]).
-    pub cone_blocked: bool,
-    /// Walk only the first cells of a shadow or sky-light ray that bounds kept for the terrain
-    /// ahead prove clear beyond them (the sun's [`StripBounds`], the sky's [`SkyBounds`]).
-    pub far_bounds: bool,
-    /// Start each camera ray's walk where its wedge's profile proves it clear of the surface,
-    /// and settle the rays above their wedge's whole profile with no walk ([`Wedges`]).
-    pub camera_clearance: bool,
-    /// Walk the first cells of camera rays from their clearance one by one, not down the
-    /// mipmap ([`Tracer::walking_near`]).
-    pub near_walk: bool,
-}
-
-impl Default for Culling {
-    fn default() -> Self {
-        Culling {
-            facing_away: true,
-            no_shadow_possible: true,
-            above_terrain: true,
-            horizon_clear: true,
-            cone_blocked: true,
-            far_bounds: true,
-            camera_clearance: true,
-            near_walk: true,
-        }
-    }
-}
-
-/// Everything a pixel needs besides its ray.
+/// Everything a pixel needs besides its ray: the context its rays are cast in, the camera
+/// wedges and the contour lines; composes the effects a scene asks for into a colour.
 #[derive(Clone)]
 pub struct Shader<'a> {
-    /// The terrain traced.
-    pub terrain: &'a Terrain,
-    /// Sun, shading and effects.
-    pub lighting: Lighting,
-    /// The traversal method of primary and shadow rays.
-    pub method: Method,
-    /// Which shadow rays to leave out.
-    pub culling: Culling,
-    /// The strip bounds of the sun's direction in the grid, where the scene has hard shadows
-    /// and they can help (see [`Shader::new`]).
-    pub(super) strips: Option<Arc<StripBounds>>,
-    /// The sky's bounds around each block, where the scene has sky light (see
-    /// [`Shader::new`]).
-    pub(super) sky: Option<Arc<SkyBounds>>,
+    /// The terrain, how it is traced, the lighting and the bounds kept for it.
+    pub cx: Context<'a>,
     /// The camera wedges' profiles made last, kept across a view's passes (clones share
     /// them).
-    pub(super) wedges: Arc<Mutex<Option<Arc<Profiles>>>>,
-    /// The base under the terrain its rays meet, as the lighting's style makes it.
-    pub base: Option<Base>,
+    wedges: Arc<Mutex<Option<Arc<Profiles>>>>,
     /// Contour lines drawn on the terrain, as the camera sees them (none from [`Shader::new`]).
     pub contours: Option<Contours>,
 }
 
-impl<'a> Shader<'a> {
-    /// A shader of `terrain` with the bounds its shadow and sky-light rays look up, from the
-    /// terrain's own: the sun's strip bounds (built once per direction of the sun and kept
-    /// while it stays) and the sky's (kept for the terrain's lifetime).
-    pub fn new(terrain: &'a Terrain, lighting: Lighting, method: Method, culling: Culling) -> Self {
-        let mut shader = Shader {
-            terrain,
-            lighting,
-            method,
-            culling,
-            strips: None,
-            sky: None,
-            wedges: Arc::default(),
-            base: lighting.base.for_terrain(terrain),
-            contours: None,
-        };
-        if lighting.shadows && lighting.sun_up() && culling.far_bounds {
-            shader.strips = terrain.strip_bounds(shader.grid_sun(), shader.sun_half());
-        }
-        if lighting.effects.sky_light && culling.far_bounds {
-            shader.sky = terrain.sky_bounds(shader.sky_reach());
-        }
-        shader
+impl<'a> Deref for Shader<'a> {
+    type Target = Context<'a>;
+    fn deref(&self) -> &Context<'a> {
+        &self.cx
     }
+}
 
-    /// The strip bounds the sun's shadow rays look up, if the scene has shadows and the
-    /// bounds can help (see [`StripBounds::build`]).
-    pub fn strip_bounds(&self) -> Option<&StripBounds> {
-        self.strips.as_deref()
+impl DerefMut for Shader<'_> {
+    fn deref_mut(&mut self) -> &mut Self::Target {
+        &mut self.cx
     }
 }
 
 impl<'a> Shader<'a> {
+    /// A shader of `terrain` in the context [`Context::new`] makes.
+    pub fn new(terrain: &'a Terrain, lighting: Lighting, method: Method, culling: Culling) -> Self {
+        Shader {
+            cx: Context::new(terrain, lighting, method, culling),
+            wedges: Arc::default(),
+            contours: None,
+        }
+    }
+
+    /// This shader for one sample of a pixel's: each sample's share of the pixel's effect
+    /// rays (see [`per_sample`](super::effects::pixel::per_sample)).
+    pub fn per_sample(&self) -> Shader<'a> {
+        let mut shader = self.clone();
+        shader.cx.lighting.effects = per_sample(&self.lighting.effects);
+        shader
+    }
+
     /// Traces and shades one primary ray with the numbers `N` of an arithmetic (see
     /// [`with_numbers`](crate::arith::with_numbers)), from its [`Clearance`] if given (it
     /// touches nothing before); counts its rays into `counting` and returns its colour
@@ -211,14 +128,6 @@ impl<'a> Shader<'a> {
         };
         let (sample, _) = with_numbers(arith, recorded);
         (sample, hit.take())
-    }
-
-    /// The tracer of this shader's rays: its method, walking near the surface as the culling
-    /// says.
-    pub fn tracer(&self) -> Tracer<'a> {
-        Tracer::new(self.terrain, self.method)
-            .walking_near(self.culling.near_walk)
-            .with_base(self.base)
     }
 
     /// The wedges of camera rays from `eye` traced in `arith`, where the culling asks for them,
@@ -291,7 +200,7 @@ impl<'a> Shader<'a> {
             let terrain_t = primary.hit.as_ref().map(|found| found.t.to_f64());
             if let Some(t) = water.crossing(ray.origin(), ray.dir(), terrain_t, field) {
                 let start = Instant::now();
-                let water = self.water_pixel::<S>(water, ray, t);
+                let water = WaterReflection(water).cast::<S>(&self.cx, ray, t);
                 tally.water(water.reflection, &water.counters);
                 if water.redone {
                     tally.redone();
@@ -318,7 +227,12 @@ impl<'a> Shader<'a> {
         };
         // (A hit on the base is shaded without the verdicts that hold only on the terrain.)
         let on_base = self.on_face(found.face);
-        let this = on_base.as_ref().unwrap_or(self);
+        let this = on_base.as_ref().unwrap_or(&self.cx);
+        let at = At {
+            found: &found,
+            ray,
+            p,
+        };
         let facing = this.facing(found.face, found.cell, found.triangle, p);
         let mut redone = false;
         // Effects are timed as they run; hard shadows are not, so a plain frame reads no clock.
@@ -326,7 +240,7 @@ impl<'a> Shader<'a> {
         let soft = self.lighting.effects.sun_angle_deg > 0.0;
         let shadow = if self.lighting.shadows {
             let start = soft.then(Instant::now);
-            let (shadow, counters, exactly) = this.shadow::<S>(&found, ray, p, facing);
+            let (shadow, counters, exactly) = shadow(this, &at, facing);
             tally.shadow(shadow, &counters);
             redone |= exactly;
             time.soft = start.map_or(0, nanos_since);
@@ -346,7 +260,7 @@ impl<'a> Shader<'a> {
         }
         let rgb = if self.lighting.effects.sky_light {
             let start = Instant::now();
-            let (light, sky) = this.sky_light(&found, ray, p);
+            let (light, sky) = SkyLight.cast(this, &at);
             tally.sky(&sky);
             redone |= sky.redone;
             time.sky = nanos_since(start);
@@ -363,8 +277,19 @@ impl<'a> Shader<'a> {
         rgb
     }
 
+    /// The surface's colour at `p` on `face` before it is lit ([`Context::albedo`]), with
+    /// the contour lines over it where asked, `p` seen `t` along `ray`.
+    #[inline(always)]
+    fn marked_albedo(&self, ray: &Ray, (face, p): (Face, DVec3), t: f64) -> DVec3 {
+        let albedo = self.albedo(face, p);
+        match self.contours.filter(|_| face == Face::Terrain) {
+            Some(contours) => contours.mark(self.terrain, albedo, ray, p, t),
+            None => albedo,
+        }
+    }
+
     /// The colour of the surface at `p` on `face`, `t` along `ray`, facing the sun as
-    /// [`Shader::facing`] says, in shadow or not as `shadow` says.
+    /// [`Context::facing`] says, in shadow or not as `shadow` says.
     #[inline(always)]
     pub fn surface_rgb(
         &self,
@@ -403,71 +328,20 @@ impl<'a> Shader<'a> {
         let colour = self.marked_albedo(ray, (face, p), t) * light;
         self.fogged_rgb(ray, t, colour)
     }
+}
 
-    /// A surface's linear `colour` seen along `ray` at `t`, through the fog, packed.
-    #[inline(always)]
-    pub(super) fn fogged_rgb(&self, ray: &Ray, t: f64, mut colour: DVec3) -> u32 {
-        if self.lighting.fog > 0.0 {
-            let distance = t * self.world_dir(ray.dir()).length();
-            let clear = (-self.lighting.fog * distance).exp();
-            colour = colour * clear + self.haze() * (1.0 - clear);
-        }
-        gamma::pack(colour.to_array())
+/// The shadow at `at` in `cx` where a shadow ray can change the pixel: the sun's disc's, or
+/// its point's.
+#[inline(always)]
+fn shadow<S: Scalar>(cx: &Context<'_>, at: &At<'_, S>, facing: f64) -> Cast {
+    if cx.culling.facing_away && facing <= 0.0 {
+        let skip = Shadow::Skipped(ShadowSkip::FacingAway);
+        return (skip, Counters::default(), false);
     }
-
-    /// The colour of a ray that misses the terrain.
-    pub fn sky_rgb(&self, ray: &Ray) -> u32 {
-        gamma::pack(self.sky(self.world_dir(ray.dir()).into()).to_array())
-    }
-
-    /// The direction towards the sun in grid coordinates, where shadow rays are traced.
-    pub(crate) fn grid_sun(&self) -> [f64; 3] {
-        self.grid_dir(DVec3::from(self.lighting.sun)).into()
-    }
-
-    /// The sun disc's half-angle (radians) in the grid, with room for rounding: every soft
-    /// shadow's direction lies within it of [`Shader::grid_sun`]; 0 for hard shadows.
-    pub(crate) fn sun_half(&self) -> f64 {
-        let angle = self.lighting.effects.sun_angle_deg;
-        match angle > 0.0 {
-            true => (angle / 2.0).to_radians() * (1.0 + 1e-6),
-            false => 0.0,
-        }
-    }
-
-    /// A unit direction in the world as a unit direction in grid coordinates, where rays are
-    /// traced (the same vector where cells are square).
-    pub(crate) fn grid_dir(&self, dir: DVec3) -> DVec3 {
-        match self.terrain.world_from_grid() {
-            Some(scale) => (dir / DVec3::from(scale)).normalize_or(dir),
-            None => dir,
-        }
-    }
-
-    /// A ray direction in grid coordinates as a direction in the world.
-    pub(super) fn world_dir(&self, dir: [f64; 3]) -> DVec3 {
-        match self.terrain.world_from_grid() {
-            Some(scale) => DVec3::from(dir) * DVec3::from(scale),
-            None => DVec3::from(dir),
-        }
-    }
-
-    /// Sky gradient for rays that miss: the day's, or the night's once the sun is down.
-    pub(super) fn sky(&self, dir: [f64; 3]) -> DVec3 {
-        if self.lighting.sun_up() {
-            sky_colour(DVec3::from(dir))
-        } else {
-            night_sky_colour(DVec3::from(dir))
-        }
-    }
-
-    /// The colour fog fades to: the sky's at the horizon.
-    fn haze(&self) -> DVec3 {
-        if self.lighting.sun_up() {
-            horizon()
-        } else {
-            NIGHT_HORIZON
-        }
+    if cx.lighting.effects.sun_angle_deg > 0.0 {
+        SoftShadows.cast(cx, at)
+    } else {
+        SunShadow.cast(cx, at)
     }
 }
 

@@ -2,10 +2,10 @@
 //! primary ray and as hit/miss ratios, and a compact per-pixel record for heat maps.
 
 use super::effects::{EffectStats, EffectTime};
-use super::shade::Sample;
+use super::sample::Sample;
 use crate::traverse::{Counters, HitMiss};
+use derive_more::AddAssign;
 use serde_json::{json, Value};
-use std::ops::AddAssign;
 
 /// Queries one pixel's rays (primary and shadow) made, for heat maps.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -48,7 +48,8 @@ impl PixelStats {
     }
 }
 
-impl AddAssign for PixelStats {
+// (By hand: a heat map's counts saturate rather than wrap.)
+impl std::ops::AddAssign for PixelStats {
     fn add_assign(&mut self, rhs: PixelStats) {
         self.blocks = self.blocks.saturating_add(rhs.blocks);
         self.runs = self.runs.saturating_add(rhs.runs);
@@ -59,7 +60,7 @@ impl AddAssign for PixelStats {
 }
 
 /// Shadow rays not cast, by reason.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, AddAssign)]
 pub struct Skipped {
     /// The surface faced away from the sun.
     pub facing_away: u64,
@@ -73,7 +74,7 @@ pub struct Skipped {
 
 /// Totals of a frame (or of any set of pixels). Two frames' totals are equal when they
 /// counted the same rays, however long those took.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, AddAssign)]
 pub struct FrameStats {
     /// Primary rays traced (one per pixel).
     pub primary_rays: u64,
@@ -237,24 +238,5 @@ impl FrameStats {
             );
         }
         out
-    }
-}
-
-impl AddAssign for FrameStats {
-    fn add_assign(&mut self, rhs: FrameStats) {
-        self.primary_rays += rhs.primary_rays;
-        self.primary_hits += rhs.primary_hits;
-        self.base_hits += rhs.base_hits;
-        self.shadow_rays += rhs.shadow_rays;
-        self.shadowed += rhs.shadowed;
-        self.skipped.facing_away += rhs.skipped.facing_away;
-        self.skipped.no_shadow_possible += rhs.skipped.no_shadow_possible;
-        self.skipped.above_terrain += rhs.skipped.above_terrain;
-        self.skipped.horizon_clear += rhs.skipped.horizon_clear;
-        self.effects += rhs.effects;
-        self.primary += rhs.primary;
-        self.shadow += rhs.shadow;
-        self.redone += rhs.redone;
-        self.time += rhs.time;
     }
 }

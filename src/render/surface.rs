@@ -4,10 +4,10 @@
 //! walls in the ramp's colour at their height darkened towards an earth tone, so they read as
 //! the block under the map, and its floor in a neutral grey that reads as "no data".
 
+use super::context::{Context, Culling};
 use super::normals;
 use super::ramp::HeightSpan;
 use super::scene::Normals;
-use super::shade::{Culling, Shader};
 use crate::geometry::{gradient, Face};
 use glam::DVec3;
 
@@ -18,7 +18,7 @@ const EARTH_SHARE: f64 = 0.55;
 /// The floor's colour (linear RGB): a cool grey, no height's colour on any ramp.
 const FLOOR: DVec3 = DVec3::new(0.16, 0.16, 0.18);
 
-impl<'a> Shader<'a> {
+impl<'a> Context<'a> {
     /// How the surface at `p` on `face` (triangle `triangle` of `cell` on the terrain) faces
     /// the sun: the cosine of the angle between the shading normal and the sun (not positive
     /// where it faces away).
@@ -56,7 +56,7 @@ impl<'a> Shader<'a> {
     /// terrain), in world coordinates (where cells may be non-square).
     #[inline(always)]
     pub(crate) fn normal(&self, face: Face, cell: (usize, usize), triangle: u8, p: DVec3) -> DVec3 {
-        let normal = match (Shader::base_normal(face), self.lighting.normals) {
+        let normal = match (Context::base_normal(face), self.lighting.normals) {
             (Some(normal), _) => normal,
             (None, Normals::Flat) => self.geometric_normal(cell, triangle).normalize_or(DVec3::Z),
             (None, Normals::Smooth) => normals::smooth_normal(self.terrain, cell, triangle, p),
@@ -91,11 +91,11 @@ impl<'a> Shader<'a> {
         }
     }
 
-    /// This shader for a hit on `face`: on the base, without the shadow verdicts proven from
+    /// This context for a hit on `face`: on the base, without the shadow verdicts proven from
     /// the terrain's slopes around a point on the terrain (no shadow possible, the horizon
     /// clear, a cone blocked whole): a point on the floor under a hole lies below the terrain
     /// around it, which may hide the sun from it however steep the sun is.
-    pub(super) fn on_face(&self, face: Face) -> Option<Shader<'a>> {
+    pub(super) fn on_face(&self, face: Face) -> Option<Context<'a>> {
         if face == Face::Terrain {
             return None;
         }
@@ -105,7 +105,7 @@ impl<'a> Shader<'a> {
             cone_blocked: false,
             ..self.culling
         };
-        Some(Shader {
+        Some(Context {
             culling,
             ..self.clone()
         })

@@ -5,9 +5,8 @@
 //! A frame's pixels then carry no counters of their own: only their colour and heat-map
 //! queries leave the shader.
 
-use super::effects::{EffectTime, Reflection, SkyRays};
-use super::shade::Sample;
-use super::shadow::{Shadow, ShadowSkip};
+use super::effects::EffectTime;
+use super::sample::{Reflection, Sample, Shadow, ShadowSkip, SkyRays};
 use super::stats::{FrameStats, PixelStats};
 use crate::geometry::Face;
 use crate::traverse::Counters;

@@ -1,10 +1,10 @@
 //! Query counters: one struct, summed per frame, kept per pixel.
 
+use derive_more::AddAssign;
 use serde::Serialize;
-use std::ops::AddAssign;
 
 /// Queries of one kind, split into hits ("exists", E) and misses (N).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, AddAssign)]
 pub struct HitMiss {
     /// Queries answered "may be hit" (E).
     pub hit: u64,
@@ -33,15 +33,8 @@ impl HitMiss {
     }
 }
 
-impl AddAssign for HitMiss {
-    fn add_assign(&mut self, rhs: HitMiss) {
-        self.hit += rhs.hit;
-        self.miss += rhs.miss;
-    }
-}
-
 /// What one ray (or a frame of rays) asked of the height field.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, AddAssign)]
 pub struct Counters {
     /// Ray against the height field's bounding box.
     pub bbox: HitMiss,
@@ -67,18 +60,4 @@ pub struct Counters {
     pub rational_rounded: u64,
     /// Bounded-rational results clamped to the `i64` range.
     pub rational_saturated: u64,
-}
-
-impl AddAssign for Counters {
-    fn add_assign(&mut self, rhs: Counters) {
-        self.bbox += rhs.bbox;
-        self.block += rhs.block;
-        self.wedge += rhs.wedge;
-        self.bound += rhs.bound;
-        self.run += rhs.run;
-        self.cell += rhs.cell;
-        self.triangle += rhs.triangle;
-        self.rational_rounded += rhs.rational_rounded;
-        self.rational_saturated += rhs.rational_saturated;
-    }
 }

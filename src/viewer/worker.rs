@@ -7,7 +7,7 @@
 
 use super::mailbox::Mailbox;
 use super::orbit::Orbit;
-use crate::render::effects::Accumulation;
+use crate::render::Accumulation;
 use crate::render::{Camera, Culling, Frame, Lighting, Renderer, Shader};
 use crate::{Arith, Method, Terrain};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};

@@ -5,7 +5,8 @@
 //! hand below.
 
 use crate::common::top_down::overhead_light;
-use heightray::render::effects::{Reflection, Water, NORMAL_REFLECTANCE};
+use heightray::render::effects::{Water, NORMAL_REFLECTANCE};
+use heightray::render::Reflection;
 use heightray::render::{
     bytes_from_hex, linear_from_bytes, Culling, Lighting, Ramp, Sample, Shader,
     DEFAULT_WATER_COLOUR,

@@ -4,8 +4,9 @@
 //! the rays were traced.
 
 use super::EmbreeHit;
-use crate::render::effects::{EffectTime, Reflection, SkyRays};
+use crate::render::effects::EffectTime;
 use crate::render::{Frame, FrameStats, PixelStats, Sample, Shader, Shadow, ShadowSkip};
+use crate::render::{Reflection, SkyRays};
 use crate::traverse::Counters;
 use crate::Face;
 use crate::Ray;

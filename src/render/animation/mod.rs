@@ -5,10 +5,12 @@
 
 mod spline;
 mod track;
+mod view;
 
 use track::Track;
 pub use track::TrackSection;
 pub(crate) use track::{gpx_points, read_text};
+pub use view::View;
 
 use super::camera::{Camera, CameraError};
 use super::framing;
@@ -59,17 +61,6 @@ pub struct KeySection {
     /// Vertical field of view in degrees (default the `[camera]`'s, else 45).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fov_y_deg: Option<f64>,
-}
-
-/// A view along a path: where the eye is, what it looks at, how wide.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct View {
-    /// The eye.
-    pub eye: DVec3,
-    /// The point looked at.
-    pub target: DVec3,
-    /// Vertical field of view in degrees.
-    pub fov_y_deg: f64,
 }
 
 /// How the camera moves.

@@ -3,7 +3,7 @@
 //! flies along it at a constant speed, `height` above the ground beneath (interpolated between
 //! the points), looking at the track `look_ahead_s` seconds ahead.
 
-use super::View;
+use super::view::View;
 use crate::heightfield::{world_from_grid, Heightfield};
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};

@@ -5,13 +5,14 @@
 //! azimuth, a direction that climbs more steeply than the terrain within the distance can
 //! rise in its sector is open without a walk.
 
+use super::effect::{At, Effect};
 use super::horizon::{climbs_above, level_within, sector_of, slope_bound_within, Sector};
 use super::sampling::{cosine_hemisphere, point, seed_of};
 use crate::arith::Scalar;
 use crate::geometry::Ray;
-use crate::render::shade::Shader;
+use crate::render::context::Context;
+use crate::render::sample::SkyRays;
 use crate::render::sky_gradient::{horizon, sky_colour, zenith};
-use crate::traverse::{Counters, Found};
 use glam::DVec3;
 
 /// Sectors of azimuth the terrain's rise around a point is bounded in.
@@ -20,33 +21,6 @@ const SECTORS: usize = 8;
 /// The purpose a point's sky samples are seeded with (see [`seed_of`]).
 const PURPOSE: u64 = 0x0051_7a11;
 
-/// A point's sky-light rays.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct SkyRays {
-    /// Directions asked.
-    pub of: u16,
-    /// Directions that reach the sky.
-    pub open: u16,
-    /// Directions traced (the others climbed above the terrain's bound).
-    pub cast: u16,
-    /// The traced rays' queries.
-    pub counters: Counters,
-    /// A triangle test intervals could not settle was decided exactly.
-    pub redone: bool,
-}
-
-impl SkyRays {
-    /// The cosine-weighted share of the hemisphere open to the sky (the sky-view factor).
-    pub fn open_share(&self) -> f64 {
-        f64::from(self.open) / f64::from(self.of.max(1))
-    }
-
-    /// Directions left out because they provably reach the sky.
-    pub fn culled(&self) -> u16 {
-        self.of - self.cast
-    }
-}
-
 /// The mean sky colour a horizontal point sees under an open sky, cosine-weighted: the
 /// gradient goes by `sqrt(sin(elevation))`, and under the cosine's density `sin(elevation)^2`
 /// is uniform on `[0, 1]`, so the mean of its fourth root is 4/5.
@@ -54,52 +28,54 @@ pub fn open_sky_mean() -> DVec3 {
     horizon().lerp(zenith(), 0.8)
 }
 
-impl Shader<'_> {
-    /// How far sky-light rays look for terrain, horizontally, in grid units: a world unit
-    /// horizontally spans at most this many.
-    pub(in crate::render) fn sky_reach(&self) -> f64 {
-        let scale = self.terrain.world_from_grid().unwrap_or([1.0; 3]);
-        self.lighting.effects.sky_distance / scale[0].min(scale[1])
-    }
+/// The sky's light at a hit: the scene's ambient term times the mean colour of the open
+/// directions over the open sky's mean brightness (an open plane gets the ambient term in the
+/// sky's tint), and the rays.
+pub struct SkyLight;
 
+impl SkyLight {
     /// The sky light (a colour, before the surface's own) where `ray` first meets the
     /// terrain, traced in `f64`, and its rays; `None` where the ray misses.
-    pub fn sky_light_at(&self, ray: &Ray) -> Option<(DVec3, SkyRays)> {
-        let found = self.tracer().trace::<f64>(ray, None).hit?;
+    pub fn at(cx: &Context<'_>, ray: &Ray) -> Option<(DVec3, SkyRays)> {
+        let found = cx.tracer().trace::<f64>(ray, None).hit?;
         let (o, d) = (ray.origin(), ray.dir());
         let p = DVec3::from(found.point(&o, &d));
-        Some(self.sky_light(&found, ray, p))
+        Some(SkyLight.cast(
+            cx,
+            &At {
+                found: &found,
+                ray,
+                p,
+            },
+        ))
     }
+}
 
-    /// The sky's light at the hit `found` of `ray`, shaded at `p`: the scene's ambient term
-    /// times the mean colour of the open directions over the open sky's mean brightness (an
-    /// open plane gets the ambient term in the sky's tint), and the rays.
-    pub(in crate::render) fn sky_light<S: Scalar>(
-        &self,
-        found: &Found<S>,
-        ray: &Ray,
-        p: DVec3,
-    ) -> (DVec3, SkyRays) {
-        let normal = self.normal(found.face, found.cell, found.triangle, p);
-        let start = self.occlusion_start(found, p);
-        let distance = self.lighting.effects.sky_distance;
-        let scale = self.terrain.world_from_grid().unwrap_or([1.0; 3]);
-        let reach = self.sky_reach();
-        let room = self.start_room::<S>(ray, start);
-        let rays = self.lighting.effects.sky_rays;
-        let culling = self.culling.horizon_clear;
+impl Effect for SkyLight {
+    type Outcome = (DVec3, SkyRays);
+
+    fn cast<S: Scalar>(&self, cx: &Context<'_>, at: &At<'_, S>) -> (DVec3, SkyRays) {
+        let At { found, ray, p } = *at;
+        let normal = cx.normal(found.face, found.cell, found.triangle, p);
+        let start = cx.occlusion_start(found, p);
+        let distance = cx.lighting.effects.sky_distance;
+        let scale = cx.terrain.world_from_grid().unwrap_or([1.0; 3]);
+        let reach = cx.sky_reach();
+        let room = cx.start_room::<S>(ray, start);
+        let rays = cx.lighting.effects.sky_rays;
+        let culling = cx.culling.horizon_clear;
         // Nothing above the point within reach: every rising ray is open.
-        let level = culling && level_within(self.terrain, start, reach);
+        let level = culling && level_within(cx.terrain, start, reach);
         // A sector's bound costs a few walks: worth it where its sector holds several rays.
         // (Where the sky's bounds are kept, they settle the far part of each ray instead.)
-        let far = self.sky.as_ref().filter(|_| self.culling.far_bounds);
+        let far = cx.sky.as_ref().filter(|_| cx.culling.far_bounds);
         let by_sector = culling && !level && rays > SECTORS as u32 && far.is_none();
         // Each sector's bound, found when a direction in it first asks.
         let mut bounds = [None; SECTORS];
         let mut bound = |dir: DVec3| {
             let k = sector_of(dir, SECTORS);
             *bounds[k].get_or_insert_with(|| {
-                slope_bound_within(self.terrain, start, Some(Sector::nth(k, SECTORS)), reach)
+                slope_bound_within(cx.terrain, start, Some(Sector::nth(k, SECTORS)), reach)
             })
         };
         let seed = seed_of(ray.origin(), ray.dir(), PURPOSE);
@@ -112,7 +88,7 @@ impl Shader<'_> {
             let (u, v) = point(index, seed);
             let dir = cosine_hemisphere(normal, u, v);
             // (Traced and bounded in grid coordinates; coloured by the world direction.)
-            let grid = self.grid_dir(dir);
+            let grid = cx.grid_dir(dir);
             let culled = grid.z > 0.0 && (level || (by_sector && climbs_above(grid, bound(grid))));
             let open = culled || {
                 // (The ray's `t` runs along the unit grid direction.)
@@ -121,13 +97,12 @@ impl Shader<'_> {
                 // more than the rest of the ray's set-up.)
                 let across = (ax * ax + ay * ay).sqrt();
                 let t_max = (distance / across).is_finite().then(|| distance / across);
-                let near =
-                    far.map(|b| b.clear_beyond(self.terrain, start.into(), grid.into(), room));
+                let near = far.map(|b| b.clear_beyond(cx.terrain, start.into(), grid.into(), room));
                 let t_max = match near.flatten() {
                     Some(t) => Some(t_max.map_or(t, |m| m.min(t))),
                     None => t_max,
                 };
-                let mut answer = self.occluded(found, ray, p, grid.into(), t_max);
+                let mut answer = cx.occluded(found, ray, p, grid.into(), t_max);
                 if let Some(near) = near.filter(|_| answer.occluded.is_some()) {
                     answer.counters.bound.record(near.is_none());
                 }
@@ -145,7 +120,7 @@ impl Shader<'_> {
         }
         let open_mean = open_sky_mean();
         let brightness = (open_mean.x + open_mean.y + open_mean.z) / 3.0;
-        let ambient = light * (self.lighting.ambient / (f64::from(rays) * brightness));
+        let ambient = light * (cx.lighting.ambient / (f64::from(rays) * brightness));
         (ambient, sky)
     }
 }

@@ -6,13 +6,14 @@
 //! shadow ray, unless it alone climbs above that bound. A cone whose first direction traced
 //! is blocked may be settled as blocked whole ([`sun_cone`](super::sun_cone)) by one more ray.
 
+use super::effect::{At, Effect};
 use super::horizon::{climbs_above, slope_bound, Sector};
 use super::sampling::{cone, point, seed_of};
 use super::sun_cone::{self, Cone};
 use crate::arith::Scalar;
 use crate::geometry::Ray;
-use crate::render::shade::Shader;
-use crate::render::shadow::{Cast, Shadow, ShadowSkip};
+use crate::render::context::Context;
+use crate::render::sample::{Cast, Shadow, ShadowSkip, SoftShadow};
 use crate::traverse::{Counters, Found};
 use glam::{DVec2, DVec3};
 
@@ -24,63 +25,41 @@ const PURPOSE: u64 = 0x5011_d15c;
 /// renders faster casting it than bounding it first (measured).
 const BOUNDED_FROM: u32 = 4;
 
-/// A soft shadow: how many of the directions towards the sun's disc are clear.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct SoftShadow {
-    /// Directions that reach the sun.
-    pub clear: u16,
-    /// Directions asked.
-    pub of: u16,
-    /// Directions traced (the others climbed above the terrain's bound, or the cone was
-    /// settled as blocked).
-    pub cast: u16,
-    /// A ray looked for the cone blocked whole ([`sun_cone`](super::sun_cone)).
-    pub probed: bool,
-    /// The cone is blocked whole: no direction reaches the sun.
-    pub blocked: bool,
-}
+/// The sun as a disc: shadow rays over it, those that provably clear the terrain or are
+/// provably blocked left out.
+pub struct SoftShadows;
 
-impl SoftShadow {
-    /// The share of the sun's disc seen.
-    pub fn visible(&self) -> f64 {
-        f64::from(self.clear) / f64::from(self.of.max(1))
-    }
-}
+impl Effect for SoftShadows {
+    type Outcome = Cast;
 
-impl Shader<'_> {
-    /// The soft shadow of the hit `found` of `ray`, shaded at `p`, facing the sun.
-    pub(in crate::render) fn soft_shadow<S: Scalar>(
-        &self,
-        found: &Found<S>,
-        ray: &Ray,
-        p: DVec3,
-    ) -> Cast {
+    fn cast<S: Scalar>(&self, cx: &Context<'_>, at: &At<'_, S>) -> Cast {
+        let At { found, ray, p } = *at;
         let skip = |why| (Shadow::Skipped(why), Counters::default(), false);
         // The disc is drawn around the sun's direction in grid coordinates, where the rays and
         // the bounds are; on non-square cells it is stretched with the cells.
-        let axis = self.grid_dir(DVec3::from(self.lighting.sun));
+        let axis = cx.grid_dir(DVec3::from(cx.lighting.sun));
         // (Room for rounding: the lowest direction drawn is never lower than this.)
-        let half = (self.lighting.effects.sun_angle_deg / 2.0).to_radians();
+        let half = (cx.lighting.effects.sun_angle_deg / 2.0).to_radians();
         let lowest = axis.z.clamp(-1.0, 1.0).asin() - half * (1.0 + 1e-9);
         let rises = lowest > 0.0;
-        let steepest = self.terrain.max_slope() * (1.0 + 1e-9);
-        if self.culling.no_shadow_possible && rises && lowest.tan() > steepest {
+        let steepest = cx.terrain.max_slope() * (1.0 + 1e-9);
+        if cx.culling.no_shadow_possible && rises && lowest.tan() > steepest {
             return skip(ShadowSkip::NoShadowPossible);
         }
-        let start = self.occlusion_start(found, p);
-        let (_, z_max) = self.terrain.z_range();
-        if self.culling.above_terrain && rises && start.z > z_max {
+        let start = cx.occlusion_start(found, p);
+        let (_, z_max) = cx.terrain.z_range();
+        if cx.culling.above_terrain && rises && start.z > z_max {
             return skip(ShadowSkip::AboveTerrain);
         }
         let whole_cone = Cone::new(start, axis, half);
         let sector = sun_sector(axis, half);
-        let rays = self.lighting.effects.sun_rays;
-        let bounded = self.culling.horizon_clear && rays >= BOUNDED_FROM;
-        if bounded && whole_cone.is_some_and(|c| sun_cone::clear(self.terrain, &c)) {
+        let rays = cx.lighting.effects.sun_rays;
+        let bounded = cx.culling.horizon_clear && rays >= BOUNDED_FROM;
+        if bounded && whole_cone.is_some_and(|c| sun_cone::clear(cx.terrain, &c)) {
             return skip(ShadowSkip::HorizonClear);
         }
         let bound = if bounded {
-            slope_bound(self.terrain, start, sector)
+            slope_bound(cx.terrain, start, sector)
         } else {
             f64::INFINITY
         };
@@ -98,9 +77,9 @@ impl Shader<'_> {
         let (mut counters, mut exactly) = (Counters::default(), false);
         for index in 0..rays {
             // A cone whose first direction traced is blocked may be blocked whole.
-            if self.culling.cone_blocked && soft.cast == 1 && soft.clear == 0 && !soft.probed {
+            if cx.culling.cone_blocked && soft.cast == 1 && soft.clear == 0 && !soft.probed {
                 soft.probed = true;
-                if whole_cone.is_some_and(|whole| self.cone_blocked(&whole, found, &mut counters)) {
+                if whole_cone.is_some_and(|whole| cone_blocked(cx, &whole, found, &mut counters)) {
                     soft.blocked = true;
                     break;
                 }
@@ -111,7 +90,7 @@ impl Shader<'_> {
                 soft.clear += 1;
                 continue;
             }
-            let answer = self.occluded_beyond(found, ray, p, start, (axis.into(), dir.into()));
+            let answer = cx.occluded_beyond(found, ray, p, start, (axis.into(), dir.into()));
             // (Not traced: it starts above the terrain and rises.)
             let Some(occluded) = answer.occluded else {
                 soft.clear += 1;
@@ -124,29 +103,24 @@ impl Shader<'_> {
         }
         (Shadow::Soft(soft), counters, exactly)
     }
+}
 
-    /// Whether every direction of `cone` from the hit `found` is provably blocked, looking
-    /// with one ray traced in `f64` (its queries added to `counters`).
-    fn cone_blocked<S: Scalar>(
-        &self,
-        cone: &Cone,
-        found: &Found<S>,
-        counters: &mut Counters,
-    ) -> bool {
-        let tracer = self.tracer();
-        let first_touch = |from: DVec3, dir: DVec3| {
-            let ray = Ray::new(from.into(), dir.into()).ok()?;
-            let traced = tracer.trace::<f64>(&ray, None);
-            *counters += traced.counters;
-            Some(traced.hit?.t * dir.truncate().length())
-        };
-        sun_cone::blocked(
-            self.terrain,
-            cone,
-            (found.cell, found.triangle),
-            first_touch,
-        )
-    }
+/// Whether every direction of `cone` from the hit `found` is provably blocked, looking
+/// with one ray traced in `f64` (its queries added to `counters`).
+fn cone_blocked<S: Scalar>(
+    cx: &Context<'_>,
+    cone: &Cone,
+    found: &Found<S>,
+    counters: &mut Counters,
+) -> bool {
+    let tracer = cx.tracer();
+    let first_touch = |from: DVec3, dir: DVec3| {
+        let ray = Ray::new(from.into(), dir.into()).ok()?;
+        let traced = tracer.trace::<f64>(&ray, None);
+        *counters += traced.counters;
+        Some(traced.hit?.t * dir.truncate().length())
+    };
+    sun_cone::blocked(cx.terrain, cone, (found.cell, found.triangle), first_touch)
 }
 
 /// The azimuths of the directions within `half` (radians) of `axis`, with room for rounding;

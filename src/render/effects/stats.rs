@@ -1,16 +1,14 @@
 //! What the effects cost in a frame: rays cast and left out, per effect and reason, and the
 //! samples each pixel took.
 
-use super::sky::SkyRays;
-use super::soft_shadow::SoftShadow;
-use super::water::Reflection;
+use crate::render::sample::{Reflection, SkyRays, SoftShadow};
 use crate::traverse::Counters;
+use derive_more::with_trait::AddAssign;
 use serde_json::{json, Value};
-use std::ops::AddAssign;
 
 /// Soft shadows of a frame (points the shadow rules settled whole are counted with the hard
 /// shadows' skips, [`crate::render::FrameStats::skipped`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, AddAssign)]
 pub struct SoftStats {
     /// Points that needed directions towards the sun's disc (a penumbra or not proven).
     pub points: u64,
@@ -27,7 +25,7 @@ pub struct SoftStats {
 }
 
 /// Sky light of a frame.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, AddAssign)]
 pub struct SkyStats {
     /// Points lit by the sky.
     pub points: u64,
@@ -44,7 +42,7 @@ pub struct SkyStats {
 }
 
 /// Water of a frame.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, AddAssign)]
 pub struct WaterStats {
     /// Pixels showing water.
     pub points: u64,
@@ -66,7 +64,7 @@ pub struct SampleStats {
 }
 
 /// The effects' rays of a frame.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, AddAssign)]
 pub struct EffectStats {
     /// Soft shadows.
     pub soft: SoftStats,
@@ -149,29 +147,10 @@ impl EffectStats {
     }
 }
 
-impl AddAssign for EffectStats {
-    fn add_assign(&mut self, rhs: EffectStats) {
-        let (a, b) = (&mut self.soft, rhs.soft);
-        a.points += b.points;
-        a.directions += b.directions;
-        a.rays += b.rays;
-        a.probes += b.probes;
-        a.blocked += b.blocked;
-        a.clear += b.clear;
-        let (a, b) = (&mut self.sky, rhs.sky);
-        a.points += b.points;
-        a.directions += b.directions;
-        a.rays += b.rays;
-        a.open += b.open;
-        a.points_clear += b.points_clear;
-        a.queries += b.queries;
-        let (a, b) = (&mut self.water, rhs.water);
-        a.points += b.points;
-        a.rays += b.rays;
-        a.hits += b.hits;
-        a.culled += b.culled;
-        self.samples.pixels += rhs.samples.pixels;
-        for (a, b) in self.samples.histogram.iter_mut().zip(rhs.samples.histogram) {
+impl AddAssign for SampleStats {
+    fn add_assign(&mut self, rhs: SampleStats) {
+        self.pixels += rhs.pixels;
+        for (a, b) in self.histogram.iter_mut().zip(rhs.histogram) {
             *a += b;
         }
     }

@@ -3,12 +3,12 @@
 //! the whole frame, timed per band or row, to take shares of. Times are in nanoseconds of
 //! thread time, summed over threads.
 
+use derive_more::AddAssign;
 use serde_json::{json, Value};
-use std::ops::AddAssign;
 use std::time::Instant;
 
 /// Thread time a frame spent, in all and per effect.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, AddAssign)]
 pub struct EffectTime {
     /// Tracing and shading the frame's pixels, everything included.
     pub traced: u64,
@@ -69,16 +69,6 @@ pub struct TimeShares {
     pub water: f64,
     /// Samples after each pixel's first, their effects included.
     pub later_samples: f64,
-}
-
-impl AddAssign for EffectTime {
-    fn add_assign(&mut self, rhs: EffectTime) {
-        self.traced += rhs.traced;
-        self.soft += rhs.soft;
-        self.sky += rhs.sky;
-        self.water += rhs.water;
-        self.later_samples += rhs.later_samples;
-    }
 }
 
 #[cfg(test)]

@@ -1,7 +1,6 @@
 //! A scene file's `[heightmap]` section: the map, how to read it, and how high to show its
 //! relief (a z scale, or an exaggeration of a georeferenced map's true scale).
 
-use super::SceneFile;
 use crate::compact::Compact;
 use crate::heightfield::{
     self, relief, Builtin, HeightUnit, Heightfield, LoadError, LoadOptions, NoDataValue,
@@ -57,46 +56,6 @@ pub enum HeightmapError {
     Invalid(String),
     /// The map could not be loaded.
     Load(LoadError),
-}
-
-impl SceneFile {
-    /// Whether `path` names a scene file (`.toml`) rather than a height map.
-    pub fn is_scene_path(path: &Path) -> bool {
-        path.extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
-    }
-
-    /// The scene of a height map on its own: what the viewer first shows of it, the whole map
-    /// framed, at its default relief, with shadows on and every other section's defaults. Its
-    /// path is relative to the map's folder ([`Scene::base`](super::Scene::base)).
-    pub fn for_map(path: &Path) -> SceneFile {
-        let name = path.file_name().unwrap_or(path.as_os_str());
-        SceneFile {
-            heightmap: HeightmapSection {
-                path: name.to_string_lossy().into_owned(),
-                paths: Vec::new(),
-                z_scale: None,
-                exaggeration: None,
-                rgb: None,
-                nodata: None,
-                height_unit: None,
-            },
-            camera: None,
-            sun: Default::default(),
-            effects: super::EffectsSection {
-                shadows: true,
-                ..Default::default()
-            },
-            shading: Default::default(),
-            render: Default::default(),
-            overlay: None,
-            water: None,
-            animation: None,
-            annotations: None,
-            vector: Vec::new(),
-            size: None,
-        }
-    }
 }
 
 impl HeightmapSection {

@@ -17,7 +17,7 @@ pub struct OverlaySection {
     #[serde(default)]
     pub path: Option<String>,
     /// How much of the ramp's colour the image replaces, 0 to 1 (default 1).
-    #[serde(default = "super::one")]
+    #[serde(default = "super::sections::one")]
     pub opacity: f64,
     /// Contour lines every this much height, in the map's height unit (metres on most DEMs).
     #[serde(default)]

@@ -4,7 +4,7 @@
 
 use super::{arg, heightray, orbit_scene, run};
 use heightray::batch::TileGrid;
-use heightray::render::effects::reach;
+use heightray::render::reach;
 use heightray::render::{Culling, Frame, Renderer, Scene, SceneFile, Shader, Window};
 use heightray::Terrain;
 use std::path::PathBuf;

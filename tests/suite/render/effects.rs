@@ -4,7 +4,7 @@
 
 use super::*;
 use heightray::arith::Plain;
-use heightray::render::effects::Effects;
+use heightray::render::effects::{Effects, SkyLight};
 use heightray::render::Shadow;
 use heightray::Ray;
 
@@ -48,7 +48,7 @@ fn an_open_plane_sees_the_analytic_mean_sky() {
     let mut sum = [0.0; 3];
     for n in 0..points {
         let (x, y) = (8.0 + f64::from(n % 8) * 6.3, 8.0 + f64::from(n / 8) * 6.1);
-        let (light, sky) = shader.sky_light_at(&down_at(x, y)).unwrap();
+        let (light, sky) = SkyLight::at(&shader, &down_at(x, y)).unwrap();
         assert_eq!(
             (sky.open, sky.of),
             (rays as u16, rays as u16),
@@ -121,8 +121,7 @@ fn valley_floor_sky(reach: f64) -> (f64, f64, f64) {
     let measured = xs
         .iter()
         .map(|&x| {
-            shader
-                .sky_light_at(&down_at(x, 32.0))
+            SkyLight::at(&shader, &down_at(x, 32.0))
                 .unwrap()
                 .1
                 .open_share()

@@ -207,7 +207,7 @@ fn samples_in_rounds(samples: u32, adaptive: bool) {
     };
     let (w, h) = scene.camera.size();
     let mut frame = Frame::new(w, h);
-    let mut sums = heightray::render::effects::Accumulation::new(w, h, samples);
+    let mut sums = heightray::render::Accumulation::new(w, h, samples);
     while !sums.complete() {
         assert!(renderer.accumulate(&mut sums, &mut frame, &|| false));
     }

@@ -5,11 +5,10 @@
 //! thread or row order, so the viewer, which shows the frame after each round, ends with the
 //! image `render` makes, bit for bit.
 
-use super::pixel::{self, position, Estimate, FIRST_BATCH};
-use super::time::nanos_since;
+use super::effects::nanos_since;
+use super::effects::pixel::{self, position, Estimate, FIRST_BATCH};
+use super::effects::Effects;
 use crate::render::passes::{clearance, Frame, Renderer};
-use crate::render::scene::Lighting;
-use crate::render::shade::Shader;
 use crate::render::stats::PixelStats;
 use rayon::prelude::*;
 use std::time::Instant;
@@ -87,7 +86,7 @@ impl Accumulation {
 /// settling before), and a frame of `effects` settles at most once a batch. Zero without
 /// adaptive samples, where every pixel is its own. A tile rendered with this margin around it
 /// has the pixels of the whole image.
-pub fn reach(effects: &super::Effects) -> u32 {
+pub fn reach(effects: &Effects) -> u32 {
     if effects.adaptive && effects.samples > 1 {
         effects.samples.div_ceil(FIRST_BATCH)
     } else {
@@ -168,13 +167,7 @@ impl Renderer<'_> {
         let total = self.shader.lighting.effects.samples.max(1);
         let batch_end = (first / FIRST_BATCH + 1) * FIRST_BATCH;
         let end = (first + count).min(batch_end).min(total);
-        let shader = Shader {
-            lighting: Lighting {
-                effects: pixel::per_sample(&self.shader.lighting.effects),
-                ..self.shader.lighting
-            },
-            ..self.shader.clone()
-        };
+        let shader = self.shader.per_sample();
         let effects = &self.shader.lighting.effects;
         let last = end >= total;
         let wedges = self.shader.wedges(self.camera.eye(), self.arith);
