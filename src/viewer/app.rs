@@ -11,7 +11,7 @@ use super::model::{Action, Model, Shown};
 use super::navigation::{self, Home};
 use super::quality::{detail, Capped, JobKey, Quality, ViewKey};
 use super::worker::{RenderJob, RenderWorker, RenderedFrame};
-use super::{drops, overlay_ui, panels, view, water_ui, UserEvent};
+use super::{contours_ui, drops, overlay_ui, panels, view, water_ui, UserEvent};
 
 mod present;
 
@@ -206,7 +206,7 @@ impl App {
     fn show(&mut self, loaded: Loaded) {
         let terrain = loaded.terrain;
         let model = &mut self.model;
-        let relief_was = model.shown.terrain.field().z_scale();
+        let was = model.shown.terrain.clone();
         model.shown = Shown {
             source: loaded.request.source.clone(),
             decoding: loaded.request.decoding,
@@ -216,8 +216,9 @@ impl App {
         model.error = None;
         overlay_ui::shown(model, loaded.request.overlay.as_ref());
         if !loaded.request.reframe {
-            water_ui::follow_relief(model, relief_was);
+            water_ui::follow_relief(model, was.field().z_scale());
         }
+        contours_ui::follow_map(model, was.field(), loaded.request.reframe);
         // A rescale keeps the z scale field as the user has it (they may still be dragging).
         if loaded.request.reframe {
             model.z_scale = terrain.field().z_scale();
@@ -422,6 +423,7 @@ impl App {
             lighting: model.settings.lighting(),
             method: model.settings.method,
             arith: model.settings.arith(),
+            contours: model.contours.lines(model.shown.terrain.field()),
             view_id: self.quality.view_id(),
         })
     }
