@@ -134,3 +134,36 @@ fn an_interval_typed_that_is_not_a_height_above_0_is_refused_with_a_message() {
         num(s, "/submitted_generation") > before
     });
 }
+
+#[test]
+fn a_dropped_map_keeps_the_lines_at_a_round_interval_for_its_relief() {
+    let files = tempfile::tempdir().expect("a temporary directory");
+    let lines = "[overlay]\ncontours = 1.5\nindex_every = 4\n";
+    let scene = hill_scene(files.path(), "contoured.toml", lines);
+    let mut session =
+        Session::start(&[scene.to_str().expect("a UTF-8 path"), "--export-dir", "out"]);
+    let state = session.state();
+    let hill = session.viewer.path("hill.pgm");
+    super::write_hill(&hill);
+    let at = session.screen(session.view_centre(&state));
+    assert_eq!(
+        super::xdnd::drag_file(&session.x, &hill, at, false),
+        super::xdnd::Outcome::Accepted
+    );
+    let converged = num(&state, "/converged_frames");
+    let loaded = session.viewer.wait_for("the dropped map", |s| {
+        s["terrain"]["name"] == "hill.pgm" && num(s, "/converged_frames") > converged
+    });
+    // The hill rises 16 grid units (a quarter of its 64 samples): 16 / 20 is 0.8, and the
+    // round interval below it is 0.5. The lines stay on, with their index lines.
+    assert_eq!(num(&loaded, "/terrain/z_scale"), 16.0);
+    assert_eq!(loaded["contours"]["on"], Value::Bool(true));
+    assert_eq!(num(&loaded, "/contours/interval"), 0.5);
+    assert_eq!(num(&loaded, "/contours/index_every"), 4.0);
+    // The saved scene says so, and renders the export.
+    let saved = std::fs::read_to_string(save_and_export(&mut session)).expect("the scene");
+    assert!(
+        saved.contains("[overlay]\ncontours = 0.5\nindex_every = 4\n"),
+        "{saved}"
+    );
+}
