@@ -126,6 +126,12 @@ fn plane_normal(terrain: &Terrain, p: DVec3) -> DVec3 {
 }
 
 impl Shader<'_> {
+    /// This shader with `contours` drawn as `camera` (in grid coordinates) sees them.
+    pub fn with_contours(mut self, contours: Option<Contours>, camera: &Camera) -> Self {
+        self.contours = contours.map(|c| c.seen_by(camera));
+        self
+    }
+
     /// The surface's colour at `p` on `face` before it is lit ([`Shader::albedo`]), with the
     /// contour lines over it where asked, `p` seen `t` along `ray`.
     #[inline(always)]

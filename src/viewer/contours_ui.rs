@@ -102,8 +102,8 @@ fn height_unit(field: &Heightfield) -> Option<f64> {
     }
 }
 
-/// Keeps the lines on the same ground after the map on screen changed from `was` to `now`.
-/// Lines stay on or off.
+/// Keeps the lines on the same ground after the map on screen changed from `was` (rescaled,
+/// or a `new_map` opened without a scene). Lines stay on or off.
 pub fn follow_map(model: &mut Model, was: &Heightfield, new_map: bool) {
     let controls = &mut model.contours;
     if controls.interval > 0.0 {
@@ -177,7 +177,16 @@ pub fn contours_ui(ui: &mut Ui, model: &mut Model) {
 /// Takes the typed interval, or refuses it with a message and shows the one in use again.
 fn take_interval(model: &mut Model) {
     let typed = model.contours.text.trim();
-    match parse_interval(typed) {
+    let field = model.shown.terrain.field();
+    // A huge interval in a unit the z scale enlarges may be no finite grid height.
+    let taken = parse_interval(typed).and_then(|interval| {
+        Contours::new(level_z(field, interval), 0)
+            .map(|_| interval)
+            .ok_or(format!(
+                "The contour interval {typed} is too large for this map"
+            ))
+    });
+    match taken {
         Ok(interval) => model.contours.set_interval(interval),
         Err(message) => {
             model.error = Some(message);

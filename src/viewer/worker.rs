@@ -35,16 +35,10 @@ impl RenderJob {
     /// A renderer of this job's view in arithmetic `arith`.
     pub fn renderer(&self, arith: Arith) -> Renderer<'_> {
         let camera = self.camera.in_grid(self.terrain.world_from_grid());
-        let mut shader = Shader::new(
-            &self.terrain,
-            self.lighting,
-            self.method,
-            Culling::default(),
-        );
-        // As `heightray render` draws them: seen by the camera in grid coordinates.
-        shader.contours = self.contours.map(|c| c.seen_by(&camera));
+        let (lighting, method) = (self.lighting, self.method);
         Renderer {
-            shader,
+            shader: Shader::new(&self.terrain, lighting, method, Culling::default())
+                .with_contours(self.contours, &camera),
             camera,
             arith,
         }
