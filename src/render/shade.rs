@@ -1,6 +1,7 @@
 //! From a ray to a colour: the primary ray, the shadow ray only where it can change the pixel,
 //! Lambert shading with an elevation ramp, sky and fog.
 
+use super::camera::Camera;
 use super::context::{Context, Culling};
 use super::contours::Contours;
 use super::effects::pixel::per_sample;
@@ -54,6 +55,12 @@ impl<'a> Shader<'a> {
             wedges: Arc::default(),
             contours: None,
         }
+    }
+
+    /// This shader with `contours` drawn as `camera` (in grid coordinates) sees them.
+    pub fn with_contours(mut self, contours: Option<Contours>, camera: &Camera) -> Self {
+        self.contours = contours.map(|c| c.seen_by(camera));
+        self
     }
 
     /// This shader for one sample of a pixel's: each sample's share of the pixel's effect

@@ -4,15 +4,16 @@
 
 use super::accuracy::Accuracy;
 use super::compose::{self, PixelRect};
-use super::export::{self, Exports};
+use super::export::Exports;
 use super::hooks::{Counts, Hooks};
 use super::loader::{LoadRequest, Loaded, Loader};
 use super::model::{Action, Model, Shown};
 use super::navigation::{self, Home};
 use super::quality::{detail, Capped, JobKey, Quality, ViewKey};
-use super::worker::{RenderJob, RenderWorker, RenderedFrame};
-use super::{drops, overlay_ui, panels, view, water_ui, UserEvent};
+use super::worker::{RenderWorker, RenderedFrame};
+use super::{contours_ui, drops, overlay_ui, panels, view, water_ui, UserEvent};
 
+mod jobs;
 mod present;
 
 use egui_software_backend::{ColorFieldOrder, EguiSoftwareRender};
@@ -206,7 +207,7 @@ impl App {
     fn show(&mut self, loaded: Loaded) {
         let terrain = loaded.terrain;
         let model = &mut self.model;
-        let relief_was = model.shown.terrain.field().z_scale();
+        let was = model.shown.terrain.clone();
         model.shown = Shown {
             source: loaded.request.source.clone(),
             decoding: loaded.request.decoding,
@@ -216,8 +217,9 @@ impl App {
         model.error = None;
         overlay_ui::shown(model, loaded.request.overlay.as_ref());
         if !loaded.request.reframe {
-            water_ui::follow_relief(model, relief_was);
+            water_ui::follow_relief(model, was.field().z_scale());
         }
+        contours_ui::follow_map(model, was.field(), loaded.request.reframe);
         // A rescale keeps the z scale field as the user has it (they may still be dragging).
         if loaded.request.reframe {
             model.z_scale = terrain.field().z_scale();
@@ -397,72 +399,6 @@ impl App {
         }
         self.counts.submitted_generation = generation;
         self.submitted = Some(key);
-    }
-}
-
-impl App {
-    /// Where exports go and at which size (the panel can change both).
-    pub fn set_export(&mut self, dir: Option<&std::path::Path>, size: Option<(u32, u32)>) {
-        let export = &mut self.model.export;
-        if let Some(dir) = dir {
-            export.dir = dir.display().to_string();
-        }
-        if let Some(size) = size {
-            (export.custom, export.size) = (true, size);
-        }
-    }
-
-    /// A render of the current view at `size` pixels.
-    fn job(&self, size: (u32, u32)) -> Result<RenderJob, crate::render::CameraError> {
-        let model = &self.model;
-        Ok(RenderJob {
-            terrain: model.shown.terrain.clone(),
-            orbit: model.orbit,
-            camera: model.orbit.camera(size)?,
-            lighting: model.settings.lighting(),
-            method: model.settings.method,
-            arith: model.settings.arith(),
-            view_id: self.quality.view_id(),
-        })
-    }
-
-    /// The size the view is exported at: its render size, or the one the panel asks for.
-    fn export_size(&mut self) -> Option<(u32, u32)> {
-        let Some(submitted) = &self.submitted else {
-            self.model
-                .notify("Nothing to export yet: the view is not rendered");
-            return None;
-        };
-        let exports = &self.model.export;
-        Some(if exports.custom {
-            exports.size
-        } else {
-            submitted.view.full_size()
-        })
-    }
-
-    /// Saves the view as a scene file at the export size.
-    fn save_scene(&mut self) {
-        if let Some(size) = self.export_size() {
-            super::save_scene::save(&mut self.model, size);
-        }
-    }
-
-    /// Exports the view at its render size (the converged frame, if it is on screen) or at
-    /// the size the panel asks for.
-    fn export(&mut self) {
-        let Some(size) = self.export_size() else {
-            return;
-        };
-        let job = match self.job(size) {
-            Ok(job) => job,
-            Err(e) => {
-                self.model.error = Some(format!("cannot export at {} x {}: {e}", size.0, size.1));
-                return;
-            }
-        };
-        let ready = self.converged().filter(|frame| export::shows(frame, &job));
-        export::start(&mut self.model, job, ready, self.proxy.clone());
     }
 }
 

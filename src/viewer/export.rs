@@ -237,13 +237,15 @@ pub fn progress_ui(ui: &mut egui::Ui, exports: &Exports) {
     }
 }
 
-/// Whether `frame` is the image `job` asks for: the same terrain, camera, light and traversal.
+/// Whether `frame` is the image `job` asks for: the same terrain, camera, light, contour
+/// lines and traversal.
 pub fn shows(frame: &RenderedFrame, job: &RenderJob) -> bool {
     let done = &frame.job;
     frame.frame.complete()
         && Arc::ptr_eq(&done.terrain, &job.terrain)
         && done.camera == job.camera
         && done.lighting == job.lighting
+        && done.contours == job.contours
         && (done.method, done.arith) == (job.method, job.arith)
 }
 

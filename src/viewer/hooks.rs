@@ -95,6 +95,10 @@ fn report(model: &Model, counts: &Counts) -> Value {
             "decoded_as": decoding_report(model.shown.decoding),
             "overlay": field.drape().map(|d| d.path().display().to_string()),
         },
+        "contours": {
+            "on": model.contours.on, "interval": model.contours.interval,
+            "index_every": model.contours.index_every,
+        },
         "decoding": decoding_report(model.decoding),
         "path_field": model.path_text,
         "loading": model.progress.as_ref().map(|p| p.label.clone()),

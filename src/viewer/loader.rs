@@ -119,6 +119,8 @@ pub struct SceneSetup {
     pub arith: Arith,
     /// What the scene draws over its pictures: exports draw it too.
     pub annotations: crate::render::annotate::Annotations,
+    /// Its `[overlay]` contour interval in the map's height unit, and index line count.
+    pub contours: Option<(f64, u32)>,
     /// The local date and time that placed the sun, if the scene gave one.
     pub clock: Option<SceneClock>,
     /// The scene's `[animation]` keys, to play and edit.

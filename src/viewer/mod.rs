@@ -11,6 +11,7 @@ mod annotations;
 mod app;
 mod background;
 mod compose;
+mod contours_ui;
 mod decoding;
 mod drops;
 mod export;

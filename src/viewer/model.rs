@@ -3,6 +3,7 @@
 
 use super::accuracy::AccuracyState;
 use super::compose::HeatScale;
+use super::contours_ui::ContourControls;
 use super::decoding::Decoding;
 use super::export::Exports;
 use super::loader::{LoadRequest, Progress, Source};
@@ -121,6 +122,8 @@ pub struct Model {
     pub decoding: Decoding,
     /// The overlay path, opacity and what a drop loads.
     pub overlay: OverlayControls,
+    /// Contour lines on the map.
+    pub contours: ContourControls,
     /// Files dropped onto the window and not yet loaded (a drop delivers them one by one).
     pub dropped: Vec<PathBuf>,
     pub panels_visible: bool,
@@ -170,6 +173,7 @@ impl Model {
         self.settings
             .adopt_scene(&scene.lighting, scene.method, scene.arith);
         self.export.adopt(&scene.annotations);
+        self.contours.adopt(scene.contours);
         self.sun_clock.on = false;
         if let Some(flythrough) = &scene.flythrough {
             self.flythrough = flythrough.clone();
@@ -206,6 +210,7 @@ impl Model {
             path_text: String::new(),
             path_source: None,
             overlay: OverlayControls::default(),
+            contours: ContourControls::default(),
             dropped: Vec::new(),
             panels_visible: true,
             panel_auto_hidden: false,

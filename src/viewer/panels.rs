@@ -226,6 +226,7 @@ fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     source_ui(ui, model, actions);
     super::overlay_ui::overlay_ui(ui, model, actions);
     super::water_ui::water_ui(ui, model);
+    super::contours_ui::contours_ui(ui, model);
     decoding_ui(ui, model, actions);
     z_scale_ui(ui, model, actions);
     let s = &mut model.settings;

@@ -57,6 +57,7 @@ pub struct ViewKey {
     lighting: Lighting,
     method: Method,
     arith: Arith,
+    contours: Option<crate::render::Contours>,
 }
 
 impl ViewKey {
@@ -72,6 +73,7 @@ impl ViewKey {
             lighting: model.settings.lighting(),
             method: model.settings.method,
             arith: model.settings.arith(),
+            contours: model.contours.lines(model.shown.terrain.field()),
         }
     }
 
@@ -251,6 +253,7 @@ mod tests {
             lighting: crate::viewer::settings::Settings::default().lighting(),
             method: Method::Runs,
             arith: Arith::F64,
+            contours: None,
         };
         assert_eq!(quality.render_size(&view), (1000, 500));
         quality.changed(true, &view);

@@ -153,15 +153,24 @@ fn water_keys(model: &Model) -> String {
     format!("\n[water]\nlevel = {level:?}\ncolour = \"#{r:02x}{g:02x}{b:02x}\"\n")
 }
 
-/// The `[overlay]` section of the image draped over the map, if any.
+/// The `[overlay]` section of the image draped over the map and the contour lines, if any.
 fn overlay_keys(model: &Model) -> String {
-    let Some(drape) = model.shown.terrain.field().drape() else {
+    let field = model.shown.terrain.field();
+    let drape = field.drape().map(|drape| {
+        format!(
+            "path = {:?}\nopacity = {:?}\n",
+            absolute(drape.path()),
+            drape.opacity()
+        )
+    });
+    let contours = model.contours.scene_keys(field);
+    if drape.is_none() && contours.is_none() {
         return String::new();
-    };
+    }
     format!(
-        "\n[overlay]\npath = {:?}\nopacity = {:?}\n",
-        absolute(drape.path()),
-        drape.opacity()
+        "\n[overlay]\n{}{}",
+        drape.unwrap_or_default(),
+        contours.unwrap_or_default()
     )
 }
 

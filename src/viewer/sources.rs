@@ -162,6 +162,10 @@ fn scene_setup(parts: &SceneParts, terrain: &Terrain) -> SceneSetup {
         method: parts.method,
         arith: parts.arith,
         annotations: parts.annotations.clone(),
+        contours: parts.file.overlay.as_ref().and_then(|overlay| {
+            let interval = overlay.contours?;
+            Some((interval, overlay.index_every))
+        }),
         clock,
         flythrough: parts.file.animation.as_ref().map(|section| {
             let fov = parts.file.camera.as_ref().map_or(45.0, |c| c.fov_y_deg);

@@ -8,7 +8,7 @@
 use super::mailbox::Mailbox;
 use super::orbit::Orbit;
 use crate::render::Accumulation;
-use crate::render::{Camera, Culling, Frame, Lighting, Renderer, Shader};
+use crate::render::{Camera, Contours, Culling, Frame, Lighting, Renderer, Shader};
 use crate::{Arith, Method, Terrain};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
@@ -25,6 +25,8 @@ pub struct RenderJob {
     pub lighting: Lighting,
     pub method: Method,
     pub arith: Arith,
+    /// Contour lines on the terrain, not yet seen by the camera.
+    pub contours: Option<Contours>,
     /// Jobs of one view (the same camera, terrain and settings at any resolution) share it.
     pub view_id: u64,
 }
@@ -32,14 +34,12 @@ pub struct RenderJob {
 impl RenderJob {
     /// A renderer of this job's view in arithmetic `arith`.
     pub fn renderer(&self, arith: Arith) -> Renderer<'_> {
+        let camera = self.camera.in_grid(self.terrain.world_from_grid());
+        let (lighting, method) = (self.lighting, self.method);
         Renderer {
-            shader: Shader::new(
-                &self.terrain,
-                self.lighting,
-                self.method,
-                Culling::default(),
-            ),
-            camera: self.camera.in_grid(self.terrain.world_from_grid()),
+            shader: Shader::new(&self.terrain, lighting, method, Culling::default())
+                .with_contours(self.contours, &camera),
+            camera,
             arith,
         }
     }
@@ -284,6 +284,7 @@ mod tests {
             lighting,
             method: Method::Mipmap,
             arith: Arith::F64,
+            contours: None,
             view_id: 0,
         }
     }

@@ -128,7 +128,7 @@ fn s_exports_the_render_without_ui_and_never_overwrites() {
     }
 }
 
-fn assert_same(file: &Path, image: &image::RgbImage, reference: &image::RgbImage) {
+pub(super) fn assert_same(file: &Path, image: &image::RgbImage, reference: &image::RgbImage) {
     assert_eq!(image.dimensions(), reference.dimensions(), "{file:?}");
     let differing = image
         .pixels()
@@ -165,7 +165,7 @@ fn an_export_at_a_chosen_size_is_rendered_anew_into_the_export_folder() {
 }
 
 /// `heightray render` of a scene file (or a map alone), at `size` if given.
-fn render_file(scene: &Path, size: Option<&str>) -> image::RgbImage {
+pub(super) fn render_file(scene: &Path, size: Option<&str>) -> image::RgbImage {
     let out = scene.with_extension("check.png");
     let mut command = Command::new(env!("CARGO_BIN_EXE_heightray"));
     command.arg("render").arg(scene).arg("-o").arg(&out);
@@ -182,7 +182,7 @@ fn render_file(scene: &Path, size: Option<&str>) -> image::RgbImage {
 
 /// Saves the scene and exports the view with S; returns the scene file, and checks that it
 /// renders the exported image.
-fn save_and_export(session: &mut Session) -> PathBuf {
+pub(super) fn save_and_export(session: &mut Session) -> PathBuf {
     let state = session.open_section("export_section", "save_scene");
     session.click(&state, "save_scene");
     let saved = session

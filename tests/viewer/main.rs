@@ -7,6 +7,7 @@
 
 mod accuracy;
 mod app;
+mod contours;
 mod decoding;
 mod export;
 mod failed_loads;

@@ -189,6 +189,7 @@ mod tests {
             lighting: crate::viewer::settings::Settings::default().lighting(),
             method,
             arith,
+            contours: None,
             view_id: 0,
         };
         let measured = Subject::of(&job(orbit, Method::Runs, Arith::F64));

@@ -1,0 +1,280 @@
+//! The Height map panel's contour lines: on or off, their interval in the map's height unit
+//! (metres on a DEM, as a scene's `[overlay] contours` gives it) and how often an index line
+//! comes. The interval stays in the map's unit; the render takes it to grid heights through
+//! the field it draws on, so a rescaled relief keeps the lines on the same ground.
+
+use super::model::Model;
+use super::panels::named;
+use crate::compact::Compact;
+use crate::heightfield::{Heightfield, Quantisation};
+use crate::render::{level_in_map_units, level_z, Contours};
+use crate::Terrain;
+use egui::{DragValue, Ui};
+
+/// About this many lines span a map's relief when the interval is picked for it.
+const LINES_OVER_RELIEF: f64 = 20.0;
+
+/// Contour lines as the panel edits them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContourControls {
+    pub on: bool,
+    /// Height between lines in the map's height unit; 0 until one is typed or picked.
+    pub interval: f64,
+    /// Every this many lines is a wider index line (0: none).
+    pub index_every: u32,
+    /// The interval field as typed (taken when editing ends).
+    pub text: String,
+}
+
+impl Default for ContourControls {
+    fn default() -> Self {
+        ContourControls {
+            on: false,
+            interval: 0.0,
+            index_every: 5,
+            text: String::new(),
+        }
+    }
+}
+
+impl ContourControls {
+    /// The lines to draw on `field` (grid heights through [`level_z`], as a scene's are), if on.
+    pub fn lines(&self, field: &Heightfield) -> Option<Contours> {
+        self.on
+            .then(|| Contours::new(level_z(field, self.interval), self.index_every))
+            .flatten()
+    }
+
+    /// Sets the interval, and the field that shows it.
+    fn set_interval(&mut self, interval: f64) {
+        self.interval = interval;
+        self.text = interval.to_string();
+    }
+
+    /// A scene's `[overlay] contours` and `index_every`: lines as it gives them, or none.
+    pub fn adopt(&mut self, scene: Option<(f64, u32)>) {
+        self.on = scene.is_some();
+        if let Some((interval, index_every)) = scene {
+            self.set_interval(interval);
+            self.index_every = index_every;
+        }
+    }
+
+    /// The `contours` and `index_every` keys of a scene's `[overlay]`, if lines are drawn.
+    pub fn scene_keys(&self, field: &Heightfield) -> Option<String> {
+        self.lines(field).map(|_| {
+            format!(
+                "contours = {:?}\nindex_every = {}\n",
+                self.interval, self.index_every
+            )
+        })
+    }
+}
+
+/// A round interval (1, 2 or 5 times a power of ten) that draws about
+/// [`LINES_OVER_RELIEF`] lines over `span` of height, at most that many.
+pub fn round_interval(span: f64) -> f64 {
+    let share = span / LINES_OVER_RELIEF;
+    if !(share.is_finite() && share > 0.0) {
+        return 1.0;
+    }
+    let power = 10f64.powi(share.log10().floor() as i32);
+    let step = [5.0, 2.0, 1.0]
+        .into_iter()
+        .find(|&m| m * power <= share)
+        .unwrap_or(1.0);
+    step * power
+}
+
+/// The span of `terrain`'s heights in its map's height unit.
+fn relief_span(terrain: &Terrain) -> f64 {
+    let field = terrain.field();
+    let (lo, hi) = terrain.z_range();
+    level_in_map_units(field, hi) - level_in_map_units(field, lo)
+}
+
+/// The unit a map's heights are given in, when it is one a length can be said in: a
+/// georeferenced raster of heights. An integer image's heights are fractions of its z scale.
+fn height_unit(field: &Heightfield) -> Option<f64> {
+    match field.quantisation() {
+        Quantisation::Offset { .. } => field.georef().map(|g| g.height_unit.metres),
+        Quantisation::Maxval(_) => None,
+    }
+}
+
+/// Keeps the lines on the same ground after the map on screen changed from `was` (rescaled,
+/// or a `new_map` opened without a scene). Lines stay on or off.
+pub fn follow_map(model: &mut Model, was: &Heightfield, new_map: bool) {
+    let controls = &mut model.contours;
+    if controls.interval > 0.0 {
+        let interval = interval_after(controls.interval, was, &model.shown.terrain, new_map);
+        if interval != controls.interval {
+            controls.set_interval(interval);
+        }
+    }
+}
+
+/// The interval on `now` of lines every `interval` on `was`: a rescaled integer image's
+/// heights (its map unit) scale with its z scale, so the interval does too; a new map keeps
+/// the interval only when it is in the same unit (100 m means the same on any DEM in metres)
+/// and otherwise gets a round one for its relief.
+fn interval_after(interval: f64, was: &Heightfield, now: &Terrain, new_map: bool) -> f64 {
+    let field = now.field();
+    if new_map {
+        let unit = height_unit(field);
+        if unit.is_some() && unit == height_unit(was) {
+            return interval;
+        }
+        return round_interval(relief_span(now));
+    }
+    match field.quantisation() {
+        Quantisation::Maxval(_) if was.z_scale() > 0.0 => {
+            interval * field.z_scale() / was.z_scale()
+        }
+        _ => interval,
+    }
+}
+
+/// The contours checkbox, the interval field and the index line count.
+pub fn contours_ui(ui: &mut Ui, model: &mut Model) {
+    let checkbox = ui
+        .checkbox(&mut model.contours.on, "contour lines")
+        .on_hover_text("lines of equal height, every index-th one wider, as printed maps draw");
+    named(model, "contours", checkbox);
+    if !model.contours.on {
+        return;
+    }
+    if model.contours.interval <= 0.0 {
+        let picked = round_interval(relief_span(&model.shown.terrain));
+        model.contours.set_interval(picked);
+    }
+    let unit = model
+        .shown
+        .terrain
+        .field()
+        .georef()
+        .map(|g| format!(" {}", g.height_unit.symbol()))
+        .unwrap_or_default();
+    ui.horizontal(|ui| {
+        ui.label("every");
+        let field = egui::TextEdit::singleline(&mut model.contours.text).desired_width(60.0);
+        let field = ui.add(field);
+        let field = named(model, "contour_interval", field);
+        ui.label(unit);
+        if field.lost_focus() {
+            take_interval(model);
+        }
+        let index = DragValue::new(&mut model.contours.index_every)
+            .range(0..=50)
+            .prefix("index every ");
+        let index = ui
+            .add(index)
+            .on_hover_text("every this many lines is wider (0: none)");
+        named(model, "contour_index", index);
+    });
+}
+
+/// Takes the typed interval, or refuses it with a message and shows the one in use again.
+fn take_interval(model: &mut Model) {
+    let typed = model.contours.text.trim();
+    let field = model.shown.terrain.field();
+    // A huge interval in a unit the z scale enlarges may be no finite grid height.
+    let taken = parse_interval(typed).and_then(|interval| {
+        Contours::new(level_z(field, interval), 0)
+            .map(|_| interval)
+            .ok_or(format!(
+                "The contour interval {typed} is too large for this map"
+            ))
+    });
+    match taken {
+        Ok(interval) => model.contours.set_interval(interval),
+        Err(message) => {
+            model.error = Some(message);
+            let interval = model.contours.interval;
+            model.contours.set_interval(interval);
+        }
+    }
+}
+
+/// A contour interval as typed: a finite height above 0.
+fn parse_interval(typed: &str) -> Result<f64, String> {
+    match typed.parse::<f64>() {
+        Ok(interval) if interval.is_finite() && interval > 0.0 => Ok(interval),
+        Ok(interval) => Err(format!(
+            "The contour interval must be a finite height above 0, not {}",
+            Compact(interval)
+        )),
+        Err(_) => Err(format!(
+            "The contour interval must be a number (a height above 0), not {typed:?}"
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Heights in metres stored as `value = sample`, shown at half their size: 0 .. 1234 m.
+    fn metres_map() -> Heightfield {
+        let samples = (0..4 * 4).map(|k| (k * 1234 / 15) as u16).collect();
+        let quantisation = Quantisation::Offset {
+            lowest: 0.0,
+            step: 1.0,
+        };
+        Heightfield::new(4, 4, samples, quantisation, 0.5, None).expect("a field")
+    }
+
+    #[test]
+    fn lines_are_at_the_interval_in_the_maps_unit_scaled_to_grid_heights() {
+        let mut controls = ContourControls::default();
+        controls.adopt(Some((100.0, 4)));
+        // 100 m at a z scale of 0.5 is 50 grid units between lines.
+        assert_eq!(controls.lines(&metres_map()), Contours::new(50.0, 4));
+        assert_eq!(
+            controls.scene_keys(&metres_map()).as_deref(),
+            Some("contours = 100.0\nindex_every = 4\n")
+        );
+        controls.on = false;
+        assert_eq!(controls.lines(&metres_map()), None);
+        assert_eq!(controls.scene_keys(&metres_map()), None);
+    }
+
+    #[test]
+    fn a_picked_interval_is_round_and_draws_at_most_twenty_lines() {
+        let terrain = Terrain::new(metres_map());
+        // 1234 m / 20 is 61.7 m: the round step below it is 50 m.
+        assert_eq!(relief_span(&terrain), 1234.0);
+        assert_eq!(round_interval(1234.0), 50.0);
+        assert_eq!(round_interval(30.0), 1.0);
+        assert_eq!(round_interval(10.0), 0.5);
+        assert_eq!(round_interval(0.0), 1.0);
+        assert_eq!(round_interval(f64::NAN), 1.0);
+    }
+
+    #[test]
+    fn the_interval_follows_a_rescaled_image_and_a_new_map_in_another_unit_gets_its_own() {
+        let image =
+            Heightfield::from_fn(3, 3, 255, 120.0, |i, j| (i * 100 + j) as u16).expect("a field");
+        let halved = Terrain::new(image.with_z_scale(60.0).expect("rescaled"));
+        // An image's heights halve with its z scale: lines every 10 of them are every 5.
+        assert_eq!(interval_after(10.0, &image, &halved, false), 5.0);
+        let metres = Terrain::new(metres_map());
+        // Heights in their own unit stay as they are under any z scale.
+        let rescaled = Terrain::new(metres_map().with_z_scale(2.0).expect("rescaled"));
+        assert_eq!(
+            interval_after(100.0, metres.field(), &rescaled, false),
+            100.0
+        );
+        // A new map not in the same unit as a georeferenced one gets 1234 m / 20, made round.
+        assert_eq!(interval_after(10.0, &image, &metres, true), 50.0);
+    }
+
+    #[test]
+    fn a_typed_interval_that_is_not_a_height_above_0_is_refused() {
+        assert_eq!(parse_interval("25"), Ok(25.0));
+        for typed in ["0", "-5", "inf", "NaN", "", "ten"] {
+            let refused = parse_interval(typed).expect_err(typed);
+            assert!(refused.contains("contour interval"), "{refused}");
+        }
+    }
+}
