@@ -21,7 +21,7 @@ pub use exact::Exact;
 pub use interval::{settled, unsettled, Interval};
 pub use rational::{with_bound, Rational, RationalEvents, DEFAULT_BOUND};
 pub use scalar::Scalar;
-pub use simd::{SimdPath, SIMD_VARIABLE};
+pub use simd::{SimdPath, UnknownSimdPath, SIMD_VARIABLE};
 
 use std::fmt;
 use std::str::FromStr;
@@ -54,10 +54,15 @@ impl fmt::Display for Arith {
     }
 }
 
+/// A name that is not an arithmetic's.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown arithmetic '{0}': use f32, f64, rational, rational:BOUND (1..=2^30) or exact")]
+pub struct UnknownArith(pub String);
+
 impl FromStr for Arith {
-    type Err = String;
+    type Err = UnknownArith;
     /// `f32`, `f64`, `exact`, `rational` (bound 2^16) or `rational:BOUND`.
-    fn from_str(s: &str) -> Result<Self, String> {
+    fn from_str(s: &str) -> Result<Self, UnknownArith> {
         match s {
             "f32" => Ok(Arith::F32),
             "f64" => Ok(Arith::F64),
@@ -70,9 +75,9 @@ impl FromStr for Arith {
                     .strip_prefix("rational:")
                     .and_then(|b| b.parse::<u32>().ok())
                     .filter(|&b| (1..=1 << 30).contains(&b));
-                bound.map(|bound| Arith::Rational { bound }).ok_or(format!(
-                    "unknown arithmetic '{s}': use f32, f64, rational, rational:BOUND (1..=2^30) or exact"
-                ))
+                bound
+                    .map(|bound| Arith::Rational { bound })
+                    .ok_or_else(|| UnknownArith(s.to_owned()))
             }
         }
     }

@@ -39,7 +39,7 @@ impl SimdPath {
 
     /// The path asked for in [`SIMD_VARIABLE`], if any; an error names a value it does not
     /// know.
-    pub fn requested() -> Result<Option<SimdPath>, String> {
+    pub fn requested() -> Result<Option<SimdPath>, UnknownSimdPath> {
         match std::env::var(SIMD_VARIABLE) {
             Err(_) => Ok(None),
             Ok(value) => value.parse().map(Some),
@@ -70,16 +70,19 @@ impl fmt::Display for SimdPath {
     }
 }
 
+/// A name that is not a SIMD path's.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{SIMD_VARIABLE}={0} is not a SIMD path: use scalar, avx2 or avx512")]
+pub struct UnknownSimdPath(pub String);
+
 impl std::str::FromStr for SimdPath {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = UnknownSimdPath;
+    fn from_str(s: &str) -> Result<Self, UnknownSimdPath> {
         match s {
             "scalar" => Ok(SimdPath::Scalar),
             "avx2" => Ok(SimdPath::Avx2),
             "avx512" => Ok(SimdPath::Avx512),
-            _ => Err(format!(
-                "{SIMD_VARIABLE}={s} is not a SIMD path: use scalar, avx2 or avx512"
-            )),
+            _ => Err(UnknownSimdPath(s.to_owned())),
         }
     }
 }

@@ -34,7 +34,7 @@ pub use georef::{Georef, Georeferencing, HeightUnit, HeightUnitSource, MapUnits}
 pub use limits::{MAX_DECODED_BYTES, MAX_SAMPLES};
 pub use load::{
     load, load_bytes, load_bytes_with, load_mosaic, load_with, picture_kind, ColourEncoding,
-    LoadError, LoadOptions, NoDataValue, Progress,
+    LoadError, LoadOptions, NoDataValue, OptionError, Progress,
 };
 pub use maxima::{CellMaxima, LineMaxima};
 pub use mipmap::Mipmap;

@@ -47,7 +47,7 @@ pub use counters::{Counters, HitMiss};
 pub use cover::covered_cells;
 pub use exact_plane::{crosses_plane, plane_t_exact};
 pub use exact_start::PlanePoint;
-pub use options::{Hit, Method, Trace, TraceOptions};
+pub use options::{Hit, Method, Trace, TraceOptions, UnknownMethod};
 pub use packet::{clear_packet, clear_packet_on, PacketClearance, SimdPath, LANES, SIMD_VARIABLE};
 pub use search::Found;
 pub use tracer::{occluded_from_hit, Occlusion, Start, Tracer};

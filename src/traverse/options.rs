@@ -167,17 +167,20 @@ impl fmt::Display for Method {
     }
 }
 
+/// A name that is not a traversal method's.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown method '{0}': use mipmap, hruns, runs, dda or auto")]
+pub struct UnknownMethod(pub String);
+
 impl FromStr for Method {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = UnknownMethod;
+    fn from_str(s: &str) -> Result<Self, UnknownMethod> {
         match s {
             "runs" => Ok(Method::Runs),
             "dda" => Ok(Method::Dda),
             "mipmap" | "auto" => Ok(Method::Mipmap),
             "hruns" => Ok(Method::HierarchicalRuns),
-            _ => Err(format!(
-                "unknown method '{s}': use mipmap, hruns, runs, dda or auto"
-            )),
+            _ => Err(UnknownMethod(s.to_owned())),
         }
     }
 }

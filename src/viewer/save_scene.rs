@@ -8,7 +8,7 @@ use super::loader::Source;
 use super::model::Model;
 use super::sun_clock;
 use crate::heightfield::place;
-use crate::heightfield::{HeightUnitSource, NoDataValue};
+use crate::heightfield::{HeightUnitSource, NoDataValue, OptionError};
 use crate::output_file;
 use crate::render::{bytes_from_linear, level_in_map_units, NoDataKey, Scene, SceneFile};
 use std::path::Path;
@@ -188,7 +188,7 @@ fn heightmap_keys(source: &Source, model: &Model) -> Result<String, String> {
             let nodata = match map.nodata {
                 None => NoDataValue::Auto,
                 Some(NoDataKey::Value(v)) => NoDataValue::Value(v),
-                Some(NoDataKey::Word(w)) => w.parse()?,
+                Some(NoDataKey::Word(w)) => w.parse().map_err(|e: OptionError| e.to_string())?,
             };
             let rgb = map.rgb.unwrap_or_else(|| "luminance".into());
             let base = Scene::base(path);

@@ -178,32 +178,41 @@ pub enum NoDataValue {
     Value(f64),
 }
 
+/// A name that is not a colour encoding's, or a no-data value that is not one.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum OptionError {
+    /// Not `luminance`, `mapbox` or `terrarium`.
+    #[error("expected luminance, mapbox or terrarium, got '{0}'")]
+    Encoding(String),
+    /// Not `auto`, `none` or a number.
+    #[error("expected auto, none or a number, got '{0}'")]
+    NoData(String),
+}
+
 impl std::str::FromStr for ColourEncoding {
-    type Err = String;
+    type Err = OptionError;
     /// `luminance`, `mapbox` or `terrarium`.
-    fn from_str(s: &str) -> Result<Self, String> {
+    fn from_str(s: &str) -> Result<Self, OptionError> {
         match s {
             "luminance" => Ok(ColourEncoding::Luminance),
             "mapbox" => Ok(ColourEncoding::Mapbox),
             "terrarium" => Ok(ColourEncoding::Terrarium),
-            _ => Err(format!(
-                "expected luminance, mapbox or terrarium, got '{s}'"
-            )),
+            _ => Err(OptionError::Encoding(s.to_owned())),
         }
     }
 }
 
 impl std::str::FromStr for NoDataValue {
-    type Err = String;
+    type Err = OptionError;
     /// `auto`, `none` or a number.
-    fn from_str(s: &str) -> Result<Self, String> {
+    fn from_str(s: &str) -> Result<Self, OptionError> {
         match s {
             "auto" => Ok(NoDataValue::Auto),
             "none" => Ok(NoDataValue::Off),
             _ => s
                 .parse::<f64>()
                 .map(NoDataValue::Value)
-                .map_err(|_| format!("expected auto, none or a number, got '{s}'")),
+                .map_err(|_| OptionError::NoData(s.to_owned())),
         }
     }
 }
