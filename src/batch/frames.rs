@@ -2,6 +2,7 @@
 //! including B), `A..=B` (up to B), `A..B/STEP` (every STEP-th from A), or `all`; and the file
 //! each frame goes to.
 
+use super::BatchError;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
@@ -17,13 +18,13 @@ pub struct FrameSpec {
 impl FrameSpec {
     /// The frames of a path of `frames` frames, in order; an error names the path's frames
     /// when the spec reaches beyond them or takes none.
-    pub fn frames(&self, frames: u64) -> Result<Vec<u64>, String> {
+    pub fn frames(&self, frames: u64) -> Result<Vec<u64>, BatchError> {
         let end = self.end.unwrap_or(frames);
         if end > frames || self.start >= end {
-            return Err(format!(
-                "--frames {self}: the scene's path has frames 0..{frames} (0 to {})",
-                frames.saturating_sub(1)
-            ));
+            return Err(BatchError::Beyond {
+                asked: self.to_string(),
+                frames,
+            });
         }
         Ok((self.start..end).step_by(self.step as usize).collect())
     }
@@ -44,14 +45,9 @@ impl std::fmt::Display for FrameSpec {
 }
 
 impl FromStr for FrameSpec {
-    type Err = String;
-    fn from_str(s: &str) -> Result<FrameSpec, String> {
-        let bad = || {
-            format!(
-                "expected N, A..B (B not included), A..=B, A..B/STEP or all, with whole \
-                 numbers, got '{s}'"
-            )
-        };
+    type Err = BatchError;
+    fn from_str(s: &str) -> Result<FrameSpec, BatchError> {
+        let bad = || BatchError::Frames(s.to_owned());
         let number = |t: &str| t.trim().parse::<u64>().map_err(|_| bad());
         let (range, step) = match s.split_once('/') {
             Some((range, step)) => (range, number(step)?),
@@ -71,9 +67,7 @@ impl FromStr for FrameSpec {
             (n, Some(n.checked_add(1).ok_or_else(bad)?))
         };
         if end.is_some_and(|end| end <= start) {
-            return Err(format!(
-                "--frames {s} takes no frame: the end must be after the start"
-            ));
+            return Err(BatchError::NoFrames(s.to_owned()));
         }
         Ok(FrameSpec { start, end, step })
     }
@@ -88,7 +82,7 @@ pub fn frame_file(folder: &Path, frame: u64) -> PathBuf {
 mod tests {
     use super::*;
 
-    fn frames(spec: &str, of: u64) -> Result<Vec<u64>, String> {
+    fn frames(spec: &str, of: u64) -> Result<Vec<u64>, BatchError> {
         spec.parse::<FrameSpec>()?.frames(of)
     }
 
@@ -100,7 +94,7 @@ mod tests {
         assert_eq!(frames("0..10/4", 10), Ok(vec![0, 4, 8]));
         assert_eq!(frames("all", 4), Ok(vec![0, 1, 2, 3]));
         assert_eq!(frames("all/2", 5), Ok(vec![0, 2, 4]));
-        let beyond = frames("8..12", 10).unwrap_err();
+        let beyond = frames("8..12", 10).unwrap_err().to_string();
         assert!(beyond.contains("0..10"), "{beyond}");
         for bad in ["5..5", "5..2", "a", "1..2/0", "-1", "1..", ""] {
             assert!(bad.parse::<FrameSpec>().is_err(), "{bad}");

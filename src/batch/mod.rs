@@ -3,9 +3,11 @@
 //! worker `I` (0 to `N-1`) takes pieces `I`, `I+N`, `I+2N`... of the list, so every piece is
 //! taken exactly once and nothing is shared between workers but the output folder.
 
+mod error;
 mod frames;
 mod tiles;
 
+pub use error::BatchError;
 pub use frames::{frame_file, FrameSpec};
 pub use tiles::{TileGrid, TilePlace, TILE_KEYWORD};
 
@@ -37,16 +39,14 @@ impl Share {
 }
 
 impl FromStr for Share {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Share, String> {
+    type Err = BatchError;
+    fn from_str(s: &str) -> Result<Share, BatchError> {
         let parsed = s.split_once('/').and_then(|(i, n)| {
             Some((i.trim().parse::<u64>().ok()?, n.trim().parse::<u64>().ok()?))
         });
         match parsed {
             Some((index, count)) if count > 0 && index < count => Ok(Share { index, count }),
-            _ => Err(format!(
-                "expected I/N, worker I of N counted from 0 (0/4 to 3/4 for four), got '{s}'"
-            )),
+            _ => Err(BatchError::Share(s.to_owned())),
         }
     }
 }

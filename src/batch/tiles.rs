@@ -2,6 +2,7 @@
 //! the top left (horizontal bands are `1 x N`). Each rendered tile says where it lies in a PNG
 //! text chunk, so parts merge without being told their order.
 
+use super::BatchError;
 use crate::render::Window;
 use std::str::FromStr;
 
@@ -33,21 +34,22 @@ impl TileGrid {
 
     /// Tile `index` of an image of `size` (row by row), or a message if there is no such tile
     /// or the image has fewer pixels than the grid has tiles along a side.
-    pub fn tile(&self, index: u64, (width, height): (u32, u32)) -> Result<TilePlace, String> {
+    pub fn tile(&self, index: u64, (width, height): (u32, u32)) -> Result<TilePlace, BatchError> {
+        let (columns, rows) = (self.columns, self.rows);
         if index >= self.count() {
-            return Err(format!(
-                "there is no tile {index} of {}x{} ({} tiles, 0 to {})",
-                self.columns,
-                self.rows,
-                self.count(),
-                self.count() - 1
-            ));
+            return Err(BatchError::NoSuchTile {
+                index,
+                columns: columns.into(),
+                rows: rows.into(),
+            });
         }
-        if self.columns > width || self.rows > height {
-            return Err(format!(
-                "a {width}x{height} image cannot be cut into {}x{} tiles: each needs a pixel",
-                self.columns, self.rows
-            ));
+        if columns > width || rows > height {
+            return Err(BatchError::TooSmall {
+                width,
+                height,
+                columns,
+                rows,
+            });
         }
         let cut = |k: u64, of: u32, length: u32| (k * u64::from(length) / u64::from(of)) as u32;
         let (c, r) = (
@@ -69,8 +71,8 @@ impl TileGrid {
 }
 
 impl FromStr for TileGrid {
-    type Err = String;
-    fn from_str(s: &str) -> Result<TileGrid, String> {
+    type Err = BatchError;
+    fn from_str(s: &str) -> Result<TileGrid, BatchError> {
         let parsed = s.split_once(['x', 'X']).and_then(|(c, r)| {
             Some((c.trim().parse::<u32>().ok()?, r.trim().parse::<u32>().ok()?))
         });
@@ -78,9 +80,7 @@ impl FromStr for TileGrid {
             Some((columns, rows)) if (1..=256).contains(&columns) && (1..=256).contains(&rows) => {
                 Ok(TileGrid { columns, rows })
             }
-            _ => Err(format!(
-                "expected COLUMNSxROWS, 1 to 256 each (4x4 for 16 tiles), got '{s}'"
-            )),
+            _ => Err(BatchError::Tiles(s.to_owned())),
         }
     }
 }

@@ -9,7 +9,7 @@ use super::render::Setup;
 use super::render_frames::{is_whole_image, output_folder};
 use super::render_progress::Progress;
 use super::RenderArgs;
-use heightray::batch::{Share, TileGrid, TilePlace, TILE_KEYWORD};
+use heightray::batch::{BatchError, Share, TileGrid, TilePlace, TILE_KEYWORD};
 use heightray::output_file;
 use heightray::render::reach;
 use heightray::render::Frame;
@@ -31,7 +31,7 @@ impl FromStr for TileArg {
         if let Ok(index) = s.trim().parse::<u64>() {
             return Ok(TileArg { index, bands: None });
         }
-        let share: Share = s.parse()?;
+        let share: Share = s.parse().map_err(|e: BatchError| e.to_string())?;
         let bands = u32::try_from(share.count)
             .ok()
             .filter(|&n| n <= 65536)
@@ -83,8 +83,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let places = indices
         .iter()
         .map(|&i| grid.tile(i, size).map(|place| (i, place)))
-        .collect::<Result<Vec<_>, String>>()
-        .map_err(anyhow::Error::msg)?;
+        .collect::<Result<Vec<_>, BatchError>>()?;
     let path_of = |index: u64| match folder {
         Some(folder) => tile_file(folder, index),
         None => args.output.clone(),
