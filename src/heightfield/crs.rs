@@ -3,9 +3,26 @@
 //! and latitude of any map point.
 
 use proj4rs::Proj;
+use thiserror::Error;
 
 /// Radians to degrees and back happen here only; `proj4rs` works in radians.
 const WGS84_LONLAT: &str = "+proj=longlat +datum=WGS84 +no_defs";
+
+/// Why a CRS's projection cannot be used.
+#[derive(Debug, Error)]
+pub enum CrsError {
+    /// The definitions hold the code, but `proj4rs` cannot use its definition.
+    #[error("the definition of EPSG:{epsg} is not usable ({source})")]
+    Definition {
+        /// The EPSG code.
+        epsg: u16,
+        /// What `proj4rs` said.
+        source: proj4rs::errors::Error,
+    },
+    /// WGS 84's own longitude and latitude would not parse.
+    #[error("WGS 84 longitude and latitude are not usable ({0})")]
+    Wgs84(proj4rs::errors::Error),
+}
 
 /// A coordinate reference system known by its EPSG code.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -46,14 +63,16 @@ impl Crs {
     }
 
     /// The projection, parsed from the definition.
-    fn proj(&self) -> Result<Proj, String> {
-        Proj::from_epsg_code(self.epsg)
-            .map_err(|e| format!("the definition of EPSG:{} is not usable ({e})", self.epsg))
+    fn proj(&self) -> Result<Proj, CrsError> {
+        Proj::from_epsg_code(self.epsg).map_err(|source| CrsError::Definition {
+            epsg: self.epsg,
+            source,
+        })
     }
 
     /// A converter between this CRS's coordinates and WGS 84 longitude and latitude.
-    pub fn to_lonlat(&self) -> Result<LonLat, String> {
-        let wgs84 = Proj::from_proj_string(WGS84_LONLAT).map_err(|e| e.to_string())?;
+    pub fn to_lonlat(&self) -> Result<LonLat, CrsError> {
+        let wgs84 = Proj::from_proj_string(WGS84_LONLAT).map_err(CrsError::Wgs84)?;
         Ok(LonLat {
             map: self.proj()?,
             wgs84,

@@ -127,20 +127,36 @@ pub fn unit_symbol(metres: f64) -> &'static str {
     }
 }
 
+/// Why numbers do not make a georeferencing.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum GeorefError {
+    /// An origin coordinate is infinite or NaN.
+    #[error("its origin {0:?} is not finite")]
+    Origin([f64; 2]),
+    /// A sample spacing is not a finite number above 0.
+    #[error("its sample spacing {0:?} is not positive (only north-up grids are read)")]
+    Spacing([f64; 2]),
+    /// The map unit is not a finite length above 0.
+    #[error("its unit of {0} metres is not positive")]
+    Unit(f64),
+}
+
 impl Georef {
     /// A georeferencing with finite coordinates and positive spacings, or why it is not one.
-    pub fn new(origin: [f64; 2], spacing: [f64; 2], units: MapUnits) -> Result<Georef, String> {
+    pub fn new(
+        origin: [f64; 2],
+        spacing: [f64; 2],
+        units: MapUnits,
+    ) -> Result<Georef, GeorefError> {
         if !origin.iter().all(|c| c.is_finite()) {
-            return Err(format!("its origin {origin:?} is not finite"));
+            return Err(GeorefError::Origin(origin));
         }
         if !spacing.iter().all(|s| s.is_finite() && *s > 0.0) {
-            return Err(format!(
-                "its sample spacing {spacing:?} is not positive (only north-up grids are read)"
-            ));
+            return Err(GeorefError::Spacing(spacing));
         }
         if let MapUnits::Linear { metres } = units {
             if !(metres.is_finite() && metres > 0.0) {
-                return Err(format!("its unit of {metres} metres is not positive"));
+                return Err(GeorefError::Unit(metres));
             }
         }
         Ok(Georef {
@@ -263,10 +279,10 @@ impl Georeferencing {
     }
 
     /// Georeferencing from a candidate: used when valid, else ignored with the reason.
-    pub fn from_result(result: Result<Georef, String>) -> Georeferencing {
+    pub fn from_result<E: std::fmt::Display>(result: Result<Georef, E>) -> Georeferencing {
         match result {
             Ok(georef) => Georeferencing::Map(georef),
-            Err(reason) => Georeferencing::Ignored(reason),
+            Err(reason) => Georeferencing::Ignored(reason.to_string()),
         }
     }
 }
@@ -287,10 +303,16 @@ mod tests {
     #[test]
     fn bad_spacings_and_origins_are_refused_with_a_reason() {
         let metres = MapUnits::Linear { metres: 1.0 };
-        assert!(Georef::new([0.0, 0.0], [1.0, -1.0], metres)
-            .unwrap_err()
-            .contains("north-up"));
-        assert!(Georef::new([f64::NAN, 0.0], [1.0, 1.0], metres).is_err());
-        assert!(Georef::new([0.0, 0.0], [1.0, 1.0], MapUnits::Linear { metres: 0.0 }).is_err());
+        let south_up = Georef::new([0.0, 0.0], [1.0, -1.0], metres).unwrap_err();
+        assert_eq!(south_up, GeorefError::Spacing([1.0, -1.0]));
+        assert!(south_up.to_string().contains("north-up"));
+        assert!(matches!(
+            Georef::new([f64::NAN, 0.0], [1.0, 1.0], metres),
+            Err(GeorefError::Origin(_))
+        ));
+        assert_eq!(
+            Georef::new([0.0, 0.0], [1.0, 1.0], MapUnits::Linear { metres: 0.0 }),
+            Err(GeorefError::Unit(0.0))
+        );
     }
 }

@@ -30,7 +30,7 @@ pub use builtin::{Builtin, BUILTINS};
 pub use drape::{Drape, DrapeError, Placement};
 pub use fetch::Window;
 pub use generate::landscape;
-pub use georef::{Georef, Georeferencing, HeightUnit, HeightUnitSource, MapUnits};
+pub use georef::{Georef, GeorefError, Georeferencing, HeightUnit, HeightUnitSource, MapUnits};
 pub use limits::{MAX_DECODED_BYTES, MAX_SAMPLES};
 pub use load::{
     load, load_bytes, load_bytes_with, load_mosaic, load_with, picture_kind, ColourEncoding,

@@ -43,7 +43,8 @@ pub fn onto_map(
     let unknown = |g: &Georef| format!("{} has no EPSG code to reproject by", g.crs_label());
     let own_crs = crs_of(own).ok_or_else(|| unknown(own))?;
     let map_crs = crs_of(map).ok_or_else(|| unknown(map))?;
-    let (to_lonlat, from_lonlat) = (map_crs.to_lonlat()?, own_crs.to_lonlat()?);
+    let lonlat = |crs: Crs| crs.to_lonlat().map_err(|e| e.to_string());
+    let (to_lonlat, from_lonlat) = (lonlat(map_crs)?, lonlat(own_crs)?);
     let (w, h) = (image.width, image.height);
     let source = Drape::from_pixels(w, h, image.pixels, 1.0, Placement::IDENTITY);
     // The overlay's pixel position of map grid point (x, y).

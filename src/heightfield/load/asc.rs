@@ -141,7 +141,7 @@ fn georef(header: &Header, height: u64) -> Result<Georef, String> {
     } else {
         MapUnits::Linear { metres: 1.0 }
     };
-    Georef::new(origin, [dx, dy], units)
+    Georef::new(origin, [dx, dy], units).map_err(|e| e.to_string())
 }
 
 /// Whitespace-separated tokens of a stream.

@@ -143,7 +143,9 @@ fn georef(corner: &Corner, keys: &GeoKeys, height: u32) -> Result<Georef, String
             ));
         }
     }
-    let georef = Georef::new(origin, [corner.sx, corner.sy], units)?.with_crs(crs);
+    let georef = Georef::new(origin, [corner.sx, corner.sy], units)
+        .map_err(|e| e.to_string())?
+        .with_crs(crs);
     Ok(match keys.get(VERTICAL_UNITS).and_then(unit_metres) {
         Some(metres) => georef.with_height_unit(HeightUnit {
             metres,

@@ -63,6 +63,7 @@ fn place(name: &str, n: usize) -> Result<Georef, String> {
     // SRTM tiles are WGS 84 longitude and latitude.
     Georef::new([lon, lat], [spacing, spacing], MapUnits::Degrees)
         .map(|g| g.with_crs(Crs::from_epsg(4326)))
+        .map_err(|e| e.to_string())
 }
 
 /// Latitude and longitude of a tile's south-west corner from a name such as `N45W123` or

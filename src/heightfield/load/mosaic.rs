@@ -213,7 +213,8 @@ fn join(tiles: &[(&Path, Heightfield, Georef)], first: Georef) -> Result<Raster,
         first.origin[0] + lo[0] as f64 * first.spacing[0],
         first.origin[1] + lo[1] as f64 * first.spacing[1],
     ];
-    let georef = Georef::new(origin, first.spacing, first.units)?
+    let georef = Georef::new(origin, first.spacing, first.units)
+        .map_err(|e| e.to_string())?
         .with_crs(first.crs)
         .with_height_unit(first.height_unit);
     Ok(Raster {
