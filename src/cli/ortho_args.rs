@@ -35,6 +35,16 @@ pub struct OrthoArgs {
     /// cells are not square).
     #[arg(long, requires = "ortho", default_value_t = heightray::products::sky_view::DEFAULT_RADIUS_CELLS, value_name = "CELLS")]
     pub svf_radius: f64,
+    /// With --ortho: contour lines every HEIGHT (the map's height unit), index lines labelled
+    /// with their height; replaces the scene's `[overlay] contours`. Drawn on pictures only
+    /// (--product shaded, or a .png of any product), never into sky-view or sunlight-hours
+    /// values.
+    #[arg(long, requires = "ortho", value_name = "HEIGHT")]
+    pub contours: Option<f64>,
+    /// With --contours: every N-th line is a wider, labelled index line (default: the scene's
+    /// `index_every`, else 5; 0 for none).
+    #[arg(long, requires = "ortho", value_name = "N")]
+    pub index_every: Option<u32>,
     /// Bits per channel of a colour TIFF (-o out.tif): 8 or 16.
     #[arg(long, default_value = "8", value_parser = ["8", "16"])]
     pub depth: String,

@@ -31,6 +31,7 @@ mod hostile_input;
 mod loader_fuzz;
 mod mosaics;
 mod near_walk;
+mod ortho_contours;
 mod orthophotos;
 mod packets;
 mod poster;

@@ -17,9 +17,9 @@ mod vectors;
 
 #[cfg(feature = "annotate")]
 pub use fonts::svg_options;
-pub use layout::{north_angle_deg, ScaleBar};
+pub use layout::{north_angle_deg, trimmed, ScaleBar};
 pub use sight::Sight;
-pub use svg::round_marks;
+pub use svg::{escaped, round_marks};
 pub use vectors::{
     from_geojson, from_gpx, Coordinates, Place, VectorFile, VectorLayer, VectorSection,
 };

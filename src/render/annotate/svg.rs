@@ -286,7 +286,7 @@ pub fn round_marks(lo: f64, hi: f64) -> Vec<f64> {
 }
 
 /// Text with XML's special characters escaped.
-fn escaped(text: &str) -> String {
+pub fn escaped(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
