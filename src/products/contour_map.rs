@@ -188,8 +188,9 @@ impl MapContours {
     ) -> Result<Vec<Label>, String> {
         let style = MapStyle::of(grid);
         let levels = self.levels(field, grid);
-        let measure = super::overlay::TextWidth::new(style.labels.font_px);
-        let labels = MapContours::labels(&levels, grid, &style, &|text| measure.of(text));
+        let measure = crate::render::annotate::TextWidth::new();
+        let font_px = style.labels.font_px;
+        let labels = MapContours::labels(&levels, grid, &style, &|text| measure.of(text, font_px));
         let svg = MapContours::svg(&levels, &labels, grid, &style);
         super::overlay::draw_over(&svg, pixels, (grid.width, grid.height))?;
         Ok(labels)

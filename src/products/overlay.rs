@@ -1,12 +1,10 @@
 //! SVG drawn over a product's colour raster (16 bits a channel, unassociated coverage), with
-//! the font annotations use; and the width that font gives a text.
+//! the font annotations use.
 
 use super::Rgba16;
-use crate::render::annotate::{escaped, svg_options};
+use crate::render::annotate::svg_options;
 use resvg::tiny_skia::{Color, Pixmap, Transform};
-use resvg::usvg::{Options, Tree};
-use std::cell::RefCell;
-use std::collections::HashMap;
+use resvg::usvg::Tree;
 
 /// Rows drawn at a time: the drawing's memory stays a band's, whatever the raster's size.
 const BAND: u32 = 256;
@@ -64,43 +62,4 @@ fn over(pixel: Rgba16, mark: resvg::tiny_skia::PremultipliedColorU8) -> Rgba16 {
         channel(mark.blue(), pixel[2]),
         (a_out.clamp(0.0, 1.0) * full).round() as u16,
     ]
-}
-
-/// Widths of texts in the annotations' font at one size, measured once each.
-pub struct TextWidth {
-    font_px: f64,
-    options: Options<'static>,
-    known: RefCell<HashMap<String, f64>>,
-}
-
-impl TextWidth {
-    /// Texts `font_px` pixels high.
-    pub fn new(font_px: f64) -> TextWidth {
-        TextWidth {
-            font_px,
-            options: svg_options(),
-            known: RefCell::new(HashMap::new()),
-        }
-    }
-
-    /// The width of `text`'s ink, in pixels (six tenths of the size a character where the
-    /// font draws nothing).
-    pub fn of(&self, text: &str) -> f64 {
-        if let Some(&width) = self.known.borrow().get(text) {
-            return width;
-        }
-        let svg = format!(
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\" \
-             font-family=\"sans-serif\"><text x=\"0\" y=\"0\" font-size=\"{}\">{}</text></svg>",
-            self.font_px,
-            escaped(text)
-        );
-        let measured = Tree::from_str(&svg, &self.options)
-            .ok()
-            .map(|tree| f64::from(tree.root().abs_bounding_box().width()))
-            .filter(|w| w.is_finite() && *w > 0.0);
-        let width = measured.unwrap_or_else(|| 0.6 * self.font_px * text.chars().count() as f64);
-        self.known.borrow_mut().insert(text.to_owned(), width);
-        width
-    }
 }

@@ -34,6 +34,7 @@ mod near_walk;
 mod ortho_contours;
 mod orthophotos;
 mod packets;
+mod place_labels;
 mod poster;
 mod products;
 mod products_cli;

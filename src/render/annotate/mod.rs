@@ -9,6 +9,8 @@
 #[cfg(feature = "annotate")]
 mod fonts;
 mod layout;
+mod measure;
+mod place_names;
 #[cfg(feature = "annotate")]
 mod raster;
 mod sight;
@@ -18,6 +20,8 @@ mod vectors;
 #[cfg(feature = "annotate")]
 pub use fonts::svg_options;
 pub use layout::{north_angle_deg, trimmed, ScaleBar};
+pub use measure::TextWidth;
+pub use place_names::PlacedName;
 pub use sight::Sight;
 pub use svg::{escaped, round_marks};
 pub use vectors::{
@@ -122,6 +126,11 @@ impl Annotations {
     /// Whether nothing is to be drawn.
     pub fn is_empty(&self) -> bool {
         *self == Annotations::default()
+    }
+
+    /// The places' names drawn over `sheet`'s whole image, where they are.
+    pub fn place_names(&self, sheet: &Sheet<'_>) -> Vec<PlacedName> {
+        svg::place_names(self, sheet)
     }
 
     /// The SVG document of these annotations over `sheet`'s whole image.

@@ -3,11 +3,13 @@
 //! legend, and the vector layers' places and lines where the terrain lets the eye see them.
 
 use super::layout::{north_angle_deg, trimmed, ScaleBar};
+use super::measure::TextWidth;
+use super::place_names::{arrange, Candidate, PlacedName, NAME_SIZE};
 use super::sight::Sight;
 use super::{Annotations, Sheet, VectorLayer};
 use crate::heightfield::place;
 use crate::render::{level_in_map_units, HeightSpan};
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 use std::fmt::Write;
 
 /// Grid units between the points along a line tested for sight.
@@ -25,12 +27,13 @@ pub fn compose(annotations: &Annotations, sheet: &Sheet<'_>) -> String {
     let (w, h) = (f64::from(w), f64::from(h));
     let mut svg = Svg {
         text: String::new(),
-        em: (h / 40.0).clamp(14.0, 120.0),
+        em: em(sheet),
         size: DVec2::new(w, h),
     };
     for layer in &annotations.vectors {
-        svg.layer(layer, sheet);
+        svg.lines(layer, sheet);
     }
+    svg.places(annotations, sheet);
     if let Some(title) = &annotations.title {
         let em = svg.em;
         svg.label([em, 2.2 * em], title, 1.6, "start");
@@ -53,6 +56,48 @@ pub fn compose(annotations: &Annotations, sheet: &Sheet<'_>) -> String {
          font-family=\"sans-serif\">{}</svg>",
         svg.text
     )
+}
+
+/// The text size of `sheet`'s annotations, in pixels: every mark is sized in it.
+fn em(sheet: &Sheet<'_>) -> f64 {
+    (f64::from(sheet.camera.whole_size().1) / 40.0).clamp(14.0, 120.0)
+}
+
+/// The names of the places the eye sees, kept apart (see [`arrange`]).
+pub fn place_names(annotations: &Annotations, sheet: &Sheet<'_>) -> Vec<PlacedName> {
+    let width = TextWidth::new();
+    arrange(
+        &visible_places(annotations, sheet),
+        em(sheet),
+        &|text, px| width.of(text, px),
+    )
+}
+
+/// The places of every layer the eye sees, with their markers in the image.
+fn visible_places(annotations: &Annotations, sheet: &Sheet<'_>) -> Vec<Candidate> {
+    let sight = sheet.sight();
+    let eye = DVec3::from(sheet.camera.eye());
+    let mut found = Vec::new();
+    for layer in &annotations.vectors {
+        for place in &layer.places {
+            let [x, y] = place.at;
+            let anchor = [x, y, sight.ground(place.at) + layer.lift];
+            let Some(marker) = sheet.on_image(anchor) else {
+                continue;
+            };
+            if !sight.sees(anchor) {
+                continue;
+            }
+            let world = DVec3::from(sheet.terrain.world_point(anchor));
+            found.push(Candidate {
+                name: place.name.clone(),
+                priority: place.priority,
+                distance: world.distance(eye),
+                marker,
+            });
+        }
+    }
+    found
 }
 
 /// An SVG document being written.
@@ -186,8 +231,8 @@ impl Svg {
         }
     }
 
-    /// A vector layer: its lines where the eye sees them, then its places' markers and names.
-    fn layer(&mut self, layer: &VectorLayer, sheet: &Sheet<'_>) {
+    /// A vector layer's lines where the eye sees them.
+    fn lines(&mut self, layer: &VectorLayer, sheet: &Sheet<'_>) {
         let sight = sheet.sight();
         let total: f64 = layer
             .lines
@@ -214,15 +259,13 @@ impl Svg {
                 }
             }
         }
-        for place in &layer.places {
-            let [x, y] = place.at;
-            let anchor = [x, y, sight.ground(place.at) + layer.lift];
-            let Some([px, py]) = sheet.on_image(anchor) else {
-                continue;
-            };
-            if !sight.sees(anchor) {
-                continue;
-            }
+    }
+
+    /// Every visible place's marker, then the names there is room for.
+    fn places(&mut self, annotations: &Annotations, sheet: &Sheet<'_>) {
+        let candidates = visible_places(annotations, sheet);
+        for place in &candidates {
+            let [px, py] = place.marker;
             let _ = write!(
                 self.text,
                 "<circle cx=\"{px:.2}\" cy=\"{py:.2}\" r=\"{:.2}\" fill=\"#ffffff\" \
@@ -230,8 +273,11 @@ impl Svg {
                 0.28 * self.em,
                 0.12 * self.em
             );
-            let at = [px + 0.5 * self.em, py - 0.4 * self.em];
-            self.label(at, &place.name, 0.85, "start");
+        }
+        let width = TextWidth::new();
+        for name in arrange(&candidates, self.em, &|text, px| width.of(text, px)) {
+            let anchor = if name.ends_at { "end" } else { "start" };
+            self.label(name.at, &name.name, NAME_SIZE, anchor);
         }
     }
 }
