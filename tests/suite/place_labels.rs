@@ -1,7 +1,7 @@
 //! Place names in a perspective picture never overlap: where two collide, the one with the
 //! higher GeoJSON `priority` (else the nearer to the eye) keeps the upper-right corner, the
 //! other takes a free corner or, with none, loses its name but keeps its marker; names that do
-//! not collide are all drawn where they always were. Seen straight down on a flat map, so the
+//! not collide are all drawn where they always were, and names keep off the legend. Seen straight down on a flat map, so the
 //! place under the eye is the nearest.
 
 use heightray::render::annotate::{
@@ -19,6 +19,15 @@ fn flat() -> Terrain {
 /// The names drawn for `places` (name, grid point, priority if any), seen straight down from
 /// above the map's centre, and the SVG they are drawn in.
 fn names(terrain: &Terrain, places: &[(&str, [f64; 2], Option<f64>)]) -> (Vec<PlacedName>, String) {
+    names_with(terrain, places, Annotations::default())
+}
+
+/// [`names`] over the marks of `marks` (a legend, a title...).
+fn names_with(
+    terrain: &Terrain,
+    places: &[(&str, [f64; 2], Option<f64>)],
+    marks: Annotations,
+) -> (Vec<PlacedName>, String) {
     let features: Vec<String> = places
         .iter()
         .map(|(name, [x, y], priority)| {
@@ -58,7 +67,7 @@ fn names(terrain: &Terrain, places: &[(&str, [f64; 2], Option<f64>)]) -> (Vec<Pl
     };
     let annotations = Annotations {
         vectors: vec![layer],
-        ..Annotations::default()
+        ..marks
     };
     (annotations.place_names(&sheet), annotations.svg(&sheet))
 }
@@ -130,4 +139,25 @@ fn names_that_do_not_collide_are_all_drawn_at_the_upper_right() {
 
 fn names_of(names: &[PlacedName]) -> Vec<&str> {
     names.iter().map(|n| n.name.as_str()).collect()
+}
+
+#[test]
+fn a_name_moves_off_the_legend() {
+    let terrain = flat();
+    // A marker at pixel (500, 380) of 640x480: its name at the upper right would run into the
+    // legend, which takes x from 640 - 7 em (em = 14 pixels here) between y 283 and 455.
+    let place = [(
+        "Near the legend",
+        [32.0 + 180.0 / 6.928, 32.0 - 140.0 / 6.928],
+        None,
+    )];
+    let (free, _) = names(&terrain, &place);
+    assert!(!free[0].ends_at && free[0].bounds[2] > 542.0, "{free:?}");
+    let legend = Annotations {
+        legend: true,
+        ..Annotations::default()
+    };
+    let (moved, _) = names_with(&terrain, &place, legend);
+    assert_eq!(moved.len(), 1);
+    assert!(moved[0].ends_at && moved[0].bounds[2] <= 542.0, "{moved:?}");
 }

@@ -4,7 +4,7 @@
 
 use super::layout::{north_angle_deg, trimmed, ScaleBar};
 use super::measure::TextWidth;
-use super::place_names::{arrange, Candidate, PlacedName, NAME_SIZE};
+use super::place_names::{arrange, reserved, Candidate, PlacedName, NAME_SIZE};
 use super::sight::Sight;
 use super::{Annotations, Sheet, VectorLayer};
 use crate::heightfield::place;
@@ -63,14 +63,15 @@ fn em(sheet: &Sheet<'_>) -> f64 {
     (f64::from(sheet.camera.whole_size().1) / 40.0).clamp(14.0, 120.0)
 }
 
-/// The names of the places the eye sees, kept apart (see [`arrange`]).
+/// The names of the places the eye sees, kept apart and off the other marks (see
+/// [`arrange`]).
 pub fn place_names(annotations: &Annotations, sheet: &Sheet<'_>) -> Vec<PlacedName> {
     let width = TextWidth::new();
-    arrange(
-        &visible_places(annotations, sheet),
-        em(sheet),
-        &|text, px| width.of(text, px),
-    )
+    let width_of = |text: &str, px: f64| width.of(text, px);
+    let (w, h) = sheet.camera.whole_size();
+    let em = em(sheet);
+    let marks = reserved(annotations, (f64::from(w), f64::from(h)), em, &width_of);
+    arrange(&visible_places(annotations, sheet), &marks, em, &width_of)
 }
 
 /// The places of every layer the eye sees, with their markers in the image.
@@ -263,8 +264,7 @@ impl Svg {
 
     /// Every visible place's marker, then the names there is room for.
     fn places(&mut self, annotations: &Annotations, sheet: &Sheet<'_>) {
-        let candidates = visible_places(annotations, sheet);
-        for place in &candidates {
+        for place in &visible_places(annotations, sheet) {
             let [px, py] = place.marker;
             let _ = write!(
                 self.text,
@@ -274,8 +274,7 @@ impl Svg {
                 0.12 * self.em
             );
         }
-        let width = TextWidth::new();
-        for name in arrange(&candidates, self.em, &|text, px| width.of(text, px)) {
+        for name in place_names(annotations, sheet) {
             let anchor = if name.ends_at { "end" } else { "start" };
             self.label(name.at, &name.name, NAME_SIZE, anchor);
         }
