@@ -28,6 +28,10 @@ pub struct OrthoArgs {
     /// With --product sunlight-hours: minutes between the sun's positions (divides 60).
     #[arg(long, requires = "ortho", default_value_t = 10, value_name = "MINUTES")]
     pub sun_step: u32,
+    /// With --product sunlight-hours: whether each sun's strip bounds settle rays without a
+    /// walk where they prove them clear (the same hours; off to measure what they save).
+    #[arg(long, requires = "ortho", default_value = "on", value_parser = ["on", "off"])]
+    pub strip_bounds: String,
     /// With --product sky-view: compass directions searched for the horizon.
     #[arg(long, requires = "ortho", default_value_t = heightray::products::sky_view::DEFAULT_DIRECTIONS)]
     pub svf_directions: u32,

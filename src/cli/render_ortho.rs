@@ -113,7 +113,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
                 ortho.sun_step,
                 path.zone
             );
-            Maker::Sunlight(Sunlight::new(terrain, &path, options))
+            let bounds = ortho.strip_bounds == "on";
+            Maker::Sunlight(Sunlight::with_bounds(terrain, &path, options, bounds))
         }
         _ => {
             let mut shader = Shader::new(terrain, lighting, setup.method, Culling::default());

@@ -44,6 +44,7 @@ mod render;
 mod snapshots;
 mod sun_bearing;
 mod sun_time;
+mod sunlight_bounds;
 mod terminator;
 mod true_scale;
 mod water;
