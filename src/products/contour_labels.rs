@@ -198,16 +198,20 @@ mod tests {
         }
     }
 
-    #[test]
-    fn a_straight_line_is_labelled_every_spacing_inside_the_image() {
-        // A level line 300 pixels long; labels 20 + 7 wide, every 100 pixels from the start.
-        let points = [[0.0, 50.0], [300.0, 50.0]];
+    /// The labels of one line of `points`, texts 20 pixels wide, in an image of `size`.
+    fn labels_on(points: &[[f64; 2]], size: (u32, u32)) -> Vec<Label> {
         let line = Labelled {
             value: 100.0,
             text: "100".into(),
-            points: &points,
+            points,
         };
-        let labels = place(&[line], (300, 100), &|_| 20.0, style());
+        place(&[line], size, &|_| 20.0, style())
+    }
+
+    #[test]
+    fn a_straight_line_is_labelled_every_spacing_inside_the_image() {
+        // A level line 300 pixels long; labels 20 + 7 wide, every 100 pixels from the start.
+        let labels = labels_on(&[[0.0, 50.0], [300.0, 50.0]], (300, 100));
         let xs: Vec<f64> = labels.iter().map(|l| l.at[0]).collect();
         assert_eq!(xs, vec![13.5, 113.5, 213.5]);
         assert!(labels.iter().all(|l| l.angle_deg == 0.0 && l.at[1] == 50.0));
@@ -215,13 +219,7 @@ mod tests {
 
     #[test]
     fn text_runs_left_to_right_whichever_way_the_line_runs() {
-        let points = [[200.0, 100.0], [0.0, 0.0]];
-        let line = Labelled {
-            value: 1.0,
-            text: "1".into(),
-            points: &points,
-        };
-        let labels = place(&[line], (300, 300), &|_| 20.0, style());
+        let labels = labels_on(&[[200.0, 100.0], [0.0, 0.0]], (300, 300));
         let angle = 0.5f64.atan().to_degrees();
         assert!(!labels.is_empty());
         assert!(labels.iter().all(|l| (l.angle_deg - angle).abs() < 1e-9));
@@ -233,11 +231,6 @@ mod tests {
         let points: Vec<[f64; 2]> = (0..40)
             .map(|k| [f64::from(k) * 5.0, if k % 2 == 0 { 50.0 } else { 58.0 }])
             .collect();
-        let line = Labelled {
-            value: 1.0,
-            text: "1".into(),
-            points: &points,
-        };
-        assert!(place(&[line], (300, 100), &|_| 20.0, style()).is_empty());
+        assert!(labels_on(&points, (300, 100)).is_empty());
     }
 }

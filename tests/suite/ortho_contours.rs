@@ -177,32 +177,24 @@ fn the_command_line_draws_contours_on_pictures_not_into_values() {
         .filter(|(a, b)| **a != *b)
         .count();
     assert!(changed > 100, "{changed} channels changed by the lines");
-    // Values are not pictures: refused, with the way to a picture.
+    // Values are not pictures: refused, with the way to a picture; their PNG takes lines.
+    let sky_view = |out: &str| {
+        render(&[
+            d,
+            "--ortho",
+            "--product",
+            "sky-view",
+            "--contours",
+            "1",
+            "-o",
+            out,
+        ])
+    };
     let values = out("svf.tif");
-    let (ok, stderr) = render(&[
-        d,
-        "--ortho",
-        "--product",
-        "sky-view",
-        "--contours",
-        "1",
-        "-o",
-        &values,
-    ]);
+    let (ok, stderr) = sky_view(&values);
     assert!(!ok && stderr.contains(".png"), "{stderr}");
     assert!(!Path::new(&values).exists());
-    // Their PNG picture takes lines.
-    let picture = out("svf.png");
-    let (ok, stderr) = render(&[
-        d,
-        "--ortho",
-        "--product",
-        "sky-view",
-        "--contours",
-        "1",
-        "-o",
-        &picture,
-    ]);
+    let (ok, stderr) = sky_view(&out("svf.png"));
     assert!(ok, "{stderr}");
     assert!(!render(&[d, "--ortho", "--contours", "0", "-o", &lined]).0);
 }
