@@ -28,6 +28,10 @@ pub struct OrthoArgs {
     /// With --product sunlight-hours: minutes between the sun's positions (divides 60).
     #[arg(long, requires = "ortho", default_value_t = 10, value_name = "MINUTES")]
     pub sun_step: u32,
+    /// With --product sunlight-hours: whether each sun's strip bounds settle rays without a
+    /// walk where they prove them clear (the same hours; off to measure what they save).
+    #[arg(long, requires = "ortho", default_value = "on", value_parser = ["on", "off"])]
+    pub strip_bounds: String,
     /// With --product sky-view: compass directions searched for the horizon.
     #[arg(long, requires = "ortho", default_value_t = heightray::products::sky_view::DEFAULT_DIRECTIONS)]
     pub svf_directions: u32,
@@ -35,6 +39,16 @@ pub struct OrthoArgs {
     /// cells are not square).
     #[arg(long, requires = "ortho", default_value_t = heightray::products::sky_view::DEFAULT_RADIUS_CELLS, value_name = "CELLS")]
     pub svf_radius: f64,
+    /// With --ortho: contour lines every HEIGHT (the map's height unit), index lines labelled
+    /// with their height; replaces the scene's `[overlay] contours`. Drawn on pictures only
+    /// (--product shaded, or a .png of any product), never into sky-view or sunlight-hours
+    /// values.
+    #[arg(long, requires = "ortho", value_name = "HEIGHT")]
+    pub contours: Option<f64>,
+    /// With --contours: every N-th line is a wider, labelled index line (default: the scene's
+    /// `index_every`, else 5; 0 for none).
+    #[arg(long, requires = "ortho", value_name = "N")]
+    pub index_every: Option<u32>,
     /// Bits per channel of a colour TIFF (-o out.tif): 8 or 16.
     #[arg(long, default_value = "8", value_parser = ["8", "16"])]
     pub depth: String,

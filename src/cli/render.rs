@@ -76,13 +76,13 @@ impl Setup {
     /// The renderer of `camera` (in world coordinates) over the terrain.
     pub fn renderer(&self, camera: Camera) -> Renderer<'_> {
         let camera = camera.in_grid(self.terrain.world_from_grid());
-        let mut shader = Shader::new(
+        let shader = Shader::new(
             &self.terrain,
             self.lighting,
             self.method,
             Culling::default(),
-        );
-        shader.contours = self.contours.map(|c| c.seen_by(&camera));
+        )
+        .with_contours(self.contours, &camera);
         Renderer {
             shader,
             camera,

@@ -7,8 +7,10 @@ use super::{ortho_args::OrthoArgs, RenderArgs};
 use heightray::heightfield::place;
 use heightray::output_file;
 use heightray::products::tiff_out::{self, Depth, GeoTags, TiffTags};
-use heightray::products::{Horizon, Maker, OrthoGrid, Raster, SkyView, SunPath, Sunlight};
-use heightray::render::{local_time, Culling, Shader};
+use heightray::products::{
+    Horizon, Maker, MapContours, OrthoGrid, Raster, Rgba16, SkyView, SunPath, Sunlight,
+};
+use heightray::render::{level_z, local_time, Contours, Culling, Shader};
 use heightray::TraceOptions;
 use image::{DynamicImage, GrayAlphaImage, ImageFormat, LumaA, Rgba, RgbaImage};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -94,6 +96,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let setup = Setup::new(args)?;
     let terrain = &setup.terrain;
     let grid = OrthoGrid::over(terrain.field(), ortho.cell).map_err(anyhow::Error::msg)?;
+    let contours = contours(args, &setup)?;
     let options = TraceOptions::new(setup.method, setup.arith);
     let mut lighting = setup.lighting;
     // Seen straight down from just above the terrain: no haze, and no base under holes,
@@ -110,7 +113,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
                 ortho.sun_step,
                 path.zone
             );
-            Maker::Sunlight(Sunlight::new(terrain, &path, options))
+            let bounds = ortho.strip_bounds == "on";
+            Maker::Sunlight(Sunlight::with_bounds(terrain, &path, options, bounds))
         }
         _ => {
             let mut shader = Shader::new(terrain, lighting, setup.method, Culling::default());
@@ -138,6 +142,20 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let range = match &raster {
         Raster::Values(values) => value_range(values),
         Raster::Colour(_) => None,
+    };
+    let raster = match contours {
+        Some(lines) => {
+            let mut pixels = match raster {
+                Raster::Colour(pixels) => pixels,
+                Raster::Values(values) => grey(&values, stretch(&values)),
+            };
+            let labels = lines
+                .draw(terrain.field(), &grid, &mut pixels)
+                .map_err(anyhow::Error::msg)?;
+            eprintln!("contour lines drawn, {} index labels", labels.len());
+            Raster::Colour(pixels)
+        }
+        None => raster,
     };
     if tiff {
         let geo = grid
@@ -184,6 +202,71 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         setup.pool.current_num_threads()
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// The contour lines drawn over the product: `--contours` (with `--index-every`) or the
+/// scene's; none over a product's values, which a line would falsify.
+fn contours(args: &RenderArgs, setup: &Setup) -> anyhow::Result<Option<MapContours>> {
+    let ortho = &args.ortho;
+    let field = setup.terrain.field();
+    let scene_index = setup.contours.map(|c| c.index_every());
+    let asked = match ortho.contours {
+        Some(interval) => {
+            let index = ortho.index_every.or(scene_index).unwrap_or(5);
+            let lines = Contours::new(level_z(field, interval), index);
+            anyhow::ensure!(
+                lines.is_some(),
+                "--contours must be a finite height interval > 0, got {interval}"
+            );
+            lines
+        }
+        None => {
+            anyhow::ensure!(
+                ortho.index_every.is_none() || setup.contours.is_some(),
+                "--index-every goes with --contours (or a scene's [overlay] contours)"
+            );
+            let index = ortho.index_every.or(scene_index).unwrap_or(5);
+            setup
+                .contours
+                .and_then(|c| Contours::new(c.interval_z(), index))
+        }
+    };
+    let Some(lines) = asked else {
+        return Ok(None);
+    };
+    if ortho.product != "shaded" && is_tiff(&args.output) {
+        anyhow::ensure!(
+            ortho.contours.is_none(),
+            "--contours draws on pictures: --product {} writes values into {}; write a .png \
+             picture, or use --product shaded",
+            ortho.product,
+            args.output.display()
+        );
+        eprintln!("note: the scene's contour lines are not drawn into the product's values");
+        return Ok(None);
+    }
+    Ok(Some(MapContours::new(&lines, field)))
+}
+
+/// Values as a grey picture: the least of `range` black, the greatest white; no value
+/// transparent.
+fn grey(values: &[f32], range: Option<(f32, f32)>) -> Vec<Rgba16> {
+    let (lo, hi) = range.unwrap_or((0.0, 1.0));
+    values
+        .iter()
+        .map(|&v| {
+            if v.is_nan() {
+                return [0; 4];
+            }
+            let share = if hi > lo {
+                ((v - lo) / (hi - lo)).clamp(0.0, 1.0)
+            } else {
+                1.0
+            };
+            let level = (share * 255.0).round() as u16 * 257;
+            [level, level, level, u16::MAX]
+        })
+        .collect()
 }
 
 /// The sun over `--date` at the map's centre, on its local clocks (UTC where no zone is
@@ -241,18 +324,11 @@ fn save_png(
         }
         // (Grey and alpha: a quarter of the bytes of colour, and as many shades.)
         Raster::Values(values) => {
-            let (lo, hi) = range.unwrap_or((0.0, 1.0));
+            // Byte `b` widened is `257 b`: its high byte is `b` again.
+            let pixels = grey(values, range);
             DynamicImage::ImageLumaA8(GrayAlphaImage::from_fn(width, height, |x, y| {
-                let v = values[at(x, y)];
-                if v.is_nan() {
-                    return LumaA([0, 0]);
-                }
-                let grey = if hi > lo {
-                    ((v - lo) / (hi - lo)).clamp(0.0, 1.0)
-                } else {
-                    1.0
-                };
-                LumaA([(grey * 255.0).round() as u8, 255])
+                let [level, _, _, alpha] = pixels[at(x, y)];
+                LumaA([(level >> 8) as u8, (alpha >> 8) as u8])
             }))
         }
     };

@@ -73,6 +73,16 @@ impl OrthoGrid {
         ]
     }
 
+    /// Where grid point `[x, y]` lies in the raster, in pixels from its top-left corner (pixel
+    /// `(column, row)` spans `column..column + 1` and `row..row + 1`): the inverse of
+    /// [`OrthoGrid::point`].
+    pub fn image_point(&self, [x, y]: [f64; 2]) -> [f64; 2] {
+        [
+            (x - self.corner[0]) / self.step[0],
+            (self.corner[1] - y) / self.step[1],
+        ]
+    }
+
     /// Grid units a pixel spans along x and y.
     pub fn step(&self) -> [f64; 2] {
         self.step

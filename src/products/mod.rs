@@ -5,14 +5,23 @@
 //! - **shaded**: shaded relief with cast shadows, a colour picture ([`shaded`]);
 //! - **sky-view**: the sky-view factor, 0 to 1 ([`sky_view`]);
 //! - **sunlight-hours**: hours of direct sun over a day ([`sunlight`]).
+//!
+//! Contour lines with labelled index lines are drawn over the pictures ([`contour_map`]).
 
+pub mod contour_labels;
+pub mod contour_map;
 pub mod grid;
 pub mod horizon;
+pub mod isolines;
+#[cfg(feature = "annotate")]
+mod overlay;
 pub mod shaded;
 pub mod sky_view;
 pub mod sunlight;
 pub mod tiff_out;
 
+pub use contour_labels::Label;
+pub use contour_map::{MapContours, MapStyle};
 pub use grid::{GeoTransform, OrthoGrid};
 pub use horizon::Horizon;
 pub use shaded::Rgba16;

@@ -4,17 +4,20 @@
 //! touches the surface nowhere after it starts: within two cells that is decided along the
 //! surface's own profile ([`Horizon::rise`], which also darkens a slope facing away), beyond
 //! them by an occlusion query from where a vertical ray meets the surface ([`Tracer::occluded`]), in the traversal's
-//! arithmetic (exactly in exact mode).
+//! arithmetic (exactly in exact mode). Each step's sun has its strip bounds ([`StripBounds`]),
+//! as a picture's sun has: a ray they prove clear beyond its first cells walks only those.
 
 use super::horizon::Horizon;
 use crate::arith::Scalar;
 use crate::arith::{run, Generic};
+use crate::heightfield::StripBounds;
 use crate::render::local_time;
 use crate::render::sun_position::SunPosition;
 use crate::traverse::{Start, Tracer};
 use crate::{Ray, Terrain, TraceOptions};
 use chrono::{Duration, NaiveDate, NaiveTime};
 use chrono_tz::Tz;
+use rayon::prelude::*;
 
 /// The sun over one day, step by step.
 #[derive(Clone, Debug, PartialEq)]
@@ -79,6 +82,9 @@ pub struct Sunlight<'a> {
     /// Per step with the sun up: its compass direction, the tangent of its elevation, and its
     /// direction in grid coordinates.
     suns: Vec<([f64; 2], f64, [f64; 3])>,
+    /// Per step with the sun up: the strip bounds of its direction, where they can help and
+    /// are asked for.
+    strips: Vec<Option<StripBounds>>,
     step_hours: f64,
     options: TraceOptions,
     /// How far along the surface's profile a ray's start is decided (world units).
@@ -86,8 +92,20 @@ pub struct Sunlight<'a> {
 }
 
 impl<'a> Sunlight<'a> {
-    /// Sunlight over `terrain` along `path`, occlusion queries made with `options`.
+    /// Sunlight over `terrain` along `path`, occlusion queries made with `options`, with each
+    /// sun's strip bounds (built on rayon's threads).
     pub fn new(terrain: &'a Terrain, path: &SunPath, options: TraceOptions) -> Self {
+        Sunlight::with_bounds(terrain, path, options, true)
+    }
+
+    /// [`Sunlight::new`], with the suns' strip bounds or without: the same hours, at another
+    /// cost.
+    pub fn with_bounds(
+        terrain: &'a Terrain,
+        path: &SunPath,
+        options: TraceOptions,
+        bounds: bool,
+    ) -> Self {
         let scale = terrain.world_from_grid().unwrap_or([1.0, 1.0, 1.0]);
         let suns = path
             .sun_up
@@ -103,11 +121,17 @@ impl<'a> Sunlight<'a> {
                 let length = grid.iter().map(|c| c * c).sum::<f64>().sqrt();
                 (toward, z / across, grid.map(|c| c / length))
             })
+            .collect::<Vec<_>>();
+        let strips = suns
+            .par_iter()
+            .map(|&(_, _, grid)| bounds.then(|| StripBounds::build(terrain.field(), grid, 0.0)))
+            .map(Option::flatten)
             .collect();
         Sunlight {
             terrain,
             horizon: Horizon::new(terrain),
             suns,
+            strips,
             step_hours: path.step_hours,
             options,
             near: 2.0 * scale[0].max(scale[1]),
@@ -124,7 +148,7 @@ impl<'a> Sunlight<'a> {
         let steepest = self.terrain.max_slope() * (1.0 + 1e-9);
         let mut open = 0;
         let mut asked = Vec::with_capacity(self.suns.len());
-        for (toward, tan_elevation, grid) in &self.suns {
+        for ((toward, tan_elevation, grid), strips) in self.suns.iter().zip(&self.strips) {
             let near = self.horizon.rise(at, z0, *toward, self.near);
             if near.is_some_and(|rise| rise >= *tan_elevation) {
                 continue;
@@ -132,13 +156,14 @@ impl<'a> Sunlight<'a> {
             if grid[2] > steepest * grid[0].hypot(grid[1]) {
                 open += 1;
             } else {
-                asked.push(*grid);
+                asked.push((*grid, strips.as_ref()));
             }
         }
         let steps = FromSurface {
             tracer: Tracer::new(self.terrain, self.options.method),
             down: &down,
             suns: &asked,
+            max_slope: self.terrain.max_slope(),
         };
         let (lit, _) = run(self.options.arith, &steps);
         Some((open + lit.output) as f64 * self.step_hours)
@@ -146,12 +171,15 @@ impl<'a> Sunlight<'a> {
 }
 
 /// The suns a point of the surface sees: occlusion rays towards each from where a vertical
-/// ray meets the surface, traced once for them all, in whichever arithmetic [`run`] picks.
+/// ray meets the surface, traced once for them all, in whichever arithmetic [`run`] picks;
+/// each walked only as far as its sun's strip bounds leave it unsettled.
 struct FromSurface<'s, 'a> {
     tracer: Tracer<'a>,
     down: &'s Ray,
-    /// Directions towards the sun in grid coordinates.
-    suns: &'s [[f64; 3]],
+    /// Directions towards the sun in grid coordinates, and their strip bounds.
+    suns: &'s [([f64; 3], Option<&'s StripBounds>)],
+    /// The terrain's steepest slope.
+    max_slope: f64,
 }
 
 impl Generic for FromSurface<'_, '_> {
@@ -164,9 +192,23 @@ impl Generic for FromSurface<'_, '_> {
             ray: self.down,
             hit: &hit,
         };
+        let o = self.down.origin();
+        let start = [o[0], o[1], o[2] - hit.t.to_f64()];
+        // How far the true start may lie below `start`, computed in `f64`: the roundings of
+        // the hit's `t` and the point, with far more room than they need (as a picture's
+        // shadow rays allow).
+        let largest = (0..3).fold(0.0f64, |m, k| m.max(o[k].abs() + start[k].abs()));
+        let room = 1024.0 * S::rounding_error(largest) * (1.0 + self.max_slope);
         self.suns
             .iter()
-            .filter(|&&sun| self.tracer.occluded(&from, sun, true).occluded != Some(true))
+            .filter(|&&(sun, strips)| {
+                let near = strips.and_then(|s| s.clear_beyond(start, sun, room));
+                let tracer = match near {
+                    Some(t) => self.tracer.within(t),
+                    None => self.tracer,
+                };
+                tracer.occluded(&from, sun, true).occluded != Some(true)
+            })
             .count()
     }
 }

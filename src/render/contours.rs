@@ -60,6 +60,16 @@ impl Contours {
         })
     }
 
+    /// Grid height between lines.
+    pub fn interval_z(&self) -> f64 {
+        self.interval_z
+    }
+
+    /// Every this many lines is an index line (0: none).
+    pub fn index_every(&self) -> u32 {
+        self.index
+    }
+
     /// The same lines as `camera` sees them (a camera in grid coordinates, see
     /// [`Camera::in_grid`]); without a camera no line is drawn.
     pub fn seen_by(self, camera: &Camera) -> Contours {

@@ -190,6 +190,7 @@ fn a_place_behind_a_ridge_is_hidden_and_one_in_front_shows() {
         let place = |name: &str, at: [f64; 2]| Place {
             name: name.into(),
             at,
+            priority: 0.0,
         };
         let annotations = Annotations {
             vectors: vec![VectorLayer {

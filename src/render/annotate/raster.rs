@@ -2,10 +2,27 @@
 //! fixed in the whole image (each with a border around it), so that every pixel is drawn the
 //! same way whichever window holds it: a poster's tiles merge into the whole picture's bytes.
 
+use super::sheet::{Annotations, Sheet};
 use super::svg_options;
 use crate::render::Window;
 use resvg::tiny_skia::{Pixmap, Transform};
 use resvg::usvg::Tree;
+
+impl Annotations {
+    /// Draws these annotations into `pixels` (0x00RRGGBB, row by row), which hold `window` of
+    /// `sheet`'s whole image.
+    pub fn draw(
+        &self,
+        sheet: &Sheet<'_>,
+        pixels: &mut [u32],
+        window: Window,
+    ) -> Result<(), String> {
+        if self.is_empty() {
+            return Ok(());
+        }
+        draw_over(&self.svg(sheet), pixels, window)
+    }
+}
 
 /// The side of a block, in pixels.
 const BLOCK: u32 = 256;

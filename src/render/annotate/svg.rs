@@ -3,12 +3,27 @@
 //! legend, and the vector layers' places and lines where the terrain lets the eye see them.
 
 use super::layout::{north_angle_deg, trimmed, ScaleBar};
+use super::measure::TextWidth;
+use super::place_names::{arrange, reserved, Candidate, PlacedName, NAME_SIZE};
+use super::sheet::{Annotations, Sheet};
 use super::sight::Sight;
-use super::{Annotations, Sheet, VectorLayer};
+use super::vectors::VectorLayer;
 use crate::heightfield::place;
 use crate::render::{level_in_map_units, HeightSpan};
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 use std::fmt::Write;
+
+impl Annotations {
+    /// The places' names drawn over `sheet`'s whole image, where they are.
+    pub fn place_names(&self, sheet: &Sheet<'_>) -> Vec<PlacedName> {
+        place_names(self, sheet)
+    }
+
+    /// The SVG document of these annotations over `sheet`'s whole image.
+    pub fn svg(&self, sheet: &Sheet<'_>) -> String {
+        compose(self, sheet)
+    }
+}
 
 /// Grid units between the points along a line tested for sight.
 const LINE_STEP: f64 = 0.5;
@@ -20,17 +35,18 @@ const LINE_LIFT: f64 = 0.05;
 const LEGEND_STOPS: usize = 48;
 
 /// The SVG of `annotations` over the picture `sheet` describes.
-pub fn compose(annotations: &Annotations, sheet: &Sheet<'_>) -> String {
+fn compose(annotations: &Annotations, sheet: &Sheet<'_>) -> String {
     let (w, h) = sheet.camera.whole_size();
     let (w, h) = (f64::from(w), f64::from(h));
     let mut svg = Svg {
         text: String::new(),
-        em: (h / 40.0).clamp(14.0, 120.0),
+        em: em(sheet),
         size: DVec2::new(w, h),
     };
     for layer in &annotations.vectors {
-        svg.layer(layer, sheet);
+        svg.lines(layer, sheet);
     }
+    svg.places(annotations, sheet);
     if let Some(title) = &annotations.title {
         let em = svg.em;
         svg.label([em, 2.2 * em], title, 1.6, "start");
@@ -53,6 +69,49 @@ pub fn compose(annotations: &Annotations, sheet: &Sheet<'_>) -> String {
          font-family=\"sans-serif\">{}</svg>",
         svg.text
     )
+}
+
+/// The text size of `sheet`'s annotations, in pixels: every mark is sized in it.
+fn em(sheet: &Sheet<'_>) -> f64 {
+    (f64::from(sheet.camera.whole_size().1) / 40.0).clamp(14.0, 120.0)
+}
+
+/// The names of the places the eye sees, kept apart and off the other marks (see
+/// [`arrange`]).
+fn place_names(annotations: &Annotations, sheet: &Sheet<'_>) -> Vec<PlacedName> {
+    let width = TextWidth::new();
+    let width_of = |text: &str, px: f64| width.of(text, px);
+    let (w, h) = sheet.camera.whole_size();
+    let em = em(sheet);
+    let marks = reserved(annotations, (f64::from(w), f64::from(h)), em, &width_of);
+    arrange(&visible_places(annotations, sheet), &marks, em, &width_of)
+}
+
+/// The places of every layer the eye sees, with their markers in the image.
+fn visible_places(annotations: &Annotations, sheet: &Sheet<'_>) -> Vec<Candidate> {
+    let sight = sheet.sight();
+    let eye = DVec3::from(sheet.camera.eye());
+    let mut found = Vec::new();
+    for layer in &annotations.vectors {
+        for place in &layer.places {
+            let [x, y] = place.at;
+            let anchor = [x, y, sight.ground(place.at) + layer.lift];
+            let Some(marker) = sheet.on_image(anchor) else {
+                continue;
+            };
+            if !sight.sees(anchor) {
+                continue;
+            }
+            let world = DVec3::from(sheet.terrain.world_point(anchor));
+            found.push(Candidate {
+                name: place.name.clone(),
+                priority: place.priority,
+                distance: world.distance(eye),
+                marker,
+            });
+        }
+    }
+    found
 }
 
 /// An SVG document being written.
@@ -186,8 +245,8 @@ impl Svg {
         }
     }
 
-    /// A vector layer: its lines where the eye sees them, then its places' markers and names.
-    fn layer(&mut self, layer: &VectorLayer, sheet: &Sheet<'_>) {
+    /// A vector layer's lines where the eye sees them.
+    fn lines(&mut self, layer: &VectorLayer, sheet: &Sheet<'_>) {
         let sight = sheet.sight();
         let total: f64 = layer
             .lines
@@ -214,15 +273,12 @@ impl Svg {
                 }
             }
         }
-        for place in &layer.places {
-            let [x, y] = place.at;
-            let anchor = [x, y, sight.ground(place.at) + layer.lift];
-            let Some([px, py]) = sheet.on_image(anchor) else {
-                continue;
-            };
-            if !sight.sees(anchor) {
-                continue;
-            }
+    }
+
+    /// Every visible place's marker, then the names there is room for.
+    fn places(&mut self, annotations: &Annotations, sheet: &Sheet<'_>) {
+        for place in &visible_places(annotations, sheet) {
+            let [px, py] = place.marker;
             let _ = write!(
                 self.text,
                 "<circle cx=\"{px:.2}\" cy=\"{py:.2}\" r=\"{:.2}\" fill=\"#ffffff\" \
@@ -230,8 +286,10 @@ impl Svg {
                 0.28 * self.em,
                 0.12 * self.em
             );
-            let at = [px + 0.5 * self.em, py - 0.4 * self.em];
-            self.label(at, &place.name, 0.85, "start");
+        }
+        for name in place_names(annotations, sheet) {
+            let anchor = if name.ends_at { "end" } else { "start" };
+            self.label(name.at, &name.name, NAME_SIZE, anchor);
         }
     }
 }
@@ -286,7 +344,7 @@ pub fn round_marks(lo: f64, hi: f64) -> Vec<f64> {
 }
 
 /// Text with XML's special characters escaped.
-fn escaped(text: &str) -> String {
+pub fn escaped(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")

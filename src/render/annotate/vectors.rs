@@ -47,8 +47,11 @@ pub enum Coordinates {
 pub struct Place {
     /// Its name, as its label shows it.
     pub name: String,
-    /// Where it lies, in grid coordinates.
+    /// Where it lies, in grid coordinates (in a [`VectorFile`], the file's own).
     pub at: [f64; 2],
+    /// Where labels collide, the higher priority keeps its label (GeoJSON's numeric `priority`
+    /// property; 0 without it).
+    pub priority: f64,
 }
 
 /// A layer's places and lines on the map's grid.
@@ -75,7 +78,7 @@ const DEFAULT_LIFT: f64 = 0.5;
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct VectorFile {
     /// Named points.
-    pub places: Vec<(String, [f64; 2])>,
+    pub places: Vec<Place>,
     /// Lines and polygon rings.
     pub lines: Vec<Vec<[f64; 2]>>,
 }
@@ -103,9 +106,10 @@ impl VectorLayer {
         let places = file
             .places
             .into_iter()
-            .filter_map(|(name, p)| Some((name, to_grid(p)?)))
-            .filter(|(_, p)| on_map(p))
-            .map(|(name, at)| Place { name, at })
+            .filter_map(|place| {
+                let at = to_grid(place.at).filter(on_map)?;
+                Some(Place { at, ..place })
+            })
             .collect();
         let mut lines = Vec::new();
         for line in file.lines {
@@ -174,29 +178,35 @@ pub fn read(path: &Path) -> Result<VectorFile, String> {
     read(&read_text(path)?)
 }
 
-/// A GeoJSON text's named points (the `name` property) and lines (LineStrings and polygon
-/// rings).
+/// A GeoJSON text's named points (the `name` property, and `priority` if it is a number) and
+/// lines (LineStrings and polygon rings).
 pub fn from_geojson(text: &str) -> Result<VectorFile, String> {
     let json: GeoJson = text.parse().map_err(|e| format!("not GeoJSON: {e}"))?;
     let mut file = VectorFile::default();
     match json {
         GeoJson::FeatureCollection(collection) => {
-            for feature in collection.features {
-                let name = feature.property("name").map(name_text);
-                if let Some(geometry) = &feature.geometry {
-                    add_geometry(geometry, name.as_deref(), &mut file);
-                }
+            for feature in &collection.features {
+                add_feature(feature, &mut file);
             }
         }
-        GeoJson::Feature(feature) => {
-            let name = feature.property("name").map(name_text);
-            if let Some(geometry) = &feature.geometry {
-                add_geometry(geometry, name.as_deref(), &mut file);
-            }
-        }
+        GeoJson::Feature(feature) => add_feature(&feature, &mut file),
         GeoJson::Geometry(geometry) => add_geometry(&geometry, None, &mut file),
     }
     Ok(file)
+}
+
+/// Adds a feature's geometry to `file`, its points named by its `name` property.
+fn add_feature(feature: &geojson::Feature, file: &mut VectorFile) {
+    let name = feature.property("name").map(name_text).map(|name| {
+        let priority = feature
+            .property("priority")
+            .and_then(serde_json::Value::as_f64);
+        (name, priority.filter(|p| p.is_finite()).unwrap_or(0.0))
+    });
+    if let Some(geometry) = &feature.geometry {
+        let named = name.as_ref().map(|(n, p)| (n.as_str(), *p));
+        add_geometry(geometry, named, file);
+    }
 }
 
 /// A `name` property as text: a string as it is, anything else as JSON.
@@ -207,8 +217,13 @@ fn name_text(value: &serde_json::Value) -> String {
     }
 }
 
-/// Adds a geometry's points (if named) and lines to `file`.
-fn add_geometry(geometry: &Geometry, name: Option<&str>, file: &mut VectorFile) {
+/// Adds a geometry's points (if named, with their priority) and lines to `file`.
+fn add_geometry(geometry: &Geometry, name: Option<(&str, f64)>, file: &mut VectorFile) {
+    let place = |(name, priority): (&str, f64), at| Place {
+        name: name.to_owned(),
+        at,
+        priority,
+    };
     let xy = |p: &Vec<f64>| [p.first().copied(), p.get(1).copied()];
     let point = |p: &Vec<f64>| match xy(p) {
         [Some(x), Some(y)] => Some([x, y]),
@@ -218,10 +233,10 @@ fn add_geometry(geometry: &Geometry, name: Option<&str>, file: &mut VectorFile) 
     match &geometry.value {
         Value::Point(p) => file
             .places
-            .extend(name.zip(point(p)).map(|(n, p)| (n.to_owned(), p))),
+            .extend(name.zip(point(p)).map(|(n, p)| place(n, p))),
         Value::MultiPoint(points) => {
             for p in points.iter().filter_map(point) {
-                file.places.extend(name.map(|n| (n.to_owned(), p)));
+                file.places.extend(name.map(|n| place(n, p)));
             }
         }
         Value::LineString(l) => file.lines.push(line(l)),
@@ -245,7 +260,11 @@ pub fn from_gpx(text: &str) -> Result<VectorFile, String> {
         .iter()
         .filter_map(|w| {
             let p = w.point();
-            Some((w.name.clone()?, [p.x(), p.y()]))
+            Some(Place {
+                name: w.name.clone()?,
+                at: [p.x(), p.y()],
+                priority: 0.0,
+            })
         })
         .collect();
     let track = gpx_points(text)?;
@@ -269,7 +288,12 @@ mod tests {
             {"type": "Feature", "properties": {"name": "Trail"},
              "geometry": {"type": "LineString", "coordinates": [[7, 46], [7.5, 46.5]]}}]}"#;
         let file = from_geojson(text).unwrap();
-        assert_eq!(file.places, vec![("Summit".to_owned(), [7.5, 46.25])]);
+        let summit = Place {
+            name: "Summit".into(),
+            at: [7.5, 46.25],
+            priority: 0.0,
+        };
+        assert_eq!(file.places, vec![summit]);
         assert_eq!(file.lines, vec![vec![[7.0, 46.0], [7.5, 46.5]]]);
         assert!(from_geojson("{\"type\": \"Feature\"").is_err());
     }
@@ -280,7 +304,12 @@ mod tests {
             <name>Hut</name></wpt><trk><trkseg><trkpt lat="1" lon="2"/><trkpt lat="3" lon="4"/>
             </trkseg></trk></gpx>"#;
         let file = from_gpx(text).unwrap();
-        assert_eq!(file.places, vec![("Hut".to_owned(), [-122.25, 45.5])]);
+        let hut = Place {
+            name: "Hut".into(),
+            at: [-122.25, 45.5],
+            priority: 0.0,
+        };
+        assert_eq!(file.places, vec![hut]);
         assert_eq!(file.lines, vec![vec![[2.0, 1.0], [4.0, 3.0]]]);
     }
 }
