@@ -16,13 +16,11 @@ mod decoding;
 mod drops;
 mod export;
 mod flythrough;
-mod framing;
 mod ground;
 mod hooks;
 mod legend;
 mod loader;
 mod mailbox;
-mod model;
 mod navigation;
 mod orbit;
 mod overlay_ui;
@@ -34,20 +32,23 @@ mod relief_ui;
 mod save_scene;
 mod settings;
 mod sources;
+mod state;
 mod stats_ui;
 mod sun_clock;
+mod user_event;
 mod view;
 mod water_ui;
+mod widgets;
 mod worker;
 
-pub use decoding::Decoding;
-pub use loader::Source;
 pub use orbit::Orbit;
+pub use state::{Decoding, Source};
 
 use app::App;
-use loader::{LoadEvent, LoadRequest, Loaded};
+use state::{LoadRequest, Loaded};
 use std::path::PathBuf;
 use std::rc::Rc;
+use user_event::UserEvent;
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, EventLoop, EventLoopProxy};
@@ -94,18 +95,6 @@ impl Default for ViewerOptions {
             report_state: None,
         }
     }
-}
-
-/// News for the window thread from the render, loading and saving threads.
-pub enum UserEvent {
-    /// The render worker published a pass.
-    FrameReady,
-    /// A measurement or comparison reported progress or a result.
-    Accuracy,
-    /// The loader's progress, or its result.
-    Load(LoadEvent),
-    /// An export was written (`None`: cancelled), or why not.
-    Exported(Result<Option<export::Exported>, String>),
 }
 
 /// Opens the window and runs until it is closed.

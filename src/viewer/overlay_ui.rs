@@ -2,36 +2,10 @@
 //! map, what is draped now, and whether files dropped onto the window are a height map (or
 //! tiles) or an overlay.
 
-use super::drops::DropLoads;
-use super::loader::{LoadRequest, OverlayChange};
-use super::model::{Action, Model};
-use super::panels::named;
+use super::state::{Action, DropLoads, LoadRequest, Model, OverlayChange};
+use super::widgets::named;
 use egui::{Slider, Ui};
 use std::path::PathBuf;
-
-/// The overlay controls' state.
-#[derive(Clone, Debug, PartialEq)]
-pub struct OverlayControls {
-    /// The overlay path field.
-    pub path_text: String,
-    /// The opacity an overlay is laid with.
-    pub opacity: f64,
-    /// What a dropped file loads.
-    pub drop_loads: DropLoads,
-    /// What kind of picture was dropped as a height map and is being laid as an overlay.
-    pub dropped_picture: Option<String>,
-}
-
-impl Default for OverlayControls {
-    fn default() -> Self {
-        OverlayControls {
-            path_text: String::new(),
-            opacity: 1.0,
-            drop_loads: DropLoads::default(),
-            dropped_picture: None,
-        }
-    }
-}
 
 /// The request that drapes `change` over the map on screen, keeping its samples and view.
 pub fn overlay_request(model: &Model, change: OverlayChange) -> LoadRequest {
@@ -49,11 +23,11 @@ pub fn overlay_request(model: &Model, change: OverlayChange) -> LoadRequest {
 /// change of overlay did.
 pub fn shown(model: &mut Model, change: Option<&OverlayChange>) {
     if let Some(drape) = model.shown.terrain.field().drape() {
-        model.overlay.opacity = drape.opacity();
+        model.widgets.overlay.opacity = drape.opacity();
     }
     match change {
         Some(OverlayChange::Lay { path, .. }) => {
-            let why = match model.overlay.dropped_picture.take() {
+            let why = match model.widgets.overlay.dropped_picture.take() {
                 Some(what) => format!(" as an overlay: it is {what}, not a height map"),
                 None => String::new(),
             };
@@ -68,24 +42,25 @@ pub fn shown(model: &mut Model, change: Option<&OverlayChange>) {
 pub fn overlay_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     ui.horizontal(|ui| {
         let field = ui.add(
-            egui::TextEdit::singleline(&mut model.overlay.path_text)
+            egui::TextEdit::singleline(&mut model.widgets.overlay.path_text)
                 .hint_text("overlay image: PNG, JPEG or TIFF")
                 .desired_width(ui.available_width() - 70.0),
         );
-        let field = named(model, "overlay_path", field);
+        let field = named(&mut model.widgets, "overlay_path", field);
         let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-        let lay = named(model, "overlay_open", ui.button("Overlay"));
-        let path = model.overlay.path_text.trim();
+        let lay = named(&mut model.widgets, "overlay_open", ui.button("Overlay"));
+        let path = model.widgets.overlay.path_text.trim();
         if (lay.clicked() || entered) && !path.is_empty() {
             let change = OverlayChange::Lay {
                 path: PathBuf::from(path),
-                opacity: model.overlay.opacity,
+                opacity: model.widgets.overlay.opacity,
             };
             actions.push(Action::Load(overlay_request(model, change)));
         }
     });
-    let opacity = ui.add(Slider::new(&mut model.overlay.opacity, 0.0..=1.0).text("opacity"));
-    let opacity = named(model, "overlay_opacity", opacity);
+    let opacity =
+        ui.add(Slider::new(&mut model.widgets.overlay.opacity, 0.0..=1.0).text("opacity"));
+    let opacity = named(&mut model.widgets, "overlay_opacity", opacity);
     let drape = model.shown.terrain.field().drape();
     let shown = drape.map(|d| {
         (
@@ -104,12 +79,16 @@ pub fn overlay_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             };
             let name = path.file_name().unwrap_or_default().to_string_lossy();
             ui.label(format!("overlay {name}: {w} x {h} px, {placed}"));
-            let relay = opacity.drag_stopped() && model.overlay.opacity != laid_with;
+            let relay = opacity.drag_stopped() && model.widgets.overlay.opacity != laid_with;
             let change = OverlayChange::Lay {
                 path,
-                opacity: model.overlay.opacity,
+                opacity: model.widgets.overlay.opacity,
             };
-            let remove = named(model, "overlay_remove", ui.button("Remove overlay"));
+            let remove = named(
+                &mut model.widgets,
+                "overlay_remove",
+                ui.button("Remove overlay"),
+            );
             if remove.clicked() {
                 actions.push(Action::Load(overlay_request(model, OverlayChange::Remove)));
             } else if relay {
@@ -122,9 +101,9 @@ pub fn overlay_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     }
     ui.horizontal(|ui| {
         ui.label("a drop opens");
-        let controls = &mut model.overlay;
+        let controls = &mut model.widgets.overlay;
         ui.radio_value(&mut controls.drop_loads, DropLoads::HeightMap, "a map");
         let overlay = ui.radio_value(&mut controls.drop_loads, DropLoads::Overlay, "an overlay");
-        named(model, "drop_overlay", overlay);
+        named(&mut model.widgets, "drop_overlay", overlay);
     });
 }

@@ -1,14 +1,14 @@
 //! The height map panel's controls and lines for a georeferenced map: its relief as an
 //! exaggeration of true scale, its cells and extent, its heights in metres.
 
-use super::model::Model;
+use super::state::Model;
 use crate::heightfield::{place, relief};
 use egui::{DragValue, Ui};
 
 /// For a georeferenced map, an exaggeration control that sets the z scale; whether it changed.
 pub fn exaggeration_ui(ui: &mut Ui, model: &mut Model) -> bool {
     let field = model.shown.terrain.field();
-    let Some(mut exaggeration) = relief::exaggeration_at(field, model.z_scale) else {
+    let Some(mut exaggeration) = relief::exaggeration_at(field, model.widgets.z_scale) else {
         return false;
     };
     let changed = ui
@@ -22,7 +22,7 @@ pub fn exaggeration_ui(ui: &mut Ui, model: &mut Model) -> bool {
         .changed();
     if changed {
         if let Some(z_scale) = relief::true_z_scale(field, exaggeration) {
-            model.z_scale = z_scale;
+            model.widgets.z_scale = z_scale;
         }
     }
     changed

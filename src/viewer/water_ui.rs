@@ -1,8 +1,8 @@
 //! The Height map panel's water: on or off, its level in the map's height units (metres on a
 //! DEM), and its colour.
 
-use super::model::Model;
-use super::panels::named;
+use super::state::Model;
+use super::widgets::named;
 use crate::render::effects::Water;
 use crate::render::{
     bytes_from_hex, bytes_from_linear, level_in_map_units, level_z, linear_from_bytes,
@@ -17,7 +17,7 @@ pub fn water_ui(ui: &mut Ui, model: &mut Model) {
     let (lo, hi) = terrain.z_range();
     let mut on = model.settings.effects.water.is_some();
     let checkbox = ui.checkbox(&mut on, "water");
-    named(model, "water", checkbox);
+    named(&mut model.widgets, "water", checkbox);
     if !on {
         model.settings.effects.water = None;
         return;
@@ -40,7 +40,7 @@ pub fn water_ui(ui: &mut Ui, model: &mut Model) {
             .speed((span * 0.002).max(1e-3))
             .prefix("level ")
             .suffix(unit);
-        named(model, "water_level", ui.add(drag));
+        named(&mut model.widgets, "water_level", ui.add(drag));
         ui.color_edit_button_srgb(&mut bytes);
     });
     water.level = level_z(field, level);

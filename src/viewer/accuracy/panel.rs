@@ -4,7 +4,7 @@
 use super::measure::{label, ns_per_ray, BOUNDS, PIXEL_BUDGETS};
 use super::{CompareState, MeasureState, Measurement};
 use crate::viewer::compose::HIGHLIGHT;
-use crate::viewer::model::{Action, Model};
+use crate::viewer::state::{Action, Model};
 use crate::Arith;
 use egui::{Color32, RichText, Ui};
 
@@ -67,7 +67,7 @@ fn measure_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             "Measure all arithmetics"
         };
         let button = ui.button(text);
-        model.widget_rects.insert("measure_button", button.rect);
+        model.widgets.rects.insert("measure_button", button.rect);
         if button.clicked() {
             actions.push(Action::MeasureArithmetics);
         }
@@ -175,7 +175,7 @@ fn table_ui(ui: &mut Ui, measurement: &Measurement, on_screen: Arith) {
 fn compare_ui(ui: &mut Ui, model: &mut Model) {
     let state = &mut model.accuracy;
     let toggle = ui.checkbox(&mut state.compare_on, "Compare with exact");
-    model.widget_rects.insert("compare_toggle", toggle.rect);
+    model.widgets.rects.insert("compare_toggle", toggle.rect);
     // Both states take the same height, so ticking or unticking never moves what is below
     // or makes a scrolled panel jump.
     ui.vertical(|ui| {
