@@ -3,7 +3,7 @@
 //! comes. The interval stays in the map's unit; the render takes it to grid heights through
 //! the field it draws on, so a rescaled relief keeps the lines on the same ground.
 
-use super::state::Model;
+use super::state::{ContourControls, Model, Widgets};
 use super::widgets::named;
 use crate::compact::Compact;
 use crate::heightfield::{Heightfield, Quantisation};
@@ -78,50 +78,50 @@ fn interval_after(interval: f64, was: &Heightfield, now: &Terrain, new_map: bool
     }
 }
 
-/// The contours checkbox, the interval field and the index line count.
-pub fn contours_ui(ui: &mut Ui, model: &mut Model) {
+/// The contours checkbox, the interval field and the index line count, for lines on
+/// `terrain`. Returns why a typed interval was refused.
+pub fn contours_ui(ui: &mut Ui, widgets: &mut Widgets, terrain: &Terrain) -> Option<String> {
     let checkbox = ui
-        .checkbox(&mut model.widgets.contours.on, "contour lines")
+        .checkbox(&mut widgets.contours.on, "contour lines")
         .on_hover_text("lines of equal height, every index-th one wider, as printed maps draw");
-    named(&mut model.widgets, "contours", checkbox);
-    if !model.widgets.contours.on {
-        return;
+    named(widgets, "contours", checkbox);
+    if !widgets.contours.on {
+        return None;
     }
-    if model.widgets.contours.interval <= 0.0 {
-        let picked = round_interval(relief_span(&model.shown.terrain));
-        model.widgets.contours.set_interval(picked);
+    if widgets.contours.interval <= 0.0 {
+        let picked = round_interval(relief_span(terrain));
+        widgets.contours.set_interval(picked);
     }
-    let unit = model
-        .shown
-        .terrain
-        .field()
+    let field = terrain.field();
+    let unit = field
         .georef()
         .map(|g| format!(" {}", g.height_unit.symbol()))
         .unwrap_or_default();
+    let mut refused = None;
     ui.horizontal(|ui| {
         ui.label("every");
-        let field =
-            egui::TextEdit::singleline(&mut model.widgets.contours.text).desired_width(60.0);
-        let field = ui.add(field);
-        let field = named(&mut model.widgets, "contour_interval", field);
+        let text = egui::TextEdit::singleline(&mut widgets.contours.text).desired_width(60.0);
+        let text = ui.add(text);
+        let text = named(widgets, "contour_interval", text);
         ui.label(unit);
-        if field.lost_focus() {
-            take_interval(model);
+        if text.lost_focus() {
+            refused = take_interval(&mut widgets.contours, field);
         }
-        let index = DragValue::new(&mut model.widgets.contours.index_every)
+        let index = DragValue::new(&mut widgets.contours.index_every)
             .range(0..=50)
             .prefix("index every ");
         let index = ui
             .add(index)
             .on_hover_text("every this many lines is wider (0: none)");
-        named(&mut model.widgets, "contour_index", index);
+        named(widgets, "contour_index", index);
     });
+    refused
 }
 
-/// Takes the typed interval, or refuses it with a message and shows the one in use again.
-fn take_interval(model: &mut Model) {
-    let typed = model.widgets.contours.text.trim();
-    let field = model.shown.terrain.field();
+/// Takes the typed interval, or shows the one in use again and says why the typed one is
+/// refused.
+fn take_interval(controls: &mut ContourControls, field: &Heightfield) -> Option<String> {
+    let typed = controls.text.trim();
     // A huge interval in a unit the z scale enlarges may be no finite grid height.
     let taken = parse_interval(typed).and_then(|interval| {
         Contours::new(level_z(field, interval), 0)
@@ -131,11 +131,14 @@ fn take_interval(model: &mut Model) {
             ))
     });
     match taken {
-        Ok(interval) => model.widgets.contours.set_interval(interval),
+        Ok(interval) => {
+            controls.set_interval(interval);
+            None
+        }
         Err(message) => {
-            model.error = Some(message);
-            let interval = model.widgets.contours.interval;
-            model.widgets.contours.set_interval(interval);
+            let interval = controls.interval;
+            controls.set_interval(interval);
+            Some(message)
         }
     }
 }

@@ -20,7 +20,10 @@ pub fn take(model: &mut Model) -> Option<LoadRequest> {
             let path = paths.pop()?;
             model.widgets.overlay.dropped_picture = Some(what);
             let opacity = model.widgets.overlay.opacity;
-            Some(overlay_request(model, OverlayChange::Lay { path, opacity }))
+            Some(overlay_request(
+                &model.shown,
+                OverlayChange::Lay { path, opacity },
+            ))
         }
         (DropLoads::HeightMap, None) => Some(LoadRequest {
             source: Source::of_paths(paths)?,
@@ -34,7 +37,10 @@ pub fn take(model: &mut Model) -> Option<LoadRequest> {
             // One image at a time: the last one dropped.
             let path: PathBuf = paths.pop()?;
             let opacity = model.widgets.overlay.opacity;
-            Some(overlay_request(model, OverlayChange::Lay { path, opacity }))
+            Some(overlay_request(
+                &model.shown,
+                OverlayChange::Lay { path, opacity },
+            ))
         }
     }
 }

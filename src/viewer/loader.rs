@@ -133,7 +133,10 @@ pub fn load_now(request: LoadRequest) -> Result<Loaded, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::viewer::state::{Decoding, Source};
+    use std::path::PathBuf;
     use std::sync::{mpsc, Mutex};
+    use std::time::Duration;
 
     /// Starts the requests one after the other; returns the result the window would take.
     fn run_all(requests: Vec<LoadRequest>) -> Result<Loaded, String> {

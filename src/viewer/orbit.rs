@@ -194,6 +194,7 @@ impl Orbit {
 mod tests {
     use super::*;
     use crate::heightfield::Builtin;
+    use crate::render::framing::{DEFAULT_FOV_Y_DEG, DEFAULT_PITCH_DEG, DEFAULT_YAW_DEG};
     use crate::viewer::ground::keep_above;
 
     fn terrain() -> Terrain {

@@ -2,19 +2,19 @@
 //! map, what is draped now, and whether files dropped onto the window are a height map (or
 //! tiles) or an overlay.
 
-use super::state::{Action, DropLoads, LoadRequest, Model, OverlayChange};
+use super::state::{Action, DropLoads, LoadRequest, Model, OverlayChange, Shown, Widgets};
 use super::widgets::named;
 use egui::{Slider, Ui};
 use std::path::PathBuf;
 
 /// The request that drapes `change` over the map on screen, keeping its samples and view.
-pub fn overlay_request(model: &Model, change: OverlayChange) -> LoadRequest {
+pub fn overlay_request(shown: &Shown, change: OverlayChange) -> LoadRequest {
     LoadRequest {
-        source: model.shown.source.clone(),
-        z_scale: Some(model.shown.terrain.field().z_scale()),
+        source: shown.source.clone(),
+        z_scale: Some(shown.terrain.field().z_scale()),
         reframe: false,
-        from_memory: Some(model.shown.terrain.clone()),
-        decoding: model.shown.decoding,
+        from_memory: Some(shown.terrain.clone()),
+        decoding: shown.decoding,
         overlay: Some(change),
     }
 }
@@ -38,31 +38,31 @@ pub fn shown(model: &mut Model, change: Option<&OverlayChange>) {
     }
 }
 
-/// The overlay path, opacity and drop target; what is draped now.
-pub fn overlay_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
+/// The overlay path, opacity and drop target; what is draped now. Returns the loads asked for.
+pub fn overlay_ui(ui: &mut Ui, widgets: &mut Widgets, shown: &Shown) -> Vec<Action> {
+    let mut actions = Vec::new();
     ui.horizontal(|ui| {
         let field = ui.add(
-            egui::TextEdit::singleline(&mut model.widgets.overlay.path_text)
+            egui::TextEdit::singleline(&mut widgets.overlay.path_text)
                 .hint_text("overlay image: PNG, JPEG or TIFF")
                 .desired_width(ui.available_width() - 70.0),
         );
-        let field = named(&mut model.widgets, "overlay_path", field);
+        let field = named(widgets, "overlay_path", field);
         let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-        let lay = named(&mut model.widgets, "overlay_open", ui.button("Overlay"));
-        let path = model.widgets.overlay.path_text.trim();
+        let lay = named(widgets, "overlay_open", ui.button("Overlay"));
+        let path = widgets.overlay.path_text.trim();
         if (lay.clicked() || entered) && !path.is_empty() {
             let change = OverlayChange::Lay {
                 path: PathBuf::from(path),
-                opacity: model.widgets.overlay.opacity,
+                opacity: widgets.overlay.opacity,
             };
-            actions.push(Action::Load(overlay_request(model, change)));
+            actions.push(Action::Load(overlay_request(shown, change)));
         }
     });
-    let opacity =
-        ui.add(Slider::new(&mut model.widgets.overlay.opacity, 0.0..=1.0).text("opacity"));
-    let opacity = named(&mut model.widgets, "overlay_opacity", opacity);
-    let drape = model.shown.terrain.field().drape();
-    let shown = drape.map(|d| {
+    let opacity = ui.add(Slider::new(&mut widgets.overlay.opacity, 0.0..=1.0).text("opacity"));
+    let opacity = named(widgets, "overlay_opacity", opacity);
+    let drape = shown.terrain.field().drape();
+    let draped = drape.map(|d| {
         (
             d.size(),
             d.georeferenced(),
@@ -70,7 +70,7 @@ pub fn overlay_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             d.opacity(),
         )
     });
-    match shown {
+    match draped {
         Some(((w, h), georeferenced, path, laid_with)) => {
             let placed = if georeferenced {
                 "placed by its georeferencing"
@@ -79,20 +79,16 @@ pub fn overlay_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             };
             let name = path.file_name().unwrap_or_default().to_string_lossy();
             ui.label(format!("overlay {name}: {w} x {h} px, {placed}"));
-            let relay = opacity.drag_stopped() && model.widgets.overlay.opacity != laid_with;
+            let relay = opacity.drag_stopped() && widgets.overlay.opacity != laid_with;
             let change = OverlayChange::Lay {
                 path,
-                opacity: model.widgets.overlay.opacity,
+                opacity: widgets.overlay.opacity,
             };
-            let remove = named(
-                &mut model.widgets,
-                "overlay_remove",
-                ui.button("Remove overlay"),
-            );
+            let remove = named(widgets, "overlay_remove", ui.button("Remove overlay"));
             if remove.clicked() {
-                actions.push(Action::Load(overlay_request(model, OverlayChange::Remove)));
+                actions.push(Action::Load(overlay_request(shown, OverlayChange::Remove)));
             } else if relay {
-                actions.push(Action::Load(overlay_request(model, change)));
+                actions.push(Action::Load(overlay_request(shown, change)));
             }
         }
         None => {
@@ -101,9 +97,10 @@ pub fn overlay_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     }
     ui.horizontal(|ui| {
         ui.label("a drop opens");
-        let controls = &mut model.widgets.overlay;
+        let controls = &mut widgets.overlay;
         ui.radio_value(&mut controls.drop_loads, DropLoads::HeightMap, "a map");
         let overlay = ui.radio_value(&mut controls.drop_loads, DropLoads::Overlay, "an overlay");
-        named(&mut model.widgets, "drop_overlay", overlay);
+        named(widgets, "drop_overlay", overlay);
     });
+    actions
 }

@@ -1,12 +1,15 @@
 //! The side panel: camera, light, height map, traversal, effects and statistics.
 
 use super::accuracy::panel::{accuracy_ui, speed_note};
+use super::contours_ui::contours_ui;
 use super::decoding::decoding_ui;
 use super::orbit::{MIN_PITCH_DEG, PITCH_LIMIT_DEG};
+use super::overlay_ui::overlay_ui;
 use super::relief_ui::{exaggeration_ui, georeferencing_ui};
 use super::settings::{fog, ArithKind};
 use super::state::{Action, Decoding, LoadRequest, Model, Source};
 use super::stats_ui::statistics_ui;
+use super::water_ui::water_ui;
 use super::widgets::named;
 use crate::heightfield::BUILTINS;
 use crate::render::effects::WIDEST_SUN_DEG;
@@ -217,10 +220,13 @@ fn light_ui(ui: &mut Ui, model: &mut Model) {
 
 fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     source_ui(ui, model, actions);
-    super::overlay_ui::overlay_ui(ui, model, actions);
-    super::water_ui::water_ui(ui, model);
-    super::contours_ui::contours_ui(ui, model);
-    decoding_ui(ui, model, actions);
+    actions.extend(overlay_ui(ui, &mut model.widgets, &model.shown));
+    let water = &mut model.settings.effects.water;
+    water_ui(ui, water, &mut model.widgets, &model.shown.terrain);
+    if let Some(refused) = contours_ui(ui, &mut model.widgets, &model.shown.terrain) {
+        model.error = Some(refused);
+    }
+    actions.extend(decoding_ui(ui, &mut model.widgets, &model.shown));
     z_scale_ui(ui, model, actions);
     let s = &mut model.settings;
     ui.horizontal(|ui| {
@@ -255,7 +261,7 @@ fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         ));
     }
     ui.label(format!("{} no-data samples", field.nodata_count()));
-    georeferencing_ui(ui, model);
+    georeferencing_ui(ui, &model.shown.terrain);
     ui.label(format!(
         "read {:.1} ms, build {:.1} ms ({:.1} MB of acceleration data)",
         model.shown.decode_time.as_secs_f64() * 1e3,
@@ -324,7 +330,8 @@ fn z_scale_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             .speed(speed)
             .prefix("z scale (grid units) "),
     );
-    let exaggerated = exaggeration_ui(ui, model);
+    let field = model.shown.terrain.field();
+    let exaggerated = exaggeration_ui(ui, &mut model.widgets.z_scale, field);
     if (z.changed() || exaggerated)
         && model.widgets.z_scale != model.shown.terrain.field().z_scale()
     {

@@ -184,6 +184,7 @@ pub fn detail(rendered: &RenderedFrame) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::viewer::state::Capped;
 
     #[test]
     fn a_huge_window_renders_at_most_the_pixel_limit_in_its_shape() {
