@@ -390,7 +390,8 @@ fn traversal_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             ui.weak(note);
         }
     }
-    accuracy_ui(ui, model, actions);
+    let accuracy = accuracy_ui(ui, &mut model.accuracy, &model.settings, &mut model.widgets);
+    actions.extend(accuracy);
 }
 
 /// The effects (shadows are with the light). The fog slider is a visibility distance on a
