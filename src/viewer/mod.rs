@@ -4,7 +4,8 @@
 //! The renderer fills the view progressively on worker threads; the window thread never waits
 //! for a frame.
 //!
-//! This module wires winit's events to `app::App`; the state and drawing live there.
+//! This module wires winit's events to `app::App`, which draws; what the panels show and edit
+//! lives in `state`, which imports no panel.
 
 mod accuracy;
 mod annotations;
