@@ -2,8 +2,8 @@
 //! legends, the loading progress, errors and notices, the drop hint and the help window.
 
 use super::compose::{self, HeatScale};
-use super::model::Model;
 use super::settings::HeatMode;
+use super::state::Model;
 use super::worker::RenderedFrame;
 use crate::render::PASS_BLOCKS;
 use egui::{Align2, Color32, Id, Pos2, Rect, Ui, Vec2};
@@ -29,24 +29,29 @@ pub fn annotations_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
     if model.drop_hover {
         drop_hint_ui(ui, rect);
     }
-    if !model.panels_visible {
+    if !model.widgets.panels_visible {
         let hint = corner_text(ui, rect, Align2::RIGHT_TOP, "H: show panel   F1: help");
-        model.widget_rects.insert("show_panel_hint", hint);
+        model.widgets.rects.insert("show_panel_hint", hint);
     }
-    if model.help_open {
+    if model.widgets.help_open {
         help_ui(ui, model);
     }
 }
 
 /// The render size when it is capped, pass progress and, in heat-map mode, the legend.
 fn status_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
-    let mut lines: Vec<String> = model.capped.iter().map(ToString::to_string).collect();
+    let mut lines: Vec<String> = model
+        .telemetry
+        .capped
+        .iter()
+        .map(ToString::to_string)
+        .collect();
     if let Some(latest) = model.latest.clone() {
         frame_status_ui(ui, model, rect, &latest, &mut lines);
     }
     if !lines.is_empty() {
         let status = corner_text(ui, rect, Align2::LEFT_TOP, &lines.join("\n"));
-        model.widget_rects.insert("view_status", status);
+        model.widgets.rects.insert("view_status", status);
     }
 }
 
@@ -61,11 +66,11 @@ fn frame_status_ui(
     let frame = &latest.frame;
     if model.settings.heat != HeatMode::Off {
         let key = (latest.generation, frame.passes_done);
-        let scale = match model.heat_scale {
+        let scale = match model.telemetry.heat_scale {
             Some((g, p, scale)) if (g, p) == key && scale.mode == model.settings.heat => scale,
             _ => {
                 let scale = HeatScale::of(frame, model.settings.heat);
-                model.heat_scale = Some((key.0, key.1, scale));
+                model.telemetry.heat_scale = Some((key.0, key.1, scale));
                 scale
             }
         };
@@ -152,7 +157,11 @@ fn messages_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
     let mut dismiss = false;
     let width = (rect.width() - 32.0).clamp(80.0, 640.0);
     // Below the corner's hint to bring the panel back, when it is there.
-    let top = if model.panels_visible { 12.0 } else { 40.0 };
+    let top = if model.widgets.panels_visible {
+        12.0
+    } else {
+        40.0
+    };
     egui::Area::new(Id::new("view messages"))
         .pivot(Align2::CENTER_TOP)
         .fixed_pos(Pos2::new(rect.center().x, rect.top() + top))
@@ -160,7 +169,7 @@ fn messages_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
         .order(egui::Order::Foreground)
         .show(ui.ctx(), |ui| {
             ui.set_max_width(width);
-            if let Some(progress) = &model.progress {
+            if let Some(progress) = &model.telemetry.progress {
                 egui::Frame::popup(ui.style()).show(ui, |ui| {
                     ui.horizontal_wrapped(|ui| {
                         ui.spinner();
@@ -191,11 +200,12 @@ fn messages_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
                         };
                         ui.label(text);
                         let button = ui.button("Dismiss");
-                        model.widget_rects.insert("error_dismiss", button.rect);
+                        model.widgets.rects.insert("error_dismiss", button.rect);
                         dismiss = button.clicked();
                     });
                 model
-                    .widget_rects
+                    .widgets
+                    .rects
                     .insert("error_message", frame.response.rect);
             }
             if let Some(notice) = &model.notice {
@@ -272,7 +282,7 @@ fn corner_text(ui: &Ui, rect: Rect, align: Align2, text: &str) -> Rect {
 
 /// The F1 window: what the mouse and keys do.
 fn help_ui(ui: &Ui, model: &mut Model) {
-    let mut open = model.help_open;
+    let mut open = model.widgets.help_open;
     egui::Window::new("Help")
         .open(&mut open)
         .collapsible(false)
@@ -287,7 +297,7 @@ fn help_ui(ui: &Ui, model: &mut Model) {
                 }
             });
         });
-    model.help_open = open;
+    model.widgets.help_open = open;
 }
 
 const HELP: &[(&str, &str)] = &[

@@ -4,21 +4,19 @@
 
 use super::accuracy::Accuracy;
 use super::compose::{self, PixelRect};
-use super::export::Exports;
 use super::hooks::{Counts, Hooks};
-use super::loader::{LoadRequest, Loaded, Loader};
-use super::model::{Action, Model, Shown};
-use super::navigation::{self, Home};
-use super::quality::{detail, Capped, JobKey, Quality, ViewKey};
+use super::loader::Loader;
+use super::navigation;
+use super::quality::{detail, JobKey, Quality, ViewKey};
+use super::state::{Action, Capped, Home, LoadRequest, Loaded, Model, Shown};
+use super::user_event::UserEvent;
 use super::worker::{RenderWorker, RenderedFrame};
-use super::{contours_ui, drops, overlay_ui, panels, view, water_ui, UserEvent};
+use super::{contours_ui, drops, export, overlay_ui, panels, view, water_ui};
 
 mod jobs;
 mod present;
 
-use egui_software_backend::{ColorFieldOrder, EguiSoftwareRender};
-use present::keys_ui;
-use std::collections::VecDeque;
+use present::{keys_ui, Presented, Screen};
 use std::num::NonZeroU32;
 use std::rc::Rc;
 use std::sync::Arc;
@@ -27,8 +25,6 @@ use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoopProxy};
 use winit::window::Window;
 
-/// Behind the view where nothing is rendered yet.
-const BACKGROUND: u32 = 0x0020_2226;
 /// Shortest time between redraws that egui asks for: its animations (a spinner while a file
 /// loads) need no more than 60 a second, and the loader needs the CPU more.
 const MIN_FRAME: Duration = Duration::from_millis(16);
@@ -36,25 +32,21 @@ const MIN_FRAME: Duration = Duration::from_millis(16);
 /// The viewer's window and everything it shows.
 pub struct App {
     window: Rc<Window>,
-    surface: softbuffer::Surface<Rc<Window>, Rc<Window>>,
+    screen: Screen,
     egui_ctx: egui::Context,
     egui_state: egui_winit::State,
-    egui_renderer: EguiSoftwareRender,
     proxy: EventLoopProxy<UserEvent>,
     worker: RenderWorker,
     loader: Loader,
     accuracy: Accuracy,
     model: Model,
     hooks: Hooks,
-    counts: Counts,
+    presented: Presented,
     quality: Quality,
     /// The inputs of the job last submitted.
     submitted: Option<JobKey>,
-    /// Jobs submitted for input whose effect is not on screen yet: generation, input time.
-    unreflected: VecDeque<(u64, Instant)>,
     /// The earliest input event since the last redraw.
     input_since_redraw: Option<Instant>,
-    converged_counted: u64,
     next_repaint: Option<Instant>,
 }
 
@@ -66,11 +58,8 @@ impl App {
         render_scale: Option<f32>,
         hooks: Hooks,
     ) -> anyhow::Result<App> {
-        let context = softbuffer::Context::new(window.clone())
-            .map_err(|e| anyhow::anyhow!("cannot draw into the window: {e}"))?;
-        let surface = softbuffer::Surface::new(&context, window.clone())
-            .map_err(|e| anyhow::anyhow!("cannot draw into the window: {e}"))?;
         let egui_ctx = egui::Context::default();
+        let screen = Screen::new(&window, egui_ctx.clone())?;
         let egui_state = egui_winit::State::new(
             egui_ctx.clone(),
             egui::ViewportId::ROOT,
@@ -93,24 +82,22 @@ impl App {
         window.set_title(&format!("heightray: {}", model.shown.source.label()));
         Ok(App {
             window,
-            surface,
+            screen,
             egui_ctx,
             egui_state,
-            // Drawn straight into the window's buffer: the cache keeps a canvas the size of the
-            // window (256 MB at 8000x8000), and the panel redraws as fast without it.
-            egui_renderer: EguiSoftwareRender::new(ColorFieldOrder::Bgra).with_caching(false),
             proxy,
             worker,
             loader,
             accuracy,
             model,
             hooks,
-            counts,
+            presented: Presented {
+                counts,
+                ..Presented::default()
+            },
             quality: Quality::default(),
             submitted: None,
-            unreflected: VecDeque::new(),
             input_since_redraw: None,
-            converged_counted: 0,
             next_repaint: None,
         })
     }
@@ -161,7 +148,7 @@ impl App {
             UserEvent::Load(event) => match self.loader.accept(event) {
                 Some((_, Ok(loaded))) => self.show(loaded),
                 Some((what, Err(message))) => {
-                    self.model.overlay.dropped_picture = None;
+                    self.model.widgets.overlay.dropped_picture = None;
                     self.model.error = Some(format!(
                         "Could not open {what}: {message}. Still showing {}.",
                         self.model.shown.source.label()
@@ -169,7 +156,7 @@ impl App {
                 }
                 None => {}
             },
-            UserEvent::Exported(result) => Exports::finished(&mut self.model, result),
+            UserEvent::Exported(result) => export::finished(&mut self.model, result),
         }
         self.window.request_redraw();
     }
@@ -199,7 +186,7 @@ impl App {
         // A new load supersedes the last one's error.
         self.model.error = None;
         self.loader.start(request);
-        self.model.progress = self.loader.progress().cloned();
+        self.model.telemetry.progress = self.loader.progress().cloned();
         self.window.request_redraw();
     }
 
@@ -222,7 +209,7 @@ impl App {
         contours_ui::follow_map(model, was.field(), loaded.request.reframe);
         // A rescale keeps the z scale field as the user has it (they may still be dragging).
         if loaded.request.reframe {
-            model.z_scale = terrain.field().z_scale();
+            model.widgets.z_scale = terrain.field().z_scale();
             match loaded.scene {
                 Some(scene) => model.adopt_scene(&scene),
                 None => {
@@ -265,7 +252,7 @@ impl App {
         let started = Instant::now();
         self.model.window_size = (size.width, size.height);
         self.model.scale_factor = self.window.scale_factor() as f32;
-        self.model.progress = self.loader.progress().cloned();
+        self.model.telemetry.progress = self.loader.progress().cloned();
         self.pick_frame();
         // Collect the accuracy threads' news before the panel shows them.
         self.update_accuracy();
@@ -276,7 +263,7 @@ impl App {
         }
         self.model.pixels_per_point = output.pixels_per_point;
         let view = compose::physical_rect(view_rect, output.pixels_per_point);
-        self.counts.view_rect = Some(view);
+        self.presented.counts.view_rect = Some(view);
         self.submit(view, input_at);
         // Start, or cancel for a changed view, what the panel has just asked for.
         self.update_accuracy();
@@ -284,11 +271,22 @@ impl App {
             .viewport_output
             .get(&egui::ViewportId::ROOT)
             .map_or(Duration::MAX, |v| v.repaint_delay);
-        if let Err(message) = self.present((width, height), view, output) {
+        let exiting = self.presented.exiting_now(&self.hooks, &self.model);
+        let grab = self.hooks.screenshot.as_deref().filter(|_| exiting);
+        let counts = &mut self.presented.counts;
+        let drawn = self
+            .screen
+            .present((width, height), view, output, &self.model, grab, counts);
+        if let Err(message) = drawn {
             self.model.error = Some(message);
         }
-        self.model.redraw.record(started.elapsed());
-        self.after_present(event_loop);
+        self.model.telemetry.redraw.record(started.elapsed());
+        if self
+            .presented
+            .after_present(&self.hooks, &mut self.model, &self.worker)
+        {
+            event_loop.exit();
+        }
         if delay < Duration::from_secs(3600) {
             self.next_repaint = Some(Instant::now() + delay.max(MIN_FRAME));
         }
@@ -304,11 +302,11 @@ impl App {
         let output = ctx.run_ui(input, |ui| {
             // egui may run this twice in one frame; act on the last run only.
             actions.clear();
-            model.widget_rects.clear();
+            model.widgets.rects.clear();
             keys_ui(ui, model, &mut actions);
             super::flythrough::play_ui(ui, model);
             panels::fit_to_window(ui, model);
-            if model.panels_visible {
+            if model.widgets.panels_visible {
                 panels::side_panel_ui(ui, model, &mut actions);
             }
             egui::CentralPanel::no_frame().show_inside(ui, |ui| {
@@ -378,7 +376,7 @@ impl App {
             // Latency is measured from input that changed a view already on screen.
             caused_by = input_at.filter(|_| self.submitted.is_some());
         }
-        self.model.capped = view_key.capped().then(|| Capped {
+        self.model.telemetry.capped = view_key.capped().then(|| Capped {
             render: view_key.full_size(),
             shown: (view.width, view.height),
         });
@@ -395,9 +393,9 @@ impl App {
         };
         let generation = self.worker.submit(job);
         if let Some(at) = caused_by {
-            self.unreflected.push_back((generation, at));
+            self.presented.unreflected.push_back((generation, at));
         }
-        self.counts.submitted_generation = generation;
+        self.presented.counts.submitted_generation = generation;
         self.submitted = Some(key);
     }
 }

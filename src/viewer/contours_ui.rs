@@ -3,8 +3,8 @@
 //! comes. The interval stays in the map's unit; the render takes it to grid heights through
 //! the field it draws on, so a rescaled relief keeps the lines on the same ground.
 
-use super::model::Model;
-use super::panels::named;
+use super::state::{ContourControls, Model, Widgets};
+use super::widgets::named;
 use crate::compact::Compact;
 use crate::heightfield::{Heightfield, Quantisation};
 use crate::render::{level_in_map_units, level_z, Contours};
@@ -13,63 +13,6 @@ use egui::{DragValue, Ui};
 
 /// About this many lines span a map's relief when the interval is picked for it.
 const LINES_OVER_RELIEF: f64 = 20.0;
-
-/// Contour lines as the panel edits them.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ContourControls {
-    pub on: bool,
-    /// Height between lines in the map's height unit; 0 until one is typed or picked.
-    pub interval: f64,
-    /// Every this many lines is a wider index line (0: none).
-    pub index_every: u32,
-    /// The interval field as typed (taken when editing ends).
-    pub text: String,
-}
-
-impl Default for ContourControls {
-    fn default() -> Self {
-        ContourControls {
-            on: false,
-            interval: 0.0,
-            index_every: 5,
-            text: String::new(),
-        }
-    }
-}
-
-impl ContourControls {
-    /// The lines to draw on `field` (grid heights through [`level_z`], as a scene's are), if on.
-    pub fn lines(&self, field: &Heightfield) -> Option<Contours> {
-        self.on
-            .then(|| Contours::new(level_z(field, self.interval), self.index_every))
-            .flatten()
-    }
-
-    /// Sets the interval, and the field that shows it.
-    fn set_interval(&mut self, interval: f64) {
-        self.interval = interval;
-        self.text = interval.to_string();
-    }
-
-    /// A scene's `[overlay] contours` and `index_every`: lines as it gives them, or none.
-    pub fn adopt(&mut self, scene: Option<(f64, u32)>) {
-        self.on = scene.is_some();
-        if let Some((interval, index_every)) = scene {
-            self.set_interval(interval);
-            self.index_every = index_every;
-        }
-    }
-
-    /// The `contours` and `index_every` keys of a scene's `[overlay]`, if lines are drawn.
-    pub fn scene_keys(&self, field: &Heightfield) -> Option<String> {
-        self.lines(field).map(|_| {
-            format!(
-                "contours = {:?}\nindex_every = {}\n",
-                self.interval, self.index_every
-            )
-        })
-    }
-}
 
 /// A round interval (1, 2 or 5 times a power of ten) that draws about
 /// [`LINES_OVER_RELIEF`] lines over `span` of height, at most that many.
@@ -105,7 +48,7 @@ fn height_unit(field: &Heightfield) -> Option<f64> {
 /// Keeps the lines on the same ground after the map on screen changed from `was` (rescaled,
 /// or a `new_map` opened without a scene). Lines stay on or off.
 pub fn follow_map(model: &mut Model, was: &Heightfield, new_map: bool) {
-    let controls = &mut model.contours;
+    let controls = &mut model.widgets.contours;
     if controls.interval > 0.0 {
         let interval = interval_after(controls.interval, was, &model.shown.terrain, new_map);
         if interval != controls.interval {
@@ -135,49 +78,50 @@ fn interval_after(interval: f64, was: &Heightfield, now: &Terrain, new_map: bool
     }
 }
 
-/// The contours checkbox, the interval field and the index line count.
-pub fn contours_ui(ui: &mut Ui, model: &mut Model) {
+/// The contours checkbox, the interval field and the index line count, for lines on
+/// `terrain`. Returns why a typed interval was refused.
+pub fn contours_ui(ui: &mut Ui, widgets: &mut Widgets, terrain: &Terrain) -> Option<String> {
     let checkbox = ui
-        .checkbox(&mut model.contours.on, "contour lines")
+        .checkbox(&mut widgets.contours.on, "contour lines")
         .on_hover_text("lines of equal height, every index-th one wider, as printed maps draw");
-    named(model, "contours", checkbox);
-    if !model.contours.on {
-        return;
+    named(widgets, "contours", checkbox);
+    if !widgets.contours.on {
+        return None;
     }
-    if model.contours.interval <= 0.0 {
-        let picked = round_interval(relief_span(&model.shown.terrain));
-        model.contours.set_interval(picked);
+    if widgets.contours.interval <= 0.0 {
+        let picked = round_interval(relief_span(terrain));
+        widgets.contours.set_interval(picked);
     }
-    let unit = model
-        .shown
-        .terrain
-        .field()
+    let field = terrain.field();
+    let unit = field
         .georef()
         .map(|g| format!(" {}", g.height_unit.symbol()))
         .unwrap_or_default();
+    let mut refused = None;
     ui.horizontal(|ui| {
         ui.label("every");
-        let field = egui::TextEdit::singleline(&mut model.contours.text).desired_width(60.0);
-        let field = ui.add(field);
-        let field = named(model, "contour_interval", field);
+        let text = egui::TextEdit::singleline(&mut widgets.contours.text).desired_width(60.0);
+        let text = ui.add(text);
+        let text = named(widgets, "contour_interval", text);
         ui.label(unit);
-        if field.lost_focus() {
-            take_interval(model);
+        if text.lost_focus() {
+            refused = take_interval(&mut widgets.contours, field);
         }
-        let index = DragValue::new(&mut model.contours.index_every)
+        let index = DragValue::new(&mut widgets.contours.index_every)
             .range(0..=50)
             .prefix("index every ");
         let index = ui
             .add(index)
             .on_hover_text("every this many lines is wider (0: none)");
-        named(model, "contour_index", index);
+        named(widgets, "contour_index", index);
     });
+    refused
 }
 
-/// Takes the typed interval, or refuses it with a message and shows the one in use again.
-fn take_interval(model: &mut Model) {
-    let typed = model.contours.text.trim();
-    let field = model.shown.terrain.field();
+/// Takes the typed interval, or shows the one in use again and says why the typed one is
+/// refused.
+fn take_interval(controls: &mut ContourControls, field: &Heightfield) -> Option<String> {
+    let typed = controls.text.trim();
     // A huge interval in a unit the z scale enlarges may be no finite grid height.
     let taken = parse_interval(typed).and_then(|interval| {
         Contours::new(level_z(field, interval), 0)
@@ -187,11 +131,14 @@ fn take_interval(model: &mut Model) {
             ))
     });
     match taken {
-        Ok(interval) => model.contours.set_interval(interval),
+        Ok(interval) => {
+            controls.set_interval(interval);
+            None
+        }
         Err(message) => {
-            model.error = Some(message);
-            let interval = model.contours.interval;
-            model.contours.set_interval(interval);
+            let interval = controls.interval;
+            controls.set_interval(interval);
+            Some(message)
         }
     }
 }

@@ -3,27 +3,15 @@
 //! panel, it applies to every image opened or dropped from then on, and the panel can read the
 //! image on screen again with it. A scene file's own `[heightmap]` keys take precedence.
 
-use super::loader::{LoadRequest, Source};
-use super::model::{Action, Model};
-use super::panels::named;
+use super::state::{Action, LoadRequest, Shown, Source, Widgets};
+use super::widgets::named;
 use crate::heightfield::{ColourEncoding, HeightUnit, NoDataValue};
 use egui::{DragValue, Ui};
 use std::path::{Path, PathBuf};
 
-/// The decoding choices for height map images.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Decoding {
-    /// How RGB images become heights.
-    pub colour: ColourEncoding,
-    /// Which raster value means no data.
-    pub nodata: NoDataValue,
-    /// A georeferenced map's height unit, instead of the one its file implies.
-    pub height_unit: Option<HeightUnit>,
-}
-
 /// The choices, and a button that reads the shown image again when they differ from how it
-/// was read.
-pub fn decoding_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
+/// was read: the load it asks for.
+pub fn decoding_ui(ui: &mut Ui, widgets: &mut Widgets, shown: &Shown) -> Option<Action> {
     ui.horizontal_wrapped(|ui| {
         ui.label("RGB images as");
         for colour in [
@@ -37,37 +25,39 @@ pub fn decoding_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
                 ColourEncoding::Terrarium => "decode_terrarium",
             };
             let label = colour.to_string();
-            let radio = ui.radio_value(&mut model.decoding.colour, colour, label);
-            named(model, name, radio);
+            let radio = ui.radio_value(&mut widgets.decoding.colour, colour, label);
+            named(widgets, name, radio);
         }
     });
-    ui.horizontal_wrapped(|ui| nodata_ui(ui, model));
-    ui.horizontal_wrapped(|ui| height_unit_ui(ui, model));
-    let Source::File(path) = &model.shown.source else {
-        return;
+    ui.horizontal_wrapped(|ui| nodata_ui(ui, widgets));
+    ui.horizontal_wrapped(|ui| height_unit_ui(ui, widgets));
+    let Source::File(path) = &shown.source else {
+        return None;
     };
-    if model.shown.source.is_scene() {
-        return;
+    if shown.source.is_scene() {
+        return None;
     }
     // The colour choice changes nothing in a grey image: reading it again is offered only
     // for what would change.
-    let (chosen, shown) = (model.decoding, model.shown.decoding);
-    let differs = chosen.nodata != shown.nodata
-        || chosen.height_unit != shown.height_unit
-        || (chosen.colour != shown.colour && has_colour(ui, path));
-    if differs {
-        let again = ui.button(format!("read {} again", model.shown.source.label()));
-        if named(model, "decode_again", again).clicked() {
-            actions.push(Action::Load(LoadRequest {
-                source: model.shown.source.clone(),
-                z_scale: None,
-                reframe: true,
-                from_memory: None,
-                decoding: model.decoding,
-                overlay: None,
-            }));
-        }
+    let (chosen, read) = (widgets.decoding, shown.decoding);
+    let differs = chosen.nodata != read.nodata
+        || chosen.height_unit != read.height_unit
+        || (chosen.colour != read.colour && has_colour(ui, path));
+    if !differs {
+        return None;
     }
+    let again = ui.button(format!("read {} again", shown.source.label()));
+    let again = named(widgets, "decode_again", again).clicked();
+    again.then(|| {
+        Action::Load(LoadRequest {
+            source: shown.source.clone(),
+            z_scale: None,
+            reframe: true,
+            from_memory: None,
+            decoding: widgets.decoding,
+            overlay: None,
+        })
+    })
 }
 
 /// Whether the image at `path` has colour channels, from its header (remembered per path:
@@ -91,7 +81,7 @@ fn has_colour(ui: &Ui, path: &Path) -> bool {
 }
 
 /// A georeferenced map's heights: in the unit its file implies, or in metres or feet.
-fn height_unit_ui(ui: &mut Ui, model: &mut Model) {
+fn height_unit_ui(ui: &mut Ui, widgets: &mut Widgets) {
     ui.label("heights in");
     let choices = [
         (None, "the file's unit", "height_unit_file"),
@@ -100,35 +90,35 @@ fn height_unit_ui(ui: &mut Ui, model: &mut Model) {
         (HeightUnit::named("us-ft"), "US ft", "height_unit_us_ft"),
     ];
     for (chosen, label, widget) in choices {
-        let radio = ui.radio_value(&mut model.decoding.height_unit, chosen, label);
-        named(model, widget, radio);
+        let radio = ui.radio_value(&mut widgets.decoding.height_unit, chosen, label);
+        named(widgets, widget, radio);
     }
 }
 
 /// No data: the file's own (auto), none, or a value.
-fn nodata_ui(ui: &mut Ui, model: &mut Model) {
+fn nodata_ui(ui: &mut Ui, widgets: &mut Widgets) {
     ui.label("no data");
-    let nodata = &mut model.decoding.nodata;
+    let nodata = &mut widgets.decoding.nodata;
     let auto = ui.radio(*nodata == NoDataValue::Auto, "auto");
-    if named(model, "nodata_auto", auto).clicked() {
-        model.decoding.nodata = NoDataValue::Auto;
+    if named(widgets, "nodata_auto", auto).clicked() {
+        widgets.decoding.nodata = NoDataValue::Auto;
     }
-    let none = ui.radio(model.decoding.nodata == NoDataValue::Off, "none");
-    if named(model, "nodata_none", none).clicked() {
-        model.decoding.nodata = NoDataValue::Off;
+    let none = ui.radio(widgets.decoding.nodata == NoDataValue::Off, "none");
+    if named(widgets, "nodata_none", none).clicked() {
+        widgets.decoding.nodata = NoDataValue::Off;
     }
-    let chosen = match model.decoding.nodata {
+    let chosen = match widgets.decoding.nodata {
         NoDataValue::Value(v) => Some(v),
         _ => None,
     };
     let value = ui.radio(chosen.is_some(), "value");
-    if named(model, "nodata_value", value).clicked() && chosen.is_none() {
+    if named(widgets, "nodata_value", value).clicked() && chosen.is_none() {
         // SRTM's and most DEMs' marker.
-        model.decoding.nodata = NoDataValue::Value(-32768.0);
+        widgets.decoding.nodata = NoDataValue::Value(-32768.0);
     }
     if let Some(mut v) = chosen {
         if ui.add(DragValue::new(&mut v).speed(1.0)).changed() && v.is_finite() {
-            model.decoding.nodata = NoDataValue::Value(v);
+            widgets.decoding.nodata = NoDataValue::Value(v);
         }
     }
 }

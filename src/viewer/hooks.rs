@@ -3,8 +3,7 @@
 
 use super::accuracy::{ns_per_ray, AccuracyState, MeasureState};
 use super::compose::PixelRect;
-use super::decoding::Decoding;
-use super::model::Model;
+use super::state::{Decoding, Model};
 use crate::heightfield::relief;
 use crate::output_file;
 use serde_json::{json, Value};
@@ -48,7 +47,7 @@ pub fn write_report(path: &Path, model: &Model, counts: &Counts) -> Result<(), S
 fn report(model: &Model, counts: &Counts) -> Value {
     let orbit = &model.orbit;
     let field = model.shown.terrain.field();
-    let latency = &model.latency;
+    let latency = &model.telemetry.latency;
     let percentiles = latency.percentiles();
     json!({
         "frames_presented": counts.frames_presented,
@@ -59,7 +58,7 @@ fn report(model: &Model, counts: &Counts) -> Value {
         "window_size": [model.window_size.0, model.window_size.1],
         "scale_factor": model.scale_factor,
         "view_rect": counts.view_rect.map(|r| [r.x, r.y, r.width, r.height]),
-        "capped": model.capped.map(|c| json!({
+        "capped": model.telemetry.capped.map(|c| json!({
             "render": [c.render.0, c.render.1], "shown": [c.shown.0, c.shown.1],
             "text": c.to_string(),
         })),
@@ -96,18 +95,18 @@ fn report(model: &Model, counts: &Counts) -> Value {
             "overlay": field.drape().map(|d| d.path().display().to_string()),
         },
         "contours": {
-            "on": model.contours.on, "interval": model.contours.interval,
-            "index_every": model.contours.index_every,
+            "on": model.widgets.contours.on, "interval": model.widgets.contours.interval,
+            "index_every": model.widgets.contours.index_every,
         },
-        "decoding": decoding_report(model.decoding),
-        "path_field": model.path_text,
-        "loading": model.progress.as_ref().map(|p| p.label.clone()),
+        "decoding": decoding_report(model.widgets.decoding),
+        "path_field": model.widgets.path_text,
+        "loading": model.telemetry.progress.as_ref().map(|p| p.label.clone()),
         "error": model.error,
         "notice": model.notice.as_ref().map(|n| n.text.clone()),
         "drop_hover": model.drop_hover,
-        "panels_visible": model.panels_visible,
-        "help_open": model.help_open,
-        "show_probe": model.show_probe,
+        "panels_visible": model.widgets.panels_visible,
+        "help_open": model.widgets.help_open,
+        "show_probe": model.widgets.show_probe,
         "probe": model.probe.as_ref().map(|p| [p.pixel.0, p.pixel.1]),
         "heat_map": model.settings.heat.label(),
         "widgets": widget_report(model),
@@ -117,9 +116,9 @@ fn report(model: &Model, counts: &Counts) -> Value {
             "recent": latency.recent().collect::<Vec<_>>(),
         },
         "redraw_ms": {
-            "last": model.redraw.last_ms(), "max": model.redraw.max_ms,
-            "median": model.redraw.percentiles().map(|p| p.0),
-            "p95": model.redraw.percentiles().map(|p| p.1),
+            "last": model.telemetry.redraw.last_ms(), "max": model.telemetry.redraw.max_ms,
+            "median": model.telemetry.redraw.percentiles().map(|p| p.0),
+            "p95": model.telemetry.redraw.percentiles().map(|p| p.1),
         },
         "last_screenshot": counts.last_screenshot,
     })
@@ -190,7 +189,8 @@ fn accuracy_report(state: &AccuracyState) -> Value {
 fn widget_report(model: &Model) -> serde_json::Map<String, Value> {
     let ppp = model.pixels_per_point;
     model
-        .widget_rects
+        .widgets
+        .rects
         .iter()
         .map(|(name, r)| {
             let physical = [r.min.x, r.min.y, r.max.x, r.max.y].map(|v| f64::from(v * ppp));

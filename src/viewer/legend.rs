@@ -1,8 +1,8 @@
 //! The height legend: a vertical bar of the colour ramp in the view's bottom-right corner,
 //! labelled with the lowest and highest heights, and sea level where the ramp shows a sea.
 
-use super::model::Model;
 use super::settings::HeatMode;
+use super::state::Model;
 use crate::heightfield::place;
 use crate::render::{HeightSpan, Ramp};
 use egui::{Align2, Color32, FontId, Rect, Ui, Vec2};

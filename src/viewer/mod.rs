@@ -4,7 +4,8 @@
 //! The renderer fills the view progressively on worker threads; the window thread never waits
 //! for a frame.
 //!
-//! This module wires winit's events to `app::App`; the state and drawing live there.
+//! This module wires winit's events to `app::App`, which draws; what the panels show and edit
+//! lives in `state`, which imports no panel.
 
 mod accuracy;
 mod annotations;
@@ -16,13 +17,11 @@ mod decoding;
 mod drops;
 mod export;
 mod flythrough;
-mod framing;
 mod ground;
 mod hooks;
 mod legend;
 mod loader;
 mod mailbox;
-mod model;
 mod navigation;
 mod orbit;
 mod overlay_ui;
@@ -34,20 +33,23 @@ mod relief_ui;
 mod save_scene;
 mod settings;
 mod sources;
+mod state;
 mod stats_ui;
 mod sun_clock;
+mod user_event;
 mod view;
 mod water_ui;
+mod widgets;
 mod worker;
 
-pub use decoding::Decoding;
-pub use loader::Source;
 pub use orbit::Orbit;
+pub use state::{Decoding, Source};
 
 use app::App;
-use loader::{LoadEvent, LoadRequest, Loaded};
+use state::{LoadRequest, Loaded};
 use std::path::PathBuf;
 use std::rc::Rc;
+use user_event::UserEvent;
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, EventLoop, EventLoopProxy};
@@ -94,18 +96,6 @@ impl Default for ViewerOptions {
             report_state: None,
         }
     }
-}
-
-/// News for the window thread from the render, loading and saving threads.
-pub enum UserEvent {
-    /// The render worker published a pass.
-    FrameReady,
-    /// A measurement or comparison reported progress or a result.
-    Accuracy,
-    /// The loader's progress, or its result.
-    Load(LoadEvent),
-    /// An export was written (`None`: cancelled), or why not.
-    Exported(Result<Option<export::Exported>, String>),
 }
 
 /// Opens the window and runs until it is closed.

@@ -1,10 +1,10 @@
 //! Moving about the map: the framed view that follows the view's shape, R and F, the keys that
 //! walk, turn and zoom, and the rule applied after every move (see [`ground::keep_above`]).
 
-use super::framing::{self, DEFAULT_PITCH_DEG, DEFAULT_YAW_DEG};
 use super::ground;
-use super::model::{Action, Model};
 use super::orbit::Orbit;
+use super::state::{Action, Framed, Home, Model};
+use crate::render::framing::{DEFAULT_FOV_Y_DEG, DEFAULT_PITCH_DEG, DEFAULT_YAW_DEG};
 
 /// Share of the distance one arrow key press walks the target.
 const WALK_STEP: f64 = 0.1;
@@ -16,27 +16,6 @@ const ZOOM_KEY_STEPS: f64 = 2.0;
 /// from above rather than edge on.
 const FRAME_MIN_PITCH_DEG: f64 = 20.0;
 
-/// Where R goes.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Home {
-    /// The whole map from the default direction, framed for the view's shape.
-    WholeMap,
-    /// A scene file's camera.
-    Scene(Orbit),
-}
-
-/// The camera shows the whole map as framed from these angles for a view of `aspect`; while it
-/// is untouched, a view of another shape, or the map with another z scale, frames it again.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Framed {
-    pub yaw_deg: f64,
-    pub pitch_deg: f64,
-    pub aspect: f64,
-    pub orbit: Orbit,
-    /// The terrain it framed (its address: a rescaled map is a new terrain).
-    pub terrain: usize,
-}
-
 /// The identity of the terrain on screen.
 fn terrain_id(model: &Model) -> usize {
     std::sync::Arc::as_ptr(&model.shown.terrain) as usize
@@ -45,7 +24,7 @@ fn terrain_id(model: &Model) -> usize {
 /// Frames the whole map from the given angles for the view's current shape.
 pub fn frame_map(model: &mut Model, yaw_deg: f64, pitch_deg: f64) {
     let aspect = model.view_aspect;
-    let mut orbit = framing::fit(
+    let mut orbit = Orbit::fit(
         &model.shown.terrain,
         yaw_deg,
         pitch_deg,
@@ -77,7 +56,7 @@ pub fn reset(model: &mut Model) {
             model.framed = None;
         }
         Home::WholeMap => {
-            model.orbit.fov_y_deg = framing::DEFAULT_FOV_Y_DEG;
+            model.orbit.fov_y_deg = DEFAULT_FOV_Y_DEG;
             frame_map(model, DEFAULT_YAW_DEG, DEFAULT_PITCH_DEG);
         }
     }

@@ -2,45 +2,19 @@
 //! map, what is draped now, and whether files dropped onto the window are a height map (or
 //! tiles) or an overlay.
 
-use super::drops::DropLoads;
-use super::loader::{LoadRequest, OverlayChange};
-use super::model::{Action, Model};
-use super::panels::named;
+use super::state::{Action, DropLoads, LoadRequest, Model, OverlayChange, Shown, Widgets};
+use super::widgets::named;
 use egui::{Slider, Ui};
 use std::path::PathBuf;
 
-/// The overlay controls' state.
-#[derive(Clone, Debug, PartialEq)]
-pub struct OverlayControls {
-    /// The overlay path field.
-    pub path_text: String,
-    /// The opacity an overlay is laid with.
-    pub opacity: f64,
-    /// What a dropped file loads.
-    pub drop_loads: DropLoads,
-    /// What kind of picture was dropped as a height map and is being laid as an overlay.
-    pub dropped_picture: Option<String>,
-}
-
-impl Default for OverlayControls {
-    fn default() -> Self {
-        OverlayControls {
-            path_text: String::new(),
-            opacity: 1.0,
-            drop_loads: DropLoads::default(),
-            dropped_picture: None,
-        }
-    }
-}
-
 /// The request that drapes `change` over the map on screen, keeping its samples and view.
-pub fn overlay_request(model: &Model, change: OverlayChange) -> LoadRequest {
+pub fn overlay_request(shown: &Shown, change: OverlayChange) -> LoadRequest {
     LoadRequest {
-        source: model.shown.source.clone(),
-        z_scale: Some(model.shown.terrain.field().z_scale()),
+        source: shown.source.clone(),
+        z_scale: Some(shown.terrain.field().z_scale()),
         reframe: false,
-        from_memory: Some(model.shown.terrain.clone()),
-        decoding: model.shown.decoding,
+        from_memory: Some(shown.terrain.clone()),
+        decoding: shown.decoding,
         overlay: Some(change),
     }
 }
@@ -49,11 +23,11 @@ pub fn overlay_request(model: &Model, change: OverlayChange) -> LoadRequest {
 /// change of overlay did.
 pub fn shown(model: &mut Model, change: Option<&OverlayChange>) {
     if let Some(drape) = model.shown.terrain.field().drape() {
-        model.overlay.opacity = drape.opacity();
+        model.widgets.overlay.opacity = drape.opacity();
     }
     match change {
         Some(OverlayChange::Lay { path, .. }) => {
-            let why = match model.overlay.dropped_picture.take() {
+            let why = match model.widgets.overlay.dropped_picture.take() {
                 Some(what) => format!(" as an overlay: it is {what}, not a height map"),
                 None => String::new(),
             };
@@ -64,30 +38,31 @@ pub fn shown(model: &mut Model, change: Option<&OverlayChange>) {
     }
 }
 
-/// The overlay path, opacity and drop target; what is draped now.
-pub fn overlay_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
+/// The overlay path, opacity and drop target; what is draped now. Returns the loads asked for.
+pub fn overlay_ui(ui: &mut Ui, widgets: &mut Widgets, shown: &Shown) -> Vec<Action> {
+    let mut actions = Vec::new();
     ui.horizontal(|ui| {
         let field = ui.add(
-            egui::TextEdit::singleline(&mut model.overlay.path_text)
+            egui::TextEdit::singleline(&mut widgets.overlay.path_text)
                 .hint_text("overlay image: PNG, JPEG or TIFF")
                 .desired_width(ui.available_width() - 70.0),
         );
-        let field = named(model, "overlay_path", field);
+        let field = named(widgets, "overlay_path", field);
         let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-        let lay = named(model, "overlay_open", ui.button("Overlay"));
-        let path = model.overlay.path_text.trim();
+        let lay = named(widgets, "overlay_open", ui.button("Overlay"));
+        let path = widgets.overlay.path_text.trim();
         if (lay.clicked() || entered) && !path.is_empty() {
             let change = OverlayChange::Lay {
                 path: PathBuf::from(path),
-                opacity: model.overlay.opacity,
+                opacity: widgets.overlay.opacity,
             };
-            actions.push(Action::Load(overlay_request(model, change)));
+            actions.push(Action::Load(overlay_request(shown, change)));
         }
     });
-    let opacity = ui.add(Slider::new(&mut model.overlay.opacity, 0.0..=1.0).text("opacity"));
-    let opacity = named(model, "overlay_opacity", opacity);
-    let drape = model.shown.terrain.field().drape();
-    let shown = drape.map(|d| {
+    let opacity = ui.add(Slider::new(&mut widgets.overlay.opacity, 0.0..=1.0).text("opacity"));
+    let opacity = named(widgets, "overlay_opacity", opacity);
+    let drape = shown.terrain.field().drape();
+    let draped = drape.map(|d| {
         (
             d.size(),
             d.georeferenced(),
@@ -95,7 +70,7 @@ pub fn overlay_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             d.opacity(),
         )
     });
-    match shown {
+    match draped {
         Some(((w, h), georeferenced, path, laid_with)) => {
             let placed = if georeferenced {
                 "placed by its georeferencing"
@@ -104,16 +79,16 @@ pub fn overlay_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             };
             let name = path.file_name().unwrap_or_default().to_string_lossy();
             ui.label(format!("overlay {name}: {w} x {h} px, {placed}"));
-            let relay = opacity.drag_stopped() && model.overlay.opacity != laid_with;
+            let relay = opacity.drag_stopped() && widgets.overlay.opacity != laid_with;
             let change = OverlayChange::Lay {
                 path,
-                opacity: model.overlay.opacity,
+                opacity: widgets.overlay.opacity,
             };
-            let remove = named(model, "overlay_remove", ui.button("Remove overlay"));
+            let remove = named(widgets, "overlay_remove", ui.button("Remove overlay"));
             if remove.clicked() {
-                actions.push(Action::Load(overlay_request(model, OverlayChange::Remove)));
+                actions.push(Action::Load(overlay_request(shown, OverlayChange::Remove)));
             } else if relay {
-                actions.push(Action::Load(overlay_request(model, change)));
+                actions.push(Action::Load(overlay_request(shown, change)));
             }
         }
         None => {
@@ -122,9 +97,10 @@ pub fn overlay_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     }
     ui.horizontal(|ui| {
         ui.label("a drop opens");
-        let controls = &mut model.overlay;
+        let controls = &mut widgets.overlay;
         ui.radio_value(&mut controls.drop_loads, DropLoads::HeightMap, "a map");
         let overlay = ui.radio_value(&mut controls.drop_loads, DropLoads::Overlay, "an overlay");
-        named(model, "drop_overlay", overlay);
+        named(widgets, "drop_overlay", overlay);
     });
+    actions
 }

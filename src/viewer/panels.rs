@@ -1,13 +1,16 @@
 //! The side panel: camera, light, height map, traversal, effects and statistics.
 
 use super::accuracy::panel::{accuracy_ui, speed_note};
-use super::decoding::{decoding_ui, Decoding};
-use super::loader::{LoadRequest, Source};
-use super::model::{Action, Model};
+use super::contours_ui::contours_ui;
+use super::decoding::decoding_ui;
 use super::orbit::{MIN_PITCH_DEG, PITCH_LIMIT_DEG};
+use super::overlay_ui::overlay_ui;
 use super::relief_ui::{exaggeration_ui, georeferencing_ui};
 use super::settings::{fog, ArithKind};
+use super::state::{Action, Decoding, LoadRequest, Model, Source};
 use super::stats_ui::statistics_ui;
+use super::water_ui::water_ui;
+use super::widgets::named;
 use crate::heightfield::BUILTINS;
 use crate::render::effects::WIDEST_SUN_DEG;
 use crate::render::{Normals, Ramp};
@@ -26,20 +29,20 @@ const HIDE_BELOW: f32 = 640.0;
 /// Hides the panel when the window becomes too narrow for it and the view, and shows it
 /// again when the window widens, unless H was pressed in between. Called every frame.
 pub fn fit_to_window(ui: &Ui, model: &mut Model) {
-    if model.panels_visible {
-        model.panel_auto_hidden = false;
+    if model.widgets.panels_visible {
+        model.widgets.panel_auto_hidden = false;
     }
     let narrow = ui.available_width() < HIDE_BELOW;
     if narrow == model.narrow_window {
         return;
     }
     model.narrow_window = narrow;
-    if narrow && model.panels_visible {
-        model.panels_visible = false;
-        model.panel_auto_hidden = true;
+    if narrow && model.widgets.panels_visible {
+        model.widgets.panels_visible = false;
+        model.widgets.panel_auto_hidden = true;
         model.notify("The window is narrow: the panel is hidden (H shows it)");
-    } else if !narrow && model.panel_auto_hidden {
-        model.panels_visible = true;
+    } else if !narrow && model.widgets.panel_auto_hidden {
+        model.widgets.panels_visible = true;
     }
 }
 
@@ -63,10 +66,13 @@ pub fn side_panel_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) 
                 .auto_shrink([false, false])
                 .show(ui, |ui| {
                     sections_ui(ui, model, actions);
-                    model.widget_rects.insert("panel_content", ui.min_rect());
+                    model.widgets.rects.insert("panel_content", ui.min_rect());
                 });
         });
-    model.widget_rects.insert("side_panel", panel.response.rect);
+    model
+        .widgets
+        .rects
+        .insert("side_panel", panel.response.rect);
 }
 
 fn sections_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
@@ -82,16 +88,16 @@ fn sections_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         let save = ui
             .button("Save scene")
             .on_hover_text("a scene file of this view at the export size, for heightray render");
-        if named(model, "save_scene", save).clicked() {
+        if named(&mut model.widgets, "save_scene", save).clicked() {
             actions.push(Action::SaveScene);
         }
     });
-    named(model, "export_section", export);
+    named(&mut model.widgets, "export_section", export);
     let title = format!("Heightmap: {}", shortened(&model.shown.source.label(), 22));
     let heightmap = section(ui, "Heightmap", &title, false, |ui| {
         heightmap_ui(ui, model, actions)
     });
-    named(model, "heightmap_section", heightmap);
+    named(&mut model.widgets, "heightmap_section", heightmap);
     let summary = format!(
         "{}, {}",
         model.settings.method,
@@ -101,18 +107,18 @@ fn sections_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let traversal = section(ui, "Traversal", &title, false, |ui| {
         traversal_ui(ui, model, actions)
     });
-    named(model, "traversal_section", traversal);
+    named(&mut model.widgets, "traversal_section", traversal);
     let title = format!("Flythrough: {} keys", model.flythrough.keys.len());
     let flythrough = section(ui, "Flythrough", &title, false, |ui| {
         super::flythrough::flythrough_ui(ui, model)
     });
-    named(model, "flythrough_section", flythrough);
+    named(&mut model.widgets, "flythrough_section", flythrough);
     let effects = section(ui, "Effects", "Effects", false, |ui| effects_ui(ui, model));
-    named(model, "effects_section", effects);
+    named(&mut model.widgets, "effects_section", effects);
     let statistics = section(ui, "Statistics", "Statistics and probe", false, |ui| {
         statistics_ui(ui, model)
     });
-    named(model, "statistics_section", statistics);
+    named(&mut model.widgets, "statistics_section", statistics);
 }
 
 /// `text`, cut to `most` characters with an ellipsis (a header never wraps).
@@ -140,21 +146,11 @@ fn section(
         .header_response
 }
 
-/// Records where a named widget is, for scripted tests that drag it.
-pub(super) fn named(
-    model: &mut Model,
-    name: &'static str,
-    response: egui::Response,
-) -> egui::Response {
-    model.widget_rects.insert(name, response.rect);
-    response
-}
-
 fn camera_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let orbit = &mut model.orbit;
     let scale = orbit.scale;
     let yaw = ui.add(Slider::new(&mut orbit.yaw_deg, -180.0..=180.0).text("yaw °"));
-    named(model, "camera_yaw", yaw);
+    named(&mut model.widgets, "camera_yaw", yaw);
     let orbit = &mut model.orbit;
     ui.add(Slider::new(&mut orbit.pitch_deg, MIN_PITCH_DEG..=PITCH_LIMIT_DEG).text("pitch °"));
     ui.add(
@@ -203,7 +199,7 @@ fn light_ui(ui: &mut Ui, model: &mut Model) {
     let azimuth = ui
         .add(Slider::new(&mut s.sun_azimuth_deg, 0.0..=360.0).text("bearing °"))
         .on_hover_text("the sun's compass bearing: 0 north, 90 east, 180 south");
-    let azimuth = named(model, "sun_azimuth", azimuth);
+    let azimuth = named(&mut model.widgets, "sun_azimuth", azimuth);
     let s = &mut model.settings;
     // (Not clamped when shown: a date and time may put the sun below the horizon.)
     let elevation = ui.add(
@@ -224,10 +220,13 @@ fn light_ui(ui: &mut Ui, model: &mut Model) {
 
 fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     source_ui(ui, model, actions);
-    super::overlay_ui::overlay_ui(ui, model, actions);
-    super::water_ui::water_ui(ui, model);
-    super::contours_ui::contours_ui(ui, model);
-    decoding_ui(ui, model, actions);
+    actions.extend(overlay_ui(ui, &mut model.widgets, &model.shown));
+    let water = &mut model.settings.effects.water;
+    water_ui(ui, water, &mut model.widgets, &model.shown.terrain);
+    if let Some(refused) = contours_ui(ui, &mut model.widgets, &model.shown.terrain) {
+        model.error = Some(refused);
+    }
+    actions.extend(decoding_ui(ui, &mut model.widgets, &model.shown));
     z_scale_ui(ui, model, actions);
     let s = &mut model.settings;
     ui.horizontal(|ui| {
@@ -262,7 +261,7 @@ fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         ));
     }
     ui.label(format!("{} no-data samples", field.nodata_count()));
-    georeferencing_ui(ui, model);
+    georeferencing_ui(ui, &model.shown.terrain);
     ui.label(format!(
         "read {:.1} ms, build {:.1} ms ({:.1} MB of acceleration data)",
         model.shown.decode_time.as_secs_f64() * 1e3,
@@ -275,14 +274,14 @@ fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
 /// was opened (a built-in empties it).
 fn follow_shown_path(model: &mut Model) {
     let current = &model.shown.source;
-    if model.path_source.as_ref() == Some(current) {
+    if model.widgets.path_source.as_ref() == Some(current) {
         return;
     }
-    model.path_text = match current {
+    model.widgets.path_text = match current {
         Source::File(path) => path.display().to_string(),
         Source::Builtin(_) | Source::Tiles(_) => String::new(),
     };
-    model.path_source = Some(current.clone());
+    model.widgets.path_source = Some(current.clone());
 }
 
 /// The built-in list and the path field.
@@ -299,23 +298,23 @@ fn source_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             for builtin in BUILTINS {
                 let chosen = current == Source::Builtin(builtin.name);
                 if ui.selectable_label(chosen, builtin.name).clicked() && !chosen {
-                    actions.push(load(Source::Builtin(builtin.name), model.decoding));
+                    actions.push(load(Source::Builtin(builtin.name), model.widgets.decoding));
                 }
             }
         });
     ui.horizontal(|ui| {
         let field = ui.add(
-            egui::TextEdit::singleline(&mut model.path_text)
+            egui::TextEdit::singleline(&mut model.widgets.path_text)
                 .hint_text("path to a PNG, PGM, TIFF, .hgt, .asc or .toml")
                 .desired_width(ui.available_width() - 50.0),
         );
-        let field = named(model, "open_path", field);
+        let field = named(&mut model.widgets, "open_path", field);
         let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
         let open = ui.button("Open");
-        let open = named(model, "open", open);
-        if (open.clicked() || entered) && !model.path_text.trim().is_empty() {
-            let path = PathBuf::from(model.path_text.trim());
-            actions.push(load(Source::File(path), model.decoding));
+        let open = named(&mut model.widgets, "open", open);
+        if (open.clicked() || entered) && !model.widgets.path_text.trim().is_empty() {
+            let path = PathBuf::from(model.widgets.path_text.trim());
+            actions.push(load(Source::File(path), model.widgets.decoding));
         }
     });
     ui.weak("or drop a file onto the window");
@@ -324,18 +323,21 @@ fn source_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
 /// The z scale, applied live: each change rescales the samples in memory on the loading
 /// thread (a newer change supersedes an older one still building).
 fn z_scale_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
-    let speed = (model.z_scale * 0.005).max(0.01);
+    let speed = (model.widgets.z_scale * 0.005).max(0.01);
     let z = ui.add(
-        DragValue::new(&mut model.z_scale)
+        DragValue::new(&mut model.widgets.z_scale)
             .range(0.0..=1e7)
             .speed(speed)
             .prefix("z scale (grid units) "),
     );
-    let exaggerated = exaggeration_ui(ui, model);
-    if (z.changed() || exaggerated) && model.z_scale != model.shown.terrain.field().z_scale() {
+    let field = model.shown.terrain.field();
+    let exaggerated = exaggeration_ui(ui, &mut model.widgets.z_scale, field);
+    if (z.changed() || exaggerated)
+        && model.widgets.z_scale != model.shown.terrain.field().z_scale()
+    {
         actions.push(Action::Load(LoadRequest {
             source: model.shown.source.clone(),
-            z_scale: Some(model.z_scale),
+            z_scale: Some(model.widgets.z_scale),
             reframe: false,
             from_memory: Some(model.shown.terrain.clone()),
             decoding: model.shown.decoding,
@@ -388,7 +390,8 @@ fn traversal_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             ui.weak(note);
         }
     }
-    accuracy_ui(ui, model, actions);
+    let accuracy = accuracy_ui(ui, &mut model.accuracy, &model.settings, &mut model.widgets);
+    actions.extend(accuracy);
 }
 
 /// The effects (shadows are with the light). The fog slider is a visibility distance on a
@@ -400,7 +403,7 @@ fn effects_ui(ui: &mut Ui, model: &mut Model) {
     let range = fog::range(size, model.orbit.distance);
     let mut on = model.settings.fog > 0.0;
     let toggle = ui.checkbox(&mut on, "fog");
-    if named(model, "fog_toggle", toggle).changed() {
+    if named(&mut model.widgets, "fog_toggle", toggle).changed() {
         // A haze: about half the contrast left on the far side of the map, more on the near.
         let far_side = model.orbit.distance + size;
         model.settings.fog = if on {
@@ -421,7 +424,7 @@ fn effects_ui(ui: &mut Ui, model: &mut Model) {
         if slider.changed() {
             model.settings.fog = fog::density(distance);
         }
-        named(model, "fog_visibility", slider);
+        named(&mut model.widgets, "fog_visibility", slider);
         let s = &model.settings;
         ui.weak(format!(
             "contrast falls to 5% at {:.0} map units; the map is {size:.0} across",
@@ -437,7 +440,7 @@ fn sampling_ui(ui: &mut Ui, model: &mut Model) {
     let toggle = ui.checkbox(&mut soft, "soft shadows").on_hover_text(
         "the sun as a disc: penumbrae as wide as the sun seen from the shadowed point",
     );
-    if named(model, "soft_shadows", toggle).changed() {
+    if named(&mut model.widgets, "soft_shadows", toggle).changed() {
         model.settings.effects.sun_angle_deg = if soft { REAL_SUN_DEG } else { 0.0 };
     }
     let effects = &mut model.settings.effects;
@@ -446,26 +449,26 @@ fn sampling_ui(ui: &mut Ui, model: &mut Model) {
             .logarithmic(true)
             .text("sun's diameter °");
         let slider = ui.add(slider);
-        named(model, "sun_angle", slider);
+        named(&mut model.widgets, "sun_angle", slider);
     }
     let effects = &mut model.settings.effects;
     let sky = ui
         .checkbox(&mut effects.sky_light, "sky light")
         .on_hover_text("light from the open sky instead of a constant ambient term");
-    named(model, "sky_light", sky);
+    named(&mut model.widgets, "sky_light", sky);
     let effects = &mut model.settings.effects;
     let samples = ui.add(
         Slider::new(&mut effects.samples, 1..=64)
             .logarithmic(true)
             .text("samples per pixel"),
     );
-    named(model, "samples", samples);
+    named(&mut model.widgets, "samples", samples);
     let effects = &mut model.settings.effects;
     if effects.samples > 1 {
         let adaptive = ui.checkbox(&mut effects.adaptive, "adaptive").on_hover_text(
             "a pixel stops taking samples once two halves of them agree: flat ground early, edges late",
         );
-        named(model, "adaptive", adaptive);
+        named(&mut model.widgets, "adaptive", adaptive);
     }
     if let Some(latest) = &model.latest {
         super::stats_ui::effect_shares(ui, &latest.frame.totals);

@@ -3,8 +3,8 @@
 //! last first passes say fits the budget; when the view rests it renders at full resolution.
 
 use super::compose::PixelRect;
-use super::model::Model;
 use super::orbit::Orbit;
+use super::state::{Model, MOST_VIEW_PIXELS};
 use super::worker::RenderedFrame;
 use crate::render::Lighting;
 use crate::{Arith, Method};
@@ -16,34 +16,6 @@ const BUDGET_MS: f64 = 8.0;
 const REST: Duration = Duration::from_millis(150);
 /// Lowest resolution factor while moving.
 const MIN_FACTOR: f64 = 0.3;
-/// The most pixels a view is rendered at (2048x2048, a 2560x1600 screen's fit): a larger
-/// window shows the frame scaled up, and a frame's memory (24 bytes a pixel, up to three
-/// frames alive) stays about 300 MB whatever size the window is given.
-pub const MOST_VIEW_PIXELS: f64 = (1u64 << 22) as f64;
-
-/// A view rendered at fewer pixels than the window shows it at.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Capped {
-    /// The render size at full resolution.
-    pub render: (u32, u32),
-    /// The view's size in window pixels.
-    pub shown: (u32, u32),
-}
-
-impl std::fmt::Display for Capped {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "rendering at {}x{}, shown at {}x{} (at most {:.1} million pixels are rendered)",
-            self.render.0,
-            self.render.1,
-            self.shown.0,
-            self.shown.1,
-            MOST_VIEW_PIXELS / 1e6
-        )
-    }
-}
-
 /// What a render shows, apart from a resolution lowered while moving.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ViewKey {
@@ -73,7 +45,7 @@ impl ViewKey {
             lighting: model.settings.lighting(),
             method: model.settings.method,
             arith: model.settings.arith(),
-            contours: model.contours.lines(model.shown.terrain.field()),
+            contours: model.widgets.contours.lines(model.shown.terrain.field()),
         }
     }
 
@@ -212,6 +184,7 @@ pub fn detail(rendered: &RenderedFrame) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::viewer::state::Capped;
 
     #[test]
     fn a_huge_window_renders_at_most_the_pixel_limit_in_its_shape() {

@@ -4,9 +4,7 @@
 //! file has.
 
 use super::export::create_numbered;
-use super::loader::Source;
-use super::model::Model;
-use super::sun_clock;
+use super::state::{Model, Source};
 use crate::heightfield::place;
 use crate::heightfield::{HeightUnitSource, NoDataValue, OptionError};
 use crate::output_file;
@@ -120,7 +118,7 @@ fn annotation_keys(model: &Model) -> String {
 fn sun_keys(model: &Model) -> String {
     let settings = &model.settings;
     if model.sun_clock.on {
-        let place = sun_clock::clock_place(model);
+        let place = model.sun_clock.place(model.shown.terrain.field());
         let zone = model.sun_clock.zone(place).unwrap_or(chrono_tz::Tz::UTC);
         let own_place = place::centre_degrees(model.shown.terrain.field()).is_some();
         let lat_lon = if own_place {
@@ -163,7 +161,7 @@ fn overlay_keys(model: &Model) -> String {
             drape.opacity()
         )
     });
-    let contours = model.contours.scene_keys(field);
+    let contours = model.widgets.contours.scene_keys(field);
     if drape.is_none() && contours.is_none() {
         return String::new();
     }

@@ -2,9 +2,10 @@
 //! plain ones with a z scale that makes their relief visible) and scene files (with their
 //! camera and lighting); rescaling, and laying an image over the map.
 
-use super::flythrough::Flythrough;
-use super::loader::{LoadRequest, Loaded, OverlayChange, SceneClock, SceneSetup, Source, Stage};
 use super::orbit::Orbit;
+use super::state::{
+    Flythrough, LoadRequest, Loaded, OverlayChange, SceneClock, SceneSetup, Source, Stage,
+};
 use crate::heightfield::{self, relief, Builtin, Drape, LoadOptions};
 use crate::render::annotate::Annotations;
 use crate::render::{local_time, Lighting, Scene, SceneFile};

@@ -1,10 +1,10 @@
 //! The Statistics section: the frame's totals, queries per primary ray, hit/miss ratios,
 //! times, pass progress, input latency and the heat-map mode.
 
-use super::model::Model;
-use super::panels::named;
 use super::probe_ui::QUERY_KINDS;
 use super::settings::HeatMode;
+use super::state::Model;
+use super::widgets::named;
 use crate::render::{FrameStats, PASS_BLOCKS};
 use crate::traverse::{Counters, HitMiss};
 use egui::Ui;
@@ -16,11 +16,11 @@ pub const HIT_MISS: &str = "hit: the query found that the ray may meet the surfa
 pub fn statistics_ui(ui: &mut Ui, model: &mut Model) {
     let probe = ui
         .checkbox(
-            &mut model.show_probe,
+            &mut model.widgets.show_probe,
             "probe the ray under the resting pointer",
         )
         .on_hover_text("where it hits, and every query it and its shadow ray make");
-    named(model, "probe_toggle", probe);
+    named(&mut model.widgets, "probe_toggle", probe);
     heat_map_ui(ui, model);
     let Some(latest) = model.latest.clone() else {
         ui.label("no frame yet");
@@ -64,7 +64,7 @@ pub fn statistics_ui(ui: &mut Ui, model: &mut Model) {
         frame.width,
         frame.height
     ));
-    if let Some(capped) = model.capped {
+    if let Some(capped) = model.telemetry.capped {
         ui.label(capped.to_string());
     }
     ui.label(format!(
@@ -142,7 +142,7 @@ fn heat_map_ui(ui: &mut Ui, model: &mut Model) {
                     why.is_none(),
                     egui::Button::selectable(chosen, mode.label()),
                 );
-                model.widget_rects.insert(mode.widget_name(), item.rect);
+                model.widgets.rects.insert(mode.widget_name(), item.rect);
                 if let Some(why) = why {
                     item.on_disabled_hover_text(why);
                 } else if item.clicked() {
@@ -150,7 +150,7 @@ fn heat_map_ui(ui: &mut Ui, model: &mut Model) {
                 }
             }
         });
-    named(model, "heat_map", heat.response);
+    named(&mut model.widgets, "heat_map", heat.response);
     // Chosen under another method: say why the map is empty rather than show a blank view.
     if let Some(why) = model.settings.heat.unavailable(method) {
         ui.colored_label(
@@ -202,7 +202,7 @@ fn queries_ui(ui: &mut Ui, totals: &FrameStats) {
 }
 
 fn latency_ui(ui: &mut Ui, model: &Model) {
-    let latency = &model.latency;
+    let latency = &model.telemetry.latency;
     match (latency.last_ms(), latency.percentiles()) {
         (Some(last), Some((median, p95))) => {
             ui.label(format!(

@@ -3,9 +3,9 @@
 //! probes the hovered pixel; what is drawn over it is in `annotations`.
 
 use super::compose;
-use super::model::Model;
 use super::navigation;
 use super::probe::Probe;
+use super::state::Model;
 use crate::TraceOptions;
 use egui::{Align2, Id, Pos2, Rect, Sense, Ui, Vec2};
 use std::time::Duration;
@@ -23,7 +23,7 @@ pub fn view_ui(ui: &mut Ui, model: &mut Model) -> Rect {
     let dragging = response.dragged() || response.is_pointer_button_down_on();
     model.view_held = dragging;
     match response.hover_pos() {
-        Some(pos) if model.show_probe && !dragging && !model.drop_hover => {
+        Some(pos) if model.widgets.show_probe && !dragging && !model.drop_hover => {
             if rested(ui, model, pos) {
                 hover_probe(ui, model, rect, pos);
             } else {

@@ -1,51 +1,51 @@
 //! The Height map panel's water: on or off, its level in the map's height units (metres on a
 //! DEM), and its colour.
 
-use super::model::Model;
-use super::panels::named;
+use super::state::{Model, Widgets};
+use super::widgets::named;
 use crate::render::effects::Water;
 use crate::render::{
     bytes_from_hex, bytes_from_linear, level_in_map_units, level_z, linear_from_bytes,
     DEFAULT_WATER_COLOUR,
 };
+use crate::Terrain;
 use egui::{DragValue, Ui};
 
-/// The water checkbox, level and colour, editing the settings' water.
-pub fn water_ui(ui: &mut Ui, model: &mut Model) {
-    let terrain = model.shown.terrain.clone();
+/// The water checkbox, level and colour, editing the settings' water over `terrain`.
+pub fn water_ui(ui: &mut Ui, water: &mut Option<Water>, widgets: &mut Widgets, terrain: &Terrain) {
     let field = terrain.field();
     let (lo, hi) = terrain.z_range();
-    let mut on = model.settings.effects.water.is_some();
+    let mut on = water.is_some();
     let checkbox = ui.checkbox(&mut on, "water");
-    named(model, "water", checkbox);
+    named(widgets, "water", checkbox);
     if !on {
-        model.settings.effects.water = None;
+        *water = None;
         return;
     }
-    let mut water = model.settings.effects.water.unwrap_or_else(|| Water {
+    let mut shown = water.unwrap_or_else(|| Water {
         // A quarter of the way up the relief floods the valleys.
         level: lo + 0.25 * (hi - lo),
         colour: linear_from_bytes(bytes_from_hex(DEFAULT_WATER_COLOUR).unwrap_or_default()),
     });
-    let mut level = level_in_map_units(field, water.level);
+    let mut level = level_in_map_units(field, shown.level);
     let span = level_in_map_units(field, hi) - level_in_map_units(field, lo);
     // In the map's height unit, as scenes write the level (feet on a map in feet).
     let unit = field
         .georef()
         .map(|g| format!(" {}", g.height_unit.symbol()))
         .unwrap_or_default();
-    let mut bytes = bytes_from_linear(water.colour);
+    let mut bytes = bytes_from_linear(shown.colour);
     ui.horizontal(|ui| {
         let drag = DragValue::new(&mut level)
             .speed((span * 0.002).max(1e-3))
             .prefix("level ")
             .suffix(unit);
-        named(model, "water_level", ui.add(drag));
+        named(widgets, "water_level", ui.add(drag));
         ui.color_edit_button_srgb(&mut bytes);
     });
-    water.level = level_z(field, level);
-    water.colour = linear_from_bytes(bytes);
-    model.settings.effects.water = Some(water);
+    shown.level = level_z(field, level);
+    shown.colour = linear_from_bytes(bytes);
+    *water = Some(shown);
 }
 
 /// Keeps the water on the same contour of the map on screen after its relief was rescaled

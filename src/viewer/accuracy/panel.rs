@@ -2,9 +2,11 @@
 //! compare-with-exact switch with its count.
 
 use super::measure::{label, ns_per_ray, BOUNDS, PIXEL_BUDGETS};
+use super::AccuracyState;
 use super::{CompareState, MeasureState, Measurement};
 use crate::viewer::compose::HIGHLIGHT;
-use crate::viewer::model::{Action, Model};
+use crate::viewer::settings::Settings;
+use crate::viewer::state::{Action, Widgets};
 use crate::Arith;
 use egui::{Color32, RichText, Ui};
 
@@ -15,12 +17,20 @@ pub const DIFFERING: Color32 = Color32::from_rgb(
     HIGHLIGHT as u8,
 );
 
-pub fn accuracy_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
+/// The measurement and the comparison with exact, for the view `settings` render; the
+/// measurement asked for or cancelled, if the button was pressed.
+pub fn accuracy_ui(
+    ui: &mut Ui,
+    state: &mut AccuracyState,
+    settings: &Settings,
+    widgets: &mut Widgets,
+) -> Option<Action> {
     ui.separator();
     ui.strong("What accuracy costs in this view");
-    measure_ui(ui, model, actions);
+    let action = measure_ui(ui, state, settings, widgets);
     ui.separator();
-    compare_ui(ui, model);
+    compare_ui(ui, state, widgets);
+    action
 }
 
 /// A warning or note on what the arithmetic on screen costs, and whether it is a warning:
@@ -54,8 +64,13 @@ pub fn speed_note(arith: Arith, measurement: Option<&Measurement>) -> Option<(St
     }
 }
 
-fn measure_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
-    let state = &mut model.accuracy;
+fn measure_ui(
+    ui: &mut Ui,
+    state: &mut AccuracyState,
+    settings: &Settings,
+    widgets: &mut Widgets,
+) -> Option<Action> {
+    let mut action = None;
     let busy = matches!(
         state.measure,
         MeasureState::Running { .. } | MeasureState::Waiting
@@ -67,11 +82,10 @@ fn measure_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
             "Measure all arithmetics"
         };
         let button = ui.button(text);
-        model.widget_rects.insert("measure_button", button.rect);
+        widgets.rects.insert("measure_button", button.rect);
         if button.clicked() {
-            actions.push(Action::MeasureArithmetics);
+            action = Some(Action::MeasureArithmetics);
         }
-        let state = &mut model.accuracy;
         ui.add_enabled_ui(!busy, |ui| {
             egui::ComboBox::from_id_salt("measure size")
                 .selected_text(format!("{} px", state.budget))
@@ -82,8 +96,7 @@ fn measure_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
                 });
         });
     });
-    let state = &model.accuracy;
-    let shadows = if model.settings.shadows {
+    let shadows = if settings.shadows {
         "its shadow ray included"
     } else {
         "shadows are off"
@@ -132,9 +145,10 @@ fn measure_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         MeasureState::Idle | MeasureState::Done { .. } => {}
     }
     if let Some(measurement) = state.measure.measurement() {
-        table_ui(ui, measurement, model.settings.arith());
+        table_ui(ui, measurement, settings.arith());
         super::plot::plot_ui(ui, measurement);
     }
+    action
 }
 
 /// Arithmetic, time per ray, ratio to f64, pixels differing from exact.
@@ -172,20 +186,19 @@ fn table_ui(ui: &mut Ui, measurement: &Measurement, on_screen: Arith) {
         });
 }
 
-fn compare_ui(ui: &mut Ui, model: &mut Model) {
-    let state = &mut model.accuracy;
+fn compare_ui(ui: &mut Ui, state: &mut AccuracyState, widgets: &mut Widgets) {
     let toggle = ui.checkbox(&mut state.compare_on, "Compare with exact");
-    model.widget_rects.insert("compare_toggle", toggle.rect);
+    widgets.rects.insert("compare_toggle", toggle.rect);
     // Both states take the same height, so ticking or unticking never moves what is below
     // or makes a scrolled panel jump.
     ui.vertical(|ui| {
         ui.set_min_height(64.0);
-        compare_status_ui(ui, &model.accuracy);
+        compare_status_ui(ui, state);
     });
 }
 
 /// What the switch does when off; how far the comparison is when on.
-fn compare_status_ui(ui: &mut Ui, state: &super::AccuracyState) {
+fn compare_status_ui(ui: &mut Ui, state: &AccuracyState) {
     if !state.compare_on {
         ui.weak(
             "renders the frame on screen again in exact arithmetic and marks the pixels that \

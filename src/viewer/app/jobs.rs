@@ -28,7 +28,7 @@ impl App {
             lighting: model.settings.lighting(),
             method: model.settings.method,
             arith: model.settings.arith(),
-            contours: model.contours.lines(model.shown.terrain.field()),
+            contours: model.widgets.contours.lines(model.shown.terrain.field()),
             view_id: self.quality.view_id(),
         })
     }

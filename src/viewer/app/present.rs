@@ -1,26 +1,59 @@
 //! Drawing a frame into the window (terrain first, egui over it), the window grab that
 //! `--exit-after-frames` saves, the latency and frame counts after each present, and the keys.
+//! The window's parts come in as arguments: this file knows nothing of the application.
 
-use super::{App, BACKGROUND};
 use crate::viewer::compose::{self, Canvas, HeatScale, PixelRect};
-use crate::viewer::hooks;
-use crate::viewer::model::{Action, Model};
+use crate::viewer::hooks::{self, Counts, Hooks};
 use crate::viewer::navigation;
 use crate::viewer::settings::HeatMode;
-use egui_software_backend::BufferMutRef;
+use crate::viewer::state::{Action, Model};
+use crate::viewer::worker::RenderWorker;
+use egui_software_backend::{BufferMutRef, ColorFieldOrder, EguiSoftwareRender};
+use std::collections::VecDeque;
 use std::num::NonZeroU32;
-use winit::event_loop::ActiveEventLoop;
+use std::path::Path;
+use std::rc::Rc;
+use std::time::Instant;
+use winit::window::Window;
 
-impl App {
-    /// Draws the terrain, then egui over it, and shows the result.
-    pub(super) fn present(
+/// Behind the view where nothing is rendered yet.
+const BACKGROUND: u32 = 0x0020_2226;
+
+/// What a frame is drawn into: the window's pixels, and egui's renderer for them.
+pub struct Screen {
+    surface: softbuffer::Surface<Rc<Window>, Rc<Window>>,
+    egui_ctx: egui::Context,
+    egui_renderer: EguiSoftwareRender,
+}
+
+impl Screen {
+    /// The window's pixels, drawn with `egui_ctx`'s shapes.
+    pub fn new(window: &Rc<Window>, egui_ctx: egui::Context) -> anyhow::Result<Screen> {
+        let context = softbuffer::Context::new(window.clone())
+            .map_err(|e| anyhow::anyhow!("cannot draw into the window: {e}"))?;
+        let surface = softbuffer::Surface::new(&context, window.clone())
+            .map_err(|e| anyhow::anyhow!("cannot draw into the window: {e}"))?;
+        Ok(Screen {
+            surface,
+            egui_ctx,
+            // Drawn straight into the window's buffer: the cache keeps a canvas the size of the
+            // window (256 MB at 8000x8000), and the panel redraws as fast without it.
+            egui_renderer: EguiSoftwareRender::new(ColorFieldOrder::Bgra).with_caching(false),
+        })
+    }
+
+    /// Draws the terrain, then egui over it, and shows the result; saves the window's pixels
+    /// to `grab` first, if given, and counts it saved.
+    pub fn present(
         &mut self,
         (width, height): (NonZeroU32, NonZeroU32),
         view: PixelRect,
         output: egui::FullOutput,
+        model: &Model,
+        grab: Option<&Path>,
+        counts: &mut Counts,
     ) -> Result<(), String> {
         let fail = |e: softbuffer::SoftBufferError| format!("cannot draw the window: {e}");
-        let exiting = self.exiting_now();
         self.surface.resize(width, height).map_err(fail)?;
         let mut buffer = self.surface.buffer_mut().map_err(fail)?;
         buffer.fill(BACKGROUND);
@@ -29,16 +62,15 @@ impl App {
             width: width.get(),
             height: height.get(),
         };
-        if let Some(latest) = &self.model.latest {
-            let heat = match (self.model.settings.heat, self.model.heat_scale) {
+        if let Some(latest) = &model.latest {
+            let heat = match (model.settings.heat, model.telemetry.heat_scale) {
                 (HeatMode::Off, _) => None,
                 (_, Some((_, _, scale))) => Some(scale),
                 (mode, None) => Some(HeatScale::of(&latest.frame, mode)),
             };
             let look = compose::Look {
                 heat,
-                differs: self
-                    .model
+                differs: model
                     .accuracy
                     .comparison_shown()
                     .map(|c| c.differs.as_slice()),
@@ -54,31 +86,48 @@ impl App {
         );
         self.egui_renderer
             .render(&mut target, &primitives, &output.textures_delta, ppp);
-        let size = (width.get(), height.get());
-        if let (true, Some(path)) = (exiting, &self.hooks.screenshot) {
-            hooks::save_png(&buffer, size.0, size.1, path)?;
-            self.counts.last_screenshot = Some(path.clone());
+        if let Some(path) = grab {
+            hooks::save_png(&buffer, width.get(), height.get(), path)?;
+            counts.last_screenshot = Some(path.to_path_buf());
         }
         buffer.present().map_err(fail)
     }
+}
 
+/// The frames presented: the report's counts, and the inputs whose effect is not on screen
+/// yet.
+#[derive(Default)]
+pub struct Presented {
+    pub counts: Counts,
+    /// Jobs submitted for input whose effect is not on screen yet: generation, input time.
+    pub unreflected: VecDeque<(u64, Instant)>,
+    /// The generation of the last converged frame counted.
+    pub converged_counted: u64,
+}
+
+impl Presented {
     /// Whether this redraw presents the last converged frame `--exit-after-frames` asks for.
-    fn exiting_now(&self) -> bool {
-        let Some((limit, latest)) = self.hooks.exit_after_frames.zip(self.model.latest.as_ref())
-        else {
+    pub fn exiting_now(&self, hooks: &Hooks, model: &Model) -> bool {
+        let Some((limit, latest)) = hooks.exit_after_frames.zip(model.latest.as_ref()) else {
             return false;
         };
         let new_converged = latest.frame.complete() && latest.generation != self.converged_counted;
         self.counts.converged_frames + u64::from(new_converged) >= limit
     }
 
-    /// Counts the frame, measures input latency, writes the report, and quits if asked to.
-    pub(super) fn after_present(&mut self, event_loop: &ActiveEventLoop) {
-        let exiting = self.exiting_now();
+    /// Counts the frame, measures input latency and writes the report. Returns whether to
+    /// quit, as `--exit-after-frames` asks.
+    pub fn after_present(
+        &mut self,
+        hooks: &Hooks,
+        model: &mut Model,
+        worker: &RenderWorker,
+    ) -> bool {
+        let exiting = self.exiting_now(hooks, model);
         self.counts.frames_presented += 1;
-        self.counts.busy = self.worker.busy();
-        if let Some(latest) = self.model.latest.clone() {
-            self.worker.presented(latest.generation);
+        self.counts.busy = worker.busy();
+        if let Some(latest) = model.latest.clone() {
+            worker.presented(latest.generation);
             // This frame shows the inputs of its own job and of every earlier one.
             let mut reflected = None;
             while let Some(&(generation, at)) = self.unreflected.front() {
@@ -89,26 +138,24 @@ impl App {
                 self.unreflected.pop_front();
             }
             if let Some(at) = reflected {
-                self.model.latency.record(at.elapsed());
+                model.telemetry.latency.record(at.elapsed());
             }
             if latest.frame.complete() && latest.generation != self.converged_counted {
                 self.converged_counted = latest.generation;
                 self.counts.converged_frames += 1;
             }
         }
-        if let Some(path) = &self.hooks.report_state {
-            if let Err(message) = hooks::write_report(path, &self.model, &self.counts) {
+        if let Some(path) = &hooks.report_state {
+            if let Err(message) = hooks::write_report(path, model, &self.counts) {
                 eprintln!("heightray: {message}");
             }
         }
-        if exiting {
-            event_loop.exit();
-        }
+        exiting
     }
 }
 
 /// The navigation keys, S, K, H and F1, unless a text field has the keyboard.
-pub(super) fn keys_ui(ui: &egui::Ui, model: &mut Model, actions: &mut Vec<Action>) {
+pub fn keys_ui(ui: &egui::Ui, model: &mut Model, actions: &mut Vec<Action>) {
     if ui.ctx().egui_wants_keyboard_input() {
         return;
     }
@@ -140,9 +187,9 @@ pub(super) fn keys_ui(ui: &egui::Ui, model: &mut Model, actions: &mut Vec<Action
         model.flythrough.add(orbit);
     }
     if pressed(egui::Key::H) {
-        model.panels_visible = !model.panels_visible;
+        model.widgets.panels_visible = !model.widgets.panels_visible;
     }
     if pressed(egui::Key::F1) {
-        model.help_open = !model.help_open;
+        model.widgets.help_open = !model.widgets.help_open;
     }
 }

@@ -1,25 +1,39 @@
 //! The viewer's state that the panels and the 3D view read and edit, and the actions they ask
-//! the application to carry out.
+//! the application to carry out. Nothing here draws: the panels import these types, never the
+//! other way round.
+
+mod camera;
+mod exports;
+mod flythrough;
+mod loads;
+mod sun;
+mod telemetry;
+mod widgets;
+
+pub use camera::{Framed, Home};
+pub use exports::{Exported, Exports, Rendering};
+pub use flythrough::{Flythrough, Playing};
+pub use loads::{
+    Decoding, LoadEvent, LoadRequest, Loaded, OverlayChange, Progress, SceneClock, SceneSetup,
+    Source, Stage,
+};
+pub use sun::{clock_text, default_local, SunClock};
+pub use telemetry::{Capped, Notice, Telemetry, MOST_VIEW_PIXELS};
+pub use widgets::{ContourControls, DropLoads, OverlayControls, Widgets};
 
 use super::accuracy::AccuracyState;
-use super::compose::HeatScale;
-use super::contours_ui::ContourControls;
-use super::decoding::Decoding;
-use super::export::Exports;
-use super::loader::{LoadRequest, Progress, Source};
-use super::navigation::{Framed, Home};
 use super::orbit::Orbit;
-use super::overlay_ui::OverlayControls;
 use super::probe::Probe;
-use super::quality::Capped;
 use super::settings::Settings;
-use super::sun_clock::SunClock;
 use super::worker::RenderedFrame;
 use crate::Terrain;
-use std::collections::{BTreeMap, VecDeque};
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
+
+/// How a notice of the sun below the horizon ends, so that sunrise can clear it.
+const NIGHT: &str = ": night";
 
 /// The terrain on screen.
 pub struct Shown {
@@ -46,55 +60,6 @@ pub enum Action {
     MeasureArithmetics,
 }
 
-/// Times from an input to the first frame on screen that shows its effect.
-#[derive(Clone, Debug, Default)]
-pub struct Latency {
-    recent: VecDeque<f64>,
-    pub count: u64,
-    pub max_ms: f64,
-}
-
-impl Latency {
-    const KEEP: usize = 240;
-
-    pub fn record(&mut self, latency: Duration) {
-        let ms = latency.as_secs_f64() * 1e3;
-        if self.recent.len() == Self::KEEP {
-            self.recent.pop_front();
-        }
-        self.recent.push_back(ms);
-        self.count += 1;
-        self.max_ms = self.max_ms.max(ms);
-    }
-
-    /// The recent samples, oldest first.
-    pub fn recent(&self) -> impl Iterator<Item = f64> + '_ {
-        self.recent.iter().copied()
-    }
-
-    pub fn last_ms(&self) -> Option<f64> {
-        self.recent.back().copied()
-    }
-
-    /// Median and 95th percentile of the recent samples.
-    pub fn percentiles(&self) -> Option<(f64, f64)> {
-        let mut sorted: Vec<f64> = self.recent.iter().copied().collect();
-        if sorted.is_empty() {
-            return None;
-        }
-        sorted.sort_by(f64::total_cmp);
-        let at = |q: f64| sorted[((sorted.len() - 1) as f64 * q).round() as usize];
-        Some((at(0.5), at(0.95)))
-    }
-}
-
-/// A short message shown over the view.
-#[derive(Clone, Debug)]
-pub struct Notice {
-    pub text: String,
-    pub at: Instant,
-}
-
 /// Everything the UI shows and edits.
 pub struct Model {
     pub shown: Shown,
@@ -108,57 +73,33 @@ pub struct Model {
     /// Where and how large images are exported.
     pub export: Exports,
     /// The flythrough's keys, and its preview.
-    pub flythrough: super::flythrough::Flythrough,
+    pub flythrough: Flythrough,
     pub settings: Settings,
     /// The Light panel's date and time.
     pub sun_clock: SunClock,
-    /// The z scale field of the heightmap panel (applied when editing ends).
-    pub z_scale: f64,
-    /// The path field of the heightmap panel.
-    pub path_text: String,
-    /// The terrain the path field was last filled in for (it shows what is loaded).
-    pub path_source: Option<Source>,
-    /// How images opened or dropped from now on are decoded.
-    pub decoding: Decoding,
-    /// The overlay path, opacity and what a drop loads.
-    pub overlay: OverlayControls,
-    /// Contour lines on the map.
-    pub contours: ContourControls,
+    /// The panels' fields and toggles.
+    pub widgets: Widgets,
+    /// Latencies, load progress and the render size, as the panels report them.
+    pub telemetry: Telemetry,
     /// Files dropped onto the window and not yet loaded (a drop delivers them one by one).
     pub dropped: Vec<PathBuf>,
-    pub panels_visible: bool,
-    /// The panel was hidden because the window became too narrow for it.
-    pub panel_auto_hidden: bool,
     /// The window is too narrow for the panel beside the view.
     pub narrow_window: bool,
-    /// Show the ray of the pixel under a resting pointer.
-    pub show_probe: bool,
     /// Where the pointer came to rest over the view, and when (the probe waits for it).
     pub pointer_rest: Option<(egui::Pos2, Instant)>,
-    pub help_open: bool,
     /// A file is being dragged over the window.
     pub drop_hover: bool,
     /// Why the last file could not be used (stays until dismissed or a load succeeds).
     pub error: Option<String>,
     pub notice: Option<Notice>,
-    pub progress: Option<Progress>,
     pub latest: Option<Arc<RenderedFrame>>,
     pub probe: Option<Probe>,
-    /// The heat map scale of the frame on screen, with the frame's generation and passes.
-    pub heat_scale: Option<(u64, usize, HeatScale)>,
-    pub latency: Latency,
-    /// Time the window thread spent on each redraw (UI, compositing, presenting).
-    pub redraw: Latency,
     /// Window scale factor and the physical size of the window.
     pub scale_factor: f32,
     pub pixels_per_point: f32,
     pub window_size: (u32, u32),
-    /// Set while the view renders at fewer pixels than it shows.
-    pub capped: Option<Capped>,
     /// A mouse button is held on the 3D view (a drag in progress).
     pub view_held: bool,
-    /// Where named widgets were drawn last frame, in points (for scripted tests).
-    pub widget_rects: BTreeMap<&'static str, egui::Rect>,
     /// Measuring every arithmetic, and comparing with exact.
     pub accuracy: AccuracyState,
 }
@@ -166,14 +107,14 @@ pub struct Model {
 impl Model {
     /// Shows a scene file's camera as written (R returns to it), with its light, method and
     /// arithmetic.
-    pub fn adopt_scene(&mut self, scene: &super::loader::SceneSetup) {
+    pub fn adopt_scene(&mut self, scene: &SceneSetup) {
         self.orbit = scene.orbit;
         self.home = Home::Scene(scene.orbit);
         self.framed = None;
         self.settings
             .adopt_scene(&scene.lighting, scene.method, scene.arith);
         self.export.adopt(&scene.annotations);
-        self.contours.adopt(scene.contours);
+        self.widgets.contours.adopt(scene.contours);
         self.sun_clock.on = false;
         if let Some(flythrough) = &scene.flythrough {
             self.flythrough = flythrough.clone();
@@ -181,7 +122,7 @@ impl Model {
         if let Some(clock) = scene.clock {
             self.sun_clock.set(clock);
             // Placed again by the clock, as the scene was: the same sun to the last bit.
-            super::sun_clock::apply_clock(self);
+            self.apply_clock();
         }
     }
 
@@ -190,8 +131,19 @@ impl Model {
     pub fn new(shown: Shown, settings: Settings) -> Model {
         let orbit = Orbit::framing(&shown.terrain);
         Model {
-            z_scale: shown.terrain.field().z_scale(),
-            decoding: shown.decoding,
+            widgets: Widgets {
+                z_scale: shown.terrain.field().z_scale(),
+                decoding: shown.decoding,
+                path_text: String::new(),
+                path_source: None,
+                overlay: OverlayControls::default(),
+                contours: ContourControls::default(),
+                panels_visible: true,
+                panel_auto_hidden: false,
+                show_probe: false,
+                help_open: false,
+                rects: BTreeMap::new(),
+            },
             shown,
             orbit,
             home: Home::WholeMap,
@@ -204,36 +156,47 @@ impl Model {
             }),
             view_aspect: 16.0 / 9.0,
             export: Exports::default(),
-            flythrough: Default::default(),
+            flythrough: Flythrough::default(),
             settings,
             sun_clock: SunClock::default(),
-            path_text: String::new(),
-            path_source: None,
-            overlay: OverlayControls::default(),
-            contours: ContourControls::default(),
+            telemetry: Telemetry::default(),
             dropped: Vec::new(),
-            panels_visible: true,
-            panel_auto_hidden: false,
             narrow_window: false,
-            show_probe: false,
             pointer_rest: None,
-            help_open: false,
             drop_hover: false,
             error: None,
             notice: None,
-            progress: None,
             latest: None,
             probe: None,
-            heat_scale: None,
-            latency: Latency::default(),
-            redraw: Latency::default(),
             scale_factor: 1.0,
             pixels_per_point: 1.0,
             window_size: (0, 0),
-            capped: None,
             view_held: false,
-            widget_rects: BTreeMap::new(),
             accuracy: AccuracyState::default(),
+        }
+    }
+
+    /// Places the sun at the clock's date and time, or says why it cannot.
+    pub fn apply_clock(&mut self) {
+        let place = self.sun_clock.place(self.shown.terrain.field());
+        match self.sun_clock.sun_at(place) {
+            Ok(sun) => {
+                self.settings.sun_azimuth_deg = sun.azimuth_deg;
+                self.settings.sun_elevation_deg = sun.elevation_deg;
+                let night = self
+                    .notice
+                    .as_ref()
+                    .is_some_and(|n| n.text.ends_with(NIGHT));
+                if !sun.is_up() {
+                    self.notify(format!(
+                        "The sun is {:.1}° below the horizon{NIGHT}",
+                        -sun.elevation_deg
+                    ));
+                } else if night {
+                    self.notice = None;
+                }
+            }
+            Err(message) => self.error = Some(message),
         }
     }
 
@@ -243,23 +206,5 @@ impl Model {
             text: text.into(),
             at: Instant::now(),
         });
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn latency_percentiles_of_recent_samples() {
-        let mut latency = Latency::default();
-        assert_eq!(latency.percentiles(), None);
-        for ms in 1..=100 {
-            latency.record(Duration::from_millis(ms));
-        }
-        let (median, p95) = latency.percentiles().expect("samples");
-        assert!((median - 50.0).abs() <= 1.0 && (p95 - 95.0).abs() <= 1.0);
-        assert_eq!(latency.max_ms, 100.0);
-        assert_eq!(latency.last_ms(), Some(100.0));
     }
 }
