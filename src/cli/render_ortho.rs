@@ -283,8 +283,12 @@ fn sun_path(args: &RenderArgs, field: &heightray::Heightfield) -> anyhow::Result
         );
     };
     let zone = local_time::zone_at(latitude, longitude).unwrap_or(chrono_tz::UTC);
-    SunPath::over_day(date, (latitude, longitude), zone, args.ortho.sun_step)
-        .map_err(anyhow::Error::msg)
+    Ok(SunPath::over_day(
+        date,
+        (latitude, longitude),
+        zone,
+        args.ortho.sun_step,
+    )?)
 }
 
 /// The least and greatest value that is not NaN.

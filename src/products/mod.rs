@@ -26,7 +26,7 @@ pub use grid::{GeoTransform, OrthoGrid};
 pub use horizon::Horizon;
 pub use shaded::Rgba16;
 pub use sky_view::SkyView;
-pub use sunlight::{SunPath, Sunlight};
+pub use sunlight::{SunPath, SunPathError, Sunlight};
 
 use crate::render::Shader;
 use crate::Arith;

@@ -32,6 +32,26 @@ pub struct SunPath {
     pub zone: Tz,
 }
 
+/// Why a day's sun path cannot be made.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SunPathError {
+    /// A step that does not divide an hour.
+    #[error(
+        "the sun's step must divide an hour (1, 2, 3, 4, 5, 6, 10, 12, 15, 20, 30 or 60 \
+         minutes), got {0}"
+    )]
+    Step(u32),
+    /// The last date the calendar knows has no next day.
+    #[error("the date is the last one known")]
+    LastDate,
+    /// A midnight the zone's clocks skip.
+    #[error(transparent)]
+    Time(#[from] crate::render::local_time::TimeError),
+    /// The sun's position at a step.
+    #[error(transparent)]
+    Sun(#[from] crate::render::sun_position::SunError),
+}
+
 impl SunPath {
     /// The sun seen from `latitude`, `longitude` (degrees) at the middle of each step of
     /// `step_minutes` (a divisor of 60) of `date`, from midnight to midnight in `zone`.
@@ -40,16 +60,13 @@ impl SunPath {
         (latitude, longitude): (f64, f64),
         zone: Tz,
         step_minutes: u32,
-    ) -> Result<SunPath, String> {
+    ) -> Result<SunPath, SunPathError> {
         if step_minutes == 0 || 60 % step_minutes != 0 {
-            return Err(format!(
-                "the sun's step must divide an hour (1, 2, 3, 4, 5, 6, 10, 12, 15, 20, 30 or 60 \
-                 minutes), got {step_minutes}"
-            ));
+            return Err(SunPathError::Step(step_minutes));
         }
         let midnight =
             |day: NaiveDate| local_time::utc_of_local(day.and_time(NaiveTime::MIN), zone);
-        let next_day = date.succ_opt().ok_or("the date is the last one known")?;
+        let next_day = date.succ_opt().ok_or(SunPathError::LastDate)?;
         let (start, end) = (midnight(date)?, midnight(next_day)?);
         let step = Duration::minutes(i64::from(step_minutes));
         let steps = ((end - start).num_minutes() / i64::from(step_minutes)) as usize;

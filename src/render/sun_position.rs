@@ -5,6 +5,35 @@
 use crate::compact::Compact;
 use chrono::{DateTime, Utc};
 use solar_positioning::{delta_t, Location, RefractionCorrection, SolarPositions};
+use thiserror::Error;
+
+/// Why the sun's position cannot be found.
+#[derive(Clone, Debug, PartialEq, Error)]
+pub enum SunError {
+    /// Not an RFC 3339 time.
+    #[error("'{time}' is not a time such as 2026-12-21T08:00:00Z ({reason})")]
+    Time {
+        /// The text given.
+        time: String,
+        /// What the parser said.
+        reason: String,
+    },
+    /// A latitude or longitude out of range.
+    #[error(
+        "latitude must be from -90 to 90 and longitude from -180 to 180 degrees, got {} and {}",
+        Compact(*latitude),
+        Compact(*longitude)
+    )]
+    Place {
+        /// Degrees north.
+        latitude: f64,
+        /// Degrees east.
+        longitude: f64,
+    },
+    /// The solar position crate refused the instant.
+    #[error("{0}")]
+    Solar(String),
+}
 
 /// Where the sun stands in the sky.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -18,10 +47,13 @@ pub struct SunPosition {
 impl SunPosition {
     /// The sun at `time` (RFC 3339, e.g. `2026-12-21T08:00:00Z`) seen from `latitude` and
     /// `longitude` in degrees, or why it cannot be found.
-    pub fn at(time: &str, latitude: f64, longitude: f64) -> Result<SunPosition, String> {
+    pub fn at(time: &str, latitude: f64, longitude: f64) -> Result<SunPosition, SunError> {
         let time: DateTime<Utc> = time
             .parse()
-            .map_err(|e| format!("'{time}' is not a time such as 2026-12-21T08:00:00Z ({e})"))?;
+            .map_err(|e: chrono::ParseError| SunError::Time {
+                time: time.to_owned(),
+                reason: e.to_string(),
+            })?;
         SunPosition::at_utc(time, latitude, longitude)
     }
 
@@ -30,17 +62,16 @@ impl SunPosition {
         time: DateTime<Utc>,
         latitude: f64,
         longitude: f64,
-    ) -> Result<SunPosition, String> {
+    ) -> Result<SunPosition, SunError> {
         // Checked here, not by the solar position crate, whose message writes every digit.
         if !((-90.0..=90.0).contains(&latitude) && (-180.0..=180.0).contains(&longitude)) {
-            return Err(format!(
-                "latitude must be from -90 to 90 and longitude from -180 to 180 degrees, got \
-                 {} and {}",
-                Compact(latitude),
-                Compact(longitude)
-            ));
+            return Err(SunError::Place {
+                latitude,
+                longitude,
+            });
         }
-        let delta_t = delta_t::estimate_from_date_like(&time).map_err(|e| e.to_string())?;
+        let solar = |e: solar_positioning::Error| SunError::Solar(e.to_string());
+        let delta_t = delta_t::estimate_from_date_like(&time).map_err(solar)?;
         let location = Location {
             latitude,
             longitude,
@@ -53,7 +84,7 @@ impl SunPosition {
                 delta_t,
                 Some(RefractionCorrection::standard()),
             )
-            .map_err(|e| e.to_string())?;
+            .map_err(solar)?;
         Ok(SunPosition {
             azimuth_deg: position.azimuth(),
             elevation_deg: position.elevation_angle(),
@@ -119,6 +150,7 @@ mod tests {
         // At the solstice the noon sun stands 90 - 59.91 - 23.44 = 6.65 degrees up.
         assert!((noon.elevation_deg - 6.65).abs() < 0.2, "{noon:?}");
         let error = SunPosition::at("21/12/2026 8:00", 59.91, 10.75).unwrap_err();
-        assert!(error.contains("is not a time"), "{error}");
+        assert!(matches!(error, SunError::Time { .. }), "{error}");
+        assert!(error.to_string().contains("is not a time"), "{error}");
     }
 }

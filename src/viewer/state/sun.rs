@@ -60,7 +60,7 @@ impl SunClock {
         if self.zone_text.trim().is_empty() {
             Ok(local_time::zone_at(latitude, longitude).unwrap_or(Tz::UTC))
         } else {
-            local_time::zone_named(&self.zone_text)
+            local_time::zone_named(&self.zone_text).map_err(|e| e.to_string())
         }
     }
 
@@ -85,9 +85,9 @@ impl SunClock {
     pub fn sun_at(&mut self, place: (f64, f64)) -> Result<SunPosition, String> {
         let local = self.typed()?;
         let zone = self.zone(place)?;
-        let instant = local_time::utc_of_local(local, zone)?;
+        let instant = local_time::utc_of_local(local, zone).map_err(|e| e.to_string())?;
         self.local = local;
-        SunPosition::at_utc(instant, place.0, place.1)
+        SunPosition::at_utc(instant, place.0, place.1).map_err(|e| e.to_string())
     }
 
     /// Takes a scene's local time, zone and place, and sets the sun by them.
