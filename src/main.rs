@@ -7,6 +7,9 @@ use std::process::ExitCode;
 
 fn main() -> ExitCode {
     let args = cli::Args::parse();
+    if let Some(bytes) = args.memory {
+        heightray::heightfield::store::residency::set_budget(bytes);
+    }
     // Without a subcommand: the viewer.
     let command = args.command.unwrap_or(cli::Command::View(args.view));
     match cli::run(command) {

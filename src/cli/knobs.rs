@@ -24,6 +24,32 @@ fn in_range(s: &str, range: RangeInclusive<usize>, what: &str) -> Result<usize, 
         })
 }
 
+/// A size in bytes: a number, with K, M, G or T (powers of 1024) after it if wanted.
+pub fn bytes(s: &str) -> Result<u64, String> {
+    let s = s.trim();
+    let (number, unit) = s.split_at(s.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(s.len()));
+    let scale: u64 = match unit.to_ascii_uppercase().trim_end_matches(['B', 'I']) {
+        "" => 1,
+        "K" => 1 << 10,
+        "M" => 1 << 20,
+        "G" => 1 << 30,
+        "T" => 1 << 40,
+        _ => {
+            return Err(format!(
+                "'{s}' is not a size: give bytes, or a number with K, M, G or T"
+            ))
+        }
+    };
+    number
+        .trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|n| n.is_finite() && *n > 0.0)
+        .map(|n| (n * scale as f64) as u64)
+        .filter(|&b| b > 0)
+        .ok_or_else(|| format!("'{s}' is not a size: give a number above 0, e.g. 4G or 512M"))
+}
+
 /// A thread count, 1 to [`MOST_THREADS`].
 pub fn threads(s: &str) -> Result<usize, String> {
     in_range(s, 1..=MOST_THREADS, "a number of threads")

@@ -10,6 +10,7 @@ mod knobs;
 mod loading;
 mod merge;
 mod ortho_args;
+mod prepare;
 mod render;
 mod render_frames;
 mod render_ortho;
@@ -43,6 +44,10 @@ use std::process::ExitCode;
 pub struct Args {
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// Memory the pages of an open tile store (.hrt) may hold, e.g. 4G or 512M (default: half
+    /// the machine's memory).
+    #[arg(long, global = true, value_parser = knobs::bytes, value_name = "BYTES")]
+    pub memory: Option<u64>,
     #[command(flatten)]
     pub view: ViewArgs,
 }
@@ -69,6 +74,9 @@ pub enum Command {
     /// Hand frames or tiles to a cluster's scheduler as a job array.
     #[command(subcommand)]
     Submit(SubmitCommand),
+    /// Prepare a tile store (.hrt) once from a map larger than memory or a mosaic of tiles;
+    /// `view` and `render` then open it directly, reading only what the rays touch.
+    Prepare(prepare::PrepareArgs),
 }
 
 #[derive(clap::Args, Debug)]
@@ -382,6 +390,7 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Render(args) => render::run(&args),
         Command::Generate(args) => generate::run(&args),
         Command::Merge(args) => merge::run(&args),
+        Command::Prepare(args) => prepare::run(&args),
         Command::Video(args) => video::run(&args),
         Command::Submit(SubmitCommand::Slurm(args)) => submit::run(&args),
         Command::Bench(BenchCommand::Speed(args)) => bench::speed(&args),

@@ -25,7 +25,7 @@ pub enum CrsError {
 }
 
 /// A coordinate reference system known by its EPSG code.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Crs {
     /// The EPSG code, e.g. 3857 for Web Mercator, 32617 for UTM zone 17 N.
     pub epsg: u16,

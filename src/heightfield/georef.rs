@@ -7,6 +7,7 @@
 //! geographic grid's degree of longitude spans `cos(latitude)` of a degree of latitude.
 
 use super::crs::Crs;
+use serde::{Deserialize, Serialize};
 
 /// Metres in an international foot (EPSG 9002).
 pub const METRES_PER_FOOT: f64 = 0.3048;
@@ -21,7 +22,7 @@ pub const FINEST_CELL_METRES: f64 = 1e-6;
 pub const COARSEST_CELL_METRES: f64 = 1e7;
 
 /// The units of a map's coordinates.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum MapUnits {
     /// A projected CRS whose unit is this many metres (1 for metres, 0.3048 for feet).
     Linear {
@@ -43,7 +44,7 @@ impl std::fmt::Display for MapUnits {
 }
 
 /// The map coordinates of a height field's samples.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Georef {
     /// Map coordinates of sample `(0, 0)`, the south-west sample.
     pub origin: [f64; 2],
@@ -58,7 +59,7 @@ pub struct Georef {
 }
 
 /// The unit of a map's heights, in metres, and who said so.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct HeightUnit {
     /// Metres in one unit of height.
     pub metres: f64,
@@ -67,7 +68,7 @@ pub struct HeightUnit {
 }
 
 /// Where a map's height unit comes from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum HeightUnitSource {
     /// The file's vertical unit (GeoTIFF's VerticalUnitsGeoKey).
     VerticalKey,

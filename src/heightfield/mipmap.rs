@@ -6,7 +6,7 @@
 //! 5/6 of a byte per sample.
 
 use super::fetch::Window;
-use super::Heightfield;
+use super::{Heightfield, Values};
 
 /// The first level whose lowest samples are stored.
 const LOWEST_FROM: u32 = 2;
@@ -26,10 +26,36 @@ pub struct Mipmap {
 #[derive(Clone, Debug)]
 struct Levels<const FIRST: u32> {
     /// Every level's blocks, the finest first, each by `bj * nx + bi`.
-    values: Vec<u16>,
+    values: Values<u16>,
     /// Per level `k` (index `k - FIRST`): where its blocks start in `values`, and blocks
     /// along x.
     starts: Vec<(usize, usize)>,
+}
+
+/// Where the levels of a mipmap lie in its values: per level of each stack, where its blocks
+/// start and how many lie along x.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(super) struct Layout {
+    /// The coarsest level.
+    pub top: u32,
+    /// The highest samples' levels, from 1.
+    pub max: Vec<(usize, usize)>,
+    /// Values of the highest samples, all levels.
+    pub max_len: usize,
+    /// The lowest samples' levels, from [`LOWEST_FROM`].
+    pub min: Vec<(usize, usize)>,
+    /// Values of the lowest samples, all levels.
+    pub min_len: usize,
+}
+
+/// The level whose one block covers a `w x h` grid (level 2 at least, for the lowest samples:
+/// a grid of one or two cells has its one block twice).
+fn top_level(w: usize, h: usize) -> u32 {
+    let cells = (w - 1).max(h - 1);
+    (1..)
+        .find(|&k| cells <= 1 << k)
+        .unwrap_or(1)
+        .max(LOWEST_FROM)
 }
 
 /// One level while it is built: `nx` blocks along x, by `bj * nx + bi`.
@@ -43,16 +69,57 @@ impl Mipmap {
     /// Builds every level up to the one whose single block covers the grid (level 2 at
     /// least, for the lowest samples: a grid of one or two cells has its one block twice).
     pub fn build(field: &Heightfield) -> Self {
-        let cells = (field.width() - 1).max(field.height() - 1);
-        let top = (1..)
-            .find(|&k| cells <= 1 << k)
-            .unwrap_or(1)
-            .max(LOWEST_FROM);
+        let top = top_level(field.width(), field.height());
         let (highest, lowest) = first_level(field);
         let lowest = halve(&lowest.values, lowest.nx, u16::min);
         Mipmap {
             max: Levels::stacked(highest, top, u16::max),
             min: Levels::stacked(lowest, top, u16::min),
+        }
+    }
+
+    /// A mipmap of a `w x h` grid from its levels' values as [`Mipmap::layout`] lays them
+    /// out (read from a tile store), or `None` where their lengths do not fit the grid.
+    pub(super) fn from_values(
+        w: usize,
+        h: usize,
+        max: Values<u16>,
+        min: Values<u16>,
+    ) -> Option<Self> {
+        let layout = Mipmap::layout(w, h);
+        (max.len() == layout.max_len && min.len() == layout.min_len).then(|| Mipmap {
+            max: Levels {
+                values: max,
+                starts: layout.max,
+            },
+            min: Levels {
+                values: min,
+                starts: layout.min,
+            },
+        })
+    }
+
+    /// Where each level of a `w x h` grid's mipmap lies in its values, as [`Mipmap::build`]
+    /// stacks them.
+    pub(super) fn layout(w: usize, h: usize) -> Layout {
+        let top = top_level(w, h);
+        let stack = |first: u32| {
+            let mut starts = Vec::new();
+            let mut len = 0;
+            for k in first..=top {
+                let (nx, ny) = blocks(k, w, h);
+                starts.push((len, nx));
+                len += nx * ny;
+            }
+            (starts, len)
+        };
+        let ((max, max_len), (min, min_len)) = (stack(1), stack(LOWEST_FROM));
+        Layout {
+            top,
+            max,
+            max_len,
+            min,
+            min_len,
         }
     }
 
@@ -100,17 +167,17 @@ impl<const FIRST: u32> Levels<FIRST> {
     fn stacked(first: Level, top: u32, pick: fn(u16, u16) -> u16) -> Self {
         let mut values = first.values;
         values.reserve(values.len() / 3 + top as usize);
-        let mut levels = Levels {
-            values,
-            starts: vec![(0, first.nx)],
-        };
+        let mut starts = vec![(0, first.nx)];
         for _ in FIRST..top {
-            let (start, nx) = levels.starts[levels.starts.len() - 1];
-            let next = halve(&levels.values[start..], nx, pick);
-            levels.starts.push((levels.values.len(), next.nx));
-            levels.values.extend_from_slice(&next.values);
+            let (start, nx) = starts[starts.len() - 1];
+            let next = halve(&values[start..], nx, pick);
+            starts.push((values.len(), next.nx));
+            values.extend_from_slice(&next.values);
         }
-        levels
+        Levels {
+            values: Values::owned(values),
+            starts,
+        }
     }
 
     #[inline]
@@ -135,36 +202,70 @@ impl<const FIRST: u32> Levels<FIRST> {
 }
 
 /// Level 1, highest and lowest samples: each block's 3x3 corner samples (fewer at the grid's
-/// far edges). Each block row's three sample rows are first reduced column by column, which
-/// the compiler vectorises, and those columns then in threes.
+/// far edges).
 fn first_level(field: &Heightfield) -> (Level, Level) {
     let (w, h) = (field.width(), field.height());
     let (nx, ny) = ((w - 1).div_ceil(2), (h - 1).div_ceil(2));
     let rows: Vec<&[u16]> = field.samples().chunks_exact(w).collect();
     let (mut max, mut min) = (Vec::with_capacity(nx * ny), Vec::with_capacity(nx * ny));
-    let (mut column_max, mut column_min) = (vec![0; w], vec![0; w]);
+    let mut columns = Columns::new(w);
     for bj in 0..ny {
-        // (An edge block's last row or column repeated changes neither extreme.)
-        let block_rows = [
-            rows[2 * bj],
-            rows[2 * bj + 1],
-            rows[(2 * bj + 2).min(h - 1)],
-        ];
-        let [r0, r1, r2] = block_rows;
-        let columns = column_max.iter_mut().zip(&mut column_min);
+        let block_rows = first_level_rows(bj, h).map(|j| rows[j]);
+        columns.first_level_row(block_rows, &mut max, &mut min);
+    }
+    (Level { nx, values: max }, Level { nx, values: min })
+}
+
+/// The sample rows under level-1 block row `bj` of a grid `h` samples high. (An edge block's
+/// last row repeated changes neither extreme.)
+pub(super) fn first_level_rows(bj: usize, h: usize) -> [usize; 3] {
+    [2 * bj, 2 * bj + 1, (2 * bj + 2).min(h - 1)]
+}
+
+/// Blocks along x and y of level `k >= 1` over a grid of `w x h` samples.
+pub(super) fn blocks(k: u32, w: usize, h: usize) -> (usize, usize) {
+    ((w - 1).div_ceil(1 << k), (h - 1).div_ceil(1 << k))
+}
+
+/// The columns' extremes of one row of level-1 blocks, reused from row to row.
+pub(super) struct Columns {
+    max: Vec<u16>,
+    min: Vec<u16>,
+}
+
+impl Columns {
+    /// Room for rows of `w` samples.
+    pub(super) fn new(w: usize) -> Self {
+        Columns {
+            max: vec![0; w],
+            min: vec![0; w],
+        }
+    }
+
+    /// Appends the highest and lowest samples of the level-1 blocks over the three sample
+    /// `rows` to `max` and `min`. The rows are first reduced column by column, which the
+    /// compiler vectorises, and those columns then in threes.
+    pub(super) fn first_level_row(
+        &mut self,
+        [r0, r1, r2]: [&[u16]; 3],
+        max: &mut Vec<u16>,
+        min: &mut Vec<u16>,
+    ) {
+        let w = r0.len();
+        let columns = self.max.iter_mut().zip(&mut self.min);
         for (((hi, lo), &a), (&b, &c)) in columns.zip(r0).zip(r1.iter().zip(r2)) {
             *hi = a.max(b).max(c);
             *lo = a.min(b).min(c);
         }
-        for bi in 0..nx {
+        for bi in 0..(w - 1).div_ceil(2) {
+            // (An edge block's last column repeated changes neither extreme.)
             let columns = [2 * bi, 2 * bi + 1, (2 * bi + 2).min(w - 1)];
-            let [a, b, c] = columns.map(|x| column_max[x]);
+            let [a, b, c] = columns.map(|x| self.max[x]);
             max.push(a.max(b).max(c));
-            let [a, b, c] = columns.map(|x| column_min[x]);
+            let [a, b, c] = columns.map(|x| self.min[x]);
             min.push(a.min(b).min(c));
         }
     }
-    (Level { nx, values: max }, Level { nx, values: min })
 }
 
 /// The level above the `nx`-wide `below`: each block what `pick` makes of its (up to) four
@@ -174,17 +275,29 @@ fn halve(below: &[u16], nx: usize, pick: fn(u16, u16) -> u16) -> Level {
     let (up_x, up_y) = (nx.div_ceil(2), ny.div_ceil(2));
     let mut values = Vec::with_capacity(up_x * up_y);
     for bj in 0..up_y {
-        // (An edge block's one child repeated changes neither extreme.)
-        let rows = [2 * bj, (2 * bj + 1).min(ny - 1)].map(|y| &below[y * nx..(y + 1) * nx]);
-        for bi in 0..up_x {
-            let (x0, x1) = (2 * bi, (2 * bi + 1).min(nx - 1));
-            values.push(pick(
-                pick(rows[0][x0], rows[0][x1]),
-                pick(rows[1][x0], rows[1][x1]),
-            ));
-        }
+        let rows = halved_rows(bj, ny).map(|y| &below[y * nx..(y + 1) * nx]);
+        halve_row(rows, pick, &mut values);
     }
     Level { nx: up_x, values }
+}
+
+/// The rows of a level `ny` blocks high under row `bj` of the level above. (An edge block's
+/// one child repeated changes neither extreme.)
+pub(super) fn halved_rows(bj: usize, ny: usize) -> [usize; 2] {
+    [2 * bj, (2 * bj + 1).min(ny - 1)]
+}
+
+/// Appends to `out` the row of the level above the two block `rows`: each block what `pick`
+/// makes of its (up to) four children.
+pub(super) fn halve_row(rows: [&[u16]; 2], pick: fn(u16, u16) -> u16, out: &mut Vec<u16>) {
+    let nx = rows[0].len();
+    for bi in 0..nx.div_ceil(2) {
+        let (x0, x1) = (2 * bi, (2 * bi + 1).min(nx - 1));
+        out.push(pick(
+            pick(rows[0][x0], rows[0][x1]),
+            pick(rows[1][x0], rows[1][x1]),
+        ));
+    }
 }
 
 #[cfg(test)]
@@ -258,6 +371,28 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    #[test]
+    fn the_layout_is_where_build_stacks_the_levels() {
+        for (w, h) in [
+            (2, 2),
+            (3, 2),
+            (5, 3),
+            (13, 6),
+            (17, 33),
+            (70, 37),
+            (1025, 3),
+        ] {
+            let field = Heightfield::from_fn(w, h, 255, 1.0, |x, y| (x ^ y) as u16).unwrap();
+            let built = Mipmap::build(&field);
+            let layout = Mipmap::layout(w, h);
+            assert_eq!(layout.top, built.top(), "{w}x{h}");
+            assert_eq!(layout.max, built.max.starts, "{w}x{h}");
+            assert_eq!(layout.min, built.min.starts, "{w}x{h}");
+            assert_eq!(layout.max_len, built.max.values.len(), "{w}x{h}");
+            assert_eq!(layout.min_len, built.min.values.len(), "{w}x{h}");
         }
     }
 

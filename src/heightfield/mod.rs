@@ -22,9 +22,11 @@ mod nodata;
 pub mod place;
 pub mod relief;
 mod sky_bounds;
+pub mod store;
 mod strips;
 mod summary;
 mod terrain;
+mod values;
 
 pub use builtin::{Builtin, BUILTINS};
 pub use drape::{Drape, DrapeError, Placement};
@@ -43,6 +45,7 @@ pub use sky_bounds::{SkyBounds, SKY_SECTORS};
 pub use strips::{StripBounds, BLOCK as STRIP_BLOCK, STRIP};
 pub(crate) use terrain::world_from_grid;
 pub use terrain::{Lines, Terrain};
+pub use values::Values;
 
 use crate::compact::Compact;
 use std::sync::Arc;
@@ -118,7 +121,7 @@ pub enum HeightfieldError {
 }
 
 /// How a sample value becomes a height.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Quantisation {
     /// An unsigned integer raster (PNG, PGM, unsigned TIFF): `z = sample / maxval * z_scale`.
     Maxval(u16),
@@ -145,7 +148,7 @@ pub struct Heightfield {
     width: usize,
     height: usize,
     /// Samples by `j * width + i` (y up).
-    samples: Vec<u16>,
+    samples: Values<u16>,
     quantisation: Quantisation,
     z_scale: f64,
     /// Height of sample value 0.
@@ -160,6 +163,8 @@ pub struct Heightfield {
     ground: Option<Arc<ground::GroundScale>>,
     /// An image colouring the surface, if one is laid over it.
     drape: Option<Arc<Drape>>,
+    /// The acceleration data a tile store holds ready, if the field was read from one.
+    prebuilt: Option<Arc<store::Prebuilt>>,
 }
 
 impl Heightfield {
@@ -254,7 +259,7 @@ impl Heightfield {
         Ok(Heightfield {
             width,
             height,
-            samples,
+            samples: Values::owned(samples),
             quantisation,
             z_scale,
             base,
@@ -263,6 +268,7 @@ impl Heightfield {
             georef: Georeferencing::None,
             ground: None,
             drape: None,
+            prebuilt: None,
         })
     }
 
@@ -391,6 +397,10 @@ impl Heightfield {
     /// All samples, by `j * width + i`.
     pub fn samples(&self) -> &[u16] {
         &self.samples
+    }
+    /// Whether the samples are mapped from a tile store rather than held in memory.
+    pub fn is_mapped(&self) -> bool {
+        self.samples.is_mapped()
     }
     /// How many samples hold no data.
     pub fn nodata_count(&self) -> usize {

@@ -1,27 +1,42 @@
 //! Which samples hold no data (NaN, or a raster's no-data value): one bit per sample, kept
 //! only for fields that have holes.
 
+use super::Values;
+
 /// A set of no-data samples, by `j * width + i`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct NoDataMask {
-    bits: Vec<u64>,
+    bits: Values<u64>,
     count: usize,
+    /// Whether a set bit is a sample with data (as a tile store keeps them) rather than one
+    /// without.
+    valid_bits: bool,
 }
 
 impl NoDataMask {
     /// An empty set over `samples` samples.
     pub fn new(samples: usize) -> Self {
         NoDataMask {
-            bits: vec![0; samples.div_ceil(64)],
+            bits: Values::owned(vec![0; samples.div_ceil(64)]),
             count: 0,
+            valid_bits: false,
+        }
+    }
+
+    /// The set whose samples with data are the set bits of `valid`, `count` samples without.
+    pub(super) fn of_valid(valid: Values<u64>, count: usize) -> Self {
+        NoDataMask {
+            bits: valid,
+            count,
+            valid_bits: true,
         }
     }
 
     /// Marks sample `index` as no-data.
     pub fn insert(&mut self, index: usize) {
-        let (word, bit) = (index / 64, 1u64 << (index % 64));
-        if self.bits[word] & bit == 0 {
-            self.bits[word] |= bit;
+        if !self.contains(index) {
+            let (word, bit) = (index / 64, 1u64 << (index % 64));
+            self.bits.make_mut()[word] ^= bit;
             self.count += 1;
         }
     }
@@ -29,7 +44,7 @@ impl NoDataMask {
     /// Whether sample `index` is no-data.
     #[inline]
     pub fn contains(&self, index: usize) -> bool {
-        self.bits[index / 64] & (1u64 << (index % 64)) != 0
+        (self.bits[index / 64] & (1u64 << (index % 64)) != 0) != self.valid_bits
     }
 
     /// How many samples are no-data.

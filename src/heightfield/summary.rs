@@ -34,11 +34,17 @@ impl Terrain {
                 }
             ),
         };
-        let line = format!(
+        let mut line = format!(
             "{}x{} samples, heights {heights}, {holes}",
             field.width(),
             field.height(),
         );
+        if field.is_mapped() {
+            line += &format!(
+                ", mapped from a tile store (memory budget {:.1} GB)",
+                super::store::residency::budget() as f64 / 1e9
+            );
+        }
         match place::describe_georeferencing(field) {
             Some(georef) => format!("{line}; {georef}"),
             None => line,

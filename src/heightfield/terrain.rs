@@ -31,11 +31,19 @@ impl Terrain {
     /// Builds the acceleration data every method uses (timed).
     pub fn new(field: Heightfield) -> Self {
         let start = Instant::now();
-        let mipmap = Mipmap::build(&field);
+        let prebuilt = field.prebuilt.clone();
+        let mipmap = match &prebuilt {
+            Some(ready) => ready.mipmap.clone(),
+            None => Mipmap::build(&field),
+        };
         // (No-data samples hold the lowest valid sample: they change neither extreme.)
         let top = mipmap.top();
         let (min_sample, max_sample) = (mipmap.lowest(top, 0, 0), mipmap.highest(top, 0, 0));
-        let max_slope = max_slope(&field);
+        let steepest = match &prebuilt {
+            Some(ready) => ready.steepest,
+            None => steepest(&field),
+        };
+        let max_slope = field.step() * steepest.sqrt();
         let (z_lo, z_hi) = (field.height_of(min_sample), field.height_of(max_sample));
         let (w, h) = ((field.width() - 1) as f64, (field.height() - 1) as f64);
         Terrain {
@@ -152,7 +160,12 @@ impl Terrain {
     /// The strip bounds for rays in `dir` (grid coordinates) or within `half` (radians) of it,
     /// built on first use and kept while the same disc is asked for (a sun that stays put
     /// while the camera moves); `None` where they cannot help (see [`StripBounds::build`]).
+    /// A map mapped from a tile store has none: building them reads every sample, which
+    /// there may be more of than memory holds.
     pub fn strip_bounds(&self, dir: [f64; 3], half: f64) -> Option<Arc<StripBounds>> {
+        if self.field.is_mapped() {
+            return None;
+        }
         self.strips
             .get_or_make((dir, half), || StripBounds::build(&self.field, dir, half))
     }
@@ -253,29 +266,32 @@ impl Lines {
     }
 }
 
-/// Largest gradient magnitude over all triangles (holes have none). The gradient of `T0` is
+/// Largest squared gradient magnitude over all triangles, in samples (holes have none): the
+/// map's steepest slope is the square root of it times a sample step. The gradient of `T0` is
 /// `(z10 - z00, z11 - z10)`, of `T1` `(z11 - z01, z01 - z00)`; compared as squares of sample
 /// differences, exact in `f64` (below 2^33), so one square root is taken in all.
-fn max_slope(field: &Heightfield) -> f64 {
+fn steepest(field: &Heightfield) -> f64 {
     let w = field.width();
     let rows: Vec<&[u16]> = field.samples().chunks_exact(w).collect();
     let holes = field.nodata_count() > 0;
-    let steepest = rows
-        .windows(2)
+    rows.windows(2)
         .enumerate()
         .map(|(j, pair)| match holes {
             true => steepest_in_row(pair[0], pair[1], |i| !field.is_hole_cell(i, j)),
             // (Without the test, the compiler vectorises the row.)
             false => steepest_in_row(pair[0], pair[1], |_| true),
         })
-        .fold(0.0, larger);
-    field.step() * steepest.sqrt()
+        .fold(0.0, larger)
 }
 
 /// The largest squared gradient, in samples, of the triangles of the cells between sample
 /// rows `below` and `above` that `counted` (by column).
 #[inline(always)]
-fn steepest_in_row(below: &[u16], above: &[u16], counted: impl Fn(usize) -> bool) -> f64 {
+pub(super) fn steepest_in_row(
+    below: &[u16],
+    above: &[u16],
+    counted: impl Fn(usize) -> bool,
+) -> f64 {
     let square = |a: u16, b: u16| f64::from(a.abs_diff(b)).powi(2);
     let n = below.len() - 1;
     let cells = below[..n]
@@ -298,7 +314,7 @@ fn steepest_in_row(below: &[u16], above: &[u16], counted: impl Fn(usize) -> bool
 
 /// The larger of two numbers that are not NaN (in the form the compiler vectorises).
 #[inline(always)]
-fn larger(a: f64, b: f64) -> f64 {
+pub(super) fn larger(a: f64, b: f64) -> f64 {
     if a > b {
         a
     } else {

@@ -10,11 +10,11 @@
 mod asc;
 pub(super) mod geotiff;
 mod hgt;
-mod mosaic;
+pub(super) mod mosaic;
 mod pgm;
 mod picture;
 mod png;
-mod raster;
+pub(super) mod raster;
 mod tiff;
 mod watched;
 
@@ -34,6 +34,9 @@ pub use picture::picture_kind;
 /// Why a file could not be loaded as a height field.
 #[derive(Debug, Error)]
 pub enum LoadError {
+    /// A tile store that could not be opened.
+    #[error(transparent)]
+    Store(Box<super::store::StoreError>),
     // `reason`, not `source`: the message already says it, error chains must not repeat it.
     /// The file could not be read.
     #[error("cannot read {path}: {reason}; check that the file exists and can be read")]
@@ -293,7 +296,18 @@ pub fn load_with(
             reason,
         },
     })?;
+    if is_store(&file) {
+        return super::store::open(&file, len, path, options)
+            .map_err(|e| LoadError::Store(Box::new(e)));
+    }
     load_from(file, len, options, &path.display().to_string(), progress)
+}
+
+/// Whether `file` starts as a tile store does.
+fn is_store(file: &std::fs::File) -> bool {
+    use std::os::unix::fs::FileExt;
+    let mut start = [0u8; 16];
+    file.read_exact_at(&mut start, 0).is_ok() && &start == super::store::MAGIC
 }
 
 /// Loads a height field from the bytes of a file with the default options; `name` labels

@@ -80,7 +80,7 @@ pub fn load_mosaic(
 }
 
 /// Whether tile `b` lies on `a`'s grid, or why not.
-fn one_grid(a: &Georef, b: &Georef) -> Result<(), String> {
+pub(in crate::heightfield) fn one_grid(a: &Georef, b: &Georef) -> Result<(), String> {
     let same_units = match (a.units, b.units) {
         (MapUnits::Degrees, MapUnits::Degrees) => true,
         (MapUnits::Linear { metres: x }, MapUnits::Linear { metres: y }) => x == y,
@@ -132,13 +132,12 @@ const LEAST_COVERED: u64 = 4;
 
 /// Where each tile's lower-left sample lies on the first tile's grid, in whole cells, or why
 /// a tile lies too far off for any joined grid to hold.
-fn tile_offsets(
-    tiles: &[(&Path, Heightfield, Georef)],
+pub(in crate::heightfield) fn tile_offsets<'a>(
+    tiles: impl Iterator<Item = (&'a Path, &'a Georef)>,
     first: &Georef,
 ) -> Result<Vec<[i64; 2]>, String> {
     tiles
-        .iter()
-        .map(|(path, _, georef)| {
+        .map(|(path, georef)| {
             let mut cells = [0; 2];
             for (axis, cell) in cells.iter_mut().enumerate() {
                 let offset =
@@ -162,7 +161,7 @@ fn tile_offsets(
 
 /// The tiles' values in one raster over their joint extent, NaN where no tile has data.
 fn join(tiles: &[(&Path, Heightfield, Georef)], first: Georef) -> Result<Raster, String> {
-    let offsets = tile_offsets(tiles, &first)?;
+    let offsets = tile_offsets(tiles.iter().map(|(p, _, g)| (*p, g)), &first)?;
     let (mut lo, mut hi) = ([i64::MAX; 2], [i64::MIN; 2]);
     let mut covered = 0u64;
     for ((_, field, _), offset) in tiles.iter().zip(&offsets) {
@@ -228,7 +227,7 @@ fn join(tiles: &[(&Path, Heightfield, Georef)], first: Georef) -> Result<Raster,
 
 /// A tile's raster value at sample `(i, j)` (loaded at z scale 1): a height in its own units,
 /// or an unsigned integer sample as it is (a DEM of whole metres).
-fn value(field: &Heightfield, i: usize, j: usize) -> f64 {
+pub(in crate::heightfield) fn value(field: &Heightfield, i: usize, j: usize) -> f64 {
     match field.quantisation() {
         Quantisation::Offset { .. } => field.z(i, j),
         Quantisation::Maxval(_) => f64::from(field.sample(i, j)),

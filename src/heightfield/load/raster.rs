@@ -146,21 +146,14 @@ fn quantise(
     z_scale: f64,
 ) -> Result<Heightfield, HeightfieldError> {
     let valid = |v: f64| v.is_finite() && Some(v) != nodata;
-    // The range of the valid values, and whether they are all whole numbers.
-    let (mut lo, mut hi, mut whole) = (f64::INFINITY, f64::NEG_INFINITY, true);
+    let mut range = ValueRange::EMPTY;
     for v in (0..width * height).map(value).filter(|&v| valid(v)) {
-        lo = lo.min(v);
-        hi = hi.max(v);
-        whole &= v.fract() == 0.0;
+        range.include(v);
     }
-    if lo > hi {
+    if range.is_empty() {
         return Err(HeightfieldError::AllNoData);
     }
-    let step = if whole && hi - lo <= 65535.0 {
-        1.0
-    } else {
-        (hi - lo) / 65535.0
-    };
+    let (lo, step) = (range.lo, range.step());
     // Samples in field order (y up): image row `height - 1 - j` is field row `j`.
     let mut samples = Vec::with_capacity(width * height);
     let mut mask = NoDataMask::new(0);
@@ -169,8 +162,7 @@ fn quantise(
         for i in 0..width {
             let v = value(row + i);
             if valid(v) {
-                let level = if step > 0.0 { (v - lo) / step } else { 0.0 };
-                samples.push(level.round().min(65535.0) as u16);
+                samples.push(ValueRange::sample(v, lo, step));
             } else {
                 if mask.count() == 0 {
                     mask = NoDataMask::new(width * height);
@@ -182,6 +174,64 @@ fn quantise(
     }
     let q = Quantisation::Offset { lowest: lo, step };
     Heightfield::new(width, height, samples, q, z_scale, Some(mask))
+}
+
+/// The range of a raster's valid values, and whether they are all whole numbers: what their
+/// 16-bit samples are quantised over.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(in crate::heightfield) struct ValueRange {
+    /// The lowest value.
+    pub lo: f64,
+    /// The highest value.
+    pub hi: f64,
+    /// Whether every value is a whole number.
+    pub whole: bool,
+}
+
+impl ValueRange {
+    /// The range of no values.
+    pub const EMPTY: ValueRange = ValueRange {
+        lo: f64::INFINITY,
+        hi: f64::NEG_INFINITY,
+        whole: true,
+    };
+
+    /// Takes in the valid value `v`.
+    pub fn include(&mut self, v: f64) {
+        self.lo = self.lo.min(v);
+        self.hi = self.hi.max(v);
+        self.whole &= v.fract() == 0.0;
+    }
+
+    /// The range of both ranges' values.
+    pub fn join(self, other: ValueRange) -> ValueRange {
+        ValueRange {
+            lo: self.lo.min(other.lo),
+            hi: self.hi.max(other.hi),
+            whole: self.whole && other.whole,
+        }
+    }
+
+    /// Whether no value was taken in.
+    pub fn is_empty(&self) -> bool {
+        self.lo > self.hi
+    }
+
+    /// The value of one sample step: exactly 1 when the values are whole numbers spanning at
+    /// most 65535, else the range in 65536 levels.
+    pub fn step(&self) -> f64 {
+        if self.whole && self.hi - self.lo <= 65535.0 {
+            1.0
+        } else {
+            (self.hi - self.lo) / 65535.0
+        }
+    }
+
+    /// The sample of the valid value `v` over a range from `lo` in steps of `step`.
+    pub fn sample(v: f64, lo: f64, step: f64) -> u16 {
+        let level = if step > 0.0 { (v - lo) / step } else { 0.0 };
+        level.round().min(65535.0) as u16
+    }
 }
 
 /// The samples for which `is_nodata` holds.

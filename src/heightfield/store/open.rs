@@ -1,0 +1,88 @@
+//! Opening a store: its header read and checked, the file mapped read-only, and a height field
+//! made of the mapped values with its mipmap ready.
+
+use super::header::{damaged, Header};
+use super::{residency, Prebuilt, StoreError};
+use crate::heightfield::georef::Georeferencing;
+use crate::heightfield::{mapping, Heightfield, LoadOptions, Mipmap, NoDataMask, Values};
+use memmap2::{Advice, Mmap};
+use std::fs::File;
+use std::path::Path;
+use std::sync::Arc;
+
+/// The height field of the store `file` (at `path`, `len` bytes long), with the options' z
+/// scale and height unit (its no-data samples were chosen when it was prepared).
+pub fn open(
+    file: &File,
+    len: u64,
+    path: &Path,
+    options: &LoadOptions,
+) -> Result<Heightfield, StoreError> {
+    let (header, room) = Header::read(file, len, path)?;
+    let Some(steepest) = header.steepest else {
+        return Err(StoreError::Unfinished {
+            path: path.to_owned(),
+        });
+    };
+    let sections = header.sections(room);
+    if len < sections.end {
+        return Err(StoreError::Truncated {
+            path: path.to_owned(),
+            len,
+            expected: sections.end,
+        });
+    }
+    // SAFETY: the file is mapped read-only and, as the store's contract says, not changed
+    // while a map is open from it; every value read from it is checked where it indexes.
+    let map = Arc::new(unsafe { Mmap::map(file) }.map_err(StoreError::io(path))?);
+    // (Walks read a few samples here and there: reading ahead would only fill memory.)
+    let _ = map.advise(Advice::Random);
+    let part = |(at, len): (u64, u64)| {
+        let (at, len) = (usize::try_from(at).ok(), usize::try_from(len).ok());
+        at.zip(len)
+    };
+    let missing = || damaged(path, "a section lies outside the file".into());
+    let (w, h) = (header.width as usize, header.height as usize);
+    let values = |section| part(section).and_then(|(at, len)| Values::mapped(&map, at, len));
+    let samples = values(sections.samples).ok_or_else(missing)?;
+    let (max, min) = (values(sections.max), values(sections.min));
+    let mipmap = max
+        .zip(min)
+        .and_then(|(max, min)| Mipmap::from_values(w, h, max, min))
+        .ok_or_else(missing)?;
+    let nodata = match (sections.valid, header.holes) {
+        (Some(section), Some(count)) => {
+            let valid = part(section)
+                .and_then(|(at, len)| Values::mapped(&map, at, len))
+                .ok_or_else(missing)?;
+            Some(NoDataMask::of_valid(valid, count as usize))
+        }
+        _ => None,
+    };
+    let (base, unit) =
+        mapping(header.quantisation, options.z_scale).map_err(|source| StoreError::Field {
+            path: path.to_owned(),
+            source,
+        })?;
+    residency::watch(&map);
+    let georef = match (header.georef, options.height_unit) {
+        (Some(georef), Some(unit)) => Georeferencing::Map(georef.with_height_unit(unit)),
+        (Some(georef), None) => Georeferencing::Map(georef),
+        (None, _) => Georeferencing::None,
+    };
+    let field = Heightfield {
+        width: w,
+        height: h,
+        samples,
+        quantisation: header.quantisation,
+        z_scale: options.z_scale,
+        base,
+        unit,
+        nodata,
+        georef: Georeferencing::None,
+        ground: None,
+        drape: None,
+        prebuilt: Some(Arc::new(Prebuilt { mipmap, steepest })),
+    };
+    Ok(field.with_georeferencing(georef.with_cells_checked(w, h)))
+}

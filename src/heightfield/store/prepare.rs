@@ -1,0 +1,325 @@
+//! Preparing a store from its inputs: planned (each input read once for where it lies and the
+//! range of its heights), written input by input, then its acceleration data built. The
+//! header says how far it has come, so a store stopped part way is finished by running the
+//! same preparation again.
+
+use super::build::build;
+use super::header::{Header, Input};
+use super::StoreError;
+use crate::heightfield::georef::{Georef, Georeferencing};
+use crate::heightfield::load::mosaic::{one_grid, tile_offsets, value};
+use crate::heightfield::load::raster::ValueRange;
+use crate::heightfield::{load_with, Heightfield, LoadOptions, Quantisation};
+use std::fs::{File, OpenOptions};
+use std::ops::ControlFlow;
+use std::os::unix::fs::FileExt;
+use std::path::{Path, PathBuf};
+
+/// What preparing is doing, for a progress bar.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// Reading the inputs for where they lie.
+    Planning,
+    /// Writing their samples.
+    Writing,
+    /// Building the mipmap.
+    Building,
+}
+
+/// Prepares the store `output` from `inputs` (one map, or the tiles of a mosaic on one grid),
+/// loaded as `options` say (its z scale aside: a store holds heights at z scale 1), going on
+/// from where an earlier run on the same inputs stopped; `progress` is told the stage and the
+/// fraction of it done, and breaking cancels. Returns the store's header.
+pub fn prepare(
+    inputs: &[PathBuf],
+    output: &Path,
+    options: &LoadOptions,
+    progress: &dyn Fn(Stage, f64) -> ControlFlow<()>,
+) -> Result<Header, StoreError> {
+    let options = LoadOptions {
+        z_scale: 1.0,
+        ..*options
+    };
+    let cancelled = || StoreError::Cancelled {
+        path: output.to_owned(),
+    };
+    let (file, mut header, room) = match resume(inputs, output) {
+        Some(kept) => kept,
+        None => {
+            let header = plan(inputs, &options, &|f| progress(Stage::Planning, f), output)?;
+            let room = header.room();
+            let file = OpenOptions::new()
+                .read(true)
+                .write(true)
+                .create(true)
+                .truncate(true)
+                .open(output)
+                .map_err(StoreError::io(output))?;
+            header.write(&file, room, output)?;
+            // (Sparse: what is never written reads as zeros and takes no room.)
+            file.set_len(header.sections(room).end)
+                .map_err(StoreError::io(output))?;
+            (file, header, room)
+        }
+    };
+    let sections = header.sections(room);
+    let n = header.inputs.len();
+    // The last input first: an earlier one then writes over it where both have data.
+    for k in (0..n).rev() {
+        if header.inputs[k].written {
+            continue;
+        }
+        if progress(Stage::Writing, (n - 1 - k) as f64 / n as f64).is_break() {
+            return Err(cancelled());
+        }
+        let input = &header.inputs[k];
+        let field = load_with(&input.path, &options, &|_| ControlFlow::Continue(()))?;
+        let writer = Writer {
+            file: &file,
+            path: output,
+            width: header.width,
+            samples_at: sections.samples.0,
+            valid_at: sections.valid.map(|(at, _)| at),
+        };
+        writer.input(&field, input.at, header.quantisation, n == 1)?;
+        header.inputs[k].written = true;
+        header.write(&file, room, output)?;
+    }
+    let size = (header.width as usize, header.height as usize);
+    let built = build(&file, output, size, &sections, &|f| {
+        progress(Stage::Building, f)
+    })?;
+    header.holes = header.holes.map(|_| built.holes);
+    header.steepest = Some(built.steepest);
+    header.write(&file, room, output)?;
+    file.sync_all().map_err(StoreError::io(output))?;
+    Ok(header)
+}
+
+/// The store at `output` to go on with, where it was planned for these inputs (the same files,
+/// of the same lengths) and not finished.
+fn resume(inputs: &[PathBuf], output: &Path) -> Option<(File, Header, u64)> {
+    let file = OpenOptions::new()
+        .read(true)
+        .write(true)
+        .open(output)
+        .ok()?;
+    let len = file.metadata().ok()?.len();
+    let (header, room) = Header::read(&file, len, output).ok()?;
+    let same = header.inputs.len() == inputs.len()
+        && header.inputs.iter().zip(inputs).all(|(kept, path)| {
+            kept.path == *path && std::fs::metadata(path).is_ok_and(|m| m.len() == kept.bytes)
+        });
+    (same && header.steepest.is_none() && len >= header.sections(room).end)
+        .then_some((file, header, room))
+}
+
+/// The header of a store of `inputs`: each input read once for its size, its place and the
+/// range of its heights.
+fn plan(
+    inputs: &[PathBuf],
+    options: &LoadOptions,
+    progress: &dyn Fn(f64) -> ControlFlow<()>,
+    output: &Path,
+) -> Result<Header, StoreError> {
+    let mut read = Vec::with_capacity(inputs.len());
+    for (k, path) in inputs.iter().enumerate() {
+        if progress(k as f64 / inputs.len() as f64).is_break() {
+            return Err(StoreError::Cancelled {
+                path: output.to_owned(),
+            });
+        }
+        let field = load_with(path, options, &|_| ControlFlow::Continue(()))?;
+        let bytes = std::fs::metadata(path).map_err(StoreError::io(path))?.len();
+        let mut range = ValueRange::EMPTY;
+        for j in 0..field.height() {
+            for i in (0..field.width()).filter(|&i| !field.is_nodata(i, j)) {
+                range.include(value(&field, i, j));
+            }
+        }
+        read.push(Planned {
+            path: path.clone(),
+            bytes,
+            size: [field.width() as u64, field.height() as u64],
+            range,
+            holes: field.nodata_count(),
+            quantisation: field.quantisation(),
+            georef: field.georeferencing().clone(),
+        });
+    }
+    let [one] = &read[..] else {
+        return plan_mosaic(&read);
+    };
+    let mut header = Header::new(one.size[0], one.size[1], one.quantisation);
+    header.georef = one.georef.georef().copied();
+    header.holes = (one.holes > 0).then_some(0);
+    header.inputs.push(one.input([0, 0]));
+    Ok(header)
+}
+
+/// What planning reads of an input.
+struct Planned {
+    path: PathBuf,
+    /// The file's length.
+    bytes: u64,
+    /// Samples along x and y.
+    size: [u64; 2],
+    /// The range of its heights with data.
+    range: ValueRange,
+    /// Samples without data.
+    holes: usize,
+    quantisation: Quantisation,
+    georef: Georeferencing,
+}
+
+impl Planned {
+    /// The input, to be written at `at`.
+    fn input(&self, at: [u64; 2]) -> Input {
+        Input {
+            path: self.path.clone(),
+            bytes: self.bytes,
+            at,
+            size: self.size,
+            written: false,
+        }
+    }
+}
+
+/// The header of a mosaic of the inputs `read`, joined as a mosaic loads them.
+fn plan_mosaic(read: &[Planned]) -> Result<Header, StoreError> {
+    let refuse = |why: String| StoreError::Inputs(why);
+    let georefs = read
+        .iter()
+        .map(|input| match &input.georef {
+            Georeferencing::Map(g) => Ok((input.path.as_path(), *g)),
+            _ => Err(refuse(format!(
+                "{} is not georeferenced, so where it lies beside the others is unknown",
+                input.path.display()
+            ))),
+        })
+        .collect::<Result<Vec<(&Path, Georef)>, _>>()?;
+    let first = georefs
+        .first()
+        .map(|(_, g)| *g)
+        .ok_or_else(|| refuse("no inputs given".into()))?;
+    for (path, georef) in &georefs[1..] {
+        one_grid(&first, georef).map_err(|why| {
+            refuse(format!(
+                "{} and {} {why}",
+                read[0].path.display(),
+                path.display()
+            ))
+        })?;
+    }
+    let offsets = tile_offsets(georefs.iter().map(|(p, g)| (*p, g)), &first).map_err(refuse)?;
+    let (mut lo, mut hi) = ([i64::MAX; 2], [i64::MIN; 2]);
+    let mut range = ValueRange::EMPTY;
+    for (input, offset) in read.iter().zip(&offsets) {
+        range = range.join(input.range);
+        for axis in 0..2 {
+            lo[axis] = lo[axis].min(offset[axis]);
+            hi[axis] = hi[axis].max(offset[axis] + input.size[axis] as i64 - 1);
+        }
+    }
+    if range.is_empty() {
+        return Err(refuse("every sample of every input is no-data".into()));
+    }
+    let quantisation = Quantisation::Offset {
+        lowest: range.lo,
+        step: range.step(),
+    };
+    let (width, height) = ((hi[0] - lo[0] + 1) as u64, (hi[1] - lo[1] + 1) as u64);
+    let mut header = Header::new(width, height, quantisation);
+    let origin = [0, 1].map(|axis| first.origin[axis] + lo[axis] as f64 * first.spacing[axis]);
+    header.georef = Some(
+        Georef::new(origin, first.spacing, first.units)
+            .map_err(|e| refuse(e.to_string()))?
+            .with_crs(first.crs)
+            .with_height_unit(first.height_unit),
+    );
+    header.holes = Some(0);
+    header.inputs = read
+        .iter()
+        .zip(&offsets)
+        .map(|(input, offset)| input.input([0, 1].map(|axis| (offset[axis] - lo[axis]) as u64)))
+        .collect();
+    Ok(header)
+}
+
+/// Writes inputs' samples and valid bits into a store.
+struct Writer<'a> {
+    file: &'a File,
+    path: &'a Path,
+    width: u64,
+    samples_at: u64,
+    valid_at: Option<u64>,
+}
+
+impl Writer<'_> {
+    /// Writes the samples of `field` with data at `at`, quantised as the store's, or, where
+    /// the field is the store's one input, every sample as it is.
+    fn input(
+        &self,
+        field: &Heightfield,
+        at: [u64; 2],
+        q: Quantisation,
+        whole: bool,
+    ) -> Result<(), StoreError> {
+        let (lowest, step) = match q {
+            Quantisation::Offset { lowest, step } => (lowest, step),
+            Quantisation::Maxval(_) => (0.0, 1.0),
+        };
+        let mut row = Vec::with_capacity(field.width());
+        for j in 0..field.height() {
+            let first = (at[1] + j as u64) * self.width + at[0];
+            row.clear();
+            row.extend((0..field.width()).map(|i| {
+                let valid = !field.is_nodata(i, j);
+                match whole {
+                    true => (field.sample(i, j), valid),
+                    false if valid => (ValueRange::sample(value(field, i, j), lowest, step), true),
+                    false => (0, false),
+                }
+            }));
+            self.row(first, &row, whole)?;
+        }
+        Ok(())
+    }
+
+    /// Writes one row of samples from sample `first` on, each with whether it has data: the
+    /// runs of samples with data, marked valid, and where `all`, those without too.
+    fn row(&self, first: u64, row: &[(u16, bool)], all: bool) -> Result<(), StoreError> {
+        let mut k = 0;
+        while k < row.len() {
+            let run = row[k..].iter().take_while(|s| s.1 || all).count();
+            if run > 0 {
+                let bytes: Vec<u8> = row[k..k + run]
+                    .iter()
+                    .flat_map(|s| s.0.to_le_bytes())
+                    .collect();
+                self.file
+                    .write_all_at(&bytes, self.samples_at + 2 * (first + k as u64))
+                    .map_err(StoreError::io(self.path))?;
+            }
+            k += run.max(1);
+        }
+        let Some(valid_at) = self.valid_at else {
+            return Ok(());
+        };
+        let (word0, word1) = (first / 64, (first + row.len() as u64).div_ceil(64));
+        let mut bytes = vec![0u8; 8 * (word1 - word0) as usize];
+        let at = valid_at + 8 * word0;
+        self.file
+            .read_exact_at(&mut bytes, at)
+            .map_err(StoreError::io(self.path))?;
+        for (i, sample) in row.iter().enumerate() {
+            if sample.1 {
+                let k = first + i as u64 - 64 * word0;
+                bytes[(k / 8) as usize] |= 1 << (k % 8);
+            }
+        }
+        self.file
+            .write_all_at(&bytes, at)
+            .map_err(StoreError::io(self.path))
+    }
+}

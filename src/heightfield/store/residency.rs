@@ -1,0 +1,180 @@
+//! How much of the open stores stays in memory: the pages the walks touch are read in on
+//! demand (the kernel's page cache is the tile cache), and a watcher keeps the pages mapped
+//! into the process within a budget, letting go of the longest-held megabytes first when they
+//! exceed it. A page let go of is read again, from the page cache or the disk, when a walk
+//! next touches it: the answers never change, only the time.
+
+use memmap2::{Mmap, UncheckedAdvice};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Weak};
+use std::time::Duration;
+
+/// Bytes of a store's pages kept mapped at most; 0 for the default.
+static BUDGET: AtomicU64 = AtomicU64::new(0);
+
+/// The most bytes of stores' pages resident at once, as the watchers saw them.
+static PEAK: AtomicU64 = AtomicU64::new(0);
+
+/// Bytes resident when the watchers last looked.
+static RESIDENT: AtomicU64 = AtomicU64::new(0);
+
+/// Bytes let go of to stay within the budget.
+static RELEASED: AtomicU64 = AtomicU64::new(0);
+
+/// How often a watcher looks.
+const EVERY: Duration = Duration::from_millis(250);
+
+/// Pages are let go of in chunks of this many bytes.
+const CHUNK: usize = 1 << 20;
+
+/// Sets the budget of mapped store pages, in bytes (0: the default, half the machine's
+/// memory).
+pub fn set_budget(bytes: u64) {
+    BUDGET.store(bytes, Ordering::Relaxed);
+}
+
+/// The budget of mapped store pages, in bytes.
+pub fn budget() -> u64 {
+    match BUDGET.load(Ordering::Relaxed) {
+        0 => machine_memory() / 2,
+        bytes => bytes,
+    }
+}
+
+/// What the watchers saw: bytes of store pages resident now, at most, and let go of.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Residency {
+    /// Resident when last looked.
+    pub resident: u64,
+    /// The most resident at once.
+    pub peak: u64,
+    /// Let go of to stay within the budget.
+    pub released: u64,
+}
+
+/// What the watchers saw so far.
+pub fn residency() -> Residency {
+    Residency {
+        resident: RESIDENT.load(Ordering::Relaxed),
+        peak: PEAK.load(Ordering::Relaxed),
+        released: RELEASED.load(Ordering::Relaxed),
+    }
+}
+
+/// Watches `map` on a thread of its own until it is dropped, keeping its resident pages
+/// within the budget.
+pub fn watch(map: &Arc<Mmap>) {
+    let map = Arc::downgrade(map);
+    let spawned = std::thread::Builder::new()
+        .name("store residency".into())
+        .spawn(move || Watcher::new(map).run());
+    // Without a watcher the map still works; only its memory is not held to the budget.
+    drop(spawned);
+}
+
+/// A map's watcher: for each chunk, the look at which its pages were first seen resident.
+struct Watcher {
+    map: Weak<Mmap>,
+    since: Vec<u64>,
+    looks: u64,
+}
+
+impl Watcher {
+    fn new(map: Weak<Mmap>) -> Self {
+        let chunks = map.upgrade().map_or(0, |m| m.len().div_ceil(CHUNK));
+        Watcher {
+            map,
+            since: vec![u64::MAX; chunks],
+            looks: 0,
+        }
+    }
+
+    fn run(mut self) {
+        loop {
+            std::thread::sleep(EVERY);
+            let Some(map) = self.map.upgrade() else {
+                return;
+            };
+            self.look(&map);
+        }
+    }
+
+    /// Counts the resident pages chunk by chunk and, over the budget, lets go of the chunks
+    /// held longest until three quarters of the budget remain.
+    fn look(&mut self, map: &Mmap) {
+        self.looks += 1;
+        let pages = resident_pages(map);
+        let page = page_size();
+        let per_chunk = CHUNK / page;
+        let mut resident: Vec<(usize, u64)> = Vec::new();
+        let mut total = 0u64;
+        for (k, chunk) in pages.chunks(per_chunk).enumerate() {
+            let count = chunk.iter().filter(|&&p| p & 1 != 0).count() as u64;
+            if count == 0 {
+                self.since[k] = u64::MAX;
+                continue;
+            }
+            if self.since[k] == u64::MAX {
+                self.since[k] = self.looks;
+            }
+            total += count * page as u64;
+            resident.push((k, count * page as u64));
+        }
+        PEAK.fetch_max(total, Ordering::Relaxed);
+        let budget = budget();
+        if total > budget {
+            resident.sort_by_key(|&(k, _)| self.since[k]);
+            let keep = budget / 4 * 3;
+            for (k, bytes) in resident {
+                if total <= keep {
+                    break;
+                }
+                let (at, len) = (k * CHUNK, CHUNK.min(map.len() - k * CHUNK));
+                // SAFETY: the map is a read-only shared mapping of a file: pages let go of are
+                // read again from the file, unchanged, when next touched.
+                if unsafe { map.unchecked_advise_range(UncheckedAdvice::DontNeed, at, len) }.is_ok()
+                {
+                    total -= bytes;
+                    RELEASED.fetch_add(bytes, Ordering::Relaxed);
+                    self.since[k] = u64::MAX;
+                }
+            }
+        }
+        RESIDENT.store(total, Ordering::Relaxed);
+    }
+}
+
+/// Per page of `map`, whether it is resident (bit 0), as `mincore` says; none where it fails.
+fn resident_pages(map: &Mmap) -> Vec<u8> {
+    let mut pages = vec![0u8; map.len().div_ceil(page_size())];
+    // SAFETY: the range is the whole mapping, page-aligned at its start, and the vector holds
+    // one byte per page of it, as mincore writes.
+    let ok = unsafe {
+        libc::mincore(
+            map.as_ptr() as *mut libc::c_void,
+            map.len(),
+            pages.as_mut_ptr(),
+        )
+    };
+    if ok != 0 {
+        pages.clear();
+    }
+    pages
+}
+
+/// The machine's page size.
+fn page_size() -> usize {
+    // SAFETY: sysconf reads a constant of the system.
+    let size = unsafe { libc::sysconf(libc::_SC_PAGESIZE) };
+    usize::try_from(size)
+        .ok()
+        .filter(|&s| s > 0)
+        .unwrap_or(4096)
+}
+
+/// The machine's memory, in bytes.
+fn machine_memory() -> u64 {
+    // SAFETY: sysconf reads constants of the system.
+    let pages = unsafe { libc::sysconf(libc::_SC_PHYS_PAGES) };
+    u64::try_from(pages).unwrap_or(0) * page_size() as u64
+}
