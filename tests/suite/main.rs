@@ -46,6 +46,7 @@ mod sun_bearing;
 mod sun_time;
 mod sunlight_bounds;
 mod terminator;
+mod tile_stores;
 mod true_scale;
 mod water;
 mod wedges;

@@ -28,11 +28,32 @@ pub struct Built {
 struct Rows<'a> {
     file: &'a File,
     path: &'a Path,
+    /// Per sample row, how many rows below it some input covers: the rows of a level no
+    /// input reaches are zeros (and have no data), and are not read.
+    covered_below: Vec<u64>,
 }
 
 impl Rows<'_> {
-    /// Row `j` of a section of `u16` rows `n` long from byte `at`.
-    fn read(&self, at: u64, n: usize, j: usize, row: &mut Vec<u16>) -> Result<(), StoreError> {
+    /// Whether some input covers a sample row under row `j` of level `k` (0: the samples).
+    fn covered(&self, k: u32, j: usize) -> bool {
+        let h = self.covered_below.len() - 1;
+        let (lo, hi) = ((j << k).min(h), ((j + 1) << k).min(h - 1) + 1);
+        self.covered_below[hi] > self.covered_below[lo]
+    }
+
+    /// Row `j` of a section of `u16` rows `n` long from byte `at`, of level `k`.
+    fn read(
+        &self,
+        (at, k): (u64, u32),
+        n: usize,
+        j: usize,
+        row: &mut Vec<u16>,
+    ) -> Result<(), StoreError> {
+        if !self.covered(k, j) {
+            row.clear();
+            row.resize(n, 0);
+            return Ok(());
+        }
         let mut bytes = vec![0u8; 2 * n];
         self.file
             .read_exact_at(&mut bytes, at + (2 * n * j) as u64)
@@ -60,6 +81,9 @@ impl Rows<'_> {
 
     /// Which samples of row `j` (of `w`) have data, from the valid bits at byte `at`.
     fn valid(&self, at: u64, w: usize, j: usize) -> Result<Vec<bool>, StoreError> {
+        if !self.covered(0, j) {
+            return Ok(vec![false; w]);
+        }
         let first = j * w;
         let (word0, word1) = (first / 64, (first + w).div_ceil(64));
         let mut bytes = vec![0u8; 8 * (word1 - word0)];
@@ -77,15 +101,24 @@ impl Rows<'_> {
 }
 
 /// Builds the mipmap, steepest gradient and hole count of the store `file` of `w x h`
-/// samples, reporting the fraction of sample rows done.
+/// samples whose rows `covered` some input reaches, reporting the fraction of sample rows
+/// done.
 pub fn build(
     file: &File,
     path: &Path,
     (w, h): (usize, usize),
-    sections: &Sections,
+    (sections, covered): (&Sections, &[bool]),
     progress: &dyn Fn(f64) -> ControlFlow<()>,
 ) -> Result<Built, StoreError> {
-    let io = Rows { file, path };
+    let mut covered_below = vec![0u64; h + 1];
+    for j in 0..h {
+        covered_below[j + 1] = covered_below[j] + u64::from(covered[j]);
+    }
+    let io = Rows {
+        file,
+        path,
+        covered_below,
+    };
     let layout = Mipmap::layout(w, h);
     let (nx, ny) = blocks(1, w, h);
     let (mut columns, mut max, mut min) = (Columns::new(w), Vec::new(), Vec::new());
@@ -110,12 +143,19 @@ pub fn build(
         }
         let js = first_level_rows(bj, h);
         for (row, &j) in rows.iter_mut().zip(&js) {
-            io.read(sections.samples.0, w, j, row)?;
+            io.read((sections.samples.0, 0), w, j, row)?;
         }
-        // Cells of sample rows 2bj and 2bj+1 (the last block row's third row repeats).
+        // Cells of sample rows 2bj and 2bj+1 (the last block row's third row repeats); where
+        // no input reaches the block row, holes without a slope.
+        let gap = !js.iter().any(|&j| io.covered(0, j));
         for (k, j) in [2 * bj, 2 * bj + 1].into_iter().enumerate() {
             if j + 1 >= h {
                 break;
+            }
+            if gap {
+                holes += w as u64;
+                valid_below = valid_below.map(|_| vec![false; w]);
+                continue;
             }
             let (below, above) = (&rows[k], &rows[k + 1]);
             steepest = larger(
@@ -192,8 +232,8 @@ fn upper_levels(
             let above_at = at + 2 * above_start as u64;
             for bj in 0..above_ny {
                 let [y0, y1] = halved_rows(bj, below_ny);
-                io.read(below_at, below_nx, y0, &mut a)?;
-                io.read(below_at, below_nx, y1, &mut b)?;
+                io.read((below_at, k), below_nx, y0, &mut a)?;
+                io.read((below_at, k), below_nx, y1, &mut b)?;
                 out.clear();
                 halve_row([&a, &b], pick, &mut out);
                 io.write(above_at, bj, &out)?;

@@ -14,7 +14,7 @@ mod open;
 mod prepare;
 pub mod residency;
 
-pub use header::MAGIC;
+pub use header::{Header, Input, MAGIC};
 pub use open::open;
 pub use prepare::{prepare, Stage};
 

@@ -86,9 +86,13 @@ pub fn prepare(
         header.write(&file, room, output)?;
     }
     let size = (header.width as usize, header.height as usize);
-    let built = build(&file, output, size, &sections, &|f| {
-        progress(Stage::Building, f)
-    })?;
+    let mut covered = vec![false; size.1];
+    for input in &header.inputs {
+        let rows = input.at[1] as usize..(input.at[1] + input.size[1]) as usize;
+        covered[rows].fill(true);
+    }
+    let stage = |f| progress(Stage::Building, f);
+    let built = build(&file, output, size, (&sections, &covered), &stage)?;
     header.holes = header.holes.map(|_| built.holes);
     header.steepest = Some(built.steepest);
     header.write(&file, room, output)?;
