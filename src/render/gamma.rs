@@ -97,6 +97,13 @@ impl Tables {
     }
 }
 
+/// A linear colour as a display shows it: each channel clamped to [0, 1], NaN as 0. Bytes and
+/// words encode this; the samples of a pixel are averaged as this, so that a sample brighter
+/// than white counts as white, as its bytes do.
+pub fn shown(c: [f64; 3]) -> [f64; 3] {
+    c.map(|v| if v >= 1.0 { 1.0 } else if v > 0.0 { v } else { 0.0 })
+}
+
 /// The 16-bit display values of a linear colour's three channels by the bytes' formula
 /// (`v^(1/2.2)` scaled to 0..=65535 and rounded), each clamped to [0, 1] (NaN gives 0): a
 /// word `w` lies within half a byte of its colour's byte times 257.

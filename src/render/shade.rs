@@ -129,8 +129,8 @@ impl<'a> Shader<'a> {
         (sample, hit)
     }
 
-    /// [`Shader::traced_from`] with the sample's colour in linear light (see
-    /// [`Shader::linear_sample`]).
+    /// [`Shader::traced_from`] with the sample's colour in linear light as a display shows it
+    /// (each channel clamped to [0, 1]): what a pixel's samples are averaged as.
     pub fn traced_linear(
         &self,
         ray: &Ray,
@@ -159,7 +159,7 @@ impl<'a> Shader<'a> {
             hit: &hit,
         };
         let ((sample, colour), _) = with_numbers(arith, recorded);
-        (sample, hit.take(), colour)
+        (sample, hit.take(), gamma::shown(colour.to_array()).into())
     }
 
     /// The wedges of camera rays from `eye` traced in `arith`, where the culling asks for them,
