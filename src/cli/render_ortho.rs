@@ -46,6 +46,11 @@ fn dpi(args: &OrthoArgs) -> anyhow::Result<Option<f64>> {
 /// Checks that `--depth` and `--dpi` go with a TIFF output (not frames, tiles or a PNG).
 pub fn check_tiff_options(args: &RenderArgs) -> anyhow::Result<()> {
     let asked = args.ortho.depth != "8" || args.ortho.dpi.is_some();
+    let batch = args.frames.is_some() || args.tile.is_some() || args.tiles.is_some();
+    anyhow::ensure!(
+        !(asked && batch),
+        "--depth and --dpi are written into one picture's TIFF: frames and tiles are 8-bit PNGs"
+    );
     anyhow::ensure!(
         !asked || is_tiff(&args.output),
         "--depth and --dpi are written into TIFFs: name the output .tif (got {})",

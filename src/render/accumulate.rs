@@ -207,8 +207,7 @@ impl Renderer<'_> {
                         let (px, py) = position(&self.camera, x as u32, y as u32, index);
                         let ray = self.camera.ray_at(px, py);
                         let clearance = clearance(wedges.as_ref(), &ray, &mut totals);
-                        let (sample, _, colour) =
-                            shader.traced_linear(&ray, self.arith, clearance);
+                        let (sample, _, colour) = shader.traced_linear(&ray, self.arith, clearance);
                         taking.linear += colour;
                         totals.add(&sample);
                         if let Some(agrees) = taking.estimate.add(sample.rgb) {

@@ -79,7 +79,10 @@ impl Sampled for DVec3 {
         let (mut sum, mut taken) = (DVec3::ZERO, 0u32);
         let (rgb, later) = pixel::shade(camera, at, effects, |ray| {
             let colour = trace(ray);
-            (sum, taken) = (sum + DVec3::from(gamma::shown(colour.to_array())), taken + 1);
+            (sum, taken) = (
+                sum + DVec3::from(gamma::shown(colour.to_array())),
+                taken + 1,
+            );
             colour.rgb()
         });
         let words = gamma::words((sum / f64::from(taken.max(1))).to_array());

@@ -101,7 +101,15 @@ impl Tables {
 /// words encode this; the samples of a pixel are averaged as this, so that a sample brighter
 /// than white counts as white, as its bytes do.
 pub fn shown(c: [f64; 3]) -> [f64; 3] {
-    c.map(|v| if v >= 1.0 { 1.0 } else if v > 0.0 { v } else { 0.0 })
+    c.map(|v| {
+        if v >= 1.0 {
+            1.0
+        } else if v > 0.0 {
+            v
+        } else {
+            0.0
+        }
+    })
 }
 
 /// The 16-bit display values of a linear colour's three channels by the bytes' formula

@@ -248,9 +248,8 @@ impl WithNumbers for Band<'_, '_, '_, '_> {
         let (renderer, wedges, passes) = (self.renderer, self.wedges, self.passes);
         if self.out.words.is_some() {
             // Linear colours, which give the words as well as the bytes.
-            let sample = |r: &Ray, c, counting: &mut Counting<'_>| {
-                shader.linear_sample::<N>(r, c, counting)
-            };
+            let sample =
+                |r: &Ray, c, counting: &mut Counting<'_>| shader.linear_sample::<N>(r, c, counting);
             return renderer.band(wedges, self.out, passes, sample, self.cancelled);
         }
         let sample = |r: &Ray, c, counting: &mut Counting<'_>| shader.sample::<N>(r, c, counting);

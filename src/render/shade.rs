@@ -5,10 +5,10 @@ use super::camera::Camera;
 use super::context::{Context, Culling};
 use super::contours::Contours;
 use super::effects::pixel::per_sample;
-use super::gamma;
 use super::effects::{
     nanos_since, At, Effect, EffectTime, SkyLight, SoftShadows, SunShadow, WaterReflection,
 };
+use super::gamma;
 use super::sample::{Cast, Sample, Shadow, ShadowSkip};
 use super::scene::Lighting;
 use super::tally::{Counting, Tally};

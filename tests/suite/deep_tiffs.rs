@@ -3,9 +3,9 @@
 //! a channel; rounded to bytes it is the 8-bit PNG of the same render within a level (one or
 //! several samples a pixel, adaptive or not, annotations drawn over it too), with the
 //! resolution asked for; the `tiff` crate and GDAL read 16-bit RGB. The same holds of the
-//! shaded ortho product.
+//! shaded ortho product. Tiles and frames, which are PNGs, refuse `--depth`.
 
-use crate::products_cli::{dem, gdal_info, gdal_present, render};
+use crate::products_cli::{dem, gdal_info, gdal_present, heightray, render};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use tiff::decoder::{Decoder, DecodingResult};
@@ -125,7 +125,9 @@ fn sixteen_bit_tiffs_are_rgb_with_the_resolution_asked_for() {
     let dem = dem(dir.path(), 1);
     let tif = dir.path().join("view.tif");
     let (d, t) = (dem.to_str().unwrap(), tif.to_str().unwrap());
-    render(&[d, "--size", "40x30", "-o", t, "--depth", "16", "--dpi", "300"]);
+    render(&[
+        d, "--size", "40x30", "-o", t, "--depth", "16", "--dpi", "300",
+    ]);
     let mut decoder = Decoder::new(std::fs::File::open(&tif).unwrap()).unwrap();
     assert_eq!(decoder.colortype().unwrap(), tiff::ColorType::RGB(16));
     assert_eq!(decoder.dimensions().unwrap(), (40, 30));
@@ -177,6 +179,29 @@ fn the_shaded_product_at_sixteen_bits_rounds_to_its_eight_bit_twin() {
     // RGBA: the rays' own colours at 16 bits, their bytes' at 8; the coverage the same.
     rounds_to(&wide, &narrow, "shaded relief");
     let coverage = |k: usize| (u32::from(wide[k]) + 128) / 257 == u32::from(narrow[k]);
-    assert!((3..wide.len()).step_by(4).all(coverage), "the same coverage");
+    assert!(
+        (3..wide.len()).step_by(4).all(coverage),
+        "the same coverage"
+    );
     assert!(wide.iter().any(|&c| c % 257 != 0), "finer than bytes");
+}
+
+#[test]
+fn tiles_and_frames_refuse_a_depth() {
+    let dir = tempfile::tempdir().unwrap();
+    let dem = dem(dir.path(), 1);
+    let (d, out) = (dem.to_str().unwrap(), dir.path().join("out.tif"));
+    let o = out.to_str().unwrap();
+    let cases: [&[&str]; 3] = [
+        &[d, "--tiles", "2x2", "--tile", "0", "-o", o, "--depth", "16"],
+        &[d, "--tiles", "2x2", "-o", o, "--dpi", "300"],
+        &[d, "--frames", "all", "-o", o, "--depth", "16"],
+    ];
+    for args in cases {
+        let output = heightray(args);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!output.status.success(), "{args:?} succeeded");
+        assert!(stderr.contains("8-bit PNGs"), "{args:?}: {stderr}");
+    }
+    assert!(!out.exists());
 }

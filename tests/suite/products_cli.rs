@@ -62,7 +62,7 @@ pub(crate) fn dem(dir: &Path, raster_type: u16) -> PathBuf {
 }
 
 /// `heightray render ARGS`.
-fn heightray(args: &[&str]) -> Output {
+pub(crate) fn heightray(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_heightray"))
         .arg("render")
         .args(args)

@@ -6,7 +6,7 @@
 use super::sheet::{Annotations, Sheet};
 use super::svg_options;
 use crate::render::Window;
-use resvg::tiny_skia::{PremultipliedColorU8, Pixmap, Transform};
+use resvg::tiny_skia::{Pixmap, PremultipliedColorU8, Transform};
 use resvg::usvg::Tree;
 
 impl Annotations {
