@@ -49,7 +49,9 @@ pub struct OrthoArgs {
     /// `index_every`, else 5; 0 for none).
     #[arg(long, requires = "ortho", value_name = "N")]
     pub index_every: Option<u32>,
-    /// Bits per channel of a colour TIFF (-o out.tif): 8 or 16.
+    /// Bits per channel of a colour TIFF (-o out.tif): 8 or 16. At 16 the picture is made
+    /// from the renderer's linear colours, far finer than the PNG's bytes (not for tiles or
+    /// frames, which are PNGs).
     #[arg(long, default_value = "8", value_parser = ["8", "16"])]
     pub depth: String,
     /// Resolution written into a TIFF, in dots per inch.

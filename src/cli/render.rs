@@ -5,7 +5,7 @@
 use super::{loading, render_frames, render_ortho, render_progress, render_tiles, RenderArgs};
 use heightray::output_file;
 use heightray::render::animation::Animation;
-use heightray::render::annotate::{Annotations, Sheet};
+use heightray::render::annotate::{Annotations, Marked, Sheet};
 use heightray::render::effects::MOST_RAYS;
 use heightray::render::sun_position::SunPosition;
 use heightray::render::{
@@ -90,12 +90,12 @@ impl Setup {
         }
     }
 
-    /// Draws the scene's annotations into `pixels`, `window` of the whole image of `camera`
-    /// (in world coordinates).
-    pub fn annotate(
+    /// Draws the scene's annotations into `pixels` (bytes or 16-bit words), `window` of the
+    /// whole image of `camera` (in world coordinates).
+    pub fn annotate<P: Marked>(
         &self,
         camera: Camera,
-        pixels: &mut [u32],
+        pixels: &mut [P],
         window: Window,
     ) -> anyhow::Result<()> {
         let sheet = Sheet {
@@ -131,7 +131,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let (terrain, method, arith, pool) = (&setup.terrain, setup.method, setup.arith, &setup.pool);
     let renderer = setup.renderer(setup.camera);
     let (width, height) = setup.camera.size();
-    let mut frame = Frame::new(width, height);
+    // A 16-bit TIFF is made from the linear colours, not from the bytes: the frame keeps
+    // their words too.
+    let words = render_ortho::sixteen_bits(args);
+    let mut frame = match words {
+        true => Frame::with_words(width, height),
+        false => Frame::new(width, height),
+    };
     // Built before the clock starts, so the render time is the render's alone.
     let build_ms = prepare(terrain, method).0.as_secs_f64() * 1e3;
     let start = Instant::now();
@@ -146,10 +152,14 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         width,
         height,
     };
-    setup.annotate(setup.camera, &mut frame.pixels, whole)?;
+    // Drawn over what is written: the words of a 16-bit TIFF, else the bytes.
+    match words {
+        true => setup.annotate(setup.camera, &mut frame.words, whole)?,
+        false => setup.annotate(setup.camera, &mut frame.pixels, whole)?,
+    }
 
     if render_ortho::is_tiff(&args.output) {
-        render_ortho::save_tiff(args, &frame.pixels, (width, height))?;
+        render_ortho::save_tiff(args, &frame)?;
     } else {
         output_file::save_rgb(&args.output, &frame.pixels, (width, height))
             .map_err(anyhow::Error::msg)?;

@@ -10,7 +10,7 @@ use heightray::products::tiff_out::{self, Depth, GeoTags, TiffTags};
 use heightray::products::{
     Horizon, Maker, MapContours, OrthoGrid, Raster, Rgba16, SkyView, SunPath, Sunlight,
 };
-use heightray::render::{level_z, local_time, Contours, Culling, Shader};
+use heightray::render::{level_z, local_time, Contours, Culling, Frame, Shader};
 use heightray::TraceOptions;
 use image::{DynamicImage, GrayAlphaImage, ImageFormat, LumaA, Rgba, RgbaImage};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -46,6 +46,11 @@ fn dpi(args: &OrthoArgs) -> anyhow::Result<Option<f64>> {
 /// Checks that `--depth` and `--dpi` go with a TIFF output (not frames, tiles or a PNG).
 pub fn check_tiff_options(args: &RenderArgs) -> anyhow::Result<()> {
     let asked = args.ortho.depth != "8" || args.ortho.dpi.is_some();
+    let batch = args.frames.is_some() || args.tile.is_some() || args.tiles.is_some();
+    anyhow::ensure!(
+        !(asked && batch),
+        "--depth and --dpi are written into one picture's TIFF: frames and tiles are 8-bit PNGs"
+    );
     anyhow::ensure!(
         !asked || is_tiff(&args.output),
         "--depth and --dpi are written into TIFFs: name the output .tif (got {})",
@@ -54,16 +59,32 @@ pub fn check_tiff_options(args: &RenderArgs) -> anyhow::Result<()> {
     dpi(&args.ortho).map(|_| ())
 }
 
-/// Writes a rendered picture (0x00RRGGBB) as a TIFF at the depth and resolution asked for.
-pub fn save_tiff(args: &RenderArgs, pixels: &[u32], size: (u32, u32)) -> anyhow::Result<()> {
-    // 8-bit colours widened exactly: byte b is 257 b of 65535.
-    let wide: Vec<[u16; 4]> = pixels
-        .iter()
-        .map(|&rgb| {
-            let [_, r, g, b] = rgb.to_be_bytes();
-            [r, g, b, 255].map(|c| u16::from(c) * 257)
-        })
-        .collect();
+/// Whether the output is a 16-bit TIFF: its picture is then rendered with 16-bit words
+/// ([`Frame::with_words`]).
+pub fn sixteen_bits(args: &RenderArgs) -> bool {
+    is_tiff(&args.output) && depth(&args.ortho) == Depth::Sixteen
+}
+
+/// Writes a rendered picture as a TIFF at the depth and resolution asked for: from its words
+/// where it has them, else from its bytes.
+pub fn save_tiff(args: &RenderArgs, frame: &Frame) -> anyhow::Result<()> {
+    let wide: Vec<[u16; 4]> = match frame.words.is_empty() {
+        true => frame
+            .pixels
+            .iter()
+            .map(|&rgb| {
+                // Bytes widened exactly: byte b is 257 b of 65535.
+                let [_, r, g, b] = rgb.to_be_bytes();
+                [r, g, b, 255].map(|c| u16::from(c) * 257)
+            })
+            .collect(),
+        false => frame
+            .words
+            .iter()
+            .map(|&[r, g, b]| [r, g, b, u16::MAX])
+            .collect(),
+    };
+    let size = (frame.width, frame.height);
     let tags = TiffTags {
         geo: None,
         dpi: dpi(&args.ortho)?,
@@ -119,7 +140,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         _ => {
             let mut shader = Shader::new(terrain, lighting, setup.method, Culling::default());
             shader.base = None;
-            Maker::Shaded(Box::new(shader), setup.arith)
+            // A PNG picture is 8-bit.
+            let depth = if tiff { depth(ortho) } else { Depth::Eight };
+            Maker::Shaded(Box::new(shader), setup.arith, depth)
         }
     };
     if let Some(exaggeration) = heightray::heightfield::relief::exaggeration(terrain.field()) {

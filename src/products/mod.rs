@@ -43,8 +43,9 @@ pub enum Raster {
 
 /// How a product's pixel is made.
 pub enum Maker<'a> {
-    /// Shaded relief by this shader, rays traced in this arithmetic.
-    Shaded(Box<Shader<'a>>, Arith),
+    /// Shaded relief by this shader, rays traced in this arithmetic, for a picture of this
+    /// depth.
+    Shaded(Box<Shader<'a>>, Arith, tiff_out::Depth),
     /// The sky-view factor.
     SkyView(SkyView, Horizon<'a>),
     /// Hours of direct sun.
@@ -58,9 +59,11 @@ impl Maker<'_> {
         let centre = |column, row| grid.point(column, row, (0.5, 0.5));
         let value = |v: Option<f64>| v.map_or(f32::NAN, |v| v as f32);
         match self {
-            Maker::Shaded(shader, arith) => Raster::Colour(fill(grid, progress, |column, row| {
-                shaded::pixel(shader, *arith, grid, column, row)
-            })),
+            Maker::Shaded(shader, arith, depth) => {
+                Raster::Colour(fill(grid, progress, |column, row| {
+                    shaded::pixel(shader, (*arith, *depth), grid, column, row)
+                }))
+            }
             Maker::SkyView(measure, horizon) => {
                 Raster::Values(fill(grid, progress, |column, row| {
                     value(measure.at(horizon, centre(column, row)))

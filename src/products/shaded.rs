@@ -1,9 +1,12 @@
 //! Shaded relief seen straight down: each pixel the mean, in linear light, of vertical rays
 //! spread over its area, each shaded as a picture is ([`Shader`]: the scene's ramp, sun and
 //! effects, exact cast shadows in exact mode). Rays that find no terrain (holes, beyond the
-//! map's edge) leave their share of the pixel transparent.
+//! map's edge) leave their share of the pixel transparent. For 16 bits a channel each ray
+//! brings its own linear colour; for 8, the colour of its display bytes, as pictures were
+//! always made.
 
 use super::grid::OrthoGrid;
+use super::tiff_out::Depth;
 use crate::render::{linear_from_bytes, Shader};
 use crate::{Arith, Face, Ray};
 
@@ -14,8 +17,14 @@ pub const RAYS_PER_AXIS: u32 = 4;
 /// 0 to 65535.
 pub type Rgba16 = [u16; 4];
 
-/// The pixel `(column, row)` of `grid` in shaded relief.
-pub fn pixel(shader: &Shader<'_>, arith: Arith, grid: &OrthoGrid, column: u32, row: u32) -> Rgba16 {
+/// The pixel `(column, row)` of `grid` in shaded relief, for a picture of `depth`.
+pub fn pixel(
+    shader: &Shader<'_>,
+    (arith, depth): (Arith, Depth),
+    grid: &OrthoGrid,
+    column: u32,
+    row: u32,
+) -> Rgba16 {
     let top = shader.terrain.z_range().1 + 1.0;
     let n = RAYS_PER_AXIS;
     let mut sum = [0.0f64; 3];
@@ -31,10 +40,13 @@ pub fn pixel(shader: &Shader<'_>, arith: Arith, grid: &OrthoGrid, column: u32, r
             let Ok(ray) = Ray::new([x, y, top], [0.0, 0.0, -1.0]) else {
                 continue;
             };
-            let (sample, hit) = shader.traced(&ray, arith);
+            let (sample, hit, colour) = shader.traced_linear(&ray, arith, None);
             if hit.is_some_and(|h| h.face == Face::Terrain) {
                 let [_, r, g, b] = sample.rgb.to_be_bytes();
-                let linear = linear_from_bytes([r, g, b]);
+                let linear = match depth {
+                    Depth::Eight => linear_from_bytes([r, g, b]),
+                    Depth::Sixteen => colour.to_array(),
+                };
                 for k in 0..3 {
                     sum[k] += linear[k];
                 }

@@ -3,13 +3,18 @@
 //! pixels are settled between rounds, after every batch of [`FIRST_BATCH`], from the whole
 //! frame's estimates of the round before ([`pixel::refines`]): the decisions depend on no
 //! thread or row order, so the viewer, which shows the frame after each round, ends with the
-//! image `render` makes, bit for bit.
+//! image `render` makes, bit for bit. Where the frame keeps 16-bit words, each pixel's mean of
+//! its samples' own linear colours gives them.
 
 use super::effects::nanos_since;
 use super::effects::pixel::{self, position, Estimate, FIRST_BATCH};
 use super::effects::Effects;
-use crate::render::passes::{clearance, Frame, Renderer};
+use super::gamma;
+use crate::render::deep;
+use crate::render::frame::Frame;
+use crate::render::passes::{clearance, Renderer};
 use crate::render::stats::PixelStats;
+use glam::DVec3;
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -17,6 +22,8 @@ use std::time::Instant;
 #[derive(Clone, Copy, Debug, Default)]
 struct Taking {
     estimate: Estimate,
+    /// The sum of its samples' linear colours, which the words are the mean of.
+    linear: DVec3,
     /// Whether its own samples agree (as of the last full batch).
     agrees: bool,
     /// Whether it stopped taking samples.
@@ -171,13 +178,15 @@ impl Renderer<'_> {
         let effects = &self.shader.lighting.effects;
         let last = end >= total;
         let wedges = self.shader.wedges(self.camera.eye(), self.arith);
+        let words = deep::chunks(&mut frame.words, width, frame.pixels.len());
         let rows = frame
             .pixels
             .par_chunks_mut(width)
             .zip(frame.stats.par_chunks_mut(width))
             .zip(sums.pixels.par_chunks_mut(width))
+            .zip(words)
             .enumerate()
-            .map(|(y, ((pixels, stats), takings))| {
+            .map(|(y, (((pixels, stats), takings), mut words))| {
                 if cancelled() {
                     return None;
                 }
@@ -198,7 +207,8 @@ impl Renderer<'_> {
                         let (px, py) = position(&self.camera, x as u32, y as u32, index);
                         let ray = self.camera.ray_at(px, py);
                         let clearance = clearance(wedges.as_ref(), &ray, &mut totals);
-                        let (sample, _) = shader.traced_from(&ray, self.arith, clearance);
+                        let (sample, _, colour) = shader.traced_linear(&ray, self.arith, clearance);
+                        taking.linear += colour;
                         totals.add(&sample);
                         if let Some(agrees) = taking.estimate.add(sample.rgb) {
                             taking.agrees = agrees;
@@ -212,6 +222,10 @@ impl Renderer<'_> {
                     }
                     totals.time.later_samples += later.map_or(0, nanos_since);
                     *pixel = taking.estimate.rgb();
+                    if let Some(words) = words.as_deref_mut() {
+                        let taken = f64::from(taking.estimate.taken.max(1));
+                        words[x] = gamma::words((taking.linear / taken).to_array());
+                    }
                     if last {
                         taking.done = true;
                         stopped += 1;

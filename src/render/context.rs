@@ -122,20 +122,27 @@ impl<'a> Context<'a> {
         self.lighting.effects.sky_distance / scale[0].min(scale[1])
     }
 
-    /// A surface's linear `colour` seen along `ray` at `t`, through the fog, packed.
+    /// A surface's linear `colour` seen along `ray` at `t`, through the fog: still linear, so
+    /// that the pixel packs it to bytes or to 16-bit words as its output asks.
     #[inline(always)]
-    pub(super) fn fogged_rgb(&self, ray: &Ray, t: f64, mut colour: DVec3) -> u32 {
+    pub(super) fn fogged_rgb(&self, ray: &Ray, t: f64, mut colour: DVec3) -> DVec3 {
         if self.lighting.fog > 0.0 {
             let distance = t * self.world_dir(ray.dir()).length();
             let clear = (-self.lighting.fog * distance).exp();
             colour = colour * clear + self.haze() * (1.0 - clear);
         }
-        gamma::pack(colour.to_array())
+        colour
     }
 
-    /// The colour of a ray that misses the terrain.
+    /// The colour of a ray that misses the terrain, packed.
     pub fn sky_rgb(&self, ray: &Ray) -> u32 {
-        gamma::pack(self.sky(self.world_dir(ray.dir()).into()).to_array())
+        gamma::pack(self.sky_seen(ray).to_array())
+    }
+
+    /// The linear colour of a ray that misses the terrain.
+    #[inline(always)]
+    pub(super) fn sky_seen(&self, ray: &Ray) -> DVec3 {
+        self.sky(self.world_dir(ray.dir()).into())
     }
 
     /// The direction towards the sun in grid coordinates, where shadow rays are traced.

@@ -3,7 +3,8 @@
 //! bisection on the formula itself, so the table gives the formula's bytes exactly. A second
 //! table, over 256 buckets per octave of `v`, holds the byte where each bucket starts: a bucket
 //! spans so little (0.4% of `v`, under half a byte at the curve's steepest) that it reaches
-//! at most one more threshold, so one lookup and one comparison give the byte.
+//! at most one more threshold, so one lookup and one comparison give the byte. 16-bit values
+//! (`words`, for 16-bit TIFFs) take the formula itself: only those renders pay its `powf`.
 
 use std::sync::LazyLock;
 
@@ -96,6 +97,28 @@ impl Tables {
     }
 }
 
+/// A linear colour as a display shows it: each channel clamped to [0, 1], NaN as 0. Bytes and
+/// words encode this; the samples of a pixel are averaged as this, so that a sample brighter
+/// than white counts as white, as its bytes do.
+pub fn shown(c: [f64; 3]) -> [f64; 3] {
+    c.map(|v| {
+        if v >= 1.0 {
+            1.0
+        } else if v > 0.0 {
+            v
+        } else {
+            0.0
+        }
+    })
+}
+
+/// The 16-bit display values of a linear colour's three channels by the bytes' formula
+/// (`v^(1/2.2)` scaled to 0..=65535 and rounded), each clamped to [0, 1] (NaN gives 0): a
+/// word `w` lies within half a byte of its colour's byte times 257.
+pub fn words(c: [f64; 3]) -> [u16; 3] {
+    c.map(|v| (v.clamp(0.0, 1.0).powf(1.0 / 2.2) * 65535.0 + 0.5) as u16)
+}
+
 /// The linear value whose display byte is `b` by the formula (`(b / 255)^2.2`).
 pub fn linear(b: u8) -> f64 {
     LINEAR[usize::from(b)]
@@ -134,5 +157,17 @@ mod tests {
         for b in 0..=255u8 {
             assert_eq!(bytes([linear(b); 3]), [b; 3]);
         }
+    }
+
+    #[test]
+    fn words_round_to_the_bytes_within_one() {
+        for i in 0..=20_000 {
+            let v = f64::from(i) / 20_000.0;
+            let (word, byte) = (words([v; 3])[0], bytes([v; 3])[0]);
+            let rounded = (u32::from(word) + 128) / 257;
+            assert!(rounded.abs_diff(u32::from(byte)) <= 1, "v = {v}");
+        }
+        assert_eq!(words([f64::NAN, -1.0, 2.0]), [0, 0, 65535]);
+        assert_eq!(words([linear(128); 3]), [128 * 257; 3]);
     }
 }

@@ -3,8 +3,10 @@
 //! threads. A caller-supplied check lets a newer camera cancel the work between bands.
 
 use super::camera::Camera;
+use super::deep::{self, Painted, Sampled};
 use super::effects::nanos_since;
-use super::effects::pixel::{self, FIRST_BATCH};
+use super::effects::pixel::FIRST_BATCH;
+use super::frame::Frame;
 use super::shade::Shader;
 use super::stats::{FrameStats, PixelStats};
 use super::tally::Counting;
@@ -28,68 +30,10 @@ const TILE: u32 = 16;
 /// The columns of a pass's pixels whose rays are walked in packets, row by row.
 const PACKET_COLUMNS: usize = 4;
 
-/// An image with its per-pixel statistics and running totals.
-#[derive(Debug)]
-pub struct Frame {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// 0x00RRGGBB, row-major from the top.
-    pub pixels: Vec<u32>,
-    /// Each pixel's queries, in the order of `pixels`.
-    pub stats: Vec<PixelStats>,
-    /// Totals over the pixels traced so far.
-    pub totals: FrameStats,
-    /// Passes completed.
-    pub passes_done: usize,
-}
-
 impl Frame {
-    /// A black frame of `width x height` pixels with no pass rendered.
-    pub fn new(width: u32, height: u32) -> Frame {
-        let n = width as usize * height as usize;
-        Frame {
-            width,
-            height,
-            pixels: vec![0; n],
-            stats: vec![PixelStats::default(); n],
-            totals: FrameStats::default(),
-            passes_done: 0,
-        }
-    }
-
     /// Whether every pass has been rendered.
     pub fn complete(&self) -> bool {
         self.passes_done == PASS_BLOCKS.len()
-    }
-}
-
-impl Clone for Frame {
-    fn clone(&self) -> Frame {
-        let mut copy = Frame::new(0, 0);
-        copy.clone_from(self);
-        copy
-    }
-
-    /// Copies into `self`'s buffers: the viewer refines a copy of every pass it shows, and
-    /// a frame is tens of megabytes that need not be allocated and paged in again.
-    fn clone_from(&mut self, source: &Frame) {
-        // (Destructured, so that a field added later is copied or left out on purpose.)
-        let Frame {
-            width,
-            height,
-            pixels,
-            stats,
-            totals,
-            passes_done,
-        } = source;
-        self.width = *width;
-        self.height = *height;
-        self.pixels.clone_from(pixels);
-        self.stats.clone_from(stats);
-        self.totals = *totals;
-        self.passes_done = *passes_done;
     }
 }
 
@@ -185,19 +129,22 @@ impl Renderer<'_> {
         let rows = BAND as usize * width;
         let per_sample = self.shader.per_sample();
         let wedges = self.wedges();
+        let words = deep::chunks(&mut frame.words, rows, frame.pixels.len());
         let bands: Vec<Option<FrameStats>> = frame
             .pixels
             .par_chunks_mut(rows)
             .zip(frame.stats.par_chunks_mut(rows))
+            .zip(words)
             .enumerate()
             // Every band a job of its own that an idle thread can take: rayon's adaptive
             // split leaves runs of bands to one thread, and where the costly rays gather in
             // a few bands (the horizon, seen with the run walk over a large map) the other
             // thread then waits for seconds.
             .with_max_len(1)
-            .map(|(band, (pixels, stats))| {
+            .map(|(band, ((pixels, stats), words))| {
                 let mut out = BandOut {
                     pixels,
+                    words,
                     stats,
                     y0: band as u32 * BAND,
                     width: frame.width,
@@ -240,12 +187,12 @@ impl Renderer<'_> {
     /// cancelled. The band is traced tile by tile, each tile's passes one after another: the
     /// terrain its rays cross is still in the caches for the next pass. Each camera ray starts
     /// where its wedge's profile clears it ([`Wedges::clearance`]).
-    fn band(
+    fn band<P: Sampled>(
         &self,
         wedges: Option<&Wedges<'_>>,
         out: &mut BandOut<'_>,
         passes: Range<usize>,
-        sample: impl Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32,
+        sample: impl Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> P,
         cancelled: &(dyn Fn() -> bool + Sync),
     ) -> Option<FrameStats> {
         let y_end = (out.y0 + BAND).min(out.height);
@@ -298,9 +245,15 @@ impl WithNumbers for Band<'_, '_, '_, '_> {
     type Output = Option<FrameStats>;
     fn with<N: Numbers>(self) -> Self::Output {
         let shader = self.shader;
+        let (renderer, wedges, passes) = (self.renderer, self.wedges, self.passes);
+        if self.out.words.is_some() {
+            // Linear colours, which give the words as well as the bytes.
+            let sample =
+                |r: &Ray, c, counting: &mut Counting<'_>| shader.linear_sample::<N>(r, c, counting);
+            return renderer.band(wedges, self.out, passes, sample, self.cancelled);
+        }
         let sample = |r: &Ray, c, counting: &mut Counting<'_>| shader.sample::<N>(r, c, counting);
-        self.renderer
-            .band(self.wedges, self.out, self.passes, sample, self.cancelled)
+        renderer.band(wedges, self.out, passes, sample, self.cancelled)
     }
 }
 
@@ -313,7 +266,7 @@ struct Tiles<'r, 'o, 'b, F> {
     totals: FrameStats,
 }
 
-impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_, F> {
+impl<P: Sampled, F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> P> Tiles<'_, '_, '_, F> {
     /// Whether pixels take several samples (each pixel's rays then traced together).
     fn sub_pixel(&self) -> bool {
         self.renderer.shader.lighting.effects.samples > 1
@@ -326,7 +279,7 @@ impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_,
         let effects = &renderer.shader.lighting.effects;
         let taken = effects.samples;
         let wedges = self.wedges;
-        let (rgb, later) = pixel::shade(&renderer.camera, (x, y), effects, |ray| {
+        let (colour, later) = P::shade(&renderer.camera, (x, y), effects, |ray| {
             let clearance = clearance(wedges, ray, counting.frame);
             sample(ray, clearance, &mut counting)
         });
@@ -336,7 +289,7 @@ impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_,
         };
         self.totals.effects.add_pixel(taken);
         self.totals.time.later_samples += later;
-        self.out.paint(x, y, block, rgb, stats);
+        self.out.paint(x, y, block, colour, stats);
     }
 
     /// Traces the pixels `columns x rows` that pass `pass` (of blocks `block`) traces and no
@@ -411,13 +364,13 @@ impl<F: Fn(&Ray, Option<Clearance>, &mut Counting<'_>) -> u32> Tiles<'_, '_, '_,
         clearance: Option<Clearance>,
     ) {
         let mut counting = Counting::new(&mut self.totals);
-        let rgb = (self.sample)(ray, clearance, &mut counting);
+        let colour = (self.sample)(ray, clearance, &mut counting);
         let stats = PixelStats {
             samples: 1,
             ..counting.pixel
         };
         self.totals.effects.add_pixel(1);
-        self.out.paint(x, y, block, rgb, stats);
+        self.out.paint(x, y, block, colour, stats);
     }
 }
 
@@ -454,6 +407,8 @@ enum Walking {
 /// The rows of one band of the frame.
 struct BandOut<'a> {
     pixels: &'a mut [u32],
+    /// The pixels' 16-bit words, where the frame keeps them.
+    words: Option<&'a mut [[u16; 3]]>,
     stats: &'a mut [PixelStats],
     y0: u32,
     width: u32,
@@ -464,18 +419,23 @@ struct BandOut<'a> {
 
 impl BandOut<'_> {
     /// Paints the pixel `(x, y)` traced by a pass of blocks `block`: with [`Paint::Blocks`]
-    /// its whole block, clipped to the band.
-    fn paint(&mut self, x: u32, y: u32, block: u32, rgb: u32, stats: PixelStats) {
+    /// its whole block, clipped to the band; its words too where the band keeps them.
+    #[inline(always)]
+    fn paint(&mut self, x: u32, y: u32, block: u32, colour: impl Painted, stats: PixelStats) {
         let row = y - self.y0;
         let block = match self.paint {
             Paint::Blocks => block,
             Paint::Pixels => 1,
         };
+        let (rgb, words) = (colour.rgb(), colour.words());
         // (One pixel, as most are painted, written directly: the loop's bounds cost more than
         // the pixel.)
         if block == 1 {
             let at = (row * self.width + x) as usize;
             (self.pixels[at], self.stats[at]) = (rgb, stats);
+            if let (Some(out), Some(words)) = (self.words.as_deref_mut(), words) {
+                out[at] = words;
+            }
             return;
         }
         let rows = row..(row + block).min(self.pixels.len() as u32 / self.width);
@@ -484,6 +444,9 @@ impl BandOut<'_> {
             let end = start + (block.min(self.width - x)) as usize;
             self.pixels[start..end].fill(rgb);
             self.stats[start..end].fill(stats);
+            if let (Some(out), Some(words)) = (self.words.as_deref_mut(), words) {
+                out[start..end].fill(words);
+            }
         }
     }
 }

@@ -4,6 +4,7 @@
 use super::effects::EffectTime;
 use crate::geometry::Face;
 use crate::traverse::Counters;
+use glam::DVec3;
 
 /// One traced sample, recorded on its own (see [`Tally`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -134,8 +135,8 @@ pub enum Reflection {
 /// A water pixel as shaded: its colour, its reflection, the reflected ray's queries, and
 /// whether one of its decisions was made exactly after intervals left it unsettled.
 pub struct WaterPixel {
-    /// 0x00RRGGBB.
-    pub rgb: u32,
+    /// Its linear colour, through the fog.
+    pub rgb: DVec3,
     /// What became of the reflected ray.
     pub reflection: Reflection,
     /// Its queries.

@@ -8,6 +8,7 @@ use super::effects::pixel::per_sample;
 use super::effects::{
     nanos_since, At, Effect, EffectTime, SkyLight, SoftShadows, SunShadow, WaterReflection,
 };
+use super::gamma;
 use super::sample::{Cast, Sample, Shadow, ShadowSkip};
 use super::scene::Lighting;
 use super::tally::{Counting, Tally};
@@ -82,20 +83,32 @@ impl<'a> Shader<'a> {
         clearance: Option<Clearance>,
         counting: &mut Counting<'_>,
     ) -> u32 {
+        gamma::pack(self.linear_sample::<N>(ray, clearance, counting).to_array())
+    }
+
+    /// [`Shader::sample`]'s colour in linear light, before it is packed into bytes: what
+    /// 16-bit output is made from.
+    #[inline(always)]
+    pub fn linear_sample<N: Numbers>(
+        &self,
+        ray: &Ray,
+        clearance: Option<Clearance>,
+        counting: &mut Counting<'_>,
+    ) -> DVec3 {
         if !N::REDOES {
             return self.sample_into::<N, _>(ray, clearance, None, counting);
         }
         // Recorded apart first: a run the intervals leave unsettled counts nothing.
         let mut own = Sample::default();
-        let rgb = self.sample_into::<N, _>(ray, clearance, None, &mut own);
+        let colour = self.sample_into::<N, _>(ray, clearance, None, &mut own);
         own.count_into(counting);
-        rgb
+        colour
     }
 
     /// [`Shader::sample`] recorded on its own: its colour, shadow and each kind of ray's
     /// queries.
     pub fn recorded<N: Numbers>(&self, ray: &Ray, clearance: Option<Clearance>) -> Sample {
-        self.record::<N>(ray, clearance, None)
+        self.record::<N>(ray, clearance, None).0
     }
 
     /// [`Shader::recorded`] in arithmetic `arith`, with the primary ray's hit (its `t` to the
@@ -112,6 +125,18 @@ impl<'a> Shader<'a> {
         arith: Arith,
         clearance: Option<Clearance>,
     ) -> (Sample, Option<Hit>) {
+        let (sample, hit, _) = self.traced_linear(ray, arith, clearance);
+        (sample, hit)
+    }
+
+    /// [`Shader::traced_from`] with the sample's colour in linear light as a display shows it
+    /// (each channel clamped to [0, 1]): what a pixel's samples are averaged as.
+    pub fn traced_linear(
+        &self,
+        ray: &Ray,
+        arith: Arith,
+        clearance: Option<Clearance>,
+    ) -> (Sample, Option<Hit>, DVec3) {
         /// One sample, recorded, with the numbers of an arithmetic.
         struct Recorded<'s, 'a> {
             shader: &'s Shader<'a>,
@@ -120,8 +145,8 @@ impl<'a> Shader<'a> {
             hit: &'s Cell<Option<Hit>>,
         }
         impl WithNumbers for Recorded<'_, '_> {
-            type Output = Sample;
-            fn with<N: Numbers>(self) -> Sample {
+            type Output = (Sample, DVec3);
+            fn with<N: Numbers>(self) -> (Sample, DVec3) {
                 self.shader
                     .record::<N>(self.ray, self.clearance, Some(self.hit))
             }
@@ -133,8 +158,8 @@ impl<'a> Shader<'a> {
             clearance,
             hit: &hit,
         };
-        let (sample, _) = with_numbers(arith, recorded);
-        (sample, hit.take())
+        let ((sample, colour), _) = with_numbers(arith, recorded);
+        (sample, hit.take(), gamma::shown(colour.to_array()).into())
     }
 
     /// The wedges of camera rays from `eye` traced in `arith`, where the culling asks for them,
@@ -154,20 +179,21 @@ impl<'a> Shader<'a> {
         Some(wedges)
     }
 
-    /// [`Shader::recorded`], its hit kept in `keep` if given.
+    /// [`Shader::recorded`], its hit kept in `keep` if given, with its linear colour.
     fn record<N: Numbers>(
         &self,
         ray: &Ray,
         clearance: Option<Clearance>,
         keep: Option<&Cell<Option<Hit>>>,
-    ) -> Sample {
+    ) -> (Sample, DVec3) {
         let mut sample = Sample::default();
-        let rgb = self.sample_into::<N, _>(ray, clearance, keep, &mut sample);
-        Sample { rgb, ..sample }
+        let colour = self.sample_into::<N, _>(ray, clearance, keep, &mut sample);
+        let rgb = gamma::pack(colour.to_array());
+        (Sample { rgb, ..sample }, colour)
     }
 
     /// One sample's rays with the numbers `N`, counted into `tally`, its hit kept in `keep`
-    /// if given; its colour.
+    /// if given; its linear colour.
     #[inline(always)]
     fn sample_into<N: Numbers, T: Tally>(
         &self,
@@ -175,7 +201,7 @@ impl<'a> Shader<'a> {
         clearance: Option<Clearance>,
         keep: Option<&Cell<Option<Hit>>>,
         tally: &mut T,
-    ) -> u32 {
+    ) -> DVec3 {
         let pixel = Pixel {
             shader: self,
             ray,
@@ -191,7 +217,7 @@ impl<'a> Shader<'a> {
     }
 
     /// One sample's rays in arithmetic `S` alone, counted into `tally`, its hit kept in `keep`
-    /// if given; its colour.
+    /// if given; its linear colour.
     #[inline(always)]
     fn traced_in<S: Scalar>(
         &self,
@@ -199,7 +225,7 @@ impl<'a> Shader<'a> {
         clearance: Option<Clearance>,
         keep: Option<&Cell<Option<Hit>>>,
         tally: &mut impl Tally,
-    ) -> u32 {
+    ) -> DVec3 {
         let primary = self.tracer().trace::<S>(ray, clearance);
         tally.primary(&primary.counters, primary.hit.as_ref().map(|f| f.face));
         if let Some(water) = &self.lighting.effects.water {
@@ -220,7 +246,7 @@ impl<'a> Shader<'a> {
             }
         }
         let Some(found) = primary.hit else {
-            return self.sky_rgb(ray);
+            return self.sky_seen(ray);
         };
         // Shading needs the point only in `f64`. Arithmetics that round shade the point they
         // computed; for the others, `t` to the nearest `f64` is as good and much cheaper than
@@ -265,15 +291,15 @@ impl<'a> Shader<'a> {
                 face: found.face,
             }));
         }
-        let rgb = if self.lighting.effects.sky_light {
+        let colour = if self.lighting.effects.sky_light {
             let start = Instant::now();
             let (light, sky) = SkyLight.cast(this, &at);
             tally.sky(&sky);
             redone |= sky.redone;
             time.sky = nanos_since(start);
-            self.lit_rgb(ray, (found.face, p), t, facing, shadow, light)
+            self.lit_colour(ray, (found.face, p), t, facing, shadow, light)
         } else {
-            self.surface_rgb(ray, (found.face, p), t, facing, shadow)
+            self.surface_colour(ray, (found.face, p), t, facing, shadow)
         };
         if redone {
             tally.redone();
@@ -281,7 +307,7 @@ impl<'a> Shader<'a> {
         if time != EffectTime::default() {
             tally.time(&time);
         }
-        rgb
+        colour
     }
 
     /// The surface's colour at `p` on `face` before it is lit ([`Context::albedo`]), with
@@ -296,16 +322,29 @@ impl<'a> Shader<'a> {
     }
 
     /// The colour of the surface at `p` on `face`, `t` along `ray`, facing the sun as
-    /// [`Context::facing`] says, in shadow or not as `shadow` says.
+    /// [`Context::facing`] says, in shadow or not as `shadow` says; packed.
     #[inline(always)]
     pub fn surface_rgb(
+        &self,
+        ray: &Ray,
+        at: (Face, DVec3),
+        t: f64,
+        facing: f64,
+        shadow: Shadow,
+    ) -> u32 {
+        gamma::pack(self.surface_colour(ray, at, t, facing, shadow).to_array())
+    }
+
+    /// [`Shader::surface_rgb`] in linear light.
+    #[inline(always)]
+    fn surface_colour(
         &self,
         ray: &Ray,
         (face, p): (Face, DVec3),
         t: f64,
         facing: f64,
         shadow: Shadow,
-    ) -> u32 {
+    ) -> DVec3 {
         let lit = match shadow {
             Shadow::Cast { shadowed: true } => 0.0,
             _ => facing.max(0.0),
@@ -315,9 +354,9 @@ impl<'a> Shader<'a> {
         self.fogged_rgb(ray, t, colour)
     }
 
-    /// [`Shader::surface_rgb`] with soft shadows and sky light: `ambient` (a colour) instead of
-    /// the scene's constant ambient term.
-    fn lit_rgb(
+    /// [`Shader::surface_colour`] with soft shadows and sky light: `ambient` (a colour)
+    /// instead of the scene's constant ambient term.
+    fn lit_colour(
         &self,
         ray: &Ray,
         (face, p): (Face, DVec3),
@@ -325,7 +364,7 @@ impl<'a> Shader<'a> {
         facing: f64,
         shadow: Shadow,
         ambient: DVec3,
-    ) -> u32 {
+    ) -> DVec3 {
         let lit = match shadow {
             Shadow::Cast { shadowed: true } => 0.0,
             Shadow::Soft(soft) => facing.max(0.0) * soft.visible(),
@@ -363,9 +402,9 @@ struct Pixel<'s, 'a, 'c, T> {
 }
 
 impl<T: Tally> Generic for Pixel<'_, '_, '_, T> {
-    type Output = u32;
+    type Output = DVec3;
     #[inline(always)]
-    fn run<S: Scalar>(&self) -> u32 {
+    fn run<S: Scalar>(&self) -> DVec3 {
         let mut tally = self.tally.borrow_mut();
         // (A run again in rationals after intervals left a decision unsettled starts afresh.)
         tally.restart();

@@ -16,6 +16,7 @@ mod cli_paths;
 mod cli_render;
 mod cli_trace;
 mod crs_scale;
+mod deep_tiffs;
 mod drapes;
 mod exact_paths;
 mod exact_reference;

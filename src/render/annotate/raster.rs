@@ -1,20 +1,21 @@
 //! An SVG of the whole image drawn over a window of its pixels. It is rasterised in blocks
 //! fixed in the whole image (each with a border around it), so that every pixel is drawn the
 //! same way whichever window holds it: a poster's tiles merge into the whole picture's bytes.
+//! The marks are composed over bytes (0x00RRGGBB) or over 16-bit words alike ([`Marked`]).
 
 use super::sheet::{Annotations, Sheet};
 use super::svg_options;
 use crate::render::Window;
-use resvg::tiny_skia::{Pixmap, Transform};
+use resvg::tiny_skia::{Pixmap, PremultipliedColorU8, Transform};
 use resvg::usvg::Tree;
 
 impl Annotations {
-    /// Draws these annotations into `pixels` (0x00RRGGBB, row by row), which hold `window` of
-    /// `sheet`'s whole image.
-    pub fn draw(
+    /// Draws these annotations into `pixels` (0x00RRGGBB, or 16-bit red, green and blue; row
+    /// by row), which hold `window` of `sheet`'s whole image.
+    pub fn draw<P: Marked>(
         &self,
         sheet: &Sheet<'_>,
-        pixels: &mut [u32],
+        pixels: &mut [P],
         window: Window,
     ) -> Result<(), String> {
         if self.is_empty() {
@@ -29,9 +30,9 @@ const BLOCK: u32 = 256;
 /// Pixels drawn around a block and dropped: marks crossing its edge are drawn whole.
 const BORDER: u32 = 4;
 
-/// Draws `svg` (of the whole image) over `pixels` (0x00RRGGBB, row by row), which hold
-/// `window` of the whole image.
-pub fn draw_over(svg: &str, pixels: &mut [u32], window: Window) -> Result<(), String> {
+/// Draws `svg` (of the whole image) over `pixels` (row by row), which hold `window` of the
+/// whole image.
+pub fn draw_over<P: Marked>(svg: &str, pixels: &mut [P], window: Window) -> Result<(), String> {
     let tree = Tree::from_str(svg, &svg_options())
         .map_err(|e| format!("cannot draw the annotations: {e}"))?;
     let side = BLOCK + 2 * BORDER;
@@ -51,7 +52,7 @@ pub fn draw_over(svg: &str, pixels: &mut [u32], window: Window) -> Result<(), St
                     let mark = marks[((y - y0 + BORDER) * side + (x - x0 + BORDER)) as usize];
                     let pixel =
                         &mut pixels[((y - window.y) * window.width + x - window.x) as usize];
-                    *pixel = over(*pixel, mark);
+                    *pixel = pixel.under(mark);
                 }
             }
         }
@@ -59,12 +60,38 @@ pub fn draw_over(svg: &str, pixels: &mut [u32], window: Window) -> Result<(), St
     Ok(())
 }
 
-/// A mark (its colour premultiplied by its cover) over a 0x00RRGGBB pixel.
-fn over(pixel: u32, mark: resvg::tiny_skia::PremultipliedColorU8) -> u32 {
-    let keep = 255 - u32::from(mark.alpha());
-    let channel = |shift: u32, value: u8| {
-        let below = (pixel >> shift) & 0xff;
-        (u32::from(value) + (below * keep + 127) / 255).min(255) << shift
-    };
-    channel(16, mark.red()) | channel(8, mark.green()) | channel(0, mark.blue())
+/// A pixel marks are drawn over.
+pub trait Marked: Copy {
+    /// This pixel under `mark` (its colour premultiplied by its cover).
+    fn under(self, mark: PremultipliedColorU8) -> Self;
+}
+
+impl Marked for u32 {
+    /// A 0x00RRGGBB pixel under the mark.
+    fn under(self, mark: PremultipliedColorU8) -> u32 {
+        let keep = 255 - u32::from(mark.alpha());
+        let channel = |shift: u32, value: u8| {
+            let below = (self >> shift) & 0xff;
+            (u32::from(value) + (below * keep + 127) / 255).min(255) << shift
+        };
+        channel(16, mark.red()) | channel(8, mark.green()) | channel(0, mark.blue())
+    }
+}
+
+impl Marked for [u16; 3] {
+    /// 16-bit red, green and blue under the mark: the bytes' composition at 257 times the
+    /// scale, so the words round to the bytes the same marks give.
+    fn under(self, mark: PremultipliedColorU8) -> [u16; 3] {
+        let keep = 255 - u32::from(mark.alpha());
+        let channel = |below: u16, value: u8| {
+            let mixed = u32::from(value) * 257 + (u32::from(below) * keep + 127) / 255;
+            mixed.min(65535) as u16
+        };
+        let [r, g, b] = self;
+        [
+            channel(r, mark.red()),
+            channel(g, mark.green()),
+            channel(b, mark.blue()),
+        ]
+    }
 }
