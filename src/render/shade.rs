@@ -345,17 +345,13 @@ impl<'a> Shader<'a> {
         facing: f64,
         shadow: Shadow,
     ) -> DVec3 {
-        let lit = match shadow {
-            Shadow::Cast { shadowed: true } => 0.0,
-            _ => facing.max(0.0),
-        };
-        let light = self.lighting.ambient + self.lighting.intensity * lit;
-        let colour = self.marked_albedo(ray, (face, p), t) * light;
-        self.fogged_rgb(ray, t, colour)
+        let ambient = DVec3::splat(self.lighting.ambient);
+        self.lit_colour(ray, (face, p), t, facing, shadow, ambient)
     }
 
-    /// [`Shader::surface_colour`] with soft shadows and sky light: `ambient` (a colour)
-    /// instead of the scene's constant ambient term.
+    /// [`Shader::surface_colour`] lit by `ambient` (a colour: the sky's light where the scene
+    /// has sky light) instead of the scene's constant ambient term.
+    #[inline(always)]
     fn lit_colour(
         &self,
         ray: &Ray,

@@ -242,6 +242,36 @@ fn a_straight_edge_casts_a_penumbra_as_wide_as_the_sun() {
     }
 }
 
+/// Soft shadows darken without sky light too: a ground point that sees none of the sun's disc
+/// has the colour of a hard shadow's, one that sees all of it the colour of full sun, and a
+/// point in the penumbra lies between them.
+#[test]
+fn soft_shadows_without_sky_light_darken_the_pixel() {
+    let terrain = edge_terrain();
+    let e = 30.0f64.to_radians();
+    let rgb = |angle_deg: f64, shadows: bool, x: f64| {
+        let mut lighting = lighting([e.cos(), 0.0, e.sin()], shadows);
+        lighting.effects.sun_angle_deg = angle_deg;
+        lighting.effects.sun_rays = 256;
+        let sample = shader(&terrain, lighting).recorded::<Plain<f64>>(&down_at(x, 16.3), None);
+        let [_, r, g, b] = sample.rgb.to_be_bytes();
+        u32::from(r) + u32::from(g) + u32::from(b)
+    };
+    // (Edge at 61, 20 high: hard shadow's edge at 61 - 20 / tan 30° = 26.4; penumbra 25.7..27.1.)
+    let (lit, dark, penumbra) = (10.0, 40.0, 26.4);
+    assert_eq!(rgb(2.0, true, dark), rgb(0.0, true, dark), "fully shadowed");
+    assert!(
+        rgb(2.0, true, dark) < rgb(2.0, false, dark),
+        "darker than unshadowed"
+    );
+    assert_eq!(rgb(2.0, true, lit), rgb(2.0, false, lit), "fully lit");
+    let between = rgb(2.0, true, penumbra);
+    assert!(
+        rgb(0.0, true, dark) < between && between < rgb(2.0, true, lit),
+        "{between}"
+    );
+}
+
 /// Behind the plateau's edge, cones settled as blocked whole by one more ray: each point's
 /// colour and share of the sun are those of casting every direction, in every arithmetic.
 #[test]
