@@ -118,7 +118,9 @@ fn annotate(job: &RenderJob, annotations: &Annotations, pixels: &mut [u32]) -> R
         width,
         height,
     };
-    annotations.draw(&sheet, pixels, whole)
+    annotations
+        .draw(&sheet, pixels, whole)
+        .map_err(|e| e.to_string())
 }
 
 /// The exports rendering anew: a bar for each, and a button that cancels it.
@@ -198,9 +200,10 @@ pub fn save_numbered(
 ) -> Result<PathBuf, String> {
     // The empty file holds the number; the image replaces it whole once written.
     let (_, path) = create_numbered(folder, stem, "png")?;
-    output_file::save_rgb(&path, pixels, (width, height)).inspect_err(|_| {
+    output_file::save_rgb(&path, pixels, (width, height)).map_err(|error| {
         // An empty file left behind is worse than none.
         let _ = std::fs::remove_file(&path);
+        error.to_string()
     })?;
     Ok(path)
 }

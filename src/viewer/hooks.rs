@@ -34,14 +34,14 @@ pub struct Counts {
 
 /// Saves 0x00RRGGBB pixels as a PNG, atomically.
 pub fn save_png(pixels: &[u32], width: u32, height: u32, path: &Path) -> Result<(), String> {
-    output_file::save_rgb(path, pixels, (width, height))
+    output_file::save_rgb(path, pixels, (width, height)).map_err(|e| e.to_string())
 }
 
 /// Writes the report atomically (a reader never sees half a file).
 pub fn write_report(path: &Path, model: &Model, counts: &Counts) -> Result<(), String> {
     let text = serde_json::to_string_pretty(&report(model, counts))
         .map_err(|e| format!("cannot encode the state report: {e}"))?;
-    output_file::write_bytes(path, (text + "\n").as_bytes())
+    output_file::write_bytes(path, (text + "\n").as_bytes()).map_err(|e| e.to_string())
 }
 
 fn report(model: &Model, counts: &Counts) -> Value {

@@ -16,8 +16,9 @@ pub fn save(model: &mut Model, size: (u32, u32)) {
     let saved = scene_text(model, size).and_then(|text| {
         let stem = super::export::stem(model);
         let (_, path) = create_numbered(&model.export.folder(), &stem, "toml")?;
-        output_file::write_bytes(&path, text.as_bytes()).inspect_err(|_| {
+        output_file::write_bytes(&path, text.as_bytes()).map_err(|error| {
             let _ = std::fs::remove_file(&path);
+            error.to_string()
         })?;
         Ok(path)
     });
