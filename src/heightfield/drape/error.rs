@@ -38,8 +38,8 @@ pub enum DrapeError {
     Decode {
         /// The file.
         path: PathBuf,
-        /// What the decoder found.
-        reason: ImageFailure,
+        /// What the decoder found (boxed: a TIFF decoder's error is large).
+        reason: Box<ImageFailure>,
     },
     /// More pixels than an overlay may have.
     #[error(
@@ -59,8 +59,8 @@ pub enum DrapeError {
     Placement {
         /// The file.
         path: PathBuf,
-        /// What is wrong with it.
-        reason: PlacementError,
+        /// What is wrong with it (boxed: a TIFF decoder's error is large).
+        reason: Box<PlacementError>,
     },
     /// It and the map are in different coordinate systems, and it cannot be reprojected.
     #[error(
@@ -74,8 +74,8 @@ pub enum DrapeError {
         own: String,
         /// The map's.
         map: String,
-        /// Why not.
-        why: ReprojectError,
+        /// Why not (boxed: PROJ's error is large).
+        why: Box<ReprojectError>,
     },
     /// Placed by its georeferencing, it covers none of the map.
     #[error(

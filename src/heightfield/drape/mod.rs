@@ -119,7 +119,7 @@ impl Drape {
                         path: path.to_owned(),
                         own: own.crs_label(),
                         map: map.crs_label(),
-                        why,
+                        why: Box::new(why),
                     })?;
                 let drape = Drape {
                     path: path.to_owned(),

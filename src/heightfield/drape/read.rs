@@ -48,7 +48,7 @@ pub fn read(path: &Path) -> Result<Image, DrapeError> {
     };
     let decode = |reason: ImageFailure| DrapeError::Decode {
         path: path.to_owned(),
-        reason,
+        reason: Box::new(reason),
     };
     let decoder_said = |reason: String| decode(ImageFailure::Decoder(reason));
     let open = || {
@@ -104,7 +104,7 @@ pub fn read(path: &Path) -> Result<Image, DrapeError> {
         let (file, _) = open()?;
         tiff_place(file, height).map_err(|reason| DrapeError::Placement {
             path: path.to_owned(),
-            reason,
+            reason: Box::new(reason),
         })?
     } else {
         None
@@ -113,7 +113,7 @@ pub fn read(path: &Path) -> Result<Image, DrapeError> {
         Some(place) => Some(place),
         None => world_file(path, height).map_err(|reason| DrapeError::Placement {
             path: path.to_owned(),
-            reason,
+            reason: Box::new(reason),
         })?,
     };
     Ok(Image {

@@ -89,8 +89,8 @@ pub enum LoadError {
     Decode {
         /// The file's name in messages.
         name: String,
-        /// What the decoder found.
-        reason: DecodeFailure,
+        /// What the decoder found (boxed: decoders' errors are large).
+        reason: Box<DecodeFailure>,
     },
     /// An image whose colour type or sample format is not one heightray reads heights from.
     #[error("{name}: {what} is not a height map; use a grayscale image, or RGB (luminance or a terrain-RGB encoding), or a single-band TIFF")]
@@ -145,8 +145,8 @@ pub enum LoadError {
     Mosaic {
         /// The tiles' names.
         names: String,
-        /// Why not.
-        reason: MosaicError,
+        /// Why not (boxed: it names two tiles).
+        reason: Box<MosaicError>,
     },
     /// The progress callback asked to stop.
     #[error("loading {name} was cancelled")]
@@ -490,6 +490,6 @@ fn first_bytes(bytes: &[u8]) -> String {
 fn decode_error(name: &str, reason: impl Into<DecodeFailure>) -> LoadError {
     LoadError::Decode {
         name: name.into(),
-        reason: reason.into(),
+        reason: Box::new(reason.into()),
     }
 }

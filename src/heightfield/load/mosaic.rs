@@ -133,7 +133,7 @@ pub fn load_mosaic(
         .join(", ");
     let refuse = |reason: MosaicError| LoadError::Mosaic {
         names: names.clone(),
-        reason,
+        reason: Box::new(reason),
     };
     let tile_options = LoadOptions {
         z_scale: 1.0,

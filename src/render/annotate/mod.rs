@@ -29,5 +29,6 @@ pub use sheet::{Annotations, AnnotationsSection, Sheet};
 pub use sight::Sight;
 pub use svg::{escaped, round_marks};
 pub use vectors::{
-    from_geojson, from_gpx, Coordinates, Place, VectorFile, VectorLayer, VectorSection,
+    from_geojson, from_gpx, Coordinates, Place, VectorError, VectorFile, VectorFileError,
+    VectorLayer, VectorProblem, VectorSection,
 };

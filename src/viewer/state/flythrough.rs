@@ -131,7 +131,7 @@ impl Flythrough {
     /// The keys as a path, or why they are none.
     pub fn animation(&self) -> Result<Animation, String> {
         let section = self.section().ok_or("no keys: add a view first (K)")?;
-        Animation::new(&section, None, 45.0, [0.0, 0.0, 1.0], None)
+        Animation::new(&section, None, 45.0, [0.0, 0.0, 1.0], None).map_err(|e| e.to_string())
     }
 }
 
