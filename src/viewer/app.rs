@@ -11,7 +11,7 @@ use super::quality::{detail, JobKey, Quality, ViewKey};
 use super::state::{Action, Capped, Home, LoadRequest, Loaded, Model, Shown};
 use super::user_event::UserEvent;
 use super::worker::{RenderWorker, RenderedFrame};
-use super::{contours_ui, drops, export, overlay_ui, panels, view, water_ui};
+use super::{contours_ui, drops, export, flythrough, overlay_ui, panels, view, water_ui};
 
 mod jobs;
 mod present;
@@ -238,6 +238,9 @@ impl App {
             Action::Screenshot => self.export(),
             Action::SaveScene => self.save_scene(),
             Action::MeasureArithmetics => self.accuracy.toggle_measure(&mut self.model.accuracy),
+            Action::ApplyClock => self.model.apply_clock(),
+            Action::PlayFlythrough => flythrough::play(&mut self.model),
+            Action::StopFlythrough => flythrough::stop(&mut self.model),
         }
     }
 
@@ -303,8 +306,20 @@ impl App {
             // egui may run this twice in one frame; act on the last run only.
             actions.clear();
             model.widgets.rects.clear();
-            keys_ui(ui, model, &mut actions);
-            super::flythrough::play_ui(ui, model);
+            actions.extend(keys_ui(
+                ui,
+                &mut model.orbit,
+                &model.shown.terrain,
+                &mut model.flythrough,
+                &mut model.widgets,
+            ));
+            actions.extend(flythrough::play_ui(
+                ui,
+                &mut model.flythrough,
+                &mut model.orbit,
+                &model.shown.terrain,
+                model.latest.as_deref(),
+            ));
             panels::fit_to_window(ui, model);
             if model.widgets.panels_visible {
                 panels::side_panel_ui(ui, model, &mut actions);

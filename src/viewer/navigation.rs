@@ -5,6 +5,7 @@ use super::ground;
 use super::orbit::Orbit;
 use super::state::{Action, Framed, Home, Model};
 use crate::render::framing::{DEFAULT_FOV_Y_DEG, DEFAULT_PITCH_DEG, DEFAULT_YAW_DEG};
+use crate::Terrain;
 
 /// Share of the distance one arrow key press walks the target.
 const WALK_STEP: f64 = 0.1;
@@ -83,10 +84,11 @@ pub fn settle(model: &mut Model, aspect: f64) {
     }
 }
 
-/// Arrows walk the target over the ground, Q and E turn, + and - zoom, PageUp and PageDown
-/// tilt, F frames the whole map and R returns home.
-pub fn keys_ui(ui: &egui::Ui, model: &mut Model, actions: &mut Vec<Action>) {
+/// Arrows walk `orbit`'s target over `terrain`, Q and E turn, + and - zoom, PageUp and
+/// PageDown tilt; F (framing the whole map) and R (returning home) are asked for.
+pub fn keys_ui(ui: &egui::Ui, orbit: &mut Orbit, terrain: &Terrain) -> Vec<Action> {
     use egui::Key;
+    let mut actions = Vec::new();
     let pressed = |key| ui.input(|i| i.key_pressed(key));
     let walks = [
         (Key::ArrowUp, (1.0, 0.0)),
@@ -96,29 +98,29 @@ pub fn keys_ui(ui: &egui::Ui, model: &mut Model, actions: &mut Vec<Action>) {
     ];
     for (key, (ahead, aside)) in walks {
         if pressed(key) {
-            model.orbit.walk(WALK_STEP * ahead, WALK_STEP * aside);
+            orbit.walk(WALK_STEP * ahead, WALK_STEP * aside);
             // The target walks on the ground, not through the air above a valley.
-            let [x, y, _] = model.orbit.target;
-            model.orbit.target[2] = ground::surface_z(&model.shown.terrain, x, y);
+            let [x, y, _] = orbit.target;
+            orbit.target[2] = ground::surface_z(terrain, x, y);
         }
     }
     if pressed(Key::Q) {
-        model.orbit.turn(TURN_STEP_DEG);
+        orbit.turn(TURN_STEP_DEG);
     }
     if pressed(Key::E) {
-        model.orbit.turn(-TURN_STEP_DEG);
+        orbit.turn(-TURN_STEP_DEG);
     }
     if pressed(Key::Plus) || pressed(Key::Equals) {
-        model.orbit.zoom(ZOOM_KEY_STEPS);
+        orbit.zoom(ZOOM_KEY_STEPS);
     }
     if pressed(Key::Minus) {
-        model.orbit.zoom(-ZOOM_KEY_STEPS);
+        orbit.zoom(-ZOOM_KEY_STEPS);
     }
     if pressed(Key::PageUp) {
-        model.orbit.tilt(TURN_STEP_DEG);
+        orbit.tilt(TURN_STEP_DEG);
     }
     if pressed(Key::PageDown) {
-        model.orbit.tilt(-TURN_STEP_DEG);
+        orbit.tilt(-TURN_STEP_DEG);
     }
     if pressed(Key::F) {
         actions.push(Action::FrameMap);
@@ -126,6 +128,7 @@ pub fn keys_ui(ui: &egui::Ui, model: &mut Model, actions: &mut Vec<Action>) {
     if pressed(Key::R) {
         actions.push(Action::ResetView);
     }
+    actions
 }
 
 /// The camera section's extra: framing the whole map.

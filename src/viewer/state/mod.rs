@@ -58,6 +58,12 @@ pub enum Action {
     SaveScene,
     /// Measure every arithmetic on the view, or cancel the measurement under way.
     MeasureArithmetics,
+    /// Place the sun where the Light panel's date, time and place put it.
+    ApplyClock,
+    /// Start previewing the flythrough's keys.
+    PlayFlythrough,
+    /// End the preview, restoring the render scale and the view it started from.
+    StopFlythrough,
 }
 
 /// Everything the UI shows and edits.
