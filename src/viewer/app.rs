@@ -3,6 +3,7 @@
 //! redraw runs the UI, submits a render job if the view changed, and presents.
 
 use super::accuracy::Accuracy;
+use super::annotations::{annotations_ui, Overlaid};
 use super::compose::{self, PixelRect};
 use super::hooks::{Counts, Hooks};
 use super::loader::Loader;
@@ -10,6 +11,7 @@ use super::navigation;
 use super::quality::{detail, JobKey, Quality, ViewKey};
 use super::state::{Action, Capped, Home, LoadRequest, Loaded, Model, Shown};
 use super::user_event::UserEvent;
+use super::view::ViewParts;
 use super::worker::{RenderWorker, RenderedFrame};
 use super::{contours_ui, drops, export, flythrough, overlay_ui, panels, view, water_ui};
 
@@ -325,7 +327,8 @@ impl App {
                 panels::side_panel_ui(ui, model, &mut actions);
             }
             egui::CentralPanel::no_frame().show_inside(ui, |ui| {
-                view_rect = view::view_ui(ui, model);
+                view_rect = view::view_ui(ui, ViewParts::of(model));
+                annotations_ui(ui, Overlaid::of(model), view_rect);
             });
         });
         self.egui_state

@@ -208,9 +208,6 @@ impl Model {
 
     /// Shows a short message for a few seconds.
     pub fn notify(&mut self, text: impl Into<String>) {
-        self.notice = Some(Notice {
-            text: text.into(),
-            at: Instant::now(),
-        });
+        self.notice = Some(Notice::now(text));
     }
 }
