@@ -282,8 +282,8 @@ impl App {
         let drawn = self
             .screen
             .present((width, height), view, output, &self.model, grab, counts);
-        if let Err(message) = drawn {
-            self.model.error = Some(message);
+        if let Err(refused) = drawn {
+            self.model.error = Some(refused.to_string());
         }
         self.model.telemetry.redraw.record(started.elapsed());
         if self

@@ -68,8 +68,8 @@ pub fn flythrough_ui(ui: &mut Ui, fly: &mut Flythrough, orbit: Orbit) -> Option<
 
 /// Starts previewing the keys.
 pub fn play(model: &mut Model) {
-    if let Err(message) = model.flythrough.animation() {
-        model.error = Some(message);
+    if let Err(refused) = model.flythrough.animation() {
+        model.error = Some(refused.to_string());
         return;
     }
     model.flythrough.playing = Some(Playing {

@@ -241,7 +241,7 @@ fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let water = &mut model.settings.effects.water;
     water_ui(ui, water, &mut model.widgets, &model.shown.terrain);
     if let Some(refused) = contours_ui(ui, &mut model.widgets, &model.shown.terrain) {
-        model.error = Some(refused);
+        model.error = Some(refused.to_string());
     }
     actions.extend(decoding_ui(ui, &mut model.widgets, &model.shown));
     z_scale_ui(ui, model, actions);

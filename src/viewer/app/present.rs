@@ -54,10 +54,9 @@ impl Screen {
         model: &Model,
         grab: Option<&Path>,
         counts: &mut Counts,
-    ) -> Result<(), String> {
-        let fail = |e: softbuffer::SoftBufferError| format!("cannot draw the window: {e}");
-        self.surface.resize(width, height).map_err(fail)?;
-        let mut buffer = self.surface.buffer_mut().map_err(fail)?;
+    ) -> Result<(), PresentError> {
+        self.surface.resize(width, height)?;
+        let mut buffer = self.surface.buffer_mut()?;
         buffer.fill(BACKGROUND);
         let mut canvas = Canvas {
             pixels: &mut buffer,
@@ -92,7 +91,7 @@ impl Screen {
             hooks::save_png(&buffer, width.get(), height.get(), path)?;
             counts.last_screenshot = Some(path.to_path_buf());
         }
-        buffer.present().map_err(fail)
+        Ok(buffer.present()?)
     }
 }
 
@@ -154,6 +153,17 @@ impl Presented {
         }
         exiting
     }
+}
+
+/// Why the window could not be drawn.
+#[derive(Debug, thiserror::Error)]
+pub enum PresentError {
+    /// The window's buffer.
+    #[error("cannot draw the window: {0}")]
+    Window(#[from] softbuffer::SoftBufferError),
+    /// The window's pixels could not be saved.
+    #[error(transparent)]
+    Grab(#[from] crate::output_file::SaveError),
 }
 
 /// The navigation keys moving `orbit` over `terrain`, S, K (adding the view to `flythrough`),

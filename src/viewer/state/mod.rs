@@ -11,11 +11,11 @@ mod telemetry;
 mod widgets;
 
 pub use camera::{Framed, Home};
-pub use exports::{Exported, Exports, Rendering};
-pub use flythrough::{Flythrough, Playing};
+pub use exports::{ExportError, Exported, Exports, Rendering};
+pub use flythrough::{Flythrough, KeysError, Playing};
 pub use loads::{
-    Decoding, LoadEvent, LoadRequest, Loaded, OverlayChange, Progress, SceneClock, SceneSetup,
-    Source, Stage,
+    Decoding, LoadEvent, LoadFailure, LoadRequest, Loaded, OverlayChange, Progress, SceneClock,
+    SceneSetup, Source, Stage,
 };
 pub use sun::{clock_text, default_local, SunClock};
 pub use telemetry::{Capped, Notice, Telemetry, MOST_VIEW_PIXELS};
@@ -202,7 +202,7 @@ impl Model {
                     self.notice = None;
                 }
             }
-            Err(message) => self.error = Some(message),
+            Err(message) => self.error = Some(message.to_string()),
         }
     }
 
