@@ -71,7 +71,7 @@ pub struct VideoArgs {
     pub crf: u32,
 }
 
-fn parse_time(s: &str) -> Result<String, String> {
+fn parse_time(s: &str) -> Result<String, super::knobs::ValueError> {
     let parts: Vec<&str> = s.split(':').collect();
     let numbers = parts
         .iter()
@@ -79,6 +79,6 @@ fn parse_time(s: &str) -> Result<String, String> {
     if numbers && parts.len() == 3 {
         Ok(s.to_owned())
     } else {
-        Err(format!("expected HH:MM:SS, got '{s}'"))
+        Err(super::knobs::ValueError::Time(s.to_owned()))
     }
 }

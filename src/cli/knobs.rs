@@ -2,6 +2,42 @@
 //! too many is refused at once instead of running for hours or asking for gigabytes.
 
 use std::ops::RangeInclusive;
+use thiserror::Error;
+
+/// A value typed on the command line that the option does not take.
+#[derive(Clone, Debug, Error, PartialEq, Eq)]
+pub enum ValueError {
+    /// Not a whole number in the range.
+    #[error("expected {what} from {} to {}, got '{got}'", range.start(), range.end())]
+    Range {
+        /// What the number counts.
+        what: &'static str,
+        /// The numbers taken.
+        range: RangeInclusive<usize>,
+        /// The text typed.
+        got: String,
+    },
+    /// Not `WIDTHxHEIGHT` within the limits.
+    #[error("expected WIDTHxHEIGHT (1 to 16384 each), got '{0}'")]
+    Size(String),
+    /// Not three numbers.
+    #[error("expected three comma-separated numbers, got '{0}'")]
+    Triple(String),
+    /// Not a number.
+    #[error("'{0}' is not a number")]
+    Number(String),
+    /// Not `HH:MM:SS`.
+    #[error("expected HH:MM:SS, got '{0}'")]
+    Time(String),
+    /// Not a date.
+    #[error("'{text}' is not a date such as 2026-03-20 ({reason})")]
+    Date {
+        /// The text typed.
+        text: String,
+        /// What the parser said.
+        reason: chrono::ParseError,
+    },
+}
 
 /// The most worker threads asked for on the command line.
 pub const MOST_THREADS: usize = 1024;
@@ -10,17 +46,19 @@ pub const MOST_THREADS: usize = 1024;
 const THREADS_PER_CORE: usize = 4;
 
 /// `s` as a whole number in `range`, or a message naming the range.
-fn in_range(s: &str, range: RangeInclusive<usize>, what: &str) -> Result<usize, String> {
+fn in_range(
+    s: &str,
+    range: RangeInclusive<usize>,
+    what: &'static str,
+) -> Result<usize, ValueError> {
     s.trim()
         .parse::<usize>()
         .ok()
         .filter(|n| range.contains(n))
-        .ok_or_else(|| {
-            format!(
-                "expected {what} from {} to {}, got '{s}'",
-                range.start(),
-                range.end()
-            )
+        .ok_or_else(|| ValueError::Range {
+            what,
+            range,
+            got: s.to_owned(),
         })
 }
 
@@ -51,27 +89,27 @@ pub fn bytes(s: &str) -> Result<u64, String> {
 }
 
 /// A thread count, 1 to [`MOST_THREADS`].
-pub fn threads(s: &str) -> Result<usize, String> {
+pub fn threads(s: &str) -> Result<usize, ValueError> {
     in_range(s, 1..=MOST_THREADS, "a number of threads")
 }
 
 /// Rays per hard-case set: each is answered exactly too, which takes milliseconds.
-pub fn per_set(s: &str) -> Result<usize, String> {
+pub fn per_set(s: &str) -> Result<usize, ValueError> {
     in_range(s, 1..=1 << 16, "a number of rays per set")
 }
 
 /// Samples per side of a generated landscape.
-pub fn landscape_size(s: &str) -> Result<usize, String> {
+pub fn landscape_size(s: &str) -> Result<usize, ValueError> {
     in_range(s, 2..=16385, "samples per side")
 }
 
 /// An image's width and height in a benchmark.
-pub fn bench_image_size(s: &str) -> Result<u32, String> {
+pub fn bench_image_size(s: &str) -> Result<u32, ValueError> {
     in_range(s, 1..=4096, "an image width and height").map(|n| n as u32)
 }
 
 /// Rounds of a comparison.
-pub fn rounds(s: &str) -> Result<usize, String> {
+pub fn rounds(s: &str) -> Result<usize, ValueError> {
     in_range(s, 1..=1000, "a number of rounds")
 }
 
@@ -107,11 +145,12 @@ mod tests {
     #[test]
     fn numbers_outside_their_range_are_refused_with_the_range() {
         assert_eq!(threads("4"), Ok(4));
-        let error = threads("10000").unwrap_err();
+        let error = threads("10000").unwrap_err().to_string();
         assert!(error.contains("1 to 1024"), "{error}");
         assert!(threads("0").is_err());
-        assert!(per_set("100000000").unwrap_err().contains("65536"));
-        assert!(landscape_size("0").unwrap_err().contains("2 to 16385"));
+        let message = |e: ValueError| e.to_string();
+        assert!(message(per_set("100000000").unwrap_err()).contains("65536"));
+        assert!(message(landscape_size("0").unwrap_err()).contains("2 to 16385"));
         assert_eq!(bench_image_size("512"), Ok(512));
         assert!(capped_threads(1) == 1);
     }

@@ -28,6 +28,7 @@ use heightray::compact::Compact;
 use heightray::heightfield::{ColourEncoding, NoDataValue};
 use heightray::render::MAX_PIXELS;
 use heightray::{Arith, Method};
+use knobs::ValueError;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -458,26 +459,24 @@ pub fn view(args: ViewArgs) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), String> {
+pub(crate) fn parse_size(s: &str) -> Result<(u32, u32), ValueError> {
     let parsed = s
         .split_once(['x', 'X'])
         .and_then(|(w, h)| Some((w.trim().parse::<u32>().ok()?, h.trim().parse::<u32>().ok()?)));
     match parsed {
         Some((w, h)) if w > 0 && h > 0 && w <= 16384 && h <= 16384 => Ok((w, h)),
-        _ => Err(format!(
-            "expected WIDTHxHEIGHT (1 to 16384 each), got '{s}'"
-        )),
+        _ => Err(ValueError::Size(s.to_owned())),
     }
 }
 
-fn parse_triple(s: &str) -> Result<[f64; 3], String> {
+fn parse_triple(s: &str) -> Result<[f64; 3], ValueError> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     let [x, y, z] = parts[..] else {
-        return Err(format!("expected three comma-separated numbers, got '{s}'"));
+        return Err(ValueError::Triple(s.to_owned()));
     };
     let number = |p: &str| {
         p.parse::<f64>()
-            .map_err(|_| format!("'{p}' is not a number"))
+            .map_err(|_| ValueError::Number(p.to_owned()))
     };
     Ok([number(x)?, number(y)?, number(z)?])
 }

@@ -59,7 +59,11 @@ pub struct OrthoArgs {
     pub dpi: Option<f64>,
 }
 
-fn parse_date(text: &str) -> Result<chrono::NaiveDate, String> {
-    chrono::NaiveDate::parse_from_str(text.trim(), "%Y-%m-%d")
-        .map_err(|e| format!("'{text}' is not a date such as 2026-03-20 ({e})"))
+fn parse_date(text: &str) -> Result<chrono::NaiveDate, super::knobs::ValueError> {
+    chrono::NaiveDate::parse_from_str(text.trim(), "%Y-%m-%d").map_err(|reason| {
+        super::knobs::ValueError::Date {
+            text: text.to_owned(),
+            reason,
+        }
+    })
 }

@@ -3,7 +3,7 @@
 use super::{loading, TraceArgs};
 use anyhow::{bail, Context};
 use heightray::traverse::{trace, Trace, TraceOptions};
-use heightray::Ray;
+use heightray::{Ray, RayError};
 use serde_json::{json, Value};
 use std::io::{BufRead, BufReader, Read, Write};
 use std::path::Path;
@@ -100,16 +100,35 @@ impl<R: BufRead> Lines<R> {
     }
 }
 
-fn parse_ray(line: &str) -> Result<Ray, String> {
+/// Why a line of a rays file is no ray.
+#[derive(Clone, Debug, thiserror::Error, PartialEq)]
+enum LineError {
+    /// A word that is not a number.
+    #[error("not a number ({reason}): '{line}'")]
+    Number {
+        /// What the parser said.
+        reason: std::num::ParseFloatError,
+        /// The line.
+        line: String,
+    },
+    /// Not six numbers.
+    #[error("expected 6 numbers 'ox oy oz dx dy dz', got {0}")]
+    Count(usize),
+    /// Six numbers that make no ray.
+    #[error(transparent)]
+    Ray(#[from] RayError),
+}
+
+fn parse_ray(line: &str) -> Result<Ray, LineError> {
     let numbers: Result<Vec<f64>, _> = line.split_whitespace().map(str::parse::<f64>).collect();
-    let numbers = numbers.map_err(|e| format!("not a number ({e}): '{line}'"))?;
+    let numbers = numbers.map_err(|reason| LineError::Number {
+        reason,
+        line: line.to_owned(),
+    })?;
     let [ox, oy, oz, dx, dy, dz] = numbers[..] else {
-        return Err(format!(
-            "expected 6 numbers 'ox oy oz dx dy dz', got {}",
-            numbers.len()
-        ));
+        return Err(LineError::Count(numbers.len()));
     };
-    Ray::new([ox, oy, oz], [dx, dy, dz]).map_err(|e| e.to_string())
+    Ok(Ray::new([ox, oy, oz], [dx, dy, dz])?)
 }
 
 fn to_json(answer: &Trace, with_cells: bool) -> Value {

@@ -185,7 +185,7 @@ impl MapContours {
         field: &Heightfield,
         grid: &OrthoGrid,
         pixels: &mut [super::Rgba16],
-    ) -> Result<Vec<Label>, String> {
+    ) -> Result<Vec<Label>, crate::render::annotate::DrawError> {
         let style = MapStyle::of(grid);
         let levels = self.levels(field, grid);
         let measure = crate::render::annotate::TextWidth::new();

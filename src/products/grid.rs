@@ -9,9 +9,29 @@
 //! column reach past it where the extent is not a whole number of them).
 
 use crate::heightfield::{Georef, Heightfield};
+use thiserror::Error;
 
 /// Pixels a product may have (a quarter of the largest DEM heightray reads, in 4-byte values).
 pub const MAX_PRODUCT_PIXELS: u64 = 1 << 30;
+
+/// Why a product's raster cannot be made.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum GridError {
+    /// A cell size that is not a positive number.
+    #[error("--cell must be a positive size, got {0}")]
+    Cell(f64),
+    /// More pixels than a product may have.
+    #[error(
+        "the product would have {width} x {height} pixels, more than the {MAX_PRODUCT_PIXELS} \
+         allowed: choose a larger --cell"
+    )]
+    TooLarge {
+        /// Pixels along x.
+        width: f64,
+        /// Pixels along y.
+        height: f64,
+    },
+}
 
 /// A north-up raster over a height field: its size, and its pixels' places in grid coordinates
 /// (sample `(i, j)` at `x = i`, `y = j`, `y` north).
@@ -36,24 +56,20 @@ pub type GeoTransform = [f64; 6];
 impl OrthoGrid {
     /// The raster of `field` with pixels `cell` map units wide (grid units on a map without
     /// georeferencing), the field's own spacing by default; or why there is none.
-    pub fn over(field: &Heightfield, cell: Option<f64>) -> Result<OrthoGrid, String> {
+    pub fn over(field: &Heightfield, cell: Option<f64>) -> Result<OrthoGrid, GridError> {
         let georef = field.georef().copied();
         let spacing = georef.map_or([1.0, 1.0], |g| g.spacing);
         let (w, h) = (field.width() as f64, field.height() as f64);
         let step = match cell {
             None => [1.0, 1.0],
             Some(size) if size.is_finite() && size > 0.0 => [size / spacing[0], size / spacing[1]],
-            Some(size) => return Err(format!("--cell must be a positive size, got {size}")),
+            Some(size) => return Err(GridError::Cell(size)),
         };
         // (A whole number of pixels within rounding is not rounded up to one more.)
         let count = |extent: f64, step: f64| (extent / step - 1e-9).ceil().max(1.0);
         let (width, height) = (count(w, step[0]), count(h, step[1]));
         if width * height > MAX_PRODUCT_PIXELS as f64 {
-            return Err(format!(
-                "the product would have {width} x {height} pixels, more than the {} allowed: \
-                 choose a larger --cell",
-                MAX_PRODUCT_PIXELS
-            ));
+            return Err(GridError::TooLarge { width, height });
         }
         Ok(OrthoGrid {
             width: width as u32,

@@ -22,10 +22,10 @@ pub mod tiff_out;
 
 pub use contour_labels::Label;
 pub use contour_map::{MapContours, MapStyle};
-pub use grid::{GeoTransform, OrthoGrid};
+pub use grid::{GeoTransform, GridError, OrthoGrid};
 pub use horizon::Horizon;
 pub use shaded::Rgba16;
-pub use sky_view::SkyView;
+pub use sky_view::{SkyView, SkyViewError};
 pub use sunlight::{SunPath, SunPathError, Sunlight};
 
 use crate::render::Shader;

@@ -2,9 +2,8 @@
 //! the font annotations use.
 
 use super::Rgba16;
-use crate::render::annotate::svg_options;
+use crate::render::annotate::DrawError;
 use resvg::tiny_skia::{Color, Pixmap, Transform};
-use resvg::usvg::Tree;
 
 /// Rows drawn at a time: the drawing's memory stays a band's, whatever the raster's size.
 const BAND: u32 = 256;
@@ -16,11 +15,11 @@ pub fn draw_over(
     svg: &str,
     pixels: &mut [Rgba16],
     (width, height): (u32, u32),
-) -> Result<(), String> {
-    let tree = Tree::from_str(svg, &svg_options())
-        .map_err(|e| format!("cannot draw the contour lines: {e}"))?;
+) -> Result<(), DrawError> {
+    const WHAT: &str = "contour lines";
+    let tree = DrawError::tree(svg, WHAT)?;
     let rows = BAND + 2 * BORDER;
-    let mut pixmap = Pixmap::new(width, rows).ok_or("cannot draw the contour lines")?;
+    let mut pixmap = Pixmap::new(width, rows).ok_or(DrawError::Canvas(WHAT))?;
     for y0 in (0..height).step_by(BAND as usize) {
         pixmap.fill(Color::TRANSPARENT);
         let shift = -(y0 as f32 - BORDER as f32);

@@ -6,12 +6,24 @@
 //! surface's own, found exactly along each direction ([`Horizon::rise`]).
 
 use super::horizon::Horizon;
+use thiserror::Error;
 
 /// RVT's default number of directions.
 pub const DEFAULT_DIRECTIONS: u32 = 16;
 
 /// RVT's default radius, in cells.
 pub const DEFAULT_RADIUS_CELLS: f64 = 10.0;
+
+/// Why a sky-view measure cannot be used.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum SkyViewError {
+    /// Directions outside 1 to 360.
+    #[error("the sky-view factor takes 1 to 360 directions, got {0}")]
+    Directions(u32),
+    /// A radius that is not a positive number.
+    #[error("the sky-view radius must be a positive number of cells, got {0}")]
+    Radius(f64),
+}
 
 /// How the sky-view factor is measured.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -34,16 +46,12 @@ impl Default for SkyView {
 
 impl SkyView {
     /// The measure with `directions` and `radius`, or why they cannot be used.
-    pub fn new(directions: u32, radius: f64) -> Result<SkyView, String> {
+    pub fn new(directions: u32, radius: f64) -> Result<SkyView, SkyViewError> {
         if !(1..=360).contains(&directions) {
-            return Err(format!(
-                "the sky-view factor takes 1 to 360 directions, got {directions}"
-            ));
+            return Err(SkyViewError::Directions(directions));
         }
         if !(radius.is_finite() && radius > 0.0) {
-            return Err(format!(
-                "the sky-view radius must be a positive number of cells, got {radius}"
-            ));
+            return Err(SkyViewError::Radius(radius));
         }
         Ok(SkyView { directions, radius })
     }

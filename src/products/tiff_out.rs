@@ -10,6 +10,7 @@ use crate::heightfield::geokeys::{
 };
 use crate::heightfield::{Georef, MapUnits};
 use std::io::{Seek, Write};
+use thiserror::Error;
 use tiff::encoder::colortype::{ColorType, Gray32Float, RGB16, RGB8, RGBA16, RGBA8};
 use tiff::encoder::compression::DeflateLevel;
 use tiff::encoder::{Compression, Predictor, Rational, TiffEncoder, TiffValue};
@@ -59,6 +60,11 @@ impl GeoTags {
     }
 }
 
+/// The TIFF encoder's error.
+#[derive(Debug, Error)]
+#[error("the TIFF encoder failed: {0}")]
+pub struct EncodeError(#[from] tiff::TiffError);
+
 /// Bits per channel of a colour TIFF.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Depth {
@@ -85,7 +91,7 @@ pub fn write_colour<W: Write + Seek>(
     pixels: &[[u16; 4]],
     depth: Depth,
     tags: &TiffTags,
-) -> Result<(), String> {
+) -> Result<(), EncodeError> {
     let alpha = pixels.iter().any(|p| p[3] != u16::MAX);
     let bands = if alpha { 4 } else { 3 };
     let channels = pixels.iter().flat_map(|p| p[..bands].iter().copied());
@@ -123,7 +129,7 @@ pub fn write_values<W: Write + Seek>(
     (width, height): (u32, u32),
     values: &[f32],
     tags: &TiffTags,
-) -> Result<(), String> {
+) -> Result<(), EncodeError> {
     encode::<Gray32Float, _>(out, (width, height), values, tags, Some("nan"))
 }
 
@@ -134,7 +140,7 @@ fn encode<C: ColorType, W: Write + Seek>(
     data: &[C::Inner],
     tags: &TiffTags,
     nodata: Option<&str>,
-) -> Result<(), String>
+) -> Result<(), EncodeError>
 where
     [C::Inner]: TiffValue,
 {
@@ -144,18 +150,13 @@ where
     } else {
         Predictor::Horizontal
     };
-    let failed = |e: tiff::TiffError| format!("the TIFF encoder failed: {e}");
-    let mut encoder = TiffEncoder::new(out)
-        .map_err(failed)?
+    let mut encoder = TiffEncoder::new(out)?
         .with_compression(Compression::Deflate(DeflateLevel::Balanced))
         .with_predictor(predictor);
-    let mut image = encoder.new_image::<C>(width, height).map_err(failed)?;
+    let mut image = encoder.new_image::<C>(width, height)?;
     if C::BITS_PER_SAMPLE.len() == 4 {
         // Unassociated alpha: GDAL and QGIS read the fourth band as the mask.
-        image
-            .encoder()
-            .write_tag(Tag::ExtraSamples, 2u16)
-            .map_err(failed)?;
+        image.encoder().write_tag(Tag::ExtraSamples, 2u16)?;
     }
     if let Some(dpi) = tags.dpi {
         // Whole resolutions as n/1, others to a hundredth of a dot.
@@ -177,16 +178,12 @@ where
         directory
             .write_tag(Tag::ModelPixelScaleTag, &geo.pixel_scale[..])
             .and_then(|()| directory.write_tag(Tag::ModelTiepointTag, &geo.tiepoint[..]))
-            .and_then(|()| directory.write_tag(Tag::GeoKeyDirectoryTag, &geo.keys[..]))
-            .map_err(failed)?;
+            .and_then(|()| directory.write_tag(Tag::GeoKeyDirectoryTag, &geo.keys[..]))?;
     }
     if let Some(text) = nodata {
-        image
-            .encoder()
-            .write_tag(Tag::GdalNodata, text)
-            .map_err(failed)?;
+        image.encoder().write_tag(Tag::GdalNodata, text)?;
     }
-    image.write_data(data).map_err(failed)
+    image.write_data(data).map_err(EncodeError)
 }
 
 #[cfg(test)]

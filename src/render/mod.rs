@@ -36,8 +36,9 @@ pub use scene::{
     bytes_from_hex, bytes_from_linear, level_in_map_units, level_z, linear_from_bytes,
 };
 pub use scene::{
-    BaseStyle, CameraSection, EffectsSection, HeightmapSection, Lighting, NoDataKey, Normals,
-    Orbit, OverlaySection, Scene, SceneError, SceneFile, ShadingSection, SunSection, WaterSection,
+    BaseDepthError, BaseStyle, CameraSection, ContoursError, EffectsError, EffectsSection,
+    HeightmapSection, Lighting, NoDataKey, Normals, Orbit, OverlaySection, PlaceSunError, Scene,
+    SceneError, SceneFile, SectionError, ShadingSection, SunSection, WaterError, WaterSection,
     DEFAULT_SIZE, DEFAULT_WATER_COLOUR,
 };
 pub use shade::Shader;

@@ -16,6 +16,7 @@ mod error;
 mod file;
 mod heightmap;
 mod lighting;
+mod orbit;
 mod sections;
 mod sun;
 mod surface;
@@ -24,16 +25,19 @@ mod view;
 mod water;
 
 use crate::compact::Compact;
-pub use error::SceneError;
+pub use effects::EffectsError;
+pub use error::{SceneError, SectionError};
 pub use file::SceneFile;
 use heightmap::HeightmapError;
 pub use heightmap::{HeightmapSection, NoDataKey};
-pub use lighting::{BaseStyle, Lighting};
+pub use lighting::{BaseDepthError, BaseStyle, Lighting};
+pub use orbit::Orbit;
 pub use sections::{EffectsSection, RenderSection, SunSection};
-pub use surface::{Normals, OverlaySection, ShadingSection};
-pub use view::{CameraSection, Orbit, DEFAULT_SIZE};
+pub use sun::PlaceSunError;
+pub use surface::{ContoursError, Normals, OverlaySection, ShadingSection};
+pub use view::{CameraSection, DEFAULT_SIZE};
 pub use water::{
-    bytes_from_hex, bytes_from_linear, level_in_map_units, level_z, linear_from_bytes,
+    bytes_from_hex, bytes_from_linear, level_in_map_units, level_z, linear_from_bytes, WaterError,
     WaterSection, DEFAULT_WATER_COLOUR,
 };
 
@@ -128,17 +132,21 @@ impl Scene {
             .arith
             .parse()
             .map_err(|e| invalid(format!("[render] arith: {e}")))?;
+        let section = |source: SectionError| SceneError::Section {
+            path: path.to_owned(),
+            source,
+        };
         let mut lighting = Lighting::from_sections(sun, &file.effects, &file.shading);
-        lighting.base = BaseStyle::from_section(&file.shading).map_err(invalid)?;
-        let mut lighting = sun::place_sun(sun, &field, lighting).map_err(invalid)?;
+        lighting.base = BaseStyle::from_section(&file.shading).map_err(|e| section(e.into()))?;
+        let mut lighting = sun::place_sun(sun, &field, lighting).map_err(|e| section(e.into()))?;
         lighting.effects =
-            effects::effects_of(sun, &file.effects, &file.render).map_err(invalid)?;
+            effects::effects_of(sun, &file.effects, &file.render).map_err(|e| section(e.into()))?;
         lighting.effects.water = file
             .water
             .as_ref()
             .map(|water| water.validate(&field))
             .transpose()
-            .map_err(invalid)?;
+            .map_err(|e| section(e.into()))?;
         let lighting = lighting.after_dark();
         let animation = file
             .animation
@@ -151,20 +159,20 @@ impl Scene {
                 Animation::new(section, camera.and_then(|c| c.orbit), fov, up, map)
             })
             .transpose()
-            .map_err(invalid)?;
+            .map_err(|e| section(e.into()))?;
         let contours = file
             .overlay
             .as_ref()
             .map(|overlay| overlay.contours(&field))
             .transpose()
-            .map_err(invalid)?
+            .map_err(|e| section(e.into()))?
             .flatten();
         let vectors = file
             .vector
             .iter()
-            .map(|section| VectorLayer::load(section, base, &field))
+            .map(|vector| VectorLayer::load(vector, base, &field))
             .collect::<Result<_, _>>()
-            .map_err(invalid)?;
+            .map_err(|e| section(e.into()))?;
         let annotations = Annotations::new(file.annotations.as_ref(), vectors);
         Ok(Scene {
             field,

@@ -3,18 +3,54 @@
 
 use super::compose::{self, HeatScale};
 use super::settings::HeatMode;
-use super::state::Model;
+use super::state::{Model, Notice, Telemetry, Widgets};
 use super::worker::RenderedFrame;
 use crate::render::PASS_BLOCKS;
+use crate::Method;
 use egui::{Align2, Color32, Id, Pos2, Rect, Ui, Vec2};
 use std::time::Duration;
 
 /// How long a notice stays up.
 pub const NOTICE_TIME: Duration = Duration::from_secs(4);
 
+/// What the annotations over the view read and edit.
+pub struct Overlaid<'a> {
+    /// The frame on screen.
+    pub latest: Option<&'a RenderedFrame>,
+    /// The heat map shown, and the traversal method that may leave it empty.
+    pub heat: HeatMode,
+    pub method: Method,
+    /// The lowered render size, the heat map's scale and the loading progress.
+    pub telemetry: &'a mut Telemetry,
+    /// The panel's and the help's visibility, and the drawn rectangles.
+    pub widgets: &'a mut Widgets,
+    /// Why the last file could not be used, until dismissed.
+    pub error: &'a mut Option<String>,
+    /// A short message, until its time is up.
+    pub notice: &'a mut Option<Notice>,
+    /// A file is being dragged over the window.
+    pub drop_hover: bool,
+}
+
+impl<'a> Overlaid<'a> {
+    /// The model's parts the annotations read and edit.
+    pub fn of(model: &'a mut Model) -> Overlaid<'a> {
+        Overlaid {
+            latest: model.latest.as_deref(),
+            heat: model.settings.heat,
+            method: model.settings.method,
+            telemetry: &mut model.telemetry,
+            widgets: &mut model.widgets,
+            error: &mut model.error,
+            notice: &mut model.notice,
+            drop_hover: model.drop_hover,
+        }
+    }
+}
+
 /// Everything drawn over the view `rect`.
-pub fn annotations_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
-    if model.latest.is_none() {
+pub fn annotations_ui(ui: &mut Ui, mut over: Overlaid<'_>, rect: Rect) {
+    if over.latest.is_none() {
         ui.painter().text(
             rect.center(),
             Align2::CENTER_CENTER,
@@ -23,60 +59,60 @@ pub fn annotations_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
             Color32::GRAY,
         );
     }
-    status_ui(ui, model, rect);
-    super::legend::height_legend_ui(ui, rect, model);
-    messages_ui(ui, model, rect);
-    if model.drop_hover {
+    status_ui(ui, &mut over, rect);
+    super::legend::height_legend_ui(ui, rect, over.latest, over.heat);
+    messages_ui(ui, &mut over, rect);
+    if over.drop_hover {
         drop_hint_ui(ui, rect);
     }
-    if !model.widgets.panels_visible {
+    if !over.widgets.panels_visible {
         let hint = corner_text(ui, rect, Align2::RIGHT_TOP, "H: show panel   F1: help");
-        model.widgets.rects.insert("show_panel_hint", hint);
+        over.widgets.rects.insert("show_panel_hint", hint);
     }
-    if model.widgets.help_open {
-        help_ui(ui, model);
+    if over.widgets.help_open {
+        help_ui(ui, over.widgets);
     }
 }
 
 /// The render size when it is capped, pass progress and, in heat-map mode, the legend.
-fn status_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
-    let mut lines: Vec<String> = model
+fn status_ui(ui: &mut Ui, over: &mut Overlaid<'_>, rect: Rect) {
+    let mut lines: Vec<String> = over
         .telemetry
         .capped
         .iter()
         .map(ToString::to_string)
         .collect();
-    if let Some(latest) = model.latest.clone() {
-        frame_status_ui(ui, model, rect, &latest, &mut lines);
+    if let Some(latest) = over.latest {
+        frame_status_ui(ui, over, rect, latest, &mut lines);
     }
     if !lines.is_empty() {
         let status = corner_text(ui, rect, Align2::LEFT_TOP, &lines.join("\n"));
-        model.widgets.rects.insert("view_status", status);
+        over.widgets.rects.insert("view_status", status);
     }
 }
 
 /// The heat map's legend, and the pass in progress as a line of `lines`.
 fn frame_status_ui(
     ui: &mut Ui,
-    model: &mut Model,
+    over: &mut Overlaid<'_>,
     rect: Rect,
     latest: &RenderedFrame,
     lines: &mut Vec<String>,
 ) {
     let frame = &latest.frame;
-    if model.settings.heat != HeatMode::Off {
+    if over.heat != HeatMode::Off {
         let key = (latest.generation, frame.passes_done);
-        let scale = match model.telemetry.heat_scale {
-            Some((g, p, scale)) if (g, p) == key && scale.mode == model.settings.heat => scale,
+        let scale = match over.telemetry.heat_scale {
+            Some((g, p, scale)) if (g, p) == key && scale.mode == over.heat => scale,
             _ => {
-                let scale = HeatScale::of(frame, model.settings.heat);
-                model.telemetry.heat_scale = Some((key.0, key.1, scale));
+                let scale = HeatScale::of(frame, over.heat);
+                over.telemetry.heat_scale = Some((key.0, key.1, scale));
                 scale
             }
         };
         legend_ui(ui, rect, scale);
         // Chosen under another method: say why the view is one flat colour.
-        if let Some(why) = model.settings.heat.unavailable(model.settings.method) {
+        if let Some(why) = over.heat.unavailable(over.method) {
             let text = format!("{why}: choose another heat map or method");
             let painter = ui.painter_at(rect);
             let galley = painter.layout(
@@ -153,11 +189,11 @@ fn legend_ui(ui: &Ui, rect: Rect, scale: HeatScale) {
 
 /// The loading progress, the last error and short notices, at the top of the view and
 /// inside it: long text wraps to the view's width, never over the panel.
-fn messages_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
+fn messages_ui(ui: &mut Ui, over: &mut Overlaid<'_>, rect: Rect) {
     let mut dismiss = false;
     let width = (rect.width() - 32.0).clamp(80.0, 640.0);
     // Below the corner's hint to bring the panel back, when it is there.
-    let top = if model.widgets.panels_visible {
+    let top = if over.widgets.panels_visible {
         12.0
     } else {
         40.0
@@ -169,7 +205,7 @@ fn messages_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
         .order(egui::Order::Foreground)
         .show(ui.ctx(), |ui| {
             ui.set_max_width(width);
-            if let Some(progress) = &model.telemetry.progress {
+            if let Some(progress) = &over.telemetry.progress {
                 egui::Frame::popup(ui.style()).show(ui, |ui| {
                     ui.horizontal_wrapped(|ui| {
                         ui.spinner();
@@ -186,7 +222,7 @@ fn messages_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
                     );
                 });
             }
-            if let Some(error) = &model.error {
+            if let Some(error) = over.error.as_ref() {
                 let frame = egui::Frame::popup(ui.style())
                     .fill(Color32::from_rgb(110, 24, 24))
                     .show(ui, |ui| {
@@ -200,31 +236,30 @@ fn messages_ui(ui: &mut Ui, model: &mut Model, rect: Rect) {
                         };
                         ui.label(text);
                         let button = ui.button("Dismiss");
-                        model.widgets.rects.insert("error_dismiss", button.rect);
+                        over.widgets.rects.insert("error_dismiss", button.rect);
                         dismiss = button.clicked();
                     });
-                model
-                    .widgets
+                over.widgets
                     .rects
                     .insert("error_message", frame.response.rect);
             }
-            if let Some(notice) = &model.notice {
+            if let Some(notice) = over.notice.as_ref() {
                 if notice.at.elapsed() < NOTICE_TIME {
                     egui::Frame::popup(ui.style()).show(ui, |ui| ui.label(&notice.text));
                 }
             }
         });
     if dismiss {
-        model.error = None;
+        *over.error = None;
     }
-    if model
+    if over
         .notice
         .as_ref()
         .is_some_and(|n| n.at.elapsed() >= NOTICE_TIME)
     {
-        model.notice = None;
+        *over.notice = None;
     }
-    if let Some(notice) = &model.notice {
+    if let Some(notice) = over.notice.as_ref() {
         // Wake up once more to take the notice down.
         ui.ctx()
             .request_repaint_after(NOTICE_TIME.saturating_sub(notice.at.elapsed()));
@@ -281,8 +316,8 @@ fn corner_text(ui: &Ui, rect: Rect, align: Align2, text: &str) -> Rect {
 }
 
 /// The F1 window: what the mouse and keys do.
-fn help_ui(ui: &Ui, model: &mut Model) {
-    let mut open = model.widgets.help_open;
+fn help_ui(ui: &Ui, widgets: &mut Widgets) {
+    let mut open = widgets.help_open;
     egui::Window::new("Help")
         .open(&mut open)
         .collapsible(false)
@@ -297,7 +332,7 @@ fn help_ui(ui: &Ui, model: &mut Model) {
                 }
             });
         });
-    model.widgets.help_open = open;
+    widgets.help_open = open;
 }
 
 const HELP: &[(&str, &str)] = &[

@@ -3,6 +3,7 @@
 //! redraw runs the UI, submits a render job if the view changed, and presents.
 
 use super::accuracy::Accuracy;
+use super::annotations::{annotations_ui, Overlaid};
 use super::compose::{self, PixelRect};
 use super::hooks::{Counts, Hooks};
 use super::loader::Loader;
@@ -10,8 +11,9 @@ use super::navigation;
 use super::quality::{detail, JobKey, Quality, ViewKey};
 use super::state::{Action, Capped, Home, LoadRequest, Loaded, Model, Shown};
 use super::user_event::UserEvent;
+use super::view::ViewParts;
 use super::worker::{RenderWorker, RenderedFrame};
-use super::{contours_ui, drops, export, overlay_ui, panels, view, water_ui};
+use super::{contours_ui, drops, export, flythrough, overlay_ui, panels, view, water_ui};
 
 mod jobs;
 mod present;
@@ -238,6 +240,9 @@ impl App {
             Action::Screenshot => self.export(),
             Action::SaveScene => self.save_scene(),
             Action::MeasureArithmetics => self.accuracy.toggle_measure(&mut self.model.accuracy),
+            Action::ApplyClock => self.model.apply_clock(),
+            Action::PlayFlythrough => flythrough::play(&mut self.model),
+            Action::StopFlythrough => flythrough::stop(&mut self.model),
         }
     }
 
@@ -277,8 +282,8 @@ impl App {
         let drawn = self
             .screen
             .present((width, height), view, output, &self.model, grab, counts);
-        if let Err(message) = drawn {
-            self.model.error = Some(message);
+        if let Err(refused) = drawn {
+            self.model.error = Some(refused.to_string());
         }
         self.model.telemetry.redraw.record(started.elapsed());
         if self
@@ -303,14 +308,27 @@ impl App {
             // egui may run this twice in one frame; act on the last run only.
             actions.clear();
             model.widgets.rects.clear();
-            keys_ui(ui, model, &mut actions);
-            super::flythrough::play_ui(ui, model);
+            actions.extend(keys_ui(
+                ui,
+                &mut model.orbit,
+                &model.shown.terrain,
+                &mut model.flythrough,
+                &mut model.widgets,
+            ));
+            actions.extend(flythrough::play_ui(
+                ui,
+                &mut model.flythrough,
+                &mut model.orbit,
+                &model.shown.terrain,
+                model.latest.as_deref(),
+            ));
             panels::fit_to_window(ui, model);
             if model.widgets.panels_visible {
                 panels::side_panel_ui(ui, model, &mut actions);
             }
             egui::CentralPanel::no_frame().show_inside(ui, |ui| {
-                view_rect = view::view_ui(ui, model);
+                view_rect = view::view_ui(ui, ViewParts::of(model));
+                annotations_ui(ui, Overlaid::of(model), view_rect);
             });
         });
         self.egui_state

@@ -80,7 +80,7 @@ fn interval_after(interval: f64, was: &Heightfield, now: &Terrain, new_map: bool
 
 /// The contours checkbox, the interval field and the index line count, for lines on
 /// `terrain`. Returns why a typed interval was refused.
-pub fn contours_ui(ui: &mut Ui, widgets: &mut Widgets, terrain: &Terrain) -> Option<String> {
+pub fn contours_ui(ui: &mut Ui, widgets: &mut Widgets, terrain: &Terrain) -> Option<IntervalError> {
     let checkbox = ui
         .checkbox(&mut widgets.contours.on, "contour lines")
         .on_hover_text("lines of equal height, every index-th one wider, as printed maps draw");
@@ -120,15 +120,13 @@ pub fn contours_ui(ui: &mut Ui, widgets: &mut Widgets, terrain: &Terrain) -> Opt
 
 /// Takes the typed interval, or shows the one in use again and says why the typed one is
 /// refused.
-fn take_interval(controls: &mut ContourControls, field: &Heightfield) -> Option<String> {
+fn take_interval(controls: &mut ContourControls, field: &Heightfield) -> Option<IntervalError> {
     let typed = controls.text.trim();
     // A huge interval in a unit the z scale enlarges may be no finite grid height.
     let taken = parse_interval(typed).and_then(|interval| {
         Contours::new(level_z(field, interval), 0)
             .map(|_| interval)
-            .ok_or(format!(
-                "The contour interval {typed} is too large for this map"
-            ))
+            .ok_or_else(|| IntervalError::TooLarge(typed.to_owned()))
     });
     match taken {
         Ok(interval) => {
@@ -143,17 +141,26 @@ fn take_interval(controls: &mut ContourControls, field: &Heightfield) -> Option<
     }
 }
 
+/// Why a typed contour interval is refused.
+#[derive(Clone, Debug, thiserror::Error, PartialEq)]
+pub enum IntervalError {
+    /// Zero, negative or infinite.
+    #[error("The contour interval must be a finite height above 0, not {}", Compact(*.0))]
+    NotAHeight(f64),
+    /// Not a number.
+    #[error("The contour interval must be a number (a height above 0), not {0:?}")]
+    NotANumber(String),
+    /// So large that its grid height is not finite.
+    #[error("The contour interval {0} is too large for this map")]
+    TooLarge(String),
+}
+
 /// A contour interval as typed: a finite height above 0.
-fn parse_interval(typed: &str) -> Result<f64, String> {
+fn parse_interval(typed: &str) -> Result<f64, IntervalError> {
     match typed.parse::<f64>() {
         Ok(interval) if interval.is_finite() && interval > 0.0 => Ok(interval),
-        Ok(interval) => Err(format!(
-            "The contour interval must be a finite height above 0, not {}",
-            Compact(interval)
-        )),
-        Err(_) => Err(format!(
-            "The contour interval must be a number (a height above 0), not {typed:?}"
-        )),
+        Ok(interval) => Err(IntervalError::NotAHeight(interval)),
+        Err(_) => Err(IntervalError::NotANumber(typed.to_owned())),
     }
 }
 
@@ -220,7 +227,7 @@ mod tests {
     fn a_typed_interval_that_is_not_a_height_above_0_is_refused() {
         assert_eq!(parse_interval("25"), Ok(25.0));
         for typed in ["0", "-5", "inf", "NaN", "", "ten"] {
-            let refused = parse_interval(typed).expect_err(typed);
+            let refused = parse_interval(typed).expect_err(typed).to_string();
             assert!(refused.contains("contour interval"), "{refused}");
         }
     }

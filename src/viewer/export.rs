@@ -3,7 +3,7 @@
 //! the export folder. Never the window's pixels: no panels, overlays or messages. Scene files
 //! of the view are saved there too (see `save_scene`).
 
-use super::state::{Exported, Exports, Model, Rendering};
+use super::state::{ExportError, Exported, Exports, Model, Rendering};
 use super::user_event::UserEvent;
 use super::worker::{RenderJob, RenderedFrame};
 use crate::output_file;
@@ -20,7 +20,7 @@ use winit::event_loop::EventLoopProxy;
 const LAST_NUMBER: u32 = 99_999;
 
 /// Records a finished export and says where it went (`None`: cancelled).
-pub fn finished(model: &mut Model, result: Result<Option<Exported>, String>) {
+pub fn finished(model: &mut Model, result: Result<Option<Exported>, ExportError>) {
     model.export.running = model.export.running.saturating_sub(1);
     model
         .export
@@ -34,7 +34,7 @@ pub fn finished(model: &mut Model, result: Result<Option<Exported>, String>) {
             model.export.saved += 1;
             model.export.last = Some(exported.path);
         }
-        Err(message) => model.error = Some(message),
+        Err(refused) => model.error = Some(refused.to_string()),
     }
 }
 
@@ -103,7 +103,11 @@ fn render_fresh(job: &RenderJob, size: (u32, u32), rendering: &Rendering) -> Opt
 }
 
 /// Draws `annotations` into `pixels`, the whole image of `job`'s camera.
-fn annotate(job: &RenderJob, annotations: &Annotations, pixels: &mut [u32]) -> Result<(), String> {
+fn annotate(
+    job: &RenderJob,
+    annotations: &Annotations,
+    pixels: &mut [u32],
+) -> Result<(), ExportError> {
     let (width, height) = job.camera.size();
     let sheet = Sheet {
         terrain: &job.terrain,
@@ -118,7 +122,7 @@ fn annotate(job: &RenderJob, annotations: &Annotations, pixels: &mut [u32]) -> R
         width,
         height,
     };
-    annotations.draw(&sheet, pixels, whole)
+    Ok(annotations.draw(&sheet, pixels, whole)?)
 }
 
 /// The exports rendering anew: a bar for each, and a button that cancels it.
@@ -195,7 +199,7 @@ pub fn save_numbered(
     stem: &str,
     pixels: &[u32],
     (width, height): (u32, u32),
-) -> Result<PathBuf, String> {
+) -> Result<PathBuf, ExportError> {
     // The empty file holds the number; the image replaces it whole once written.
     let (_, path) = create_numbered(folder, stem, "png")?;
     output_file::save_rgb(&path, pixels, (width, height)).inspect_err(|_| {
@@ -211,21 +215,25 @@ pub fn create_numbered(
     folder: &Path,
     stem: &str,
     extension: &str,
-) -> Result<(File, PathBuf), String> {
-    std::fs::create_dir_all(folder)
-        .map_err(|e| format!("cannot make the export folder {}: {e}", folder.display()))?;
+) -> Result<(File, PathBuf), ExportError> {
+    std::fs::create_dir_all(folder).map_err(|reason| ExportError::Folder {
+        folder: folder.to_owned(),
+        reason,
+    })?;
     for number in 1..=LAST_NUMBER {
         let path = folder.join(format!("{stem}-{number:03}.{extension}"));
         match OpenOptions::new().write(true).create_new(true).open(&path) {
             Ok(file) => return Ok((file, path)),
             Err(e) if e.kind() == ErrorKind::AlreadyExists => continue,
-            Err(e) => return Err(format!("cannot write {}: {e}", path.display())),
+            Err(reason) => return Err(ExportError::Create { path, reason }),
         }
     }
-    Err(format!(
-        "cannot save: {} already holds {stem}-001.{extension} to {stem}-{LAST_NUMBER}.{extension}",
-        folder.display()
-    ))
+    Err(ExportError::Full {
+        folder: folder.to_owned(),
+        stem: stem.to_owned(),
+        extension: extension.to_owned(),
+        last: LAST_NUMBER,
+    })
 }
 
 /// The export folder and size, for the side panel.

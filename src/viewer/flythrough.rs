@@ -4,8 +4,10 @@
 //! the scene's `[animation]`.
 
 use super::orbit::Orbit;
-use super::state::{Model, Playing};
+use super::state::{Action, Flythrough, Model, Playing};
+use super::worker::RenderedFrame;
 use crate::render::animation::above_ground;
+use crate::Terrain;
 use egui::{DragValue, Ui};
 use std::time::Instant;
 
@@ -15,9 +17,9 @@ const PREVIEW_SCALE: f32 = 0.35;
 /// The longest a preview waits for a view to be rendered before it moves on.
 const LONGEST_WAIT_S: f64 = 0.5;
 
-/// The Flythrough section: frames per second, the keys (time, delete), Add view and Play.
-pub fn flythrough_ui(ui: &mut Ui, model: &mut Model) {
-    let fly = &mut model.flythrough;
+/// The Flythrough section: frames per second, the keys (time, delete), Add view (adding
+/// `orbit`) and Play, which it asks for.
+pub fn flythrough_ui(ui: &mut Ui, fly: &mut Flythrough, orbit: Orbit) -> Option<Action> {
     ui.horizontal(|ui| {
         ui.label("frames per second");
         ui.add(DragValue::new(&mut fly.fps).range(1.0..=240.0).speed(0.5));
@@ -49,25 +51,25 @@ pub fn flythrough_ui(ui: &mut Ui, model: &mut Model) {
     }
     ui.horizontal(|ui| {
         if ui.button("Add view (K)").clicked() {
-            let orbit = model.orbit;
-            model.flythrough.add(orbit);
+            fly.add(orbit);
         }
-        let playing = model.flythrough.playing();
+        let playing = fly.playing();
         let label = if playing { "Stop" } else { "Play" };
-        if ui.button(label).clicked() {
-            if playing {
-                stop(model);
-            } else {
-                play(model);
-            }
-        }
-    });
+        let clicked = ui.button(label).clicked();
+        let action = if playing {
+            Action::StopFlythrough
+        } else {
+            Action::PlayFlythrough
+        };
+        clicked.then_some(action)
+    })
+    .inner
 }
 
 /// Starts previewing the keys.
 pub fn play(model: &mut Model) {
-    if let Err(message) = model.flythrough.animation() {
-        model.error = Some(message);
+    if let Err(refused) = model.flythrough.animation() {
+        model.error = Some(refused.to_string());
         return;
     }
     model.flythrough.playing = Some(Playing {
@@ -92,31 +94,36 @@ pub fn stop(model: &mut Model) {
 /// camera moves on once the view it shows is rendered (or after [`LONGEST_WAIT_S`]), to where
 /// the path is by then: the preview keeps time, showing as many whole frames as the machine
 /// renders.
-pub fn play_ui(ui: &Ui, model: &mut Model) {
-    let Some(playing) = model.flythrough.playing else {
-        return;
-    };
+///
+/// It moves `orbit` over `terrain`; `latest` is the frame on screen. At the path's end it asks
+/// for the preview to stop.
+pub fn play_ui(
+    ui: &Ui,
+    fly: &mut Flythrough,
+    orbit: &mut Orbit,
+    terrain: &Terrain,
+    latest: Option<&RenderedFrame>,
+) -> Option<Action> {
+    let playing = fly.playing?;
     ui.ctx().request_repaint();
-    let latest = model.latest.as_ref();
     let rendered =
         latest.is_some_and(|l| Some(l.generation) > playing.generation && l.frame.complete());
     if !rendered && playing.moved.elapsed().as_secs_f64() < LONGEST_WAIT_S {
-        return;
+        return None;
     }
-    let Ok(path) = model.flythrough.animation() else {
-        return stop(model);
+    let Ok(path) = fly.animation() else {
+        return Some(Action::StopFlythrough);
     };
     let time_s = playing.start.elapsed().as_secs_f64();
     if time_s > (path.frames() - 1) as f64 / path.fps() + 0.5 {
-        return stop(model);
+        return Some(Action::StopFlythrough);
     }
     let view = path.view_at(time_s);
-    let eye = above_ground(view.eye, &model.shown.terrain);
-    let scale = model.orbit.scale;
-    model.orbit = Orbit::from_eye(eye.into(), view.target.into(), view.fov_y_deg, scale);
-    let generation = model.latest.as_ref().map(|l| l.generation);
-    if let Some(playing) = &mut model.flythrough.playing {
+    let eye = above_ground(view.eye, terrain);
+    *orbit = Orbit::from_eye(eye.into(), view.target.into(), view.fov_y_deg, orbit.scale);
+    if let Some(playing) = &mut fly.playing {
         playing.moved = Instant::now();
-        playing.generation = generation;
+        playing.generation = latest.map(|l| l.generation);
     }
+    None
 }

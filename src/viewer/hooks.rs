@@ -5,7 +5,7 @@ use super::accuracy::{ns_per_ray, AccuracyState, MeasureState};
 use super::compose::PixelRect;
 use super::state::{Decoding, Model};
 use crate::heightfield::relief;
-use crate::output_file;
+use crate::output_file::{self, FileError, SaveError};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
@@ -33,15 +33,25 @@ pub struct Counts {
 }
 
 /// Saves 0x00RRGGBB pixels as a PNG, atomically.
-pub fn save_png(pixels: &[u32], width: u32, height: u32, path: &Path) -> Result<(), String> {
+pub fn save_png(pixels: &[u32], width: u32, height: u32, path: &Path) -> Result<(), SaveError> {
     output_file::save_rgb(path, pixels, (width, height))
 }
 
 /// Writes the report atomically (a reader never sees half a file).
-pub fn write_report(path: &Path, model: &Model, counts: &Counts) -> Result<(), String> {
-    let text = serde_json::to_string_pretty(&report(model, counts))
-        .map_err(|e| format!("cannot encode the state report: {e}"))?;
-    output_file::write_bytes(path, (text + "\n").as_bytes())
+pub fn write_report(path: &Path, model: &Model, counts: &Counts) -> Result<(), ReportError> {
+    let text = serde_json::to_string_pretty(&report(model, counts))?;
+    Ok(output_file::write_bytes(path, (text + "\n").as_bytes())?)
+}
+
+/// Why the state report could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum ReportError {
+    /// It would not encode as JSON.
+    #[error("cannot encode the state report: {0}")]
+    Encode(#[from] serde_json::Error),
+    /// The file could not be written.
+    #[error(transparent)]
+    File(#[from] FileError),
 }
 
 fn report(model: &Model, counts: &Counts) -> Value {

@@ -2,7 +2,7 @@
 //! labelled with the lowest and highest heights, and sea level where the ramp shows a sea.
 
 use super::settings::HeatMode;
-use super::state::Model;
+use super::worker::RenderedFrame;
 use crate::heightfield::place;
 use crate::render::{HeightSpan, Ramp};
 use egui::{Align2, Color32, FontId, Rect, Ui, Vec2};
@@ -16,10 +16,10 @@ const BANDS: usize = 75;
 /// Closest two labels may come, in points, before the inner one is left out.
 const LABEL_GAP: f32 = 14.0;
 
-/// Draws the legend of the frame on screen, except in heat-map mode, whose own legend
-/// the view shows instead.
-pub fn height_legend_ui(ui: &Ui, rect: Rect, model: &Model) {
-    let Some(latest) = &model.latest else {
+/// Draws the legend of the frame on screen (`latest`), except in heat-map mode (`heat` not
+/// off), whose own legend the view shows instead.
+pub fn height_legend_ui(ui: &Ui, rect: Rect, latest: Option<&RenderedFrame>, heat: HeatMode) {
+    let Some(latest) = latest else {
         return;
     };
     // An opaque overlay colours the map instead of the ramp: the legend would explain
@@ -30,7 +30,7 @@ pub fn height_legend_ui(ui: &Ui, rect: Rect, model: &Model) {
         .field()
         .drape()
         .is_some_and(|d| d.opacity() >= 1.0);
-    if model.settings.heat != HeatMode::Off || overlaid {
+    if heat != HeatMode::Off || overlaid {
         return;
     }
     let ramp = latest.job.lighting.ramp;

@@ -4,7 +4,7 @@
 
 use super::mailbox::Mailbox;
 use super::sources;
-use super::state::{LoadEvent, LoadRequest, Loaded, Progress, Stage};
+use super::state::{LoadEvent, LoadFailure, LoadRequest, Loaded, Progress, Stage};
 use std::any::Any;
 use std::panic::AssertUnwindSafe;
 use std::sync::Arc;
@@ -55,7 +55,7 @@ impl Loader {
 
     /// Takes a loading thread's event; returns the result of the newest load when it is done,
     /// with the name of what was loaded.
-    pub fn accept(&mut self, event: LoadEvent) -> Option<(String, Result<Loaded, String>)> {
+    pub fn accept(&mut self, event: LoadEvent) -> Option<(String, Result<Loaded, LoadFailure>)> {
         let newest = self.shared.requests.newest();
         match event {
             LoadEvent::Stage { generation, stage } if generation == newest => {
@@ -107,10 +107,10 @@ fn load_loop(shared: &Shared) {
             sources::load(request, &report, &superseded)
         }));
         let result = Box::new(loaded.unwrap_or_else(|panic| {
-            Err(format!(
-                "loading {label} failed on an internal error ({}); other files still load",
-                panic_message(panic.as_ref())
-            ))
+            Err(LoadFailure::Internal {
+                label,
+                message: panic_message(panic.as_ref()).to_owned(),
+            })
         }));
         (shared.sink)(LoadEvent::Done { generation, result });
     }
@@ -126,7 +126,7 @@ fn panic_message(panic: &(dyn Any + Send)) -> &str {
 }
 
 /// Loads on the calling thread (for the terrain named on the command line).
-pub fn load_now(request: LoadRequest) -> Result<Loaded, String> {
+pub fn load_now(request: LoadRequest) -> Result<Loaded, LoadFailure> {
     sources::load(request, &|_| {}, &|| false)
 }
 
@@ -139,7 +139,7 @@ mod tests {
     use std::time::Duration;
 
     /// Starts the requests one after the other; returns the result the window would take.
-    fn run_all(requests: Vec<LoadRequest>) -> Result<Loaded, String> {
+    fn run_all(requests: Vec<LoadRequest>) -> Result<Loaded, LoadFailure> {
         let (send, receive) = mpsc::channel();
         let send = Mutex::new(send);
         let mut loader = Loader::new(move |event| {
@@ -157,7 +157,7 @@ mod tests {
         }
     }
 
-    fn run(request: LoadRequest) -> Result<Loaded, String> {
+    fn run(request: LoadRequest) -> Result<Loaded, LoadFailure> {
         run_all(vec![request])
     }
 
@@ -201,7 +201,7 @@ mod tests {
         let dir = tempfile::tempdir().expect("temp dir");
         let path = dir.path().join("notes.txt");
         std::fs::write(&path, "not a height map").expect("write");
-        let error = run(file(path)).err().expect("refused");
+        let error = run(file(path)).err().expect("refused").to_string();
         assert!(error.contains("not a PNG, PGM or TIFF"), "{error}");
     }
 
@@ -254,7 +254,10 @@ mod tests {
                 event => newest = loader.accept(event).or(newest),
             }
         }
-        let first = first.and_then(Result::err).expect("the first load stopped");
+        let first = first
+            .and_then(Result::err)
+            .expect("the first load stopped")
+            .to_string();
         assert!(first.contains("big.pgm was cancelled"), "{first}");
         let (label, newest) = newest.expect("the newest load's result");
         assert_eq!(label, "ramp.pgm");

@@ -11,7 +11,7 @@ use super::state::{Action, Decoding, LoadRequest, Model, Source};
 use super::stats_ui::statistics_ui;
 use super::water_ui::water_ui;
 use super::widgets::named;
-use crate::heightfield::BUILTINS;
+use crate::heightfield::{place, BUILTINS};
 use crate::render::effects::WIDEST_SUN_DEG;
 use crate::render::{Normals, Ramp};
 use crate::Method;
@@ -80,7 +80,9 @@ fn sections_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     section(ui, "Camera", "Camera", true, |ui| {
         camera_ui(ui, model, actions)
     });
-    section(ui, "Light", "Light", true, |ui| light_ui(ui, model));
+    section(ui, "Light", "Light", true, |ui| {
+        light_ui(ui, model, actions)
+    });
     let title = format!("Export: {}", shortened(&model.export.summary(), 24));
     let export = section(ui, "Export", &title, false, |ui| {
         let shown = model.latest.as_ref().map(|l| l.job.camera.size());
@@ -110,13 +112,23 @@ fn sections_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     named(&mut model.widgets, "traversal_section", traversal);
     let title = format!("Flythrough: {} keys", model.flythrough.keys.len());
     let flythrough = section(ui, "Flythrough", &title, false, |ui| {
-        super::flythrough::flythrough_ui(ui, model)
+        let fly = super::flythrough::flythrough_ui(ui, &mut model.flythrough, model.orbit);
+        actions.extend(fly);
     });
     named(&mut model.widgets, "flythrough_section", flythrough);
     let effects = section(ui, "Effects", "Effects", false, |ui| effects_ui(ui, model));
     named(&mut model.widgets, "effects_section", effects);
     let statistics = section(ui, "Statistics", "Statistics and probe", false, |ui| {
-        statistics_ui(ui, model)
+        let heat = &mut model.settings.heat;
+        let method = model.settings.method;
+        let latest = model.latest.as_deref();
+        statistics_ui(
+            ui,
+            &mut model.widgets,
+            (heat, method),
+            latest,
+            &model.telemetry,
+        );
     });
     named(&mut model.widgets, "statistics_section", statistics);
 }
@@ -194,7 +206,7 @@ fn camera_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     }
 }
 
-fn light_ui(ui: &mut Ui, model: &mut Model) {
+fn light_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let s = &mut model.settings;
     let azimuth = ui
         .add(Slider::new(&mut s.sun_azimuth_deg, 0.0..=360.0).text("bearing °"))
@@ -211,7 +223,12 @@ fn light_ui(ui: &mut Ui, model: &mut Model) {
         // The sliders now set the sun, not the clock.
         model.sun_clock.on = false;
     }
-    super::sun_clock::sun_clock_ui(ui, model);
+    let centre = place::centre_degrees(model.shown.terrain.field());
+    actions.extend(super::sun_clock::sun_clock_ui(
+        ui,
+        &mut model.sun_clock,
+        centre,
+    ));
     let s = &mut model.settings;
     ui.add(Slider::new(&mut s.intensity, 0.0..=3.0).text("intensity"));
     ui.add(Slider::new(&mut s.ambient, 0.0..=1.0).text("ambient"));
@@ -224,7 +241,7 @@ fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
     let water = &mut model.settings.effects.water;
     water_ui(ui, water, &mut model.widgets, &model.shown.terrain);
     if let Some(refused) = contours_ui(ui, &mut model.widgets, &model.shown.terrain) {
-        model.error = Some(refused);
+        model.error = Some(refused.to_string());
     }
     actions.extend(decoding_ui(ui, &mut model.widgets, &model.shown));
     z_scale_ui(ui, model, actions);

@@ -4,21 +4,43 @@
 //! file has.
 
 use super::export::create_numbered;
-use super::state::{Model, Source};
+use super::state::{ExportError, KeysError, Model, Source};
 use crate::heightfield::place;
 use crate::heightfield::{HeightUnitSource, NoDataValue, OptionError};
 use crate::output_file;
-use crate::render::{bytes_from_linear, level_in_map_units, NoDataKey, Scene, SceneFile};
+use crate::render::{
+    bytes_from_linear, level_in_map_units, NoDataKey, Scene, SceneError, SceneFile,
+};
 use std::path::Path;
+use thiserror::Error;
+
+/// Why the view could not be saved as a scene.
+#[derive(Debug, Error)]
+enum SaveSceneError {
+    /// The scene on screen could not be read again for its map's keys.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// Its no-data word is not one.
+    #[error(transparent)]
+    NoData(#[from] OptionError),
+    /// The flythrough's keys.
+    #[error(transparent)]
+    Keys(#[from] KeysError),
+    /// The file could not be written.
+    #[error(transparent)]
+    Export(#[from] ExportError),
+}
 
 /// Writes the view at `size` pixels as `heightray-MAP-NNN.toml` in the export folder.
 pub fn save(model: &mut Model, size: (u32, u32)) {
     let saved = scene_text(model, size).and_then(|text| {
         let stem = super::export::stem(model);
         let (_, path) = create_numbered(&model.export.folder(), &stem, "toml")?;
-        output_file::write_bytes(&path, text.as_bytes()).inspect_err(|_| {
-            let _ = std::fs::remove_file(&path);
-        })?;
+        output_file::write_bytes(&path, text.as_bytes())
+            .inspect_err(|_| {
+                let _ = std::fs::remove_file(&path);
+            })
+            .map_err(ExportError::from)?;
         Ok(path)
     });
     match saved {
@@ -26,12 +48,12 @@ pub fn save(model: &mut Model, size: (u32, u32)) {
             model.notify(format!("Saved the scene as {}", path.display()));
             model.export.last_scene = Some(path);
         }
-        Err(message) => model.error = Some(message),
+        Err(refused) => model.error = Some(refused.to_string()),
     }
 }
 
 /// The scene file's text for the view at `size` pixels.
-fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, String> {
+fn scene_text(model: &Model, (width, height): (u32, u32)) -> Result<String, SaveSceneError> {
     let orbit = &model.orbit;
     let lighting = model.settings.lighting();
     let z_scale = model.shown.terrain.field().z_scale();
@@ -174,11 +196,11 @@ fn overlay_keys(model: &Model) -> String {
 
 /// The `[heightmap]` keys but the z scale: the map's path in full (a scene's own map, when a
 /// scene is shown) and how it was read.
-fn heightmap_keys(source: &Source, model: &Model) -> Result<String, String> {
+fn heightmap_keys(source: &Source, model: &Model) -> Result<String, SaveSceneError> {
     let (paths, rgb, nodata) = match source {
         Source::Builtin(name) => return Ok(format!("path = \"builtin:{name}\"\n")),
         Source::File(path) if SceneFile::is_scene_path(path) => {
-            let file = SceneFile::read(path).map_err(|e| e.to_string())?;
+            let file = SceneFile::read(path)?;
             let map = file.heightmap;
             if map.path.starts_with("builtin:") {
                 return Ok(format!("path = {:?}\n", map.path));
@@ -186,7 +208,7 @@ fn heightmap_keys(source: &Source, model: &Model) -> Result<String, String> {
             let nodata = match map.nodata {
                 None => NoDataValue::Auto,
                 Some(NoDataKey::Value(v)) => NoDataValue::Value(v),
-                Some(NoDataKey::Word(w)) => w.parse().map_err(|e: OptionError| e.to_string())?,
+                Some(NoDataKey::Word(w)) => w.parse::<NoDataValue>()?,
             };
             let rgb = map.rgb.unwrap_or_else(|| "luminance".into());
             let base = Scene::base(path);

@@ -4,11 +4,12 @@
 
 use super::orbit::Orbit;
 use super::state::{
-    Flythrough, LoadRequest, Loaded, OverlayChange, SceneClock, SceneSetup, Source, Stage,
+    Flythrough, LoadFailure, LoadRequest, Loaded, OverlayChange, SceneClock, SceneSetup, Source,
+    Stage,
 };
-use crate::heightfield::{self, relief, Builtin, Drape, LoadOptions};
+use crate::heightfield::{self, relief, Builtin, Drape, HeightfieldError, LoadOptions};
 use crate::render::annotate::Annotations;
-use crate::render::{local_time, Lighting, Scene, SceneFile};
+use crate::render::{local_time, Lighting, Scene, SceneError, SceneFile};
 use crate::{Arith, Heightfield, Method, Terrain};
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
@@ -21,14 +22,15 @@ pub fn load(
     request: LoadRequest,
     report: &dyn Fn(Stage),
     superseded: &dyn Fn() -> bool,
-) -> Result<Loaded, String> {
+) -> Result<Loaded, LoadFailure> {
     let start = Instant::now();
     report(Stage::Reading);
     let (field, scene) = match (&request.source, &request.from_memory) {
         (_, Some(terrain)) => (terrain.field().clone(), None),
         (Source::Builtin(name), None) => {
-            let builtin = Builtin::named(name).ok_or(format!("no built-in terrain '{name}'"))?;
-            (builtin.load().map_err(|e| e.to_string())?, None)
+            let builtin =
+                Builtin::named(name).ok_or_else(|| LoadFailure::NoBuiltin((*name).to_owned()))?;
+            (builtin.load()?, None)
         }
         (Source::File(path), None) if request.source.is_scene() => load_scene(path)?,
         (Source::File(path), None) => (
@@ -45,7 +47,7 @@ pub fn load(
         None => field,
         Some(OverlayChange::Remove) => field.with_drape(None),
         Some(OverlayChange::Lay { path, opacity }) => {
-            let drape = Drape::load(path, &field, *opacity).map_err(|e| e.to_string())?;
+            let drape = Drape::load(path, &field, *opacity)?;
             field.with_drape(Some(Arc::new(drape)))
         }
     };
@@ -67,7 +69,7 @@ fn read_map(
     paths: &[PathBuf],
     request: &LoadRequest,
     superseded: &dyn Fn() -> bool,
-) -> Result<Heightfield, String> {
+) -> Result<Heightfield, LoadFailure> {
     let cancel = |_| {
         if superseded() {
             ControlFlow::Break(())
@@ -84,10 +86,9 @@ fn read_map(
     let field = match paths {
         [path] => heightfield::load_with(path, &options, &cancel),
         tiles => heightfield::load_mosaic(tiles, &options, &cancel),
-    }
-    .map_err(|e| e.to_string())?;
+    }?;
     let sensible = relief::default_z_scale(&field);
-    rescale(field, sensible)
+    Ok(rescale(field, sensible)?)
 }
 
 /// A validated scene and the camera section as written (the scene's `Camera` keeps no orbit).
@@ -100,8 +101,8 @@ struct SceneParts {
 }
 
 /// Reads a scene file: its height field, lighting, traversal and camera section.
-fn load_scene(path: &Path) -> Result<(Heightfield, Option<SceneParts>), String> {
-    let file = SceneFile::read(path).map_err(|e| e.to_string())?;
+fn load_scene(path: &Path) -> Result<(Heightfield, Option<SceneParts>), SceneError> {
+    let file = SceneFile::read(path)?;
     // (The file is kept as written as well: the viewer takes its camera's form from it.)
     let Scene {
         field,
@@ -110,7 +111,7 @@ fn load_scene(path: &Path) -> Result<(Heightfield, Option<SceneParts>), String> 
         arith,
         annotations,
         ..
-    } = Scene::from_file(&file, Scene::base(path), path).map_err(|e| e.to_string())?;
+    } = Scene::from_file(&file, Scene::base(path), path)?;
     let parts = SceneParts {
         file,
         lighting,
@@ -176,9 +177,9 @@ fn scene_setup(parts: &SceneParts, terrain: &Terrain) -> SceneSetup {
 }
 
 /// The same samples with another z scale.
-fn rescale(field: Heightfield, z_scale: f64) -> Result<Heightfield, String> {
+fn rescale(field: Heightfield, z_scale: f64) -> Result<Heightfield, HeightfieldError> {
     if field.z_scale() == z_scale {
         return Ok(field);
     }
-    field.with_z_scale(z_scale).map_err(|e| e.to_string())
+    field.with_z_scale(z_scale)
 }

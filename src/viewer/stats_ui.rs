@@ -3,26 +3,36 @@
 
 use super::probe_ui::QUERY_KINDS;
 use super::settings::HeatMode;
-use super::state::Model;
+use super::state::{Telemetry, Widgets};
 use super::widgets::named;
+use super::worker::RenderedFrame;
 use crate::render::{FrameStats, PASS_BLOCKS};
 use crate::traverse::{Counters, HitMiss};
+use crate::Method;
 use egui::Ui;
 
 /// Says what the hit and miss counts are, wherever they are shown.
 pub const HIT_MISS: &str = "hit: the query found that the ray may meet the surface in that \
     box, block, run, cell or triangle (and looks closer); miss: it ruled it out";
 
-pub fn statistics_ui(ui: &mut Ui, model: &mut Model) {
+/// The probe toggle, the heat map chosen under `method`, and the figures of the frame on
+/// screen (`latest`) and of the `telemetry`.
+pub fn statistics_ui(
+    ui: &mut Ui,
+    widgets: &mut Widgets,
+    (heat, method): (&mut HeatMode, Method),
+    latest: Option<&RenderedFrame>,
+    telemetry: &Telemetry,
+) {
     let probe = ui
         .checkbox(
-            &mut model.widgets.show_probe,
+            &mut widgets.show_probe,
             "probe the ray under the resting pointer",
         )
         .on_hover_text("where it hits, and every query it and its shadow ray make");
-    named(&mut model.widgets, "probe_toggle", probe);
-    heat_map_ui(ui, model);
-    let Some(latest) = model.latest.clone() else {
+    named(widgets, "probe_toggle", probe);
+    heat_map_ui(ui, widgets, heat, method);
+    let Some(latest) = latest else {
         ui.label("no frame yet");
         return;
     };
@@ -64,7 +74,7 @@ pub fn statistics_ui(ui: &mut Ui, model: &mut Model) {
         frame.width,
         frame.height
     ));
-    if let Some(capped) = model.telemetry.capped {
+    if let Some(capped) = telemetry.capped {
         ui.label(capped.to_string());
     }
     ui.label(format!(
@@ -73,7 +83,7 @@ pub fn statistics_ui(ui: &mut Ui, model: &mut Model) {
     ));
     totals_ui(ui, totals);
     queries_ui(ui, totals);
-    latency_ui(ui, model);
+    latency_ui(ui, telemetry);
 }
 
 fn totals_ui(ui: &mut Ui, totals: &FrameStats) {
@@ -130,29 +140,28 @@ fn totals_ui(ui: &mut Ui, totals: &FrameStats) {
 }
 
 /// The heat-map choice; maps the traversal method cannot fill are offered disabled, with why.
-fn heat_map_ui(ui: &mut Ui, model: &mut Model) {
-    let method = model.settings.method;
-    let heat = egui::ComboBox::from_label("heat map")
-        .selected_text(model.settings.heat.label())
+fn heat_map_ui(ui: &mut Ui, widgets: &mut Widgets, heat: &mut HeatMode, method: Method) {
+    let combo = egui::ComboBox::from_label("heat map")
+        .selected_text(heat.label())
         .show_ui(ui, |ui| {
             for mode in HeatMode::ALL {
                 let why = mode.unavailable(method);
-                let chosen = model.settings.heat == mode;
+                let chosen = *heat == mode;
                 let item = ui.add_enabled(
                     why.is_none(),
                     egui::Button::selectable(chosen, mode.label()),
                 );
-                model.widgets.rects.insert(mode.widget_name(), item.rect);
+                widgets.rects.insert(mode.widget_name(), item.rect);
                 if let Some(why) = why {
                     item.on_disabled_hover_text(why);
                 } else if item.clicked() {
-                    model.settings.heat = mode;
+                    *heat = mode;
                 }
             }
         });
-    named(&mut model.widgets, "heat_map", heat.response);
+    named(widgets, "heat_map", combo.response);
     // Chosen under another method: say why the map is empty rather than show a blank view.
-    if let Some(why) = model.settings.heat.unavailable(method) {
+    if let Some(why) = heat.unavailable(method) {
         ui.colored_label(
             egui::Color32::from_rgb(230, 180, 80),
             format!("{why}: this map is empty"),
@@ -201,8 +210,8 @@ fn queries_ui(ui: &mut Ui, totals: &FrameStats) {
         });
 }
 
-fn latency_ui(ui: &mut Ui, model: &Model) {
-    let latency = &model.telemetry.latency;
+fn latency_ui(ui: &mut Ui, telemetry: &Telemetry) {
+    let latency = &telemetry.latency;
     match (latency.last_ms(), latency.percentiles()) {
         (Some(last), Some((median, p95))) => {
             ui.label(format!(

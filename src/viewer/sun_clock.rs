@@ -3,21 +3,22 @@
 //! clocks of the map's time zone (or a zone typed here). Fields apply on Enter or when they
 //! lose focus, not at every keystroke.
 
-use super::state::{clock_text, default_local, Model};
-use crate::heightfield::place;
+use super::state::{clock_text, default_local, Action, SunClock};
 use chrono::{Offset, TimeZone};
 use egui::{DragValue, TextEdit, Ui};
 
-/// The date, time and zone controls; when they are applied, the sun moves to where they put
-/// it.
-pub fn sun_clock_ui(ui: &mut Ui, model: &mut Model) {
-    let centre = place::centre_degrees(model.shown.terrain.field());
-    let clock = &mut model.sun_clock;
+/// The date, time and zone controls over a map centred at `centre` (latitude and longitude,
+/// if known); when they are applied, asks for the sun to move to where they put it.
+pub fn sun_clock_ui(
+    ui: &mut Ui,
+    clock: &mut SunClock,
+    centre: Option<(f64, f64)>,
+) -> Option<Action> {
     let switched = ui
         .checkbox(&mut clock.on, "sun at a local date and time")
         .changed();
     if !clock.on {
-        return;
+        return None;
     }
     if switched {
         // A time when the sun is up at the map.
@@ -69,7 +70,5 @@ pub fn sun_clock_ui(ui: &mut Ui, model: &mut Model) {
             });
         }
     }
-    if apply {
-        model.apply_clock();
-    }
+    apply.then_some(Action::ApplyClock)
 }

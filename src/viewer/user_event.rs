@@ -1,6 +1,6 @@
 //! The news the render, loading and saving threads send the window thread.
 
-use super::state::{Exported, LoadEvent};
+use super::state::{ExportError, Exported, LoadEvent};
 
 /// News for the window thread from the render, loading and saving threads.
 pub enum UserEvent {
@@ -11,5 +11,5 @@ pub enum UserEvent {
     /// The loader's progress, or its result.
     Load(LoadEvent),
     /// An export was written (`None`: cancelled), or why not.
-    Exported(Result<Option<Exported>, String>),
+    Exported(Result<Option<Exported>, ExportError>),
 }

@@ -3,13 +3,14 @@
 //! both it and the field have one, and sampled bilinearly between pixel centres in linear
 //! light. Outside the image the surface keeps the ramp's colour.
 
+mod error;
 mod jpeg;
 mod png;
 mod read;
 mod reproject;
 mod tiff_rgba;
 
-pub use read::DrapeError;
+pub use error::DrapeError;
 
 use read::OwnPlace;
 
@@ -118,7 +119,7 @@ impl Drape {
                         path: path.to_owned(),
                         own: own.crs_label(),
                         map: map.crs_label(),
-                        why,
+                        why: Box::new(why),
                     })?;
                 let drape = Drape {
                     path: path.to_owned(),

@@ -3,7 +3,8 @@
 //! by the map's CRS, into the overlay's CRS by its own, and sampled there bilinearly in linear
 //! light (the overlay's own [`Drape::colour`]).
 
-use super::read::{Image, MOST_OVERLAY_PIXELS};
+use super::error::{ReprojectError, MOST_OVERLAY_PIXELS};
+use super::read::Image;
 use super::{Drape, Placement};
 use crate::heightfield::crs::Crs;
 use crate::heightfield::georef::{Georef, MapUnits};
@@ -39,12 +40,11 @@ pub fn onto_map(
     own: &Georef,
     map: &Georef,
     field: (usize, usize),
-) -> Result<(usize, usize, Vec<u8>), String> {
-    let unknown = |g: &Georef| format!("{} has no EPSG code to reproject by", g.crs_label());
+) -> Result<(usize, usize, Vec<u8>), ReprojectError> {
+    let unknown = |g: &Georef| ReprojectError::NoCode(g.crs_label());
     let own_crs = crs_of(own).ok_or_else(|| unknown(own))?;
     let map_crs = crs_of(map).ok_or_else(|| unknown(map))?;
-    let lonlat = |crs: Crs| crs.to_lonlat().map_err(|e| e.to_string());
-    let (to_lonlat, from_lonlat) = (lonlat(map_crs)?, lonlat(own_crs)?);
+    let (to_lonlat, from_lonlat) = (map_crs.to_lonlat()?, own_crs.to_lonlat()?);
     let (w, h) = (image.width, image.height);
     let source = Drape::from_pixels(w, h, image.pixels, 1.0, Placement::IDENTITY);
     // The overlay's pixel position of map grid point (x, y).

@@ -3,7 +3,7 @@
 //! PHOTOMETRIC=YCBCR`), turned to RGB by the JFIF equations (ITU-T T.871) the JPEG was made
 //! with.
 
-use super::read::MOST_OVERLAY_PIXELS;
+use super::error::{TiffRgbaError, MOST_OVERLAY_PIXELS};
 use std::io::{Read, Seek};
 use tiff::decoder::{Decoder, DecodingResult, Limits};
 use tiff::ColorType;
@@ -16,44 +16,34 @@ pub struct Rgba {
 }
 
 /// Decodes the first image of a TIFF as RGBA bytes, or says why it cannot.
-pub fn decode(input: impl Read + Seek) -> Result<Rgba, String> {
-    let mut decoder = Decoder::new(input).map_err(|e| e.to_string())?;
-    let (width, height) = decoder.dimensions().map_err(|e| e.to_string())?;
+pub fn decode(input: impl Read + Seek) -> Result<Rgba, TiffRgbaError> {
+    let mut decoder = Decoder::new(input)?;
+    let (width, height) = decoder.dimensions()?;
     if u64::from(width) * u64::from(height) > MOST_OVERLAY_PIXELS {
-        return Err(format!(
-            "it is {width}x{height} pixels, too many for an overlay"
-        ));
+        return Err(TiffRgbaError::TooLarge { width, height });
     }
-    let color = decoder.colortype().map_err(|e| e.to_string())?;
+    let color = decoder.colortype()?;
     let limit = usize::try_from(MOST_OVERLAY_PIXELS * 8).unwrap_or(usize::MAX);
     let mut limits = Limits::default();
     limits.decoding_buffer_size = limit;
     limits.intermediate_buffer_size = limit;
     let mut decoder = decoder.with_limits(limits);
-    let bytes: Vec<u8> = match decoder.read_image().map_err(|e| e.to_string())? {
+    let bytes: Vec<u8> = match decoder.read_image()? {
         DecodingResult::U8(v) => v,
         // The high byte of 16-bit samples.
         DecodingResult::U16(v) => v.into_iter().map(|s| (s >> 8) as u8).collect(),
-        _ => {
-            return Err(format!(
-                "its {color:?} samples are not 8 or 16-bit integers"
-            ))
-        }
+        _ => return Err(TiffRgbaError::Samples(color)),
     };
     let channels = match color {
         ColorType::Gray(8 | 16) => 1,
         ColorType::GrayA(8 | 16) => 2,
         ColorType::RGB(8 | 16) | ColorType::YCbCr(8) => 3,
         ColorType::RGBA(8 | 16) => 4,
-        other => {
-            return Err(format!(
-                "its colour type {other:?} is not read for overlays"
-            ))
-        }
+        other => return Err(TiffRgbaError::Colour(other)),
     };
     let count = width as usize * height as usize;
     if bytes.len() < count * channels {
-        return Err("it holds fewer samples than its size says".into());
+        return Err(TiffRgbaError::Short);
     }
     let ycbcr = matches!(color, ColorType::YCbCr(_));
     let pixels = bytes

@@ -9,8 +9,9 @@
 use super::limits::check_header;
 use super::raster::{Raster, Values};
 use super::{decode_error, LoadError};
-use crate::heightfield::georef::{Georef, Georeferencing, MapUnits};
+use crate::heightfield::georef::{Georef, GeorefError, Georeferencing, MapUnits};
 use std::io::BufRead;
+use thiserror::Error;
 
 /// The longest token read: a number or key never needs more, and a file of endless digits is
 /// refused instead of read through.
@@ -18,6 +19,74 @@ const MOST_PER_TOKEN: usize = 256;
 
 /// The most whitespace read before a token: a file of endless spaces is refused too.
 const MOST_SPACE: usize = 1 << 20;
+
+/// What is wrong with a grid's header or values.
+#[derive(Debug, Error)]
+pub enum AscError {
+    /// The header has keys but no values follow.
+    #[error("the header ends without values")]
+    NoValues,
+    /// A header key's value is missing or not a number.
+    #[error("{key}: {reason}")]
+    Value {
+        /// The key.
+        key: String,
+        /// What is wrong with its value.
+        reason: Box<AscError>,
+    },
+    /// A key the format does not have.
+    #[error("unknown header key '{0}'")]
+    UnknownKey(String),
+    /// `ncols` or `nrows` missing or not a whole number.
+    #[error("the header has no valid {0}")]
+    Size(&'static str),
+    /// More values claimed than the file can hold.
+    #[error(
+        "its header claims {width}x{height} = {} values, more than a file of {len} bytes can \
+         hold; the header is wrong or the file is truncated",
+        width * height
+    )]
+    Claims {
+        /// Values along x.
+        width: u64,
+        /// Values along y.
+        height: u64,
+        /// The file's bytes.
+        len: u64,
+    },
+    /// The values end early.
+    #[error("it ends after {read} of {count} values")]
+    Ends {
+        /// Values read.
+        read: usize,
+        /// Values the header claims.
+        count: usize,
+    },
+    /// A token that is not a number.
+    #[error("'{0}' is not a number")]
+    NotANumber(String),
+    /// The header ends before a key's value.
+    #[error("the header ends early")]
+    HeaderEnds,
+    /// Endless whitespace.
+    #[error("more than {MOST_SPACE} bytes of blank space")]
+    Space,
+    /// Endless digits.
+    #[error("a value longer than {MOST_PER_TOKEN} bytes")]
+    LongToken,
+    /// Bytes that are not UTF-8.
+    #[error("it is not text")]
+    NotText,
+    /// The header lacks where the grid lies.
+    #[error("its header lacks the lower-left corner or the cell size")]
+    NoPlace,
+    /// The header's corner or cell size make no georeferencing.
+    #[error(transparent)]
+    Georef(#[from] GeorefError),
+    /// Reading the file failed.
+    #[error("{0}")]
+    Io(#[from] std::io::Error),
+}
 
 /// Whether a file's first bytes start an ESRI ASCII grid header.
 pub fn starts_asc(bytes: &[u8]) -> bool {
@@ -44,13 +113,19 @@ pub fn decode(input: impl BufRead, len: u64, name: &str) -> Result<Raster, LoadE
         let key = tokens
             .next()
             .map_err(|e| decode_error(name, e))?
-            .ok_or_else(|| decode_error(name, "the header ends without values"))?;
+            .ok_or_else(|| decode_error(name, AscError::NoValues))?;
         if key.parse::<f64>().is_ok() {
             break key;
         }
-        let value = tokens
-            .number()
-            .map_err(|e| decode_error(name, format!("{key}: {e}")))?;
+        let value = tokens.number().map_err(|reason| {
+            decode_error(
+                name,
+                AscError::Value {
+                    key: key.clone(),
+                    reason: Box::new(reason),
+                },
+            )
+        })?;
         let slot = match key.to_ascii_lowercase().as_str() {
             "ncols" => &mut header.ncols,
             "nrows" => &mut header.nrows,
@@ -69,13 +144,13 @@ pub fn decode(input: impl BufRead, len: u64, name: &str) -> Result<Raster, LoadE
                 header.y = Some((value, key.eq_ignore_ascii_case("yllcenter")));
                 continue;
             }
-            _ => return Err(decode_error(name, format!("unknown header key '{key}'"))),
+            _ => return Err(decode_error(name, AscError::UnknownKey(key))),
         };
         *slot = Some(value);
     };
-    let size = |v: Option<f64>, key: &str| match v {
+    let size = |v: Option<f64>, key: &'static str| match v {
         Some(n) if n.fract() == 0.0 && n >= 0.0 && n <= u32::MAX as f64 => Ok(n as u64),
-        _ => Err(decode_error(name, format!("the header has no valid {key}"))),
+        _ => Err(decode_error(name, AscError::Size(key))),
     };
     let (width, height) = (size(header.ncols, "ncols")?, size(header.nrows, "nrows")?);
     check_header(name, width, height, 8)?;
@@ -83,14 +158,7 @@ pub fn decode(input: impl BufRead, len: u64, name: &str) -> Result<Raster, LoadE
     // Each value takes a digit and a separator: a header claiming more than the file can
     // hold is refused before anything is allocated for them.
     if width * height > len / 2 + 1 {
-        return Err(decode_error(
-            name,
-            format!(
-                "its header claims {width}x{height} = {} values, more than a file of {len} \
-                 bytes can hold; the header is wrong or the file is truncated",
-                width * height
-            ),
-        ));
+        return Err(decode_error(name, AscError::Claims { width, height, len }));
     }
     let mut values = Vec::with_capacity(count);
     values.push(parse(&first_value, name)?);
@@ -101,7 +169,10 @@ pub fn decode(input: impl BufRead, len: u64, name: &str) -> Result<Raster, LoadE
             .ok_or_else(|| {
                 decode_error(
                     name,
-                    format!("it ends after {} of {count} values", values.len()),
+                    AscError::Ends {
+                        read: values.len(),
+                        count,
+                    },
                 )
             })?;
         values.push(parse(&token, name)?);
@@ -118,15 +189,15 @@ pub fn decode(input: impl BufRead, len: u64, name: &str) -> Result<Raster, LoadE
 fn parse(token: &str, name: &str) -> Result<f64, LoadError> {
     token
         .parse()
-        .map_err(|_| decode_error(name, format!("'{token}' is not a number")))
+        .map_err(|_| decode_error(name, AscError::NotANumber(token.to_owned())))
 }
 
 /// Where the samples lie, from the header.
-fn georef(header: &Header, height: u64) -> Result<Georef, String> {
+fn georef(header: &Header, height: u64) -> Result<Georef, AscError> {
     let (Some((x, x_centre)), Some((y, y_centre)), Some(dx), Some(dy)) =
         (header.x, header.y, header.dx, header.dy)
     else {
-        return Err("its header lacks the lower-left corner or the cell size".into());
+        return Err(AscError::NoPlace);
     };
     // A corner is half a cell from the lower-left sample.
     let origin = [
@@ -141,7 +212,7 @@ fn georef(header: &Header, height: u64) -> Result<Georef, String> {
     } else {
         MapUnits::Linear { metres: 1.0 }
     };
-    Georef::new(origin, [dx, dy], units).map_err(|e| e.to_string())
+    Ok(Georef::new(origin, [dx, dy], units)?)
 }
 
 /// Whitespace-separated tokens of a stream.
@@ -151,11 +222,11 @@ struct Tokens<R> {
 
 impl<R: BufRead> Tokens<R> {
     /// The next token, or `None` at the end of the stream.
-    fn next(&mut self) -> Result<Option<String>, String> {
+    fn next(&mut self) -> Result<Option<String>, AscError> {
         let mut token = Vec::new();
         let mut space = 0;
         loop {
-            let buffer = self.input.fill_buf().map_err(|e| e.to_string())?;
+            let buffer = self.input.fill_buf()?;
             let Some(&byte) = buffer.first() else {
                 break;
             };
@@ -166,12 +237,12 @@ impl<R: BufRead> Tokens<R> {
                 }
                 space += 1;
                 if space > MOST_SPACE {
-                    return Err(format!("more than {MOST_SPACE} bytes of blank space"));
+                    return Err(AscError::Space);
                 }
                 continue;
             }
             if token.len() == MOST_PER_TOKEN {
-                return Err(format!("a value longer than {MOST_PER_TOKEN} bytes"));
+                return Err(AscError::LongToken);
             }
             token.push(byte);
         }
@@ -180,14 +251,12 @@ impl<R: BufRead> Tokens<R> {
         }
         String::from_utf8(token)
             .map(Some)
-            .map_err(|_| "it is not text".into())
+            .map_err(|_| AscError::NotText)
     }
 
     /// The next token as a number.
-    fn number(&mut self) -> Result<f64, String> {
-        let token = self.next()?.ok_or("the header ends early")?;
-        token
-            .parse()
-            .map_err(|_| format!("'{token}' is not a number"))
+    fn number(&mut self) -> Result<f64, AscError> {
+        let token = self.next()?.ok_or(AscError::HeaderEnds)?;
+        token.parse().map_err(|_| AscError::NotANumber(token))
     }
 }

@@ -10,10 +10,60 @@ use crate::heightfield::geokeys::{
     unit_metres, ANGULAR_UNITS, GEOGRAPHIC_TYPE, LINEAR_UNITS, MODEL_GEOGRAPHIC, MODEL_PROJECTED,
     MODEL_TYPE, PROJECTED_TYPE, RASTER_PIXEL_IS_POINT, RASTER_TYPE, UNIT_DEGREE, VERTICAL_UNITS,
 };
-use crate::heightfield::georef::{Georef, Georeferencing, HeightUnit, HeightUnitSource, MapUnits};
+use crate::heightfield::georef::{
+    Georef, GeorefError, Georeferencing, HeightUnit, HeightUnitSource, MapUnits,
+};
 use std::io::{Read, Seek};
+use thiserror::Error;
 use tiff::decoder::Decoder;
 use tiff::tags::Tag;
+
+/// Why a GeoTIFF's tags place no north-up grid.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum GeoTiffError {
+    /// A transformation matrix of the wrong length.
+    #[error("its ModelTransformation has {0} values, not 16")]
+    TransformLength(usize),
+    /// A transformation that is not north up.
+    #[error("its ModelTransformation is rotated or sheared")]
+    Rotated,
+    /// A scale without a tiepoint, or a tiepoint without a scale.
+    #[error("it has ModelPixelScale or ModelTiepoint without the other")]
+    Unpaired,
+    /// A scale or tiepoint with too few values.
+    #[error("its ModelPixelScale or ModelTiepoint is too short")]
+    TooShort,
+    /// More than one tiepoint.
+    #[error("it has several tiepoints (a warped grid)")]
+    Tiepoints,
+    /// An angular unit other than the degree.
+    #[error("its angular unit (EPSG {0}) is not degrees")]
+    AngularUnit(u16),
+    /// A linear unit not known.
+    #[error("its linear unit (EPSG {0}) is unknown")]
+    LinearUnit(u16),
+    /// A model type neither projected nor geographic.
+    #[error("its model type {0} is neither projected nor geographic")]
+    ModelType(u16),
+    /// No model type key.
+    #[error("it has no GeoKeyDirectory saying the CRS's units")]
+    NoKeys,
+    /// Degrees beyond the poles.
+    #[error(
+        "it is in degrees, but its samples span latitudes {} to {}, outside -90..90",
+        latitude(*.bottom),
+        latitude(*.top)
+    )]
+    Latitudes {
+        /// The southern samples' latitude.
+        bottom: f64,
+        /// The northern samples'.
+        top: f64,
+    },
+    /// The corner and scale make no georeferencing.
+    #[error(transparent)]
+    Georef(#[from] GeorefError),
+}
 
 /// The georeferencing of the current image of `decoder`, `height` rows high.
 pub fn georeferencing<R: Read + Seek>(decoder: &mut Decoder<R>, height: u32) -> Georeferencing {
@@ -56,16 +106,13 @@ fn corner_transform(
     scale: Option<Vec<f64>>,
     tiepoint: Option<Vec<f64>>,
     transformation: Option<Vec<f64>>,
-) -> Result<Corner, String> {
+) -> Result<Corner, GeoTiffError> {
     if let Some(m) = transformation {
         let [a, b, _, d, e, f, _, h, ..] = m[..] else {
-            return Err(format!(
-                "its ModelTransformation has {} values, not 16",
-                m.len()
-            ));
+            return Err(GeoTiffError::TransformLength(m.len()));
         };
         if b != 0.0 || e != 0.0 {
-            return Err("its ModelTransformation is rotated or sheared".into());
+            return Err(GeoTiffError::Rotated);
         }
         return Ok(Corner {
             x0: d,
@@ -75,17 +122,16 @@ fn corner_transform(
         });
     }
     let (Some(scale), Some(tie)) = (scale, tiepoint) else {
-        return Err("it has ModelPixelScale or ModelTiepoint without the other".into());
+        return Err(GeoTiffError::Unpaired);
     };
-    let too_short = || "its ModelPixelScale or ModelTiepoint is too short".to_owned();
     let [sx, sy, ..] = scale[..] else {
-        return Err(too_short());
+        return Err(GeoTiffError::TooShort);
     };
     let [i, j, _, x, y, ..] = tie[..] else {
-        return Err(too_short());
+        return Err(GeoTiffError::TooShort);
     };
     if tie.len() > 6 {
-        return Err("it has several tiepoints (a warped grid)".into());
+        return Err(GeoTiffError::Tiepoints);
     }
     Ok(Corner {
         x0: x - i * sx,
@@ -96,7 +142,7 @@ fn corner_transform(
 }
 
 /// The sample positions of an image `height` rows high under `corner`, in the keys' units.
-fn georef(corner: &Corner, keys: &GeoKeys, height: u32) -> Result<Georef, String> {
+fn georef(corner: &Corner, keys: &GeoKeys, height: u32) -> Result<Georef, GeoTiffError> {
     let crs = match keys.get(MODEL_TYPE) {
         Some(MODEL_GEOGRAPHIC) => keys.get(GEOGRAPHIC_TYPE).and_then(Crs::from_epsg),
         Some(MODEL_PROJECTED) => keys.get(PROJECTED_TYPE).and_then(Crs::from_epsg),
@@ -105,24 +151,19 @@ fn georef(corner: &Corner, keys: &GeoKeys, height: u32) -> Result<Georef, String
     let units = match keys.get(MODEL_TYPE) {
         Some(MODEL_GEOGRAPHIC) => match keys.get(ANGULAR_UNITS) {
             None | Some(UNIT_DEGREE) => MapUnits::Degrees,
-            Some(unit) => return Err(format!("its angular unit (EPSG {unit}) is not degrees")),
+            Some(unit) => return Err(GeoTiffError::AngularUnit(unit)),
         },
         Some(MODEL_PROJECTED) => {
             // GDAL writes the unit key only where the CRS is not an EPSG code; an EPSG
             // code's definition says its unit.
             let metres = match keys.get(LINEAR_UNITS) {
-                Some(unit) => unit_metres(unit)
-                    .ok_or_else(|| format!("its linear unit (EPSG {unit}) is unknown"))?,
+                Some(unit) => unit_metres(unit).ok_or(GeoTiffError::LinearUnit(unit))?,
                 None => crs.and_then(|c| c.metres_per_unit()).unwrap_or(1.0),
             };
             MapUnits::Linear { metres }
         }
-        Some(other) => {
-            return Err(format!(
-                "its model type {other} is neither projected nor geographic"
-            ))
-        }
-        None => return Err("it has no GeoKeyDirectory saying the CRS's units".into()),
+        Some(other) => return Err(GeoTiffError::ModelType(other)),
+        None => return Err(GeoTiffError::NoKeys),
     };
     // PixelIsArea (the default): the tiepoint is a pixel's corner, samples sit at centres.
     let half = if keys.get(RASTER_TYPE) == Some(RASTER_PIXEL_IS_POINT) {
@@ -136,16 +177,13 @@ fn georef(corner: &Corner, keys: &GeoKeys, height: u32) -> Result<Georef, String
     if units == MapUnits::Degrees {
         let top = origin[1] + (f64::from(height) - 1.0) * corner.sy;
         if !(origin[1] >= -90.0 && top <= 90.0) {
-            return Err(format!(
-                "it is in degrees, but its samples span latitudes {} to {}, outside -90..90",
-                latitude(origin[1]),
-                latitude(top)
-            ));
+            return Err(GeoTiffError::Latitudes {
+                bottom: origin[1],
+                top,
+            });
         }
     }
-    let georef = Georef::new(origin, [corner.sx, corner.sy], units)
-        .map_err(|e| e.to_string())?
-        .with_crs(crs);
+    let georef = Georef::new(origin, [corner.sx, corner.sy], units)?.with_crs(crs);
     Ok(match keys.get(VERTICAL_UNITS).and_then(unit_metres) {
         Some(metres) => georef.with_height_unit(HeightUnit {
             metres,
@@ -206,7 +244,7 @@ mod tests {
         m[0] = 1.0;
         m[1] = 0.5;
         m[5] = -1.0;
-        let error = corner_transform(None, None, Some(m)).err().unwrap();
-        assert!(error.contains("rotated"), "{error}");
+        let error = corner_transform(None, None, Some(m)).err();
+        assert_eq!(error, Some(GeoTiffError::Rotated));
     }
 }

@@ -6,11 +6,23 @@
 
 use super::limits::check_header;
 use super::raster::{Raster, Values};
-use super::{decode_error, LoadError};
+use super::{decode_error, DecodeFailure, LoadError};
 use crate::heightfield::crs::Crs;
-use crate::heightfield::georef::{Georef, Georeferencing, MapUnits};
+use crate::heightfield::georef::{Georef, GeorefError, Georeferencing, MapUnits};
 use std::io::Read;
 use std::path::Path;
+use thiserror::Error;
+
+/// Why a tile's name does not place it.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum PlaceError {
+    /// The name is not of the form `N45W123`.
+    #[error("its name '{0}' does not say where it lies (as N45W123 does)")]
+    Name(String),
+    /// The corner and spacing make no georeferencing.
+    #[error(transparent)]
+    Georef(#[from] GeorefError),
+}
 
 /// Whether `name` names an `.hgt` file.
 pub fn is_hgt(name: &str) -> bool {
@@ -23,10 +35,7 @@ pub fn is_hgt(name: &str) -> bool {
 pub fn decode(mut input: impl Read, len: u64, name: &str) -> Result<Raster, LoadError> {
     let n = (len / 2).isqrt();
     if 2 * n * n != len {
-        return Err(decode_error(
-            name,
-            format!("an .hgt tile holds n x n 16-bit samples (2 n^2 bytes), and {len} bytes is no such size"),
-        ));
+        return Err(decode_error(name, DecodeFailure::HgtSize(len)));
     }
     check_header(name, n, n, 2)?;
     let n = n as usize;
@@ -51,19 +60,18 @@ pub fn decode(mut input: impl Read, len: u64, name: &str) -> Result<Raster, Load
 }
 
 /// The georeferencing of a tile of `n x n` samples from its name.
-fn place(name: &str, n: usize) -> Result<Georef, String> {
+fn place(name: &str, n: usize) -> Result<Georef, PlaceError> {
     let stem = Path::new(name)
         .file_stem()
         .and_then(|s| s.to_str())
         .unwrap_or_default();
-    let (lat, lon) = corner_from_name(stem).ok_or(format!(
-        "its name '{stem}' does not say where it lies (as N45W123 does)"
-    ))?;
+    let (lat, lon) = corner_from_name(stem).ok_or_else(|| PlaceError::Name(stem.to_owned()))?;
     let spacing = 1.0 / (n - 1) as f64;
     // SRTM tiles are WGS 84 longitude and latitude.
-    Georef::new([lon, lat], [spacing, spacing], MapUnits::Degrees)
-        .map(|g| g.with_crs(Crs::from_epsg(4326)))
-        .map_err(|e| e.to_string())
+    Ok(
+        Georef::new([lon, lat], [spacing, spacing], MapUnits::Degrees)?
+            .with_crs(Crs::from_epsg(4326)),
+    )
 }
 
 /// Latitude and longitude of a tile's south-west corner from a name such as `N45W123` or

@@ -28,8 +28,11 @@ use std::path::{Path, PathBuf};
 use thiserror::Error;
 use watched::{Watch, Watched};
 
-pub use mosaic::load_mosaic;
+pub use asc::AscError;
+pub use mosaic::{load_mosaic, MosaicError};
+pub use pgm::PgmError;
 pub use picture::picture_kind;
+pub use tiff::ChunkError;
 
 /// Why a file could not be loaded as a height field.
 #[derive(Debug, Error)]
@@ -89,8 +92,8 @@ pub enum LoadError {
     Decode {
         /// The file's name in messages.
         name: String,
-        /// The decoder's message.
-        reason: String,
+        /// What the decoder found (boxed: decoders' errors are large).
+        reason: Box<DecodeFailure>,
     },
     /// An image whose colour type or sample format is not one heightray reads heights from.
     #[error("{name}: {what} is not a height map; use a grayscale image, or RGB (luminance or a terrain-RGB encoding), or a single-band TIFF")]
@@ -145,8 +148,8 @@ pub enum LoadError {
     Mosaic {
         /// The tiles' names.
         names: String,
-        /// Why not.
-        reason: String,
+        /// Why not (boxed: it names two tiles).
+        reason: Box<MosaicError>,
     },
     /// The progress callback asked to stop.
     #[error("loading {name} was cancelled")]
@@ -154,6 +157,40 @@ pub enum LoadError {
         /// The file's name in messages.
         name: String,
     },
+}
+
+/// What a decoder found wrong in a file's bytes.
+#[derive(Debug, Error)]
+pub enum DecodeFailure {
+    /// Reading the file failed.
+    #[error("{0}")]
+    Io(#[from] std::io::Error),
+    /// The PNG decoder's error.
+    #[error("{0}")]
+    Png(#[from] ::png::DecodingError),
+    /// The TIFF decoder's error.
+    #[error("{0}")]
+    Tiff(#[from] ::tiff::TiffError),
+    /// A PNG whose pixels would not fit in memory.
+    #[error("the image does not fit in memory")]
+    PngTooLarge,
+    /// No memory could be had for a PNG's pixels.
+    #[error("no memory for its {0} bytes of pixels")]
+    NoMemory(usize),
+    /// A PGM's header or raster.
+    #[error(transparent)]
+    Pgm(#[from] PgmError),
+    /// An ESRI ASCII grid's header or values.
+    #[error(transparent)]
+    Asc(#[from] AscError),
+    /// A TIFF's strips or tiles.
+    #[error(transparent)]
+    Chunks(#[from] ChunkError),
+    /// An `.hgt` file of a size no tile has.
+    #[error(
+        "an .hgt tile holds n x n 16-bit samples (2 n^2 bytes), and {0} bytes is no such size"
+    )]
+    HgtSize(u64),
 }
 
 /// How the three channels of an RGB image become heights.
@@ -463,10 +500,10 @@ fn first_bytes(bytes: &[u8]) -> String {
     }
 }
 
-/// A decoding library's error as `LoadError::Decode`.
-fn decode_error(name: &str, error: impl std::fmt::Display) -> LoadError {
+/// A decoder's error as `LoadError::Decode`.
+fn decode_error(name: &str, reason: impl Into<DecodeFailure>) -> LoadError {
     LoadError::Decode {
         name: name.into(),
-        reason: error.to_string(),
+        reason: Box::new(reason.into()),
     }
 }

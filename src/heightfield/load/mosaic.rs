@@ -5,14 +5,120 @@
 
 use super::raster::{Raster, Values};
 use super::{load_with, LoadError, LoadOptions, NoDataValue, Progress};
-use crate::heightfield::georef::{Georef, Georeferencing, MapUnits};
+use crate::heightfield::georef::{Georef, GeorefError, Georeferencing, MapUnits};
 use crate::heightfield::limits::{MAX_DECODED_BYTES, MAX_SAMPLES};
 use crate::heightfield::{Heightfield, Quantisation};
 use std::path::{Path, PathBuf};
+use thiserror::Error;
 
 /// How far (in cells) a tile's origin may lie off the first tile's grid, and how far apart
 /// (relatively) two cell sizes may be, and still be one grid: rounding in the files' tags.
 const TOLERANCE: f64 = 1e-6;
+
+/// Why tiles cannot be joined into one map.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum MosaicError {
+    /// A tile's georeferencing was ignored.
+    #[error(
+        "{}'s georeferencing cannot be used ({why}), so where it lies beside the others is \
+         unknown",
+        path.display()
+    )]
+    Ignored {
+        /// The tile.
+        path: PathBuf,
+        /// Why it was ignored.
+        why: String,
+    },
+    /// A tile without georeferencing.
+    #[error(
+        "{} is not georeferenced, so where it lies beside the others is unknown",
+        .0.display()
+    )]
+    NotGeoreferenced(PathBuf),
+    /// No paths.
+    #[error("no tiles given")]
+    NoTiles,
+    /// A tile off the first tile's grid.
+    #[error("{} and {} {why}", first.display(), other.display())]
+    OffGrid {
+        /// The first tile.
+        first: PathBuf,
+        /// The tile off its grid.
+        other: PathBuf,
+        /// How they differ.
+        why: GridMismatch,
+    },
+    /// A tile too far from the first for any joined grid.
+    #[error(
+        "{} lies {offset:e} cells from the first tile along {axis}, farther than any joined \
+         map can span ({MAX_SAMPLES} samples at most); check its corner coordinates",
+        path.display()
+    )]
+    TooFar {
+        /// The tile.
+        path: PathBuf,
+        /// Cells from the first tile.
+        offset: f64,
+        /// "x" or "y".
+        axis: &'static str,
+    },
+    /// A joined grid beyond the limits.
+    #[error(
+        "together they span {width}x{height} samples, more than the limits of {MAX_SAMPLES} \
+         samples and {} GiB decoded; give fewer or smaller tiles",
+        MAX_DECODED_BYTES >> 30
+    )]
+    TooLarge {
+        /// Samples along x.
+        width: u64,
+        /// Samples along y.
+        height: u64,
+    },
+    /// A large joined grid the tiles cover little of.
+    #[error(
+        "together they span {width}x{height} samples, of which the tiles cover at most \
+         {covered} ({:.3}%): the gaps between them would be stored as no data; give tiles \
+         that adjoin",
+        100.0 * *covered as f64 / width.saturating_mul(*height) as f64
+    )]
+    Sparse {
+        /// Samples along x.
+        width: u64,
+        /// Samples along y.
+        height: u64,
+        /// Samples the tiles hold.
+        covered: u64,
+    },
+    /// No memory for the joined grid.
+    #[error("there is not enough memory for their {width}x{height} samples")]
+    NoMemory {
+        /// Samples along x.
+        width: usize,
+        /// Samples along y.
+        height: usize,
+    },
+    /// The joined grid's corner makes no georeferencing.
+    #[error(transparent)]
+    Georef(#[from] GeorefError),
+}
+
+/// How a tile differs from the first tile's grid.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum GridMismatch {
+    /// Degrees and linear units, or two linear units.
+    #[error("are in different units ({0} and {1}); reproject them to one CRS")]
+    Units(MapUnits, MapUnits),
+    /// Two EPSG codes.
+    #[error("are in different coordinate systems ({0} and {1}); reproject them to one CRS")]
+    Crs(String, String),
+    /// Two cell sizes.
+    #[error("have different cell sizes ({0:?} and {1:?}); resample them to one")]
+    Spacing([f64; 2], [f64; 2]),
+    /// Origins a part of a cell apart.
+    #[error("are not on one grid: their samples are offset by part of a cell")]
+    Offset,
+}
 
 /// Loads the tiles at `paths` and joins them into one field, as `options` say.
 pub fn load_mosaic(
@@ -25,9 +131,9 @@ pub fn load_mosaic(
         .map(|p| p.display().to_string())
         .collect::<Vec<_>>()
         .join(", ");
-    let refuse = |reason: String| LoadError::Mosaic {
+    let refuse = |reason: MosaicError| LoadError::Mosaic {
         names: names.clone(),
-        reason,
+        reason: Box::new(reason),
     };
     let tile_options = LoadOptions {
         z_scale: 1.0,
@@ -39,31 +145,25 @@ pub fn load_mosaic(
         let georef = match field.georeferencing() {
             Georeferencing::Map(georef) => *georef,
             Georeferencing::Ignored(why) => {
-                return Err(refuse(format!(
-                    "{}'s georeferencing cannot be used ({why}), so where it lies beside the \
-                     others is unknown",
-                    path.display()
-                )))
+                return Err(refuse(MosaicError::Ignored {
+                    path: path.clone(),
+                    why: why.clone(),
+                }))
             }
             Georeferencing::None => {
-                return Err(refuse(format!(
-                    "{} is not georeferenced, so where it lies beside the others is unknown",
-                    path.display()
-                )))
+                return Err(refuse(MosaicError::NotGeoreferenced(path.clone())))
             }
         };
         tiles.push((path.as_path(), field, georef));
     }
-    let (first_path, _, first) = tiles
-        .first()
-        .ok_or_else(|| refuse("no tiles given".into()))?;
+    let (first_path, _, first) = tiles.first().ok_or_else(|| refuse(MosaicError::NoTiles))?;
     for (path, _, georef) in &tiles[1..] {
         one_grid(first, georef).map_err(|why| {
-            refuse(format!(
-                "{} and {} {why}",
-                first_path.display(),
-                path.display()
-            ))
+            refuse(MosaicError::OffGrid {
+                first: first_path.to_path_buf(),
+                other: path.to_path_buf(),
+                why,
+            })
         })?;
     }
     let raster = join(&tiles, *first).map_err(refuse)?;
@@ -80,7 +180,7 @@ pub fn load_mosaic(
 }
 
 /// Whether tile `b` lies on `a`'s grid, or why not.
-pub(in crate::heightfield) fn one_grid(a: &Georef, b: &Georef) -> Result<(), String> {
+pub(in crate::heightfield) fn one_grid(a: &Georef, b: &Georef) -> Result<(), GridMismatch> {
     let same_units = match (a.units, b.units) {
         (MapUnits::Degrees, MapUnits::Degrees) => true,
         (MapUnits::Linear { metres: x }, MapUnits::Linear { metres: y }) => x == y,
@@ -91,29 +191,19 @@ pub(in crate::heightfield) fn one_grid(a: &Georef, b: &Georef) -> Result<(), Str
         _ => true,
     };
     if !same_units {
-        return Err(format!(
-            "are in different units ({} and {}); reproject them to one CRS",
-            a.units, b.units
-        ));
+        return Err(GridMismatch::Units(a.units, b.units));
     }
     if !same_crs {
-        return Err(format!(
-            "are in different coordinate systems ({} and {}); reproject them to one CRS",
-            a.crs_label(),
-            b.crs_label()
-        ));
+        return Err(GridMismatch::Crs(a.crs_label(), b.crs_label()));
     }
     for axis in 0..2 {
         let (x, y) = (a.spacing[axis], b.spacing[axis]);
         if (x - y).abs() > TOLERANCE * x.max(y) {
-            return Err(format!(
-                "have different cell sizes ({:?} and {:?}); resample them to one",
-                a.spacing, b.spacing
-            ));
+            return Err(GridMismatch::Spacing(a.spacing, b.spacing));
         }
         let offset = (b.origin[axis] - a.origin[axis]) / x;
         if (offset - offset.round()).abs() > TOLERANCE {
-            return Err("are not on one grid: their samples are offset by part of a cell".into());
+            return Err(GridMismatch::Offset);
         }
     }
     Ok(())
@@ -135,7 +225,7 @@ const LEAST_COVERED: u64 = 4;
 pub(in crate::heightfield) fn tile_offsets<'a>(
     tiles: impl Iterator<Item = (&'a Path, &'a Georef)>,
     first: &Georef,
-) -> Result<Vec<[i64; 2]>, String> {
+) -> Result<Vec<[i64; 2]>, MosaicError> {
     tiles
         .map(|(path, georef)| {
             let mut cells = [0; 2];
@@ -143,13 +233,11 @@ pub(in crate::heightfield) fn tile_offsets<'a>(
                 let offset =
                     ((georef.origin[axis] - first.origin[axis]) / first.spacing[axis]).round();
                 if !offset.is_finite() || offset.abs() > MOST_CELLS_APART {
-                    return Err(format!(
-                        "{} lies {offset:e} cells from the first tile along {}, farther than \
-                         any joined map can span ({MAX_SAMPLES} samples at most); check its \
-                         corner coordinates",
-                        path.display(),
-                        ["x", "y"][axis]
-                    ));
+                    return Err(MosaicError::TooFar {
+                        path: path.to_path_buf(),
+                        offset,
+                        axis: ["x", "y"][axis],
+                    });
                 }
                 // In range: |offset| is at most 2^32.
                 *cell = offset as i64;
@@ -160,7 +248,7 @@ pub(in crate::heightfield) fn tile_offsets<'a>(
 }
 
 /// The tiles' values in one raster over their joint extent, NaN where no tile has data.
-fn join(tiles: &[(&Path, Heightfield, Georef)], first: Georef) -> Result<Raster, String> {
+fn join(tiles: &[(&Path, Heightfield, Georef)], first: Georef) -> Result<Raster, MosaicError> {
     let offsets = tile_offsets(tiles.iter().map(|(p, _, g)| (*p, g)), &first)?;
     let (mut lo, mut hi) = ([i64::MAX; 2], [i64::MIN; 2]);
     let mut covered = 0u64;
@@ -175,25 +263,20 @@ fn join(tiles: &[(&Path, Heightfield, Georef)], first: Georef) -> Result<Raster,
     let (width, height) = ((hi[0] - lo[0] + 1) as u64, (hi[1] - lo[1] + 1) as u64);
     let samples = width.saturating_mul(height);
     if samples > MAX_SAMPLES || samples.saturating_mul(8) > MAX_DECODED_BYTES {
-        return Err(format!(
-            "together they span {width}x{height} samples, more than the limits of \
-             {MAX_SAMPLES} samples and {} GiB decoded; give fewer or smaller tiles",
-            MAX_DECODED_BYTES >> 30
-        ));
+        return Err(MosaicError::TooLarge { width, height });
     }
     if samples > SPARSE_FLOOR && samples > LEAST_COVERED.saturating_mul(covered) {
-        return Err(format!(
-            "together they span {width}x{height} samples, of which the tiles cover at most \
-             {covered} ({:.3}%): the gaps between them would be stored as no data; give tiles \
-             that adjoin",
-            100.0 * covered as f64 / samples as f64
-        ));
+        return Err(MosaicError::Sparse {
+            width,
+            height,
+            covered,
+        });
     }
     let (width, height) = (width as usize, height as usize);
     let mut values = Vec::new();
     values
         .try_reserve_exact(width * height)
-        .map_err(|_| format!("there is not enough memory for their {width}x{height} samples"))?;
+        .map_err(|_| MosaicError::NoMemory { width, height })?;
     values.resize(width * height, f64::NAN);
     for ((_, field, _), offset) in tiles.iter().zip(&offsets) {
         let (di, dj) = ((offset[0] - lo[0]) as usize, (offset[1] - lo[1]) as usize);
@@ -212,8 +295,7 @@ fn join(tiles: &[(&Path, Heightfield, Georef)], first: Georef) -> Result<Raster,
         first.origin[0] + lo[0] as f64 * first.spacing[0],
         first.origin[1] + lo[1] as f64 * first.spacing[1],
     ];
-    let georef = Georef::new(origin, first.spacing, first.units)
-        .map_err(|e| e.to_string())?
+    let georef = Georef::new(origin, first.spacing, first.units)?
         .with_crs(first.crs)
         .with_height_unit(first.height_unit);
     Ok(Raster {

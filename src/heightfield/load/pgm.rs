@@ -7,6 +7,7 @@ use super::raster::{Raster, Values};
 use super::{decode_error, LoadError};
 use crate::heightfield::georef::Georeferencing;
 use std::io::{self, BufRead};
+use thiserror::Error;
 
 /// The most whitespace, comments and digits read for one number: a header or a sample never
 /// needs more, and a file of endless spaces is refused instead of read through.
@@ -14,6 +15,59 @@ const MOST_PER_NUMBER: u64 = 1 << 20;
 
 /// Bytes of the binary raster read at once.
 const BLOCK: usize = 1 << 16;
+
+/// What is wrong with a PGM's header or raster.
+#[derive(Debug, Error)]
+pub enum PgmError {
+    /// The magic number is neither P2 nor P5.
+    #[error("not a PGM (P2 or P5)")]
+    Magic,
+    /// A header field is missing or not a number.
+    #[error("PGM header has no valid {0}")]
+    Header(&'static str),
+    /// Maxval is 0 or above 65535.
+    #[error("PGM maxval must be 1..=65535, got {0}")]
+    Maxval(u64),
+    /// Fewer bytes follow the header than the binary raster needs.
+    #[error("PGM raster is truncated: {available} of {needed} bytes")]
+    Short {
+        /// Bytes after the header.
+        available: u64,
+        /// Bytes the raster needs.
+        needed: usize,
+    },
+    /// Reading the binary raster stopped early.
+    #[error("PGM raster is truncated after {samples} samples ({reason})")]
+    Truncated {
+        /// Samples read.
+        samples: usize,
+        /// Why reading stopped.
+        reason: Box<PgmError>,
+    },
+    /// The ASCII raster ends early.
+    #[error("PGM raster ends after {read} of {count} samples")]
+    Ends {
+        /// Samples read.
+        read: usize,
+        /// Samples the header claims.
+        count: usize,
+    },
+    /// An ASCII sample above 16 bits.
+    #[error("PGM sample {0} exceeds 65535")]
+    Sample(u64),
+    /// The file ends within the header.
+    #[error("the file ends in the PGM header")]
+    HeaderEnds,
+    /// Endless whitespace or digits.
+    #[error("more than {MOST_PER_NUMBER} bytes of spaces, comments or digits at byte {0}")]
+    TooLong(u64),
+    /// A number beyond 64 bits.
+    #[error("a number at byte {0} is too large")]
+    TooLarge(u64),
+    /// Reading the file failed.
+    #[error("{0}")]
+    Io(#[from] io::Error),
+}
 
 /// Parses a binary (P5) or ASCII (P2) PGM with maxval 1..=65535 from the start of a file of
 /// `len` bytes.
@@ -42,25 +96,23 @@ pub fn decode(input: impl BufRead, len: u64, name: &str) -> Result<Raster, LoadE
 
 /// Whether the raster is binary (P5), then width, height and maxval; the scanner is left at
 /// the byte after maxval.
-fn parse_header(scanner: &mut Scanner<impl BufRead>) -> Result<(bool, u64, u64, u16), String> {
+fn parse_header(scanner: &mut Scanner<impl BufRead>) -> Result<(bool, u64, u64, u16), PgmError> {
     let mut magic = [0u8; 2];
     scanner.read_exact(&mut magic)?;
     let binary = match &magic {
         b"P5" => true,
         b"P2" => false,
-        _ => return Err("not a PGM (P2 or P5)".into()),
+        _ => return Err(PgmError::Magic),
     };
     let mut header = [0u64; 3];
     for (field, name) in header.iter_mut().zip(["width", "height", "maxval"]) {
-        *field = scanner
-            .number()?
-            .ok_or(format!("PGM header has no valid {name}"))?;
+        *field = scanner.number()?.ok_or(PgmError::Header(name))?;
     }
     let [w, h, maxval] = header;
     let maxval = u16::try_from(maxval)
         .ok()
         .filter(|&m| m > 0)
-        .ok_or(format!("PGM maxval must be 1..=65535, got {maxval}"))?;
+        .ok_or(PgmError::Maxval(maxval))?;
     Ok((binary, w, h, maxval))
 }
 
@@ -70,15 +122,13 @@ fn read_binary(
     count: usize,
     remaining: u64,
     maxval: u16,
-) -> Result<Vec<u16>, String> {
+) -> Result<Vec<u16>, PgmError> {
     let bytes_per_sample = if maxval < 256 { 1 } else { 2 };
     let needed = count * bytes_per_sample;
     // Exactly one whitespace byte separates the header from the raster.
     let available = remaining.saturating_sub(1);
     if available < needed as u64 {
-        return Err(format!(
-            "PGM raster is truncated: {available} of {needed} bytes"
-        ));
+        return Err(PgmError::Short { available, needed });
     }
     scanner.read_exact(&mut [0u8])?;
     let mut samples = Vec::with_capacity(count);
@@ -86,12 +136,12 @@ fn read_binary(
     while samples.len() < count {
         let take = ((count - samples.len()) * bytes_per_sample).min(block.len());
         let bytes = &mut block[..take];
-        scanner.read_exact(bytes).map_err(|e| {
-            format!(
-                "PGM raster is truncated after {} samples ({e})",
-                samples.len()
-            )
-        })?;
+        scanner
+            .read_exact(bytes)
+            .map_err(|reason| PgmError::Truncated {
+                samples: samples.len(),
+                reason: Box::new(reason),
+            })?;
         if bytes_per_sample == 1 {
             samples.extend(bytes.iter().map(|&b| u16::from(b)));
         } else {
@@ -107,15 +157,13 @@ fn read_ascii(
     mut scanner: Scanner<impl BufRead>,
     count: usize,
     remaining: u64,
-) -> Result<Vec<u16>, String> {
+) -> Result<Vec<u16>, PgmError> {
     // Each ASCII sample takes at least two bytes: a short file must not reserve much.
     let most = usize::try_from(remaining / 2 + 1).unwrap_or(usize::MAX);
     let mut samples = Vec::with_capacity(count.min(most));
     for k in 0..count {
-        let s = scanner
-            .number()?
-            .ok_or(format!("PGM raster ends after {k} of {count} samples"))?;
-        samples.push(u16::try_from(s).map_err(|_| format!("PGM sample {s} exceeds 65535"))?);
+        let s = scanner.number()?.ok_or(PgmError::Ends { read: k, count })?;
+        samples.push(u16::try_from(s).map_err(|_| PgmError::Sample(s))?);
     }
     Ok(samples)
 }
@@ -128,12 +176,12 @@ struct Scanner<R> {
 
 impl<R: BufRead> Scanner<R> {
     /// The next byte, without taking it; None at the end of the file.
-    fn peek(&mut self) -> Result<Option<u8>, String> {
+    fn peek(&mut self) -> Result<Option<u8>, PgmError> {
         loop {
             match self.input.fill_buf() {
                 Ok(bytes) => return Ok(bytes.first().copied()),
                 Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
-                Err(e) => return Err(e.to_string()),
+                Err(e) => return Err(e.into()),
             }
         }
     }
@@ -143,10 +191,10 @@ impl<R: BufRead> Scanner<R> {
         self.position += 1;
     }
 
-    fn read_exact(&mut self, buf: &mut [u8]) -> Result<(), String> {
+    fn read_exact(&mut self, buf: &mut [u8]) -> Result<(), PgmError> {
         self.input.read_exact(buf).map_err(|e| match e.kind() {
-            io::ErrorKind::UnexpectedEof => "the file ends in the PGM header".to_owned(),
-            _ => e.to_string(),
+            io::ErrorKind::UnexpectedEof => PgmError::HeaderEnds,
+            _ => e.into(),
         })?;
         self.position += buf.len() as u64;
         Ok(())
@@ -154,13 +202,11 @@ impl<R: BufRead> Scanner<R> {
 
     /// The next decimal number of a PGM header or ASCII raster, skipping whitespace and `#`
     /// comments; None if something else, or the end of the file, comes first.
-    fn number(&mut self) -> Result<Option<u64>, String> {
+    fn number(&mut self) -> Result<Option<u64>, PgmError> {
         let start = self.position;
         let budget = |position: u64| {
             if position - start > MOST_PER_NUMBER {
-                Err(format!(
-                    "more than {MOST_PER_NUMBER} bytes of spaces, comments or digits at byte {start}"
-                ))
+                Err(PgmError::TooLong(start))
             } else {
                 Ok(())
             }
@@ -185,7 +231,7 @@ impl<R: BufRead> Scanner<R> {
             let next = so_far
                 .checked_mul(10)
                 .and_then(|v| v.checked_add(u64::from(digit - b'0')));
-            value = Some(next.ok_or(format!("a number at byte {start} is too large"))?);
+            value = Some(next.ok_or(PgmError::TooLarge(start))?);
             self.take();
         }
         Ok(value)

@@ -4,7 +4,7 @@
 
 use super::limits::{check_header, MAX_DECODED_BYTES};
 use super::raster::{Raster, TerrainRgb, Values};
-use super::{decode_error, ColourEncoding, LoadError};
+use super::{decode_error, ColourEncoding, DecodeFailure, LoadError};
 use crate::heightfield::georef::Georeferencing;
 use png::{BitDepth, ColorType, Decoder, Transformations};
 use std::io::{BufRead, Seek};
@@ -43,11 +43,11 @@ pub fn decode(
     )?;
     let size = reader
         .output_buffer_size()
-        .ok_or_else(|| decode_error(name, "the image does not fit in memory"))?;
+        .ok_or_else(|| decode_error(name, DecodeFailure::PngTooLarge))?;
     let mut bytes = Vec::new();
     bytes
         .try_reserve_exact(size)
-        .map_err(|_| decode_error(name, format!("no memory for its {size} bytes of pixels")))?;
+        .map_err(|_| decode_error(name, DecodeFailure::NoMemory(size)))?;
     bytes.resize(size, 0);
     let frame = reader
         .next_frame(&mut bytes)

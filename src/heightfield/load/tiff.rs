@@ -8,9 +8,56 @@ use super::picture;
 use super::raster::{Raster, Values};
 use super::{decode_error, LoadError};
 use std::io::{Read, Seek};
+use thiserror::Error;
 use tiff::decoder::{Decoder, DecodingResult, Limits};
 use tiff::tags::Tag;
 use tiff::ColorType;
+
+/// Why a TIFF's strips or tiles cannot hold its image.
+#[derive(Debug, Error)]
+pub enum ChunkError {
+    /// No strip offsets tag.
+    #[error("it has no strip offsets ({0})")]
+    NoOffsets(tiff::TiffError),
+    /// No byte counts tag for the strips or tiles.
+    #[error("it has no {what} byte counts ({reason})")]
+    NoCounts {
+        /// "strip" or "tile".
+        what: &'static str,
+        /// The decoder's error.
+        reason: tiff::TiffError,
+    },
+    /// A strip or tile reaches past the end of the file.
+    #[error(
+        "{what} {index} lies past the end of the file ({count} bytes at offset {offset}, the \
+         file is {len} bytes)"
+    )]
+    PastEnd {
+        /// "strip" or "tile".
+        what: &'static str,
+        /// Which one.
+        index: usize,
+        /// Its bytes.
+        count: u64,
+        /// Where it starts.
+        offset: u64,
+        /// The file's bytes.
+        len: u64,
+    },
+    /// Too few compressed bytes for the decoded size the header claims.
+    #[error(
+        "its {what}s hold {total} bytes, which cannot decode to the {needed} bytes its header \
+         claims"
+    )]
+    TooFew {
+        /// "strip" or "tile".
+        what: &'static str,
+        /// Their bytes.
+        total: u64,
+        /// The bytes the samples take.
+        needed: u64,
+    },
+}
 
 /// Decodes the first image of a TIFF from `input`, reading only what its directory points at.
 pub fn decode(input: impl Read + Seek, len: u64, name: &str) -> Result<Raster, LoadError> {
@@ -95,7 +142,7 @@ fn check_chunks<R: Read + Seek>(
     decoder: &mut Decoder<R>,
     len: u64,
     needed: u64,
-) -> Result<(), String> {
+) -> Result<(), ChunkError> {
     let (offsets, counts, what) = match decoder.get_tag_u64_vec(Tag::TileOffsets) {
         Ok(offsets) => (
             offsets,
@@ -105,19 +152,22 @@ fn check_chunks<R: Read + Seek>(
         Err(_) => (
             decoder
                 .get_tag_u64_vec(Tag::StripOffsets)
-                .map_err(|e| format!("it has no strip offsets ({e})"))?,
+                .map_err(ChunkError::NoOffsets)?,
             decoder.get_tag_u64_vec(Tag::StripByteCounts),
             "strip",
         ),
     };
-    let counts = counts.map_err(|e| format!("it has no {what} byte counts ({e})"))?;
+    let counts = counts.map_err(|reason| ChunkError::NoCounts { what, reason })?;
     let mut total = 0u64;
     for (index, (&offset, &count)) in offsets.iter().zip(&counts).enumerate() {
         if offset.checked_add(count).is_none_or(|end| end > len) {
-            return Err(format!(
-                "{what} {index} lies past the end of the file ({count} bytes at offset \
-                 {offset}, the file is {len} bytes)"
-            ));
+            return Err(ChunkError::PastEnd {
+                what,
+                index,
+                count,
+                offset,
+                len,
+            });
         }
         total = total.saturating_add(count);
     }
@@ -131,10 +181,11 @@ fn check_chunks<R: Read + Seek>(
         _ => total.saturating_mul(MOST_EXPANSION),
     };
     if most < needed {
-        return Err(format!(
-            "its {what}s hold {total} bytes, which cannot decode to the {needed} bytes its \
-             header claims"
-        ));
+        return Err(ChunkError::TooFew {
+            what,
+            total,
+            needed,
+        });
     }
     Ok(())
 }

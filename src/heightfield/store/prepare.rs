@@ -215,7 +215,8 @@ fn plan_mosaic(read: &[Planned]) -> Result<Header, StoreError> {
             ))
         })?;
     }
-    let offsets = tile_offsets(georefs.iter().map(|(p, g)| (*p, g)), &first).map_err(refuse)?;
+    let offsets = tile_offsets(georefs.iter().map(|(p, g)| (*p, g)), &first)
+        .map_err(|e| refuse(e.to_string()))?;
     let (mut lo, mut hi) = ([i64::MAX; 2], [i64::MIN; 2]);
     let mut range = ValueRange::EMPTY;
     for (input, offset) in read.iter().zip(&offsets) {

@@ -8,8 +8,8 @@ mod track;
 mod view;
 
 use track::Track;
-pub use track::TrackSection;
-pub(crate) use track::{gpx_points, read_text};
+pub(crate) use track::{gpx_points, read_text, NotGpx};
+pub use track::{TextError, TrackError, TrackFileError, TrackSection};
 pub use view::View;
 
 use super::camera::{Camera, CameraError};
@@ -18,10 +18,90 @@ use super::scene::Orbit;
 use crate::{Heightfield, Terrain};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
+use thiserror::Error;
 
 /// Frames a path may have: a day at 60 frames a second, far beyond any flythrough, and small
 /// enough that a frame number always fits the file names' digits.
 pub const MOST_FRAMES: u64 = 60 * 60 * 60 * 24;
+
+/// Why an `[animation]` section makes no camera path; each names the key at fault.
+#[derive(Debug, Error)]
+pub enum AnimationError {
+    /// Frames a second out of range.
+    #[error("[animation] fps must be above 0 and at most 1000, got {0}")]
+    Fps(f64),
+    /// A track without a map to place it on.
+    #[error("[animation.track] needs the scene's map")]
+    NoMap,
+    /// The track cannot be flown.
+    #[error(transparent)]
+    Track(#[from] TrackError),
+    /// A track with keys or an orbit.
+    #[error(
+        "[animation] takes one of [[animation.key]] entries, orbit_deg_per_s or \
+         [animation.track]"
+    )]
+    TrackAndMore,
+    /// An orbit speed without a `[camera]` orbit.
+    #[error(
+        "[animation] orbit_deg_per_s turns the [camera] orbit: give [camera] orbit = {{ \
+         target, yaw_deg, pitch_deg, distance }}"
+    )]
+    NoOrbit,
+    /// An orbit speed out of range.
+    #[error("[animation] orbit_deg_per_s must be non-zero and at most 3600 either way, got {0}")]
+    OrbitSpeed(f64),
+    /// No path at all.
+    #[error(
+        "[animation] needs [[animation.key]] entries (time_s, and eye and target or orbit), \
+         orbit_deg_per_s or [animation.track]"
+    )]
+    NoPath,
+    /// Keys and an orbit speed.
+    #[error("[animation] takes either [[animation.key]] entries or orbit_deg_per_s, not both")]
+    KeysAndOrbit,
+    /// A duration for keys or a track.
+    #[error("[animation] duration_s is for an orbit; keys end at the last key's time_s")]
+    Duration,
+    /// Too long a path, or one of no duration.
+    #[error(
+        "[animation] a path of {duration} s at {fps} frames a second is more than \
+         {MOST_FRAMES} frames or not a duration"
+    )]
+    Frames {
+        /// Seconds.
+        duration: f64,
+        /// Frames a second.
+        fps: f64,
+    },
+    /// A key out of range or out of order.
+    #[error("[[animation.key]] {number} (time_s = {time_s}): {problem}")]
+    Key {
+        /// The key's number, from 1.
+        number: usize,
+        /// Its time.
+        time_s: f64,
+        /// What is wrong with it.
+        problem: KeyProblem,
+    },
+}
+
+/// What is wrong with an `[[animation.key]]`.
+#[derive(Clone, Copy, Debug, Error, PartialEq, Eq)]
+pub enum KeyProblem {
+    /// A negative or infinite time.
+    #[error("time_s must be a finite number of seconds >= 0")]
+    Time,
+    /// Not later than the key before.
+    #[error("keys must be in order of time, each later than the one before")]
+    Order,
+    /// Neither eye and target nor orbit.
+    #[error("needs either both eye and target, or orbit")]
+    View,
+    /// A view that is not finite, or a field of view out of range.
+    #[error("eye and target must be finite, fov_y_deg between 0 and 180")]
+    Values,
+}
 
 /// A scene file's `[animation]` section: `fps` and either keys or an orbit.
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
@@ -99,37 +179,25 @@ impl Animation {
         fov_y_deg: f64,
         up: [f64; 3],
         map: Option<(&std::path::Path, &Heightfield)>,
-    ) -> Result<Animation, String> {
+    ) -> Result<Animation, AnimationError> {
         let fps = section.fps;
         if !(fps.is_finite() && fps > 0.0 && fps <= 1000.0) {
-            return Err(format!(
-                "[animation] fps must be above 0 and at most 1000, got {fps}"
-            ));
+            return Err(AnimationError::Fps(fps));
         }
         let (path, duration) = match (&section.key[..], section.orbit_deg_per_s) {
             ([], None) if section.track.is_some() => {
                 let (Some(track), Some((base, field))) = (&section.track, map) else {
-                    return Err("[animation.track] needs the scene's map".into());
+                    return Err(AnimationError::NoMap);
                 };
                 let track = Track::load(track, base, field)?;
                 let duration = track.duration();
                 (Path::Track { track, fov_y_deg }, duration)
             }
-            (_, _) if section.track.is_some() => {
-                return Err("[animation] takes one of [[animation.key]] entries, \
-                            orbit_deg_per_s or [animation.track]"
-                    .into())
-            }
+            (_, _) if section.track.is_some() => return Err(AnimationError::TrackAndMore),
             ([], Some(deg_per_s)) => {
-                let orbit = orbit.ok_or(
-                    "[animation] orbit_deg_per_s turns the [camera] orbit: give [camera] \
-                     orbit = { target, yaw_deg, pitch_deg, distance }",
-                )?;
+                let orbit = orbit.ok_or(AnimationError::NoOrbit)?;
                 if !(deg_per_s.is_finite() && deg_per_s != 0.0 && deg_per_s.abs() <= 3600.0) {
-                    return Err(format!(
-                        "[animation] orbit_deg_per_s must be non-zero and at most 3600 \
-                         either way, got {deg_per_s}"
-                    ));
+                    return Err(AnimationError::OrbitSpeed(deg_per_s));
                 }
                 let turn = 360.0 / deg_per_s.abs();
                 let path = Path::Orbit {
@@ -140,30 +208,13 @@ impl Animation {
                 (path, section.duration_s.unwrap_or(turn))
             }
             ([_, ..], None) => keys(&section.key, fov_y_deg)?,
-            ([], None) => {
-                return Err(
-                    "[animation] needs [[animation.key]] entries (time_s, and eye and \
-                            target or orbit), orbit_deg_per_s or [animation.track]"
-                        .into(),
-                )
-            }
-            ([_, ..], Some(_)) => {
-                return Err("[animation] takes either [[animation.key]] entries or \
-                            orbit_deg_per_s, not both"
-                    .into())
-            }
+            ([], None) => return Err(AnimationError::NoPath),
+            ([_, ..], Some(_)) => return Err(AnimationError::KeysAndOrbit),
         };
         if section.duration_s.is_some() && !matches!(path, Path::Orbit { .. }) {
-            return Err(
-                "[animation] duration_s is for an orbit; keys end at the last key's \
-                        time_s"
-                    .into(),
-            );
+            return Err(AnimationError::Duration);
         }
-        let frames = frames_for(duration, fps).ok_or(format!(
-            "[animation] a path of {duration} s at {fps} frames a second is more than \
-                 {MOST_FRAMES} frames or not a duration"
-        ))?;
+        let frames = frames_for(duration, fps).ok_or(AnimationError::Frames { duration, fps })?;
         Ok(Animation {
             fps,
             frames,
@@ -250,24 +301,20 @@ fn frames_for(duration: f64, fps: f64) -> Option<u64> {
 }
 
 /// The keys' times and views, checked: times increasing from 0 or later, each key a view.
-fn keys(keys: &[KeySection], fov_y_deg: f64) -> Result<(Path, f64), String> {
+fn keys(keys: &[KeySection], fov_y_deg: f64) -> Result<(Path, f64), AnimationError> {
     let mut times = Vec::with_capacity(keys.len());
     let mut views = Vec::with_capacity(keys.len());
     for (n, key) in keys.iter().enumerate() {
-        let at = |what: &str| {
-            format!(
-                "[[animation.key]] {} (time_s = {}): {what}",
-                n + 1,
-                key.time_s
-            )
+        let at = |problem| AnimationError::Key {
+            number: n + 1,
+            time_s: key.time_s,
+            problem,
         };
         if !(key.time_s.is_finite() && key.time_s >= 0.0) {
-            return Err(at("time_s must be a finite number of seconds >= 0"));
+            return Err(at(KeyProblem::Time));
         }
         if times.last().is_some_and(|&before| key.time_s <= before) {
-            return Err(at(
-                "keys must be in order of time, each later than the one before",
-            ));
+            return Err(at(KeyProblem::Order));
         }
         let (eye, target) = match (key.eye, key.target, key.orbit) {
             (Some(eye), Some(target), None) => (DVec3::from(eye), DVec3::from(target)),
@@ -278,13 +325,11 @@ fn keys(keys: &[KeySection], fov_y_deg: f64) -> Result<(Path, f64), String> {
                     target,
                 )
             }
-            _ => return Err(at("needs either both eye and target, or orbit")),
+            _ => return Err(at(KeyProblem::View)),
         };
         let fov = key.fov_y_deg.unwrap_or(fov_y_deg);
         if !(eye.is_finite() && target.is_finite() && fov > 0.0 && fov < 180.0) {
-            return Err(at(
-                "eye and target must be finite, fov_y_deg between 0 and 180",
-            ));
+            return Err(at(KeyProblem::Values));
         }
         times.push(key.time_s);
         views.push(View {

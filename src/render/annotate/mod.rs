@@ -23,11 +23,13 @@ pub use fonts::svg_options;
 pub use layout::{north_angle_deg, trimmed, ScaleBar};
 pub use measure::TextWidth;
 pub use place_names::PlacedName;
+pub use raster::DrawError;
 #[cfg(feature = "annotate")]
 pub use raster::Marked;
 pub use sheet::{Annotations, AnnotationsSection, Sheet};
 pub use sight::Sight;
 pub use svg::{escaped, round_marks};
 pub use vectors::{
-    from_geojson, from_gpx, Coordinates, Place, VectorFile, VectorLayer, VectorSection,
+    from_geojson, from_gpx, Coordinates, Place, VectorError, VectorFile, VectorFileError,
+    VectorLayer, VectorProblem, VectorSection,
 };

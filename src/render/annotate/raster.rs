@@ -8,6 +8,30 @@ use super::svg_options;
 use crate::render::Window;
 use resvg::tiny_skia::{Pixmap, PremultipliedColorU8, Transform};
 use resvg::usvg::Tree;
+use thiserror::Error;
+
+/// Why an SVG could not be drawn over pixels.
+#[derive(Debug, Error)]
+pub enum DrawError {
+    /// The SVG would not parse.
+    #[error("cannot draw the {what}: {reason}")]
+    Svg {
+        /// What was drawn ("annotations", "contour lines").
+        what: &'static str,
+        /// The parser's error.
+        reason: resvg::usvg::Error,
+    },
+    /// No canvas of the size could be made.
+    #[error("cannot draw the {0}")]
+    Canvas(&'static str),
+}
+
+impl DrawError {
+    /// The SVG parsed as a tree, the error naming `what` was drawn.
+    pub fn tree(svg: &str, what: &'static str) -> Result<Tree, DrawError> {
+        Tree::from_str(svg, &svg_options()).map_err(|reason| DrawError::Svg { what, reason })
+    }
+}
 
 impl Annotations {
     /// Draws these annotations into `pixels` (0x00RRGGBB, or 16-bit red, green and blue; row
@@ -17,7 +41,7 @@ impl Annotations {
         sheet: &Sheet<'_>,
         pixels: &mut [P],
         window: Window,
-    ) -> Result<(), String> {
+    ) -> Result<(), DrawError> {
         if self.is_empty() {
             return Ok(());
         }
@@ -32,11 +56,11 @@ const BORDER: u32 = 4;
 
 /// Draws `svg` (of the whole image) over `pixels` (row by row), which hold `window` of the
 /// whole image.
-pub fn draw_over<P: Marked>(svg: &str, pixels: &mut [P], window: Window) -> Result<(), String> {
-    let tree = Tree::from_str(svg, &svg_options())
-        .map_err(|e| format!("cannot draw the annotations: {e}"))?;
+pub fn draw_over<P: Marked>(svg: &str, pixels: &mut [P], window: Window) -> Result<(), DrawError> {
+    const WHAT: &str = "annotations";
+    let tree = DrawError::tree(svg, WHAT)?;
     let side = BLOCK + 2 * BORDER;
-    let mut pixmap = Pixmap::new(side, side).ok_or("cannot draw the annotations")?;
+    let mut pixmap = Pixmap::new(side, side).ok_or(DrawError::Canvas(WHAT))?;
     let (x_end, y_end) = (window.x + window.width, window.y + window.height);
     for by in (window.y / BLOCK)..y_end.div_ceil(BLOCK) {
         for bx in (window.x / BLOCK)..x_end.div_ceil(BLOCK) {

@@ -3,11 +3,59 @@
 //! read), placed on the map's grid.
 
 use crate::heightfield::Heightfield;
-use crate::render::animation::{gpx_points, read_text};
+use crate::render::animation::{gpx_points, read_text, NotGpx, TextError};
 use crate::render::bytes_from_hex;
 use geojson::{GeoJson, Geometry, Value};
 use serde::Deserialize;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// Why a `[[vector]]` layer cannot be shown.
+#[derive(Debug, Error)]
+#[error("[[vector]] {}: {reason}", path.display())]
+pub struct VectorError {
+    /// The file.
+    pub path: PathBuf,
+    /// What is wrong.
+    pub reason: VectorProblem,
+}
+
+/// What is wrong with a `[[vector]]` layer.
+#[derive(Debug, Error)]
+pub enum VectorProblem {
+    /// The file gives no places or lines.
+    #[error(transparent)]
+    File(#[from] VectorFileError),
+    /// Longitudes and latitudes or map coordinates on a map without georeferencing.
+    #[error(
+        "the map has no georeferencing to place longitudes and latitudes or map coordinates \
+         on: give coordinates = \"grid\" (sample positions)"
+    )]
+    NotGeoreferenced,
+    /// Not `#RRGGBB`.
+    #[error("colour {0:?} is not #RRGGBB")]
+    Colour(String),
+    /// A negative or infinite lift.
+    #[error("lift must be a finite number >= 0, got {0}")]
+    Lift(f64),
+}
+
+/// Why a vector file gives no places or lines.
+#[derive(Debug, Error)]
+pub enum VectorFileError {
+    /// Neither `.geojson` nor `.gpx`.
+    #[error("name a .geojson or .gpx file")]
+    Extension,
+    /// Its text cannot be had.
+    #[error(transparent)]
+    Text(#[from] TextError),
+    /// Not GeoJSON.
+    #[error("not GeoJSON: {0}")]
+    GeoJson(#[from] Box<geojson::Error>),
+    /// Not GPX.
+    #[error(transparent)]
+    Gpx(#[from] NotGpx),
+}
 
 /// A scene file's `[[vector]]` section.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
@@ -85,21 +133,27 @@ pub struct VectorFile {
 
 impl VectorLayer {
     /// Reads the section's file (relative to `base`) and places it on `field`.
-    pub fn load(section: &VectorSection, base: &Path, field: &Heightfield) -> Result<Self, String> {
+    pub fn load(
+        section: &VectorSection,
+        base: &Path,
+        field: &Heightfield,
+    ) -> Result<Self, VectorError> {
         let path = base.join(&section.path);
-        let key = |what: &str| format!("[[vector]] {}: {what}", path.display());
-        let file = read(&path).map_err(|e| key(&e))?;
-        let to_grid = grid_of(section.coordinates, field).map_err(|e| key(&e))?;
+        let key = |reason: VectorProblem| VectorError {
+            path: path.clone(),
+            reason,
+        };
+        let file = read(&path).map_err(|e| key(e.into()))?;
+        let to_grid = grid_of(section.coordinates, field).map_err(key)?;
         let colour = match &section.colour {
             None => LINE_COLOUR,
-            Some(text) => bytes_from_hex(text)
-                .ok_or_else(|| key(&format!("colour {text:?} is not #RRGGBB")))?,
+            Some(text) => {
+                bytes_from_hex(text).ok_or_else(|| key(VectorProblem::Colour(text.clone())))?
+            }
         };
         let lift = section.lift.unwrap_or(DEFAULT_LIFT);
         if !(lift.is_finite() && lift >= 0.0) {
-            return Err(key(&format!(
-                "lift must be a finite number >= 0, got {lift}"
-            )));
+            return Err(key(VectorProblem::Lift(lift)));
         }
         let (w, h) = ((field.width() - 1) as f64, (field.height() - 1) as f64);
         let on_map = |p: &[f64; 2]| p[0] >= 0.0 && p[1] >= 0.0 && p[0] <= w && p[1] <= h;
@@ -144,14 +198,10 @@ impl VectorLayer {
 fn grid_of(
     coordinates: Coordinates,
     field: &Heightfield,
-) -> Result<impl Fn([f64; 2]) -> Option<[f64; 2]> + '_, String> {
+) -> Result<impl Fn([f64; 2]) -> Option<[f64; 2]> + '_, VectorProblem> {
     let georef = field.georef();
     if coordinates != Coordinates::Grid && georef.is_none() {
-        return Err(
-            "the map has no georeferencing to place longitudes and latitudes or map \
-             coordinates on: give coordinates = \"grid\" (sample positions)"
-                .into(),
-        );
+        return Err(VectorProblem::NotGeoreferenced);
     }
     Ok(move |p: [f64; 2]| {
         let finite = p.iter().all(|c| c.is_finite());
@@ -166,22 +216,22 @@ fn grid_of(
 }
 
 /// The places and lines of a GeoJSON or GPX file, by its extension.
-pub fn read(path: &Path) -> Result<VectorFile, String> {
+pub fn read(path: &Path) -> Result<VectorFile, VectorFileError> {
     let extension = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    let read: fn(&str) -> Result<VectorFile, String> = match extension.as_deref() {
+    let read: fn(&str) -> Result<VectorFile, VectorFileError> = match extension.as_deref() {
         Some("gpx") => from_gpx,
         Some("geojson" | "json") => from_geojson,
-        _ => return Err("name a .geojson or .gpx file".into()),
+        _ => return Err(VectorFileError::Extension),
     };
     read(&read_text(path)?)
 }
 
 /// A GeoJSON text's named points (the `name` property, and `priority` if it is a number) and
 /// lines (LineStrings and polygon rings).
-pub fn from_geojson(text: &str) -> Result<VectorFile, String> {
-    let json: GeoJson = text.parse().map_err(|e| format!("not GeoJSON: {e}"))?;
+pub fn from_geojson(text: &str) -> Result<VectorFile, VectorFileError> {
+    let json: GeoJson = text.parse().map_err(Box::new)?;
     let mut file = VectorFile::default();
     match json {
         GeoJson::FeatureCollection(collection) => {
@@ -253,8 +303,8 @@ fn add_geometry(geometry: &Geometry, name: Option<(&str, f64)>, file: &mut Vecto
 }
 
 /// A GPX text's waypoints (named ones) and its track (or route), as the camera paths read it.
-pub fn from_gpx(text: &str) -> Result<VectorFile, String> {
-    let gpx = gpx::read(text.as_bytes()).map_err(|e| format!("not a GPX file: {e}"))?;
+pub fn from_gpx(text: &str) -> Result<VectorFile, VectorFileError> {
+    let gpx = gpx::read(text.as_bytes()).map_err(NotGpx::from)?;
     let places = gpx
         .waypoints
         .iter()

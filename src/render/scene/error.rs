@@ -1,6 +1,13 @@
 //! Why a scene could not be used.
 
+use super::effects::EffectsError;
+use super::lighting::BaseDepthError;
+use super::sun::PlaceSunError;
+use super::surface::ContoursError;
+use super::water::WaterError;
 use crate::heightfield::{DrapeError, LoadError};
+use crate::render::animation::AnimationError;
+use crate::render::annotate::VectorError;
 use crate::render::camera::CameraError;
 use std::path::PathBuf;
 use thiserror::Error;
@@ -61,6 +68,14 @@ pub enum SceneError {
         /// Which key, and what is wrong with it.
         message: String,
     },
+    /// A section's keys are out of range or name nothing known.
+    #[error("scene {path}: {source}")]
+    Section {
+        /// The scene file.
+        path: PathBuf,
+        /// Which section, and what is wrong with it.
+        source: SectionError,
+    },
     /// The `[camera]` section describes no valid camera.
     #[error("scene {path}: [camera] {source}")]
     Camera {
@@ -85,4 +100,30 @@ pub enum SceneError {
         /// Why the map could not be loaded.
         source: LoadError,
     },
+}
+
+/// Which section of a scene is wrong, and how.
+#[derive(Debug, Error)]
+pub enum SectionError {
+    /// `[shading]`.
+    #[error(transparent)]
+    Shading(#[from] BaseDepthError),
+    /// `[sun]`'s direction, bearing or time.
+    #[error(transparent)]
+    Sun(#[from] PlaceSunError),
+    /// `[sun]`, `[effects]` and `[render]` effect keys.
+    #[error(transparent)]
+    Effects(#[from] EffectsError),
+    /// `[water]`.
+    #[error(transparent)]
+    Water(#[from] WaterError),
+    /// `[animation]`.
+    #[error(transparent)]
+    Animation(#[from] AnimationError),
+    /// `[overlay]` contours.
+    #[error(transparent)]
+    Contours(#[from] ContoursError),
+    /// `[[vector]]`.
+    #[error(transparent)]
+    Vector(#[from] VectorError),
 }

@@ -111,13 +111,16 @@ impl Lighting {
     }
 }
 
+/// A base depth that is not a finite number above 0.
+#[derive(Clone, Debug, thiserror::Error, PartialEq)]
+#[error("[shading] base_depth must be a finite number > 0, got {0}")]
+pub struct BaseDepthError(pub f64);
+
 impl BaseStyle {
     /// The base a scene's `[shading]` section asks for, its depth checked.
-    pub fn from_section(shading: &ShadingSection) -> Result<BaseStyle, String> {
+    pub fn from_section(shading: &ShadingSection) -> Result<BaseStyle, BaseDepthError> {
         if let Some(depth) = shading.base_depth.filter(|d| !(d.is_finite() && *d > 0.0)) {
-            return Err(format!(
-                "[shading] base_depth must be a finite number > 0, got {depth}"
-            ));
+            return Err(BaseDepthError(depth));
         }
         Ok(BaseStyle {
             walls: shading.base,

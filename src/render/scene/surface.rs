@@ -33,20 +33,23 @@ fn default_index() -> u32 {
 
 impl OverlaySection {
     /// The contour lines `contours` asks for on `field`, the interval in its height unit.
-    pub fn contours(&self, field: &Heightfield) -> Result<Option<Contours>, String> {
+    pub fn contours(&self, field: &Heightfield) -> Result<Option<Contours>, ContoursError> {
         let Some(interval) = self.contours else {
             return Ok(None);
         };
         Contours::new(level_z(field, interval), self.index_every)
             .map(Some)
-            .ok_or_else(|| {
-                format!(
-                    "[overlay] contours must be a finite height interval > 0, got {}",
-                    Compact(interval)
-                )
-            })
+            .ok_or(ContoursError(interval))
     }
 }
+
+/// A contour interval that is not a finite height above 0.
+#[derive(Clone, Debug, thiserror::Error, PartialEq)]
+#[error(
+    "[overlay] contours must be a finite height interval > 0, got {}",
+    Compact(*.0)
+)]
+pub struct ContoursError(pub f64);
 
 /// A scene file's `[shading]` section.
 #[derive(Clone, Debug, Default, Deserialize, PartialEq)]

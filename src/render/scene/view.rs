@@ -1,12 +1,13 @@
 //! A scene file's `[camera]` section, and the camera of a scene without one: the whole map,
 //! framed as the viewer first shows it.
 
+use super::orbit::Orbit;
 use super::triple::{maybe_three, three};
 use super::SceneError;
 use crate::render::camera::Camera;
 use crate::render::framing;
 use crate::{Heightfield, Terrain};
-use serde::{Deserialize, Serialize};
+use serde::Deserialize;
 use std::path::Path;
 
 /// The image size of a scene without a `[camera]` section, nor a size given.
@@ -34,21 +35,6 @@ pub struct CameraSection {
     pub width: u32,
     /// Image height in pixels.
     pub height: u32,
-}
-
-/// A camera given as an orbit around a target (see [`Camera::orbit`]).
-#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq)]
-#[serde(deny_unknown_fields)]
-pub struct Orbit {
-    /// The point looked at.
-    #[serde(deserialize_with = "three")]
-    pub target: [f64; 3],
-    /// Degrees from +x towards +y.
-    pub yaw_deg: f64,
-    /// Degrees above the horizon.
-    pub pitch_deg: f64,
-    /// From the target to the eye.
-    pub distance: f64,
 }
 
 fn default_up() -> [f64; 3] {

@@ -6,9 +6,21 @@ use crate::compact::Compact;
 use crate::heightfield::{Heightfield, Quantisation};
 use crate::render::effects::Water;
 use serde::Deserialize;
+use thiserror::Error;
 
 /// The water's colour when the scene does not say: a deep blue-green.
 pub const DEFAULT_WATER_COLOUR: &str = "#1e4d6b";
+
+/// Which `[water]` key is wrong.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum WaterError {
+    /// A level that is not finite.
+    #[error("[water] level must be a finite number, got {}", Compact(*.0))]
+    Level(f64),
+    /// A colour not written `#RRGGBB`.
+    #[error("[water] colour must be written #RRGGBB, got {0:?}")]
+    Colour(String),
+}
 
 /// A scene file's `[water]` section.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
@@ -24,16 +36,12 @@ pub struct WaterSection {
 
 impl WaterSection {
     /// The water on `field`, or which key is wrong.
-    pub fn validate(&self, field: &Heightfield) -> Result<Water, String> {
+    pub fn validate(&self, field: &Heightfield) -> Result<Water, WaterError> {
         if !self.level.is_finite() {
-            return Err(format!(
-                "[water] level must be a finite number, got {}",
-                Compact(self.level)
-            ));
+            return Err(WaterError::Level(self.level));
         }
         let text = self.colour.as_deref().unwrap_or(DEFAULT_WATER_COLOUR);
-        let colour = parse_colour(text)
-            .ok_or_else(|| format!("[water] colour must be written #RRGGBB, got {text:?}"))?;
+        let colour = parse_colour(text).ok_or_else(|| WaterError::Colour(text.to_owned()))?;
         Ok(Water {
             level: level_z(field, self.level),
             colour,

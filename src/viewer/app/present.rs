@@ -5,9 +5,11 @@
 use crate::viewer::compose::{self, Canvas, HeatScale, PixelRect};
 use crate::viewer::hooks::{self, Counts, Hooks};
 use crate::viewer::navigation;
+use crate::viewer::orbit::Orbit;
 use crate::viewer::settings::HeatMode;
-use crate::viewer::state::{Action, Model};
+use crate::viewer::state::{Action, Flythrough, Model, Widgets};
 use crate::viewer::worker::RenderWorker;
+use crate::Terrain;
 use egui_software_backend::{BufferMutRef, ColorFieldOrder, EguiSoftwareRender};
 use std::collections::VecDeque;
 use std::num::NonZeroU32;
@@ -52,10 +54,9 @@ impl Screen {
         model: &Model,
         grab: Option<&Path>,
         counts: &mut Counts,
-    ) -> Result<(), String> {
-        let fail = |e: softbuffer::SoftBufferError| format!("cannot draw the window: {e}");
-        self.surface.resize(width, height).map_err(fail)?;
-        let mut buffer = self.surface.buffer_mut().map_err(fail)?;
+    ) -> Result<(), PresentError> {
+        self.surface.resize(width, height)?;
+        let mut buffer = self.surface.buffer_mut()?;
         buffer.fill(BACKGROUND);
         let mut canvas = Canvas {
             pixels: &mut buffer,
@@ -90,7 +91,7 @@ impl Screen {
             hooks::save_png(&buffer, width.get(), height.get(), path)?;
             counts.last_screenshot = Some(path.to_path_buf());
         }
-        buffer.present().map_err(fail)
+        Ok(buffer.present()?)
     }
 }
 
@@ -154,14 +155,33 @@ impl Presented {
     }
 }
 
-/// The navigation keys, S, K, H and F1, unless a text field has the keyboard.
-pub fn keys_ui(ui: &egui::Ui, model: &mut Model, actions: &mut Vec<Action>) {
+/// Why the window could not be drawn.
+#[derive(Debug, thiserror::Error)]
+pub enum PresentError {
+    /// The window's buffer.
+    #[error("cannot draw the window: {0}")]
+    Window(#[from] softbuffer::SoftBufferError),
+    /// The window's pixels could not be saved.
+    #[error(transparent)]
+    Grab(#[from] crate::output_file::SaveError),
+}
+
+/// The navigation keys moving `orbit` over `terrain`, S, K (adding the view to `flythrough`),
+/// H and F1 (toggling `widgets`' panel and help), unless a text field has the keyboard.
+pub fn keys_ui(
+    ui: &egui::Ui,
+    orbit: &mut Orbit,
+    terrain: &Terrain,
+    flythrough: &mut Flythrough,
+    widgets: &mut Widgets,
+) -> Vec<Action> {
+    let mut actions = Vec::new();
     if ui.ctx().egui_wants_keyboard_input() {
-        return;
+        return actions;
     }
     // A focused slider or drag value takes the arrow keys itself: the camera leaves them.
     if ui.ctx().memory(|m| m.focused().is_none()) {
-        navigation::keys_ui(ui, model, actions);
+        actions.extend(navigation::keys_ui(ui, orbit, terrain));
     }
     let pressed = |key| ui.input(|i| i.key_pressed(key));
     // Every press is one export, even two within one frame; holding the key is one press.
@@ -183,13 +203,13 @@ pub fn keys_ui(ui: &egui::Ui, model: &mut Model, actions: &mut Vec<Action>) {
     });
     actions.extend((0..exports).map(|_| Action::Screenshot));
     if pressed(egui::Key::K) {
-        let orbit = model.orbit;
-        model.flythrough.add(orbit);
+        flythrough.add(*orbit);
     }
     if pressed(egui::Key::H) {
-        model.widgets.panels_visible = !model.widgets.panels_visible;
+        widgets.panels_visible = !widgets.panels_visible;
     }
     if pressed(egui::Key::F1) {
-        model.widgets.help_open = !model.widgets.help_open;
+        widgets.help_open = !widgets.help_open;
     }
+    actions
 }

@@ -1,9 +1,56 @@
 //! Where and how large images are exported, and how exports went.
 
-use crate::render::annotate::Annotations;
+use crate::output_file::{FileError, SaveError};
+use crate::render::annotate::{Annotations, DrawError};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
+use thiserror::Error;
+
+/// Why an image or a scene file could not be saved in the export folder.
+#[derive(Debug, Error)]
+pub enum ExportError {
+    /// The folder could not be made.
+    #[error("cannot make the export folder {}: {reason}", folder.display())]
+    Folder {
+        /// The export folder.
+        folder: PathBuf,
+        /// Why not.
+        reason: std::io::Error,
+    },
+    /// A numbered file could not be created.
+    #[error("cannot write {}: {reason}", path.display())]
+    Create {
+        /// The file.
+        path: PathBuf,
+        /// Why not.
+        reason: std::io::Error,
+    },
+    /// Every number is taken.
+    #[error(
+        "cannot save: {} already holds {stem}-001.{extension} to {stem}-{last}.{extension}",
+        folder.display()
+    )]
+    Full {
+        /// The export folder.
+        folder: PathBuf,
+        /// The names' start.
+        stem: String,
+        /// Their extension.
+        extension: String,
+        /// The last number tried.
+        last: u32,
+    },
+    /// The marks could not be drawn into the image.
+    #[error(transparent)]
+    Draw(#[from] DrawError),
+    /// The image could not be written.
+    #[error(transparent)]
+    Image(#[from] SaveError),
+    /// The scene file could not be written.
+    #[error(transparent)]
+    File(#[from] FileError),
+}
 
 /// Where and how large images are exported, and how exports went.
 #[derive(Clone, Debug, Default)]

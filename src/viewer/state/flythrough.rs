@@ -1,9 +1,24 @@
 //! A flythrough's keys, and the preview playing them.
 
-use crate::render::animation::{Animation, AnimationSection, KeySection};
+use crate::render::animation::{Animation, AnimationError, AnimationSection, KeySection};
 use crate::render::Orbit as SceneOrbit;
 use crate::viewer::orbit::Orbit;
 use std::time::Instant;
+use thiserror::Error;
+
+/// Why the keys make no path, or no scene text.
+#[derive(Debug, Error)]
+pub enum KeysError {
+    /// No keys yet.
+    #[error("no keys: add a view first (K)")]
+    NoKeys,
+    /// The keys make no camera path.
+    #[error(transparent)]
+    Path(#[from] AnimationError),
+    /// The keys would not write as TOML.
+    #[error("cannot write the flythrough's keys: {0}")]
+    Toml(#[from] toml::ser::Error),
+}
 
 /// Seconds between a new key and the one before it.
 const KEY_SPACING_S: f64 = 2.0;
@@ -113,7 +128,7 @@ impl Flythrough {
     }
 
     /// The scene file's `[animation]` text for the keys (empty without keys).
-    pub fn scene_text(&self) -> Result<String, String> {
+    pub fn scene_text(&self) -> Result<String, KeysError> {
         let Some(section) = self.section() else {
             return Ok(String::new());
         };
@@ -121,17 +136,16 @@ impl Flythrough {
         struct File<'a> {
             animation: &'a AnimationSection,
         }
-        toml::to_string(&File {
+        let text = toml::to_string(&File {
             animation: &section,
-        })
-        .map(|text| format!("\n{text}"))
-        .map_err(|e| format!("cannot write the flythrough's keys: {e}"))
+        })?;
+        Ok(format!("\n{text}"))
     }
 
     /// The keys as a path, or why they are none.
-    pub fn animation(&self) -> Result<Animation, String> {
-        let section = self.section().ok_or("no keys: add a view first (K)")?;
-        Animation::new(&section, None, 45.0, [0.0, 0.0, 1.0], None)
+    pub fn animation(&self) -> Result<Animation, KeysError> {
+        let section = self.section().ok_or(KeysError::NoKeys)?;
+        Ok(Animation::new(&section, None, 45.0, [0.0, 0.0, 1.0], None)?)
     }
 }
 
@@ -168,6 +182,6 @@ mod tests {
         // The keys two seconds apart when added, then as retimed.
         let path = again.animation().unwrap();
         assert_eq!(path.frames(), 3 * 24 + 12 + 1);
-        assert_eq!(Flythrough::default().scene_text(), Ok(String::new()));
+        assert_eq!(Flythrough::default().scene_text().ok(), Some(String::new()));
     }
 }

@@ -2,13 +2,44 @@
 //! decoded, and a load's progress as the window shows it.
 
 use super::flythrough::Flythrough;
-use crate::heightfield::{ColourEncoding, HeightUnit, NoDataValue, BUILTINS};
-use crate::render::{Lighting, SceneFile};
+use crate::heightfield::{
+    ColourEncoding, DrapeError, HeightUnit, HeightfieldError, LoadError, NoDataValue, BUILTINS,
+};
+use crate::render::{Lighting, SceneError, SceneFile};
 use crate::viewer::orbit::Orbit;
 use crate::{Arith, Method, Terrain};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
+use thiserror::Error;
+
+/// Why a terrain could not be loaded.
+#[derive(Debug, Error)]
+pub enum LoadFailure {
+    /// A built-in name not known.
+    #[error("no built-in terrain '{0}'")]
+    NoBuiltin(String),
+    /// The height map could not be read.
+    #[error(transparent)]
+    Map(#[from] LoadError),
+    /// The scene could not be read or used.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// The overlay could not be laid over the map.
+    #[error(transparent)]
+    Overlay(#[from] DrapeError),
+    /// The z scale makes no height field.
+    #[error(transparent)]
+    Rescale(#[from] HeightfieldError),
+    /// Loading panicked.
+    #[error("loading {label} failed on an internal error ({message}); other files still load")]
+    Internal {
+        /// What was loaded.
+        label: String,
+        /// What the panic said.
+        message: String,
+    },
+}
 
 /// The decoding choices for height map images.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -183,7 +214,7 @@ pub enum LoadEvent {
     },
     Done {
         generation: u64,
-        result: Box<Result<Loaded, String>>,
+        result: Box<Result<Loaded, LoadFailure>>,
     },
 }
 

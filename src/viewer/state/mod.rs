@@ -11,11 +11,11 @@ mod telemetry;
 mod widgets;
 
 pub use camera::{Framed, Home};
-pub use exports::{Exported, Exports, Rendering};
-pub use flythrough::{Flythrough, Playing};
+pub use exports::{ExportError, Exported, Exports, Rendering};
+pub use flythrough::{Flythrough, KeysError, Playing};
 pub use loads::{
-    Decoding, LoadEvent, LoadRequest, Loaded, OverlayChange, Progress, SceneClock, SceneSetup,
-    Source, Stage,
+    Decoding, LoadEvent, LoadFailure, LoadRequest, Loaded, OverlayChange, Progress, SceneClock,
+    SceneSetup, Source, Stage,
 };
 pub use sun::{clock_text, default_local, SunClock};
 pub use telemetry::{Capped, Notice, Telemetry, MOST_VIEW_PIXELS};
@@ -58,6 +58,12 @@ pub enum Action {
     SaveScene,
     /// Measure every arithmetic on the view, or cancel the measurement under way.
     MeasureArithmetics,
+    /// Place the sun where the Light panel's date, time and place put it.
+    ApplyClock,
+    /// Start previewing the flythrough's keys.
+    PlayFlythrough,
+    /// End the preview, restoring the render scale and the view it started from.
+    StopFlythrough,
 }
 
 /// Everything the UI shows and edits.
@@ -196,15 +202,12 @@ impl Model {
                     self.notice = None;
                 }
             }
-            Err(message) => self.error = Some(message),
+            Err(message) => self.error = Some(message.to_string()),
         }
     }
 
     /// Shows a short message for a few seconds.
     pub fn notify(&mut self, text: impl Into<String>) {
-        self.notice = Some(Notice {
-            text: text.into(),
-            at: Instant::now(),
-        });
+        self.notice = Some(Notice::now(text));
     }
 }

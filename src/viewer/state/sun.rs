@@ -2,10 +2,28 @@
 
 use super::loads::SceneClock;
 use crate::heightfield::{place, Heightfield};
-use crate::render::local_time;
-use crate::render::sun_position::SunPosition;
+use crate::render::local_time::{self, TimeError};
+use crate::render::sun_position::{SunError, SunPosition};
 use chrono::{DateTime, Datelike, NaiveDate, NaiveDateTime, NaiveTime, Timelike, Utc};
 use chrono_tz::Tz;
+use thiserror::Error;
+
+/// Why the clock places no sun.
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum ClockError {
+    /// The date field.
+    #[error("date '{0}' is not a date such as 2026-06-21")]
+    Date(String),
+    /// The time field.
+    #[error("time '{0}' is not a time such as 09:30")]
+    Time(String),
+    /// The zone typed, or a local time its clocks skip.
+    #[error(transparent)]
+    Zone(#[from] TimeError),
+    /// The place or instant.
+    #[error(transparent)]
+    Sun(#[from] SunError),
+}
 
 /// The date and time the sun is placed at, and where.
 #[derive(Clone, Debug, PartialEq)]
@@ -56,22 +74,22 @@ pub fn default_local(latitude: f64) -> NaiveDateTime {
 
 impl SunClock {
     /// The zone the clock reads: the one typed, else the place's, else UTC.
-    pub fn zone(&self, (latitude, longitude): (f64, f64)) -> Result<Tz, String> {
+    pub fn zone(&self, (latitude, longitude): (f64, f64)) -> Result<Tz, TimeError> {
         if self.zone_text.trim().is_empty() {
             Ok(local_time::zone_at(latitude, longitude).unwrap_or(Tz::UTC))
         } else {
-            local_time::zone_named(&self.zone_text).map_err(|e| e.to_string())
+            local_time::zone_named(&self.zone_text)
         }
     }
 
     /// The date and time fields, read; or why they cannot be.
-    fn typed(&self) -> Result<NaiveDateTime, String> {
+    fn typed(&self) -> Result<NaiveDateTime, ClockError> {
         let date = NaiveDate::parse_from_str(self.date_text.trim(), "%Y-%m-%d")
-            .map_err(|_| format!("date '{}' is not a date such as 2026-06-21", self.date_text))?;
+            .map_err(|_| ClockError::Date(self.date_text.clone()))?;
         let text = self.time_text.trim();
         let time = NaiveTime::parse_from_str(text, "%H:%M:%S")
             .or_else(|_| NaiveTime::parse_from_str(text, "%H:%M"))
-            .map_err(|_| format!("time '{}' is not a time such as 09:30", self.time_text))?;
+            .map_err(|_| ClockError::Time(self.time_text.clone()))?;
         Ok(date.and_time(time))
     }
 
@@ -82,12 +100,12 @@ impl SunClock {
 
     /// The sun over `place` at the date and time typed, which the clock then reads; or why it
     /// cannot be placed.
-    pub fn sun_at(&mut self, place: (f64, f64)) -> Result<SunPosition, String> {
+    pub fn sun_at(&mut self, place: (f64, f64)) -> Result<SunPosition, ClockError> {
         let local = self.typed()?;
         let zone = self.zone(place)?;
-        let instant = local_time::utc_of_local(local, zone).map_err(|e| e.to_string())?;
+        let instant = local_time::utc_of_local(local, zone)?;
         self.local = local;
-        SunPosition::at_utc(instant, place.0, place.1).map_err(|e| e.to_string())
+        Ok(SunPosition::at_utc(instant, place.0, place.1)?)
     }
 
     /// Takes a scene's local time, zone and place, and sets the sun by them.
@@ -133,6 +151,6 @@ mod tests {
             date_text: "2026-13-01".into(),
             ..SunClock::default()
         };
-        assert!(clock.typed().unwrap_err().contains("not a date"));
+        assert_eq!(clock.typed(), Err(ClockError::Date("2026-13-01".into())));
     }
 }

@@ -82,6 +82,16 @@ pub struct Notice {
     pub at: Instant,
 }
 
+impl Notice {
+    /// `text`, shown from now.
+    pub fn now(text: impl Into<String>) -> Notice {
+        Notice {
+            text: text.into(),
+            at: Instant::now(),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
