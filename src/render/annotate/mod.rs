@@ -23,9 +23,8 @@ pub use fonts::svg_options;
 pub use layout::{north_angle_deg, trimmed, ScaleBar};
 pub use measure::TextWidth;
 pub use place_names::PlacedName;
-pub use raster::DrawError;
 #[cfg(feature = "annotate")]
-pub use raster::Marked;
+pub use raster::{DrawError, Marked};
 pub use sheet::{Annotations, AnnotationsSection, Sheet};
 pub use sight::Sight;
 pub use svg::{escaped, round_marks};
