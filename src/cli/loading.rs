@@ -2,6 +2,7 @@
 //! (nothing is drawn when stderr is not a terminal), then one summary line.
 
 use super::MapArgs;
+use heightray::heightfield::store::residency;
 use heightray::heightfield::{load_with, LoadOptions};
 use heightray::Terrain;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -56,5 +57,24 @@ pub fn summary(label: &Path, terrain: &Terrain, read_time: Duration) {
         terrain.summary(),
         read_time.as_secs_f64(),
         terrain.build_time().as_secs_f64()
+    );
+}
+
+/// After work on a map from a tile store: the process's peak resident memory, the budget its
+/// pages were held to, and where its page faults were served from.
+pub fn store_memory(terrain: &Terrain) {
+    if !terrain.field().is_mapped() {
+        return;
+    }
+    let memory = residency::process_memory();
+    let store = residency::residency();
+    eprintln!(
+        "tile store: peak resident memory {:.0} MB (the store's pages held to {:.0} MB, {:.0} MB \
+         let go of); page faults: {} served from memory, {} read from disk",
+        memory.peak_resident as f64 / 1e6,
+        residency::budget() as f64 / 1e6,
+        store.released as f64 / 1e6,
+        memory.minor_faults,
+        memory.major_faults
     );
 }

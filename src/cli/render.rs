@@ -198,6 +198,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         rays as f64 / render_ms / 1e3,
         pool.current_num_threads()
     )?;
+    loading::store_memory(terrain);
     Ok(ExitCode::SUCCESS)
 }
 

@@ -16,7 +16,7 @@ pub mod residency;
 
 pub use header::{Header, Input, MAGIC};
 pub use open::open;
-pub use prepare::{prepare, Stage};
+pub use prepare::{prepare, save, Stage};
 
 use super::{HeightfieldError, LoadError, Mipmap};
 use std::path::PathBuf;

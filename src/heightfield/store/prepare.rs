@@ -4,7 +4,7 @@
 //! same preparation again.
 
 use super::build::build;
-use super::header::{Header, Input};
+use super::header::{Header, Input, Sections};
 use super::StoreError;
 use crate::heightfield::georef::{Georef, Georeferencing};
 use crate::heightfield::load::mosaic::{one_grid, tile_offsets, value};
@@ -47,18 +47,7 @@ pub fn prepare(
         Some(kept) => kept,
         None => {
             let header = plan(inputs, &options, &|f| progress(Stage::Planning, f), output)?;
-            let room = header.room();
-            let file = OpenOptions::new()
-                .read(true)
-                .write(true)
-                .create(true)
-                .truncate(true)
-                .open(output)
-                .map_err(StoreError::io(output))?;
-            header.write(&file, room, output)?;
-            // (Sparse: what is never written reads as zeros and takes no room.)
-            file.set_len(header.sections(room).end)
-                .map_err(StoreError::io(output))?;
+            let (file, room) = create(output, &header)?;
             (file, header, room)
         }
     };
@@ -74,30 +63,69 @@ pub fn prepare(
         }
         let input = &header.inputs[k];
         let field = load_with(&input.path, &options, &|_| ControlFlow::Continue(()))?;
-        let writer = Writer {
-            file: &file,
-            path: output,
-            width: header.width,
-            samples_at: sections.samples.0,
-            valid_at: sections.valid.map(|(at, _)| at),
-        };
+        let writer = Writer::of((&file, output), &header, &sections);
         writer.input(&field, input.at, header.quantisation, n == 1)?;
         header.inputs[k].written = true;
         header.write(&file, room, output)?;
     }
-    let size = (header.width as usize, header.height as usize);
-    let mut covered = vec![false; size.1];
+    let mut covered = vec![false; header.height as usize];
     for input in &header.inputs {
         let rows = input.at[1] as usize..(input.at[1] + input.size[1]) as usize;
         covered[rows].fill(true);
     }
+    finish((&file, output), (&mut header, room), &covered, progress)?;
+    Ok(header)
+}
+
+/// Writes `field`, its samples and holes as they are, as the store `output`.
+pub fn save(field: &Heightfield, output: &Path) -> Result<Header, StoreError> {
+    let (w, h) = (field.width() as u64, field.height() as u64);
+    let mut header = Header::new(w, h, field.quantisation());
+    header.georef = field.georef().copied();
+    header.holes = (field.nodata_count() > 0).then_some(0);
+    let (file, room) = create(output, &header)?;
+    let sections = header.sections(room);
+    let writer = Writer::of((&file, output), &header, &sections);
+    writer.input(field, [0, 0], header.quantisation, true)?;
+    let covered = vec![true; field.height()];
+    let keep_going = |_, _| ControlFlow::Continue(());
+    finish((&file, output), (&mut header, room), &covered, &keep_going)?;
+    Ok(header)
+}
+
+/// A new store at `output` with `header` and room for it to grow, as long as its sections
+/// make it (sparse: what is never written reads as zeros and takes no room).
+fn create(output: &Path, header: &Header) -> Result<(File, u64), StoreError> {
+    let room = header.room();
+    let file = OpenOptions::new()
+        .read(true)
+        .write(true)
+        .create(true)
+        .truncate(true)
+        .open(output)
+        .map_err(StoreError::io(output))?;
+    header.write(&file, room, output)?;
+    file.set_len(header.sections(room).end)
+        .map_err(StoreError::io(output))?;
+    Ok((file, room))
+}
+
+/// Builds the written store's acceleration data (its sample rows that `covered` holds some
+/// input) and marks it complete.
+fn finish(
+    (file, output): (&File, &Path),
+    (header, room): (&mut Header, u64),
+    covered: &[bool],
+    progress: &dyn Fn(Stage, f64) -> ControlFlow<()>,
+) -> Result<(), StoreError> {
+    let size = (header.width as usize, header.height as usize);
+    let sections = header.sections(room);
     let stage = |f| progress(Stage::Building, f);
-    let built = build(&file, output, size, (&sections, &covered), &stage)?;
+    let built = build(file, output, size, (&sections, covered), &stage)?;
     header.holes = header.holes.map(|_| built.holes);
     header.steepest = Some(built.steepest);
-    header.write(&file, room, output)?;
-    file.sync_all().map_err(StoreError::io(output))?;
-    Ok(header)
+    header.write(file, room, output)?;
+    file.sync_all().map_err(StoreError::io(output))
 }
 
 /// The store at `output` to go on with, where it was planned for these inputs (the same files,
@@ -260,7 +288,18 @@ struct Writer<'a> {
     valid_at: Option<u64>,
 }
 
-impl Writer<'_> {
+impl<'a> Writer<'a> {
+    /// The writer into the store `file` at `path` of `header`, its sections as `sections`.
+    fn of((file, path): (&'a File, &'a Path), header: &Header, sections: &Sections) -> Self {
+        Writer {
+            file,
+            path,
+            width: header.width,
+            samples_at: sections.samples.0,
+            valid_at: sections.valid.map(|(at, _)| at),
+        }
+    }
+
     /// Writes the samples of `field` with data at `at`, quantised as the store's, or, where
     /// the field is the store's one input, every sample as it is.
     fn input(

@@ -21,8 +21,12 @@ static RESIDENT: AtomicU64 = AtomicU64::new(0);
 /// Bytes let go of to stay within the budget.
 static RELEASED: AtomicU64 = AtomicU64::new(0);
 
-/// How often a watcher looks.
+/// How often a watcher looks while the pages resident are under half the budget.
 const EVERY: Duration = Duration::from_millis(250);
+
+/// How often it looks above that: walks touch pages fast, and between two looks the pages
+/// resident may grow past the budget.
+const CLOSELY: Duration = Duration::from_millis(20);
 
 /// Pages are let go of in chunks of this many bytes.
 const CHUNK: usize = 1 << 20;
@@ -61,6 +65,43 @@ pub fn residency() -> Residency {
     }
 }
 
+/// The whole process's memory as the kernel counts it: its peak resident bytes, and its page
+/// faults served from memory (the page cache) and from the disk.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ProcessMemory {
+    /// The most bytes resident at once (VmHWM), 0 where unknown.
+    pub peak_resident: u64,
+    /// Faults on pages already in memory.
+    pub minor_faults: u64,
+    /// Faults that read a page from the disk.
+    pub major_faults: u64,
+}
+
+/// This process's memory so far.
+pub fn process_memory() -> ProcessMemory {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    let peak_kb = status
+        .lines()
+        .find_map(|line| line.strip_prefix("VmHWM:"))
+        .and_then(|rest| {
+            rest.trim()
+                .trim_end_matches("kB")
+                .trim()
+                .parse::<u64>()
+                .ok()
+        });
+    // SAFETY: getrusage fills the struct it is given; a zeroed `rusage` is a valid one.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    // SAFETY: as above, for this process.
+    let ok = unsafe { libc::getrusage(libc::RUSAGE_SELF, &mut usage) } == 0;
+    let count = |n: libc::c_long| if ok { u64::try_from(n).unwrap_or(0) } else { 0 };
+    ProcessMemory {
+        peak_resident: peak_kb.unwrap_or(0) * 1024,
+        minor_faults: count(usage.ru_minflt),
+        major_faults: count(usage.ru_majflt),
+    }
+}
+
 /// Watches `map` on a thread of its own until it is dropped, keeping its resident pages
 /// within the budget.
 pub fn watch(map: &Arc<Mmap>) {
@@ -90,18 +131,25 @@ impl Watcher {
     }
 
     fn run(mut self) {
+        let len = self.map.upgrade().map_or(0, |m| m.len() as u64);
+        let mut wait = if len > budget() / 2 { CLOSELY } else { EVERY };
         loop {
-            std::thread::sleep(EVERY);
+            std::thread::sleep(wait);
             let Some(map) = self.map.upgrade() else {
                 return;
             };
-            self.look(&map);
+            let resident = self.look(&map);
+            wait = if resident > budget() / 2 {
+                CLOSELY
+            } else {
+                EVERY
+            };
         }
     }
 
     /// Counts the resident pages chunk by chunk and, over the budget, lets go of the chunks
-    /// held longest until three quarters of the budget remain.
-    fn look(&mut self, map: &Mmap) {
+    /// held longest until half the budget remains; returns the bytes resident then.
+    fn look(&mut self, map: &Mmap) -> u64 {
         self.looks += 1;
         let pages = resident_pages(map);
         let page = page_size();
@@ -124,7 +172,7 @@ impl Watcher {
         let budget = budget();
         if total > budget {
             resident.sort_by_key(|&(k, _)| self.since[k]);
-            let keep = budget / 4 * 3;
+            let keep = budget / 2;
             for (k, bytes) in resident {
                 if total <= keep {
                     break;
@@ -141,6 +189,7 @@ impl Watcher {
             }
         }
         RESIDENT.store(total, Ordering::Relaxed);
+        total
     }
 }
 
