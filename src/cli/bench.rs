@@ -76,6 +76,11 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
                 &references,
                 strips,
             ));
+            if args.out_of_core {
+                let stored =
+                    super::bench_out_of_core::from_store(args, &scene, &rows, &bar, &mut notes)?;
+                measured.push(stored);
+            }
         }
         bar.finish_and_clear();
     }
@@ -100,7 +105,7 @@ pub fn speed(args: &SpeedArgs) -> anyhow::Result<ExitCode> {
         "SIMD path of the packet walk (`render --packets on`): {} (forced with {SIMD_VARIABLE}=scalar|avx2|avx512)",
         SimdPath::active()
     )?;
-    if report.terrains.len() > 1 && !args.frames.sizes.is_empty() {
+    if report.terrains.len() > 1 && !args.frames.sizes.is_empty() && !args.out_of_core {
         print_growth(out, &report.terrains)?;
     }
     if let Some(path) = &args.out {
@@ -313,7 +318,7 @@ fn references(
 
 /// The configurations' rows, and the reference tracers' figures if they were asked for
 /// (their scenes are dropped here: at 8193² Embree's take gigabytes).
-fn measure(
+pub(super) fn measure(
     args: &SpeedArgs,
     scene: &Scene,
     terrain: &Terrain,

@@ -4,6 +4,7 @@ mod accuracy;
 mod bench;
 mod bench_compare;
 mod bench_effects;
+mod bench_out_of_core;
 mod flight_args;
 mod generate;
 mod knobs;
@@ -173,6 +174,10 @@ pub struct SpeedArgs {
     /// embree`, which links libembree3).
     #[arg(long)]
     pub embree: bool,
+    /// With --sizes: also trace each map from a tile store whose pages are held to a quarter
+    /// of its size, and write its frame times over those in memory.
+    #[arg(long)]
+    pub out_of_core: bool,
     /// Also write every figure as JSON here (the tables on stdout are made from the same data).
     #[arg(long)]
     pub out: Option<PathBuf>,
