@@ -40,11 +40,10 @@ pub fn from_store(
             continue;
         };
         notes.push(format!(
-            "{w}x{h} from a tile store of {:.0} MB held to {:.0} MB, over in memory, {} on {} \
-             thread(s): frame {:.2}x, with shadows {:.2}x",
+            "{w}x{h} from a tile store of {:.0} MB held to {:.0} MB, over in memory, {method} \
+             {arith} on {} thread(s): frame {:.2}x, with shadows {:.2}x",
             bytes as f64 / 1e6,
             residency::budget() as f64 / 1e6,
-            format!("{method} {arith}"),
             stored.threads,
             stored.primary_time.as_secs_f64() / kept.primary_time.as_secs_f64(),
             stored.total_time.as_secs_f64() / kept.total_time.as_secs_f64(),
