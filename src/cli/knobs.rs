@@ -26,6 +26,9 @@ pub enum ValueError {
     /// Not a number.
     #[error("'{0}' is not a number")]
     Number(String),
+    /// Not a size in bytes.
+    #[error("'{0}' is not a size: give a number above 0, with K, M, G or T after it if wanted (e.g. 4G)")]
+    Bytes(String),
     /// Not `HH:MM:SS`.
     #[error("expected HH:MM:SS, got '{0}'")]
     Time(String),
@@ -63,8 +66,9 @@ fn in_range(
 }
 
 /// A size in bytes: a number, with K, M, G or T (powers of 1024) after it if wanted.
-pub fn bytes(s: &str) -> Result<u64, String> {
+pub fn bytes(s: &str) -> Result<u64, ValueError> {
     let s = s.trim();
+    let refused = || ValueError::Bytes(s.to_owned());
     let (number, unit) = s.split_at(s.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(s.len()));
     let scale: u64 = match unit.to_ascii_uppercase().trim_end_matches(['B', 'I']) {
         "" => 1,
@@ -72,11 +76,7 @@ pub fn bytes(s: &str) -> Result<u64, String> {
         "M" => 1 << 20,
         "G" => 1 << 30,
         "T" => 1 << 40,
-        _ => {
-            return Err(format!(
-                "'{s}' is not a size: give bytes, or a number with K, M, G or T"
-            ))
-        }
+        _ => return Err(refused()),
     };
     number
         .trim()
@@ -85,7 +85,7 @@ pub fn bytes(s: &str) -> Result<u64, String> {
         .filter(|n| n.is_finite() && *n > 0.0)
         .map(|n| (n * scale as f64) as u64)
         .filter(|&b| b > 0)
-        .ok_or_else(|| format!("'{s}' is not a size: give a number above 0, e.g. 4G or 512M"))
+        .ok_or_else(refused)
 }
 
 /// A thread count, 1 to [`MOST_THREADS`].

@@ -25,17 +25,28 @@ pub struct TileArg {
     bands: Option<u32>,
 }
 
+/// Why a `--tile` value is refused.
+#[derive(Debug, thiserror::Error)]
+pub enum TileArgError {
+    /// Not `I/N`.
+    #[error(transparent)]
+    Share(#[from] BatchError),
+    /// Too many bands.
+    #[error("--tile {0}: at most 65536 bands")]
+    Bands(String),
+}
+
 impl FromStr for TileArg {
-    type Err = String;
-    fn from_str(s: &str) -> Result<TileArg, String> {
+    type Err = TileArgError;
+    fn from_str(s: &str) -> Result<TileArg, TileArgError> {
         if let Ok(index) = s.trim().parse::<u64>() {
             return Ok(TileArg { index, bands: None });
         }
-        let share: Share = s.parse().map_err(|e: BatchError| e.to_string())?;
+        let share: Share = s.parse()?;
         let bands = u32::try_from(share.count)
             .ok()
             .filter(|&n| n <= 65536)
-            .ok_or(format!("--tile {s}: at most 65536 bands"))?;
+            .ok_or_else(|| TileArgError::Bands(s.to_owned()))?;
         Ok(TileArg {
             index: share.index,
             bands: Some(bands),
