@@ -259,3 +259,51 @@ fn unfinished_truncated_and_damaged_stores_are_refused_with_a_message() {
     let message = String::from_utf8_lossy(&output.stderr);
     assert!(message.contains("is truncated"), "{message}");
 }
+
+#[test]
+fn a_store_let_go_of_while_four_threads_trace_answers_as_the_map_in_memory() {
+    let dir = tempfile::tempdir().unwrap();
+    let field = heightray::heightfield::landscape(257, 3, 60.0).unwrap();
+    let hrt = dir.path().join("land.hrt");
+    store::save(&field, &hrt).unwrap();
+    // Every look of the watcher (each 20 ms while over half the budget) lets go of every page.
+    residency::set_budget(4096);
+    let stored =
+        heightray::heightfield::load_with(&hrt, &LoadOptions::new(field.z_scale()), &|_| {
+            ControlFlow::Continue(())
+        })
+        .unwrap();
+    let (memory, mapped) = (Terrain::new(field), Terrain::new(stored));
+    let released = residency::residency().released;
+    std::thread::scope(|scope| {
+        for seed in 0..4u64 {
+            let (memory, mapped) = (&memory, &mapped);
+            scope.spawn(move || {
+                let mut random = crate::common::random::Rng(0x9e37_79b9 + seed);
+                for _ in 0..4000 {
+                    let o = [
+                        random.within(-50.0, 300.0),
+                        random.within(-50.0, 300.0),
+                        random.within(70.0, 200.0),
+                    ];
+                    let d = [
+                        random.within(-1.0, 1.0),
+                        random.within(-1.0, 1.0),
+                        random.within(-1.0, -0.05),
+                    ];
+                    let ray = Ray::new(o, d).unwrap();
+                    for arith in [Arith::F64, Arith::F32] {
+                        let on = |t: &Terrain| trace(t, &ray, &options(Method::Mipmap, arith)).hit;
+                        let (a, b) = (on(memory), on(mapped));
+                        let key = |h: Option<heightray::Hit>| h.map(|h| (h.t, h.cell));
+                        assert_eq!(key(a), key(b), "{ray:?}");
+                    }
+                }
+            });
+        }
+    });
+    assert!(
+        residency::residency().released > released,
+        "pages were let go of meanwhile"
+    );
+}
