@@ -232,7 +232,8 @@ impl Heightfield {
                 got: samples.len(),
             });
         }
-        let (base, unit) = mapping(quantisation, z_scale)?;
+        // (A bad z scale is refused before the samples are looked at.)
+        mapping(quantisation, z_scale)?;
         if let Quantisation::Maxval(maxval) = quantisation {
             if let Some(k) = samples.iter().position(|&s| s > maxval) {
                 return Err(HeightfieldError::SampleAboveMaxval {
@@ -256,10 +257,32 @@ impl Heightfield {
                 }
             }
         }
+        let samples = Values::owned(samples);
+        Heightfield::of_parts(
+            (width, height),
+            samples,
+            quantisation,
+            z_scale,
+            nodata,
+            None,
+        )
+    }
+
+    /// A field of `samples` whose heights `quantisation` and `z_scale` give, not yet placed on
+    /// the Earth, with the acceleration data held ready for it if any.
+    fn of_parts(
+        (width, height): (usize, usize),
+        samples: Values<u16>,
+        quantisation: Quantisation,
+        z_scale: f64,
+        nodata: Option<NoDataMask>,
+        prebuilt: Option<Arc<store::Prebuilt>>,
+    ) -> Result<Self, HeightfieldError> {
+        let (base, unit) = mapping(quantisation, z_scale)?;
         Ok(Heightfield {
             width,
             height,
-            samples: Values::owned(samples),
+            samples,
             quantisation,
             z_scale,
             base,
@@ -268,7 +291,7 @@ impl Heightfield {
             georef: Georeferencing::None,
             ground: None,
             drape: None,
-            prebuilt: None,
+            prebuilt,
         })
     }
 

@@ -299,7 +299,8 @@ impl<'a> Shader<'a> {
             time.sky = nanos_since(start);
             self.lit_colour(ray, (found.face, p), t, facing, shadow, light)
         } else {
-            self.surface_colour(ray, (found.face, p), t, facing, shadow)
+            let ambient = DVec3::splat(self.lighting.ambient);
+            self.lit_colour(ray, (found.face, p), t, facing, shadow, ambient)
         };
         if redone {
             tally.redone();
@@ -332,25 +333,16 @@ impl<'a> Shader<'a> {
         facing: f64,
         shadow: Shadow,
     ) -> u32 {
-        gamma::pack(self.surface_colour(ray, at, t, facing, shadow).to_array())
-    }
-
-    /// [`Shader::surface_rgb`] in linear light.
-    #[inline(always)]
-    fn surface_colour(
-        &self,
-        ray: &Ray,
-        (face, p): (Face, DVec3),
-        t: f64,
-        facing: f64,
-        shadow: Shadow,
-    ) -> DVec3 {
         let ambient = DVec3::splat(self.lighting.ambient);
-        self.lit_colour(ray, (face, p), t, facing, shadow, ambient)
+        gamma::pack(
+            self.lit_colour(ray, at, t, facing, shadow, ambient)
+                .to_array(),
+        )
     }
 
-    /// [`Shader::surface_colour`] lit by `ambient` (a colour: the sky's light where the scene
-    /// has sky light) instead of the scene's constant ambient term.
+    /// The colour of the surface at `p` on `face`, `t` along `ray`, facing the sun as
+    /// [`Context::facing`] says, in the shadow `shadow` says, lit by `ambient` (the scene's
+    /// ambient term, or the sky's light where the scene has sky light); in linear light.
     #[inline(always)]
     fn lit_colour(
         &self,

@@ -22,7 +22,7 @@ impl<'a> Context<'a> {
     /// How the surface at `p` on `face` (triangle `triangle` of `cell` on the terrain) faces
     /// the sun: the cosine of the angle between the shading normal and the sun (not positive
     /// where it faces away).
-    // (This, `normal` and `surface_colour` inlined by hand: every arithmetic's `sample_with`
+    // (This, `normal` and `lit_colour` inlined by hand: every arithmetic's `sample_with`
     // calls them once per pixel.)
     #[inline(always)]
     pub fn facing(&self, face: Face, cell: (usize, usize), triangle: u8, p: DVec3) -> f64 {

@@ -4,7 +4,7 @@
 use super::header::{damaged, Header};
 use super::{residency, Prebuilt, StoreError};
 use crate::heightfield::georef::Georeferencing;
-use crate::heightfield::{mapping, Heightfield, LoadOptions, Mipmap, NoDataMask, Values};
+use crate::heightfield::{Heightfield, LoadOptions, Mipmap, NoDataMask, Values};
 use memmap2::{Advice, Mmap};
 use std::fs::File;
 use std::path::Path;
@@ -59,30 +59,20 @@ pub fn open(
         }
         _ => None,
     };
-    let (base, unit) =
-        mapping(header.quantisation, options.z_scale).map_err(|source| StoreError::Field {
-            path: path.to_owned(),
-            source,
-        })?;
     residency::watch(&map);
     let georef = match (header.georef, options.height_unit) {
         (Some(georef), Some(unit)) => Georeferencing::Map(georef.with_height_unit(unit)),
         (Some(georef), None) => Georeferencing::Map(georef),
         (None, _) => Georeferencing::None,
     };
-    let field = Heightfield {
-        width: w,
-        height: h,
-        samples,
-        quantisation: header.quantisation,
-        z_scale: options.z_scale,
-        base,
-        unit,
-        nodata,
-        georef: Georeferencing::None,
-        ground: None,
-        drape: None,
-        prebuilt: Some(Arc::new(Prebuilt { mipmap, steepest })),
-    };
+    let prebuilt = Some(Arc::new(Prebuilt { mipmap, steepest }));
+    let (q, z_scale) = (header.quantisation, options.z_scale);
+    let field =
+        Heightfield::of_parts((w, h), samples, q, z_scale, nodata, prebuilt).map_err(|source| {
+            StoreError::Field {
+                path: path.to_owned(),
+                source,
+            }
+        })?;
     Ok(field.with_georeferencing(georef.with_cells_checked(w, h)))
 }
