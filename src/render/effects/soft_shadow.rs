@@ -33,7 +33,7 @@ impl Effect for SoftShadows {
     type Outcome = Cast;
 
     fn cast<S: Scalar>(&self, cx: &Context<'_>, at: &At<'_, S>) -> Cast {
-        let At { found, ray, p } = *at;
+        let (found, ray) = (at.found, at.ray);
         let skip = |why| (Shadow::Skipped(why), Counters::default(), false);
         // The disc is drawn around the sun's direction in grid coordinates, where the rays and
         // the bounds are; on non-square cells it is stretched with the cells.
@@ -46,7 +46,8 @@ impl Effect for SoftShadows {
         if cx.culling.no_shadow_possible && rises && lowest.tan() > steepest {
             return skip(ShadowSkip::NoShadowPossible);
         }
-        let start = cx.occlusion_start(found, p);
+        let shared = at.start(cx);
+        let start = shared.point;
         let (_, z_max) = cx.terrain.z_range();
         if cx.culling.above_terrain && rises && start.z > z_max {
             return skip(ShadowSkip::AboveTerrain);
@@ -90,7 +91,7 @@ impl Effect for SoftShadows {
                 soft.clear += 1;
                 continue;
             }
-            let answer = cx.occluded_beyond(found, ray, p, start, (axis.into(), dir.into()));
+            let answer = cx.occluded_beyond(shared, (axis.into(), dir.into()));
             // (Not traced: it starts above the terrain and rises.)
             let Some(occluded) = answer.occluded else {
                 soft.clear += 1;
