@@ -2,6 +2,7 @@
 //! to leave out and the bounds kept for the terrain ahead; the occlusion ray shadows, soft
 //! shadows and sky light share, and the colours of the sky and the fog.
 
+use super::effects::SunDisc;
 use super::gamma;
 use super::normals;
 use super::scene::{Lighting, Normals};
@@ -11,6 +12,7 @@ use crate::geometry::{Base, Face, Ray};
 use crate::heightfield::{SkyBounds, StripBounds, Terrain};
 use crate::traverse::{Departure, Found, Method, Occlusion, Start, Tracer};
 use glam::DVec3;
+use std::borrow::Cow;
 use std::sync::Arc;
 
 /// Which shadow rays to leave out where they cannot change the pixel (all on by default;
@@ -76,6 +78,8 @@ pub struct Context<'a> {
     pub(super) sky: Option<Arc<SkyBounds>>,
     /// The base under the terrain its rays meet, as the lighting's style makes it.
     pub base: Option<Base>,
+    /// The sun's disc, where the scene has soft shadows (see [`Context::sun_disc`]).
+    pub(super) disc: Option<SunDisc>,
 }
 
 impl<'a> Context<'a> {
@@ -91,7 +95,16 @@ impl<'a> Context<'a> {
             strips: None,
             sky: None,
             base: lighting.base.for_terrain(terrain),
+            disc: None,
         };
+        let angle = lighting.effects.sun_angle_deg;
+        if lighting.shadows && angle > 0.0 {
+            cx.disc = Some(SunDisc::new(
+                lighting.sun,
+                angle,
+                cx.grid_dir(lighting.sun.into()),
+            ));
+        }
         if lighting.shadows && lighting.sun_up() && culling.far_bounds {
             cx.strips = terrain.strip_bounds(cx.grid_sun(), cx.sun_half());
         }
@@ -105,6 +118,16 @@ impl<'a> Context<'a> {
     /// bounds can help (see [`StripBounds::build`]).
     pub fn strip_bounds(&self) -> Option<&StripBounds> {
         self.strips.as_deref()
+    }
+
+    /// The sun's disc its soft shadows are drawn over: the one made with the context, unless
+    /// the lighting has changed since.
+    pub(super) fn sun_disc(&self) -> Cow<'_, SunDisc> {
+        let (sun, angle) = (self.lighting.sun, self.lighting.effects.sun_angle_deg);
+        match self.disc.as_ref().filter(|disc| disc.is_for(sun, angle)) {
+            Some(disc) => Cow::Borrowed(disc),
+            None => Cow::Owned(SunDisc::new(sun, angle, self.grid_dir(sun.into()))),
+        }
     }
 
     /// The tracer of this shader's rays: its method, walking near the surface as the culling

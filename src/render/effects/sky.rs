@@ -7,7 +7,7 @@
 
 use super::effect::{At, Effect};
 use super::horizon::{climbs_above, level_within, sector_of, slope_bound_within, Sector};
-use super::sampling::{cosine_hemisphere, point, seed_of};
+use super::sampling::{point, seed_of, Hemisphere};
 use crate::arith::Scalar;
 use crate::geometry::Ray;
 use crate::render::context::Context;
@@ -49,7 +49,7 @@ impl Effect for SkyLight {
 
     fn cast<S: Scalar>(&self, cx: &Context<'_>, at: &At<'_, S>) -> (DVec3, SkyRays) {
         let At { found, ray, p, .. } = *at;
-        let normal = cx.normal(found.face, found.cell, found.triangle, p);
+        let hemisphere = Hemisphere::around(cx.normal(found.face, found.cell, found.triangle, p));
         let shared = at.start(cx);
         let start = shared.point;
         let distance = cx.lighting.effects.sky_distance;
@@ -79,7 +79,7 @@ impl Effect for SkyLight {
         let mut light = DVec3::ZERO;
         for index in 0..rays {
             let (u, v) = point(index, seed);
-            let dir = cosine_hemisphere(normal, u, v);
+            let dir = hemisphere.cosine(u, v);
             // (Traced and bounded in grid coordinates; coloured by the world direction.)
             let grid = cx.grid_dir(dir);
             let culled = grid.z > 0.0 && (level || (by_sector && climbs_above(grid, bound(grid))));
