@@ -76,8 +76,7 @@ pub struct Departure<'r, S> {
 impl<'r, S: Scalar> Departure<'r, S> {
     /// The departure from `from` over `terrain` (and `base`, part of the surface where
     /// given). In intervals a decision they cannot settle is not passed on to the caller but
-    /// kept ([`Departure::settled`]), for each ray to be cast again exactly as if it had met
-    /// it itself.
+    /// kept with it, for each ray to be cast again exactly as if it had met it itself.
     #[inline]
     pub fn new(terrain: &Terrain, base: Option<Base>, from: &Start<'r, S>) -> Self {
         if !S::ENCLOSES {
