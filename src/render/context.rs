@@ -2,6 +2,7 @@
 //! to leave out and the bounds kept for the terrain ahead; the occlusion ray shadows, soft
 //! shadows and sky light share, and the colours of the sky and the fog.
 
+use super::effects::SunDisc;
 use super::gamma;
 use super::normals;
 use super::scene::{Lighting, Normals};
@@ -9,8 +10,9 @@ use super::sky_gradient::{horizon, night_sky_colour, sky_colour, NIGHT_HORIZON};
 use crate::arith::Scalar;
 use crate::geometry::{Base, Face, Ray};
 use crate::heightfield::{SkyBounds, StripBounds, Terrain};
-use crate::traverse::{Found, Method, Occlusion, Start, Tracer};
+use crate::traverse::{Departure, Found, Method, Occlusion, Start, Tracer};
 use glam::DVec3;
+use std::borrow::Cow;
 use std::sync::Arc;
 
 /// Which shadow rays to leave out where they cannot change the pixel (all on by default;
@@ -76,6 +78,8 @@ pub struct Context<'a> {
     pub(super) sky: Option<Arc<SkyBounds>>,
     /// The base under the terrain its rays meet, as the lighting's style makes it.
     pub base: Option<Base>,
+    /// The sun's disc, where the scene has soft shadows (see [`Context::sun_disc`]).
+    pub(super) disc: Option<SunDisc>,
 }
 
 impl<'a> Context<'a> {
@@ -91,7 +95,16 @@ impl<'a> Context<'a> {
             strips: None,
             sky: None,
             base: lighting.base.for_terrain(terrain),
+            disc: None,
         };
+        let angle = lighting.effects.sun_angle_deg;
+        if lighting.shadows && angle > 0.0 {
+            cx.disc = Some(SunDisc::new(
+                lighting.sun,
+                angle,
+                cx.grid_dir(lighting.sun.into()),
+            ));
+        }
         if lighting.shadows && lighting.sun_up() && culling.far_bounds {
             cx.strips = terrain.strip_bounds(cx.grid_sun(), cx.sun_half());
         }
@@ -105,6 +118,16 @@ impl<'a> Context<'a> {
     /// bounds can help (see [`StripBounds::build`]).
     pub fn strip_bounds(&self) -> Option<&StripBounds> {
         self.strips.as_deref()
+    }
+
+    /// The sun's disc its soft shadows are drawn over: the one made with the context, unless
+    /// the lighting has changed since.
+    pub(super) fn sun_disc(&self) -> Cow<'_, SunDisc> {
+        let (sun, angle) = (self.lighting.sun, self.lighting.effects.sun_angle_deg);
+        match self.disc.as_ref().filter(|disc| disc.is_for(sun, angle)) {
+            Some(disc) => Cow::Borrowed(disc),
+            None => Cow::Owned(SunDisc::new(sun, angle, self.grid_dir(sun.into()))),
+        }
     }
 
     /// The tracer of this shader's rays: its method, walking near the surface as the culling
@@ -195,49 +218,33 @@ impl<'a> Context<'a> {
         }
     }
 
-    /// The occlusion ray of the hit `found` (shaded at `p`, its rays starting from `start`)
-    /// towards `dir`, a direction of the sun's disc around `axis` (the sun in the grid):
-    /// walked only as far as the sun's strip bounds
+    /// The occlusion ray from `start` towards `dir`, a direction of the sun's disc around
+    /// `axis` (the sun in the grid): walked only as far as the sun's strip bounds
     /// ([`StripBounds`](crate::heightfield::StripBounds)) leave it unsettled, with the look-up
     /// counted.
     #[inline(always)]
     pub(super) fn occluded_beyond<S: Scalar>(
         &self,
-        found: &Found<S>,
-        ray: &Ray,
-        p: DVec3,
-        start: DVec3,
+        start: &OcclusionStart<'_, S>,
         (axis, dir): ([f64; 3], [f64; 3]),
     ) -> Occlusion {
         let strips = self.strips.as_ref().filter(|s| s.dir() == axis);
         let Some(strips) = strips.filter(|_| self.culling.far_bounds) else {
-            return self.occluded(found, ray, p, dir, None);
+            return self.occluded(start, dir, None);
         };
-        let room = self.start_room::<S>(ray, start);
-        let near = strips.clear_beyond(start.to_array(), dir, room);
-        let mut occlusion = self.occluded(found, ray, p, dir, near);
+        let near = strips.clear_beyond(start.point.to_array(), dir, start.room);
+        let mut occlusion = self.occluded(start, dir, near);
         occlusion.counters.bound.record(near.is_none());
         occlusion
     }
 
-    /// How far (in height) the true start of an occlusion ray from the hit of `ray` may lie
-    /// below `start`, as computed in `f64`, in arithmetic `S`: the roundings that made it (the
-    /// hit's `t` along the primary ray, then the point), with far more room than they need.
-    pub(super) fn start_room<S: Scalar>(&self, ray: &Ray, start: DVec3) -> f64 {
-        let o = ray.origin();
-        let largest = (0..3).fold(0.0f64, |m, k| m.max(o[k].abs() + start[k].abs()));
-        1024.0 * S::rounding_error(largest) * (1.0 + self.terrain.max_slope())
-    }
-
-    /// Whether a ray from the hit `found` of `ray` (shaded at `p`) towards `dir` touches the
-    /// surface: the occlusion ray of shadows, soft shadows and sky light (not traced where it
-    /// starts above the terrain and rises, and that rule is on), asking only up to `t_max`
-    /// along the ray if given (see [`Tracer::within`]).
+    /// Whether a ray from `start` towards `dir` touches the surface: the occlusion ray of
+    /// shadows, soft shadows and sky light (not traced where it starts above the terrain and
+    /// rises, and that rule is on), asking only up to `t_max` along the ray if given (see
+    /// [`Tracer::within`]).
     pub(super) fn occluded<S: Scalar>(
         &self,
-        found: &Found<S>,
-        ray: &Ray,
-        p: DVec3,
+        start: &OcclusionStart<'_, S>,
         dir: [f64; 3],
         t_max: Option<f64>,
     ) -> Occlusion {
@@ -246,31 +253,57 @@ impl<'a> Context<'a> {
             Some(t) => tracer.within(t),
             None => tracer,
         };
-        let skip_above = self.culling.above_terrain;
-        match self.lighting.normals {
-            // Smooth shading: from the curved surface the shading describes, which its own flat
-            // triangle may cross (see `normals`), skipping that triangle; the base is flat.
-            Normals::Smooth if found.face == Face::Terrain => {
-                let start = normals::shadow_origin(self.terrain, found.cell, found.triangle, p);
-                let from = Start::Near {
-                    ray,
-                    hit: found,
-                    point: start.to_array(),
-                };
-                tracer.occluded(&from, dir, skip_above)
-            }
-            _ => tracer.occluded(&Start::Hit { ray, hit: found }, dir, skip_above),
-        }
+        tracer.occluded_from(&start.departure, dir, self.culling.above_terrain)
     }
 
-    /// Where [`Shader::occluded`] starts its rays from the hit `found` shaded at `p`, in
-    /// `f64`, before raising.
-    pub(super) fn occlusion_start<S>(&self, found: &Found<S>, p: DVec3) -> DVec3 {
-        match (self.lighting.normals, found.face) {
-            (Normals::Smooth, Face::Terrain) => {
-                normals::shadow_origin(self.terrain, found.cell, found.triangle, p)
-            }
-            _ => p,
+    /// Where the occlusion rays of the hit `found` of `ray`, shaded at `p`, start.
+    pub(super) fn occlusion_start<'h, S: Scalar>(
+        &self,
+        found: &'h Found<S>,
+        ray: &'h Ray,
+        p: DVec3,
+    ) -> OcclusionStart<'h, S> {
+        // Smooth shading: from the curved surface the shading describes, which its own flat
+        // triangle may cross (see `normals`), skipping that triangle; the base is flat.
+        let near = match (self.lighting.normals, found.face) {
+            (Normals::Smooth, Face::Terrain) => Some(normals::shadow_origin(
+                self.terrain,
+                found.cell,
+                found.triangle,
+                p,
+            )),
+            _ => None,
+        };
+        let point = near.unwrap_or(p);
+        // How far (in height) the true start may lie below `point`, as computed in `f64`, in
+        // arithmetic `S`: the roundings that made it (the hit's `t` along the primary ray,
+        // then the point), with far more room than they need.
+        let o = ray.origin();
+        let largest = (0..3).fold(0.0f64, |m, k| m.max(o[k].abs() + point[k].abs()));
+        let room = 1024.0 * S::rounding_error(largest) * (1.0 + self.terrain.max_slope());
+        let from = match near {
+            Some(point) => Start::Near {
+                ray,
+                hit: found,
+                point: point.to_array(),
+            },
+            None => Start::Hit { ray, hit: found },
+        };
+        OcclusionStart {
+            point,
+            room,
+            departure: self.tracer().departure(&from),
         }
     }
+}
+
+/// Where the occlusion rays of one hit start: the point the bounds are asked about, and the
+/// rays' [`Departure`], worked out once for the hit's rays (the sun's, the soft shadow's and
+/// the sky light's).
+pub(crate) struct OcclusionStart<'h, S> {
+    /// Where the rays start, in `f64`, before raising.
+    pub(super) point: DVec3,
+    /// How far (in height) the true start may lie below `point`.
+    pub(super) room: f64,
+    departure: Departure<'h, S>,
 }

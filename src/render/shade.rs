@@ -261,11 +261,7 @@ impl<'a> Shader<'a> {
         // (A hit on the base is shaded without the verdicts that hold only on the terrain.)
         let on_base = self.on_face(found.face);
         let this = on_base.as_ref().unwrap_or(&self.cx);
-        let at = At {
-            found: &found,
-            ray,
-            p,
-        };
+        let at = At::new(&found, ray, p);
         let facing = this.facing(found.face, found.cell, found.triangle, p);
         let mut redone = false;
         // Effects are timed as they run; hard shadows are not, so a plain frame reads no clock.

@@ -124,15 +124,16 @@ fn trace_logged<S: Scalar, C: CellLog, W: Walk>(ray: RayIn<'_, S>) -> ScalarTrac
         return answer;
     }
     let mut counters = Counters::default();
-    let frame = clip(terrain, o, d, dir_f64);
-    let Some(mut frame) = frame else {
+    let mut clipped = clip(terrain, o, d, dir_f64);
+    // (Borrowed where it lies: moved out of the option, the frame is copied whole.)
+    let Some(frame) = clipped.as_mut() else {
         counters.bbox.record(false);
         return ScalarTrace::missed(counters);
     };
     counters.bbox.record(true);
     let start = clearance_start::<S>(&walk_options);
     // (The clearance covers the whole segment, or it lies beyond the reach.)
-    if !after_clearance(&mut frame, start) || !within_reach(&mut frame, &walk_options) {
+    if !after_clearance(frame, start) || !within_reach(frame, &walk_options) {
         return ScalarTrace::missed(counters);
     }
     let mut search = new_search::<S, C>(
@@ -148,10 +149,10 @@ fn trace_logged<S: Scalar, C: CellLog, W: Walk>(ray: RayIn<'_, S>) -> ScalarTrac
         && S::EXACT
         && walk_options.reach.is_none()
         && near
-            .is_some_and(|near| walk_cleared(terrain, (near, start), dir_f64, &frame, &mut search));
-    let near = !cleared && near::starts_near::<S>(&walk_options, start.is_some(), &frame);
+            .is_some_and(|near| walk_cleared(terrain, (near, start), dir_f64, frame, &mut search));
+    let near = !cleared && near::starts_near::<S>(&walk_options, start.is_some(), frame);
     let walked_near = near
-        && match near::near_walk(&frame, &mut search, near::NEAR_CELLS) {
+        && match near::near_walk(frame, &mut search, near::NEAR_CELLS) {
             near::Near::Done => true,
             near::Near::From(at) => {
                 frame.resume(at);
@@ -164,7 +165,7 @@ fn trace_logged<S: Scalar, C: CellLog, W: Walk>(ray: RayIn<'_, S>) -> ScalarTrac
             start: first_level(&walk_options, start),
         };
         // Ends by itself or at the answer; both are fine here.
-        let _ = W::walk(&frame, levels, &mut search);
+        let _ = W::walk(frame, levels, &mut search);
     }
     ScalarTrace {
         hit: search.found,

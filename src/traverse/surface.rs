@@ -20,7 +20,9 @@ use num_rational::BigRational;
 
 /// The answer for the ray `o + t*d` given in the traversal's arithmetic, over the terrain and
 /// the base the options carry (see [`trace_terrain`] for the terrain's part).
-#[inline]
+// (Always inlined: out of line, its answer, a few hundred bytes, is copied once more on its
+// way back to the ray's caller.)
+#[inline(always)]
 pub(super) fn trace_scalar<S: Scalar>(
     terrain: &Terrain,
     o: &[S; 3],

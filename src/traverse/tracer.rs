@@ -4,17 +4,15 @@
 
 use super::answer::ScalarTrace;
 use super::counters::Counters;
-use super::exact_plane::{crosses_plane, plane_t_exact};
-use super::exact_start::PlanePoint;
+use super::departure::{Departure, Start};
+use super::exact_plane::plane_t_exact;
 use super::options::{Method, Query, TraceOptions, WalkOptions};
 use super::search::Found;
 use super::surface::{base_t_exact, trace_scalar};
 use super::wedges::Clearance;
 use crate::arith::{run, settled, unsettled, Exact, Generic, Scalar};
-use crate::geometry::Ray;
-use crate::geometry::{gradient, plane_height, triangle_corners, Base, Face, Side};
+use crate::geometry::{Base, Face, Ray};
 use crate::heightfield::Terrain;
-use glam::DVec3;
 
 /// Traces rays over one terrain with one method, in any arithmetic.
 #[derive(Clone, Copy, Debug)]
@@ -28,33 +26,6 @@ pub struct Tracer<'a> {
     near: bool,
     /// The base under the terrain, part of the surface where given (see [`Tracer::with_base`]).
     pub(super) base: Option<Base>,
-}
-
-/// Where an occlusion ray ([`Tracer::occluded`]) starts.
-#[derive(Clone, Copy, Debug)]
-pub enum Start<'r, S> {
-    /// At a point given in the traversal's arithmetic.
-    Point(&'r [S; 3]),
-    /// On the surface, where `ray` hit it (`hit`): in arithmetics without rounding exactly
-    /// there, on the hit triangle's plane; in the others raised by what rounding may have
-    /// moved the point below the surface. The ray leaves its own triangle untested where it
-    /// leaves the triangle's plane at once.
-    Hit {
-        /// The ray that hit.
-        ray: &'r Ray,
-        /// Its hit, in the traversal's arithmetic.
-        hit: &'r Found<S>,
-    },
-    /// At `point` near the hit of `ray` (on a curved surface the hit triangle stands for),
-    /// raised like [`Start::Hit`]; the hit triangle is not tested.
-    Near {
-        /// The ray that hit.
-        ray: &'r Ray,
-        /// Its hit, in the traversal's arithmetic.
-        hit: &'r Found<S>,
-        /// Where the occlusion ray starts, before raising.
-        point: [f64; 3],
-    },
 }
 
 /// Whether anything lies in the way of an occlusion ray, and what finding out asked.
@@ -123,7 +94,9 @@ impl<'a> Tracer<'a> {
     /// The first hit of `ray` (the least `t >= 0`), in arithmetic `S`. With `clearance`
     /// (a camera ray's, from its [`Wedges`](super::Wedges)), the ray touches nothing before
     /// its `t`, and a hierarchical walk starts there, at its level.
-    #[inline]
+    // (Always inlined: out of line, its answer, a few hundred bytes, is copied once more on
+    // its way back to a camera ray's shading.)
+    #[inline(always)]
     pub fn trace<S: Scalar>(&self, ray: &Ray, clearance: Option<Clearance>) -> ScalarTrace<S> {
         let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
         let walk = WalkOptions {
@@ -163,58 +136,54 @@ impl<'a> Tracer<'a> {
         dir: [f64; 3],
         skip_above: bool,
     ) -> Occlusion {
-        if !S::ENCLOSES {
-            return self.occluded_in(from, dir, skip_above);
-        }
-        occluded_settling(self, from, dir, skip_above)
+        self.occluded_from(&self.departure(from), dir, skip_above)
     }
 
-    /// [`Tracer::occluded`] in `S` alone.
-    pub(super) fn occluded_in<S: Scalar>(
+    /// What every occlusion ray from `from` shares, whatever its direction: worked out once
+    /// for the rays [`Tracer::occluded_from`] casts from it.
+    #[inline(always)]
+    pub fn departure<'r, S: Scalar>(&self, from: &Start<'r, S>) -> Departure<'r, S> {
+        Departure::new(self.terrain, self.base, from)
+    }
+
+    /// [`Tracer::occluded`] from the start `departure` was worked out from (by this tracer's
+    /// terrain and base, see [`Tracer::departure`]): the same answer, the start's share of
+    /// the work done once for all its rays.
+    pub fn occluded_from<S: Scalar>(
         &self,
-        from: &Start<'_, S>,
+        departure: &Departure<'_, S>,
         dir: [f64; 3],
         skip_above: bool,
     ) -> Occlusion {
-        let (origin, start_triangle, exact_start) = match *from {
-            Start::Point(o) => (o.clone(), None, None),
-            Start::Hit { ray, hit } if hit.face != Face::Terrain => {
-                let [x, y, z] = self.base_point(hit, ray);
-                let origin = [x, y, z + S::from_f64(self.lift::<S>(ray, hit))];
-                (origin, None, None)
-            }
-            Start::Hit { ray, hit } => {
-                let [x, y, z] = self.plane_point(hit, ray);
-                let origin = [x, y, z + S::from_f64(self.lift::<S>(ray, hit))];
-                let leaves = self.leaves_at_once(hit, dir);
-                let exact = S::EXACT.then_some(PlanePoint {
-                    ray: *ray,
-                    cell: hit.cell,
-                    triangle: hit.triangle,
-                });
-                (origin, leaves.then_some(hit), exact)
-            }
-            Start::Near { ray, hit, point } => {
-                let [x, y, z] = point;
-                let origin = [x, y, z + self.lift::<S>(ray, hit)].map(S::from_f64);
-                (origin, Some(hit), None)
-            }
-        };
+        if !S::ENCLOSES {
+            return self.occluded_in(departure, dir, skip_above);
+        }
+        occluded_settling(self, departure, dir, skip_above)
+    }
+
+    /// [`Tracer::occluded_from`] in `S` alone.
+    pub(super) fn occluded_in<S: Scalar>(
+        &self,
+        departure: &Departure<'_, S>,
+        dir: [f64; 3],
+        skip_above: bool,
+    ) -> Occlusion {
+        let origin = &departure.origin;
+        let start_triangle = departure.own_triangle(self.terrain, dir);
         let (_, z_max) = self.terrain.z_range();
         if skip_above && dir[2] > 0.0 && origin[2] > S::from_f64(z_max) {
             return Occlusion::default();
         }
-        let start_triangle = start_triangle.map(|hit| (hit.cell, hit.triangle));
-        if let Some(short) = self.short_walk(&origin, dir, start_triangle) {
+        if let Some(short) = self.short_walk(origin, dir, start_triangle) {
             return short;
         }
         let walk = WalkOptions {
             start_triangle,
-            exact_start,
+            exact_start: departure.exact_start(),
             reach: self.reach,
             ..self.walk(Query::Shadow)
         };
-        let answer = trace_scalar(self.terrain, &origin, &dir.map(S::from_f64), dir, walk);
+        let answer = trace_scalar(self.terrain, origin, &dir.map(S::from_f64), dir, walk);
         Occlusion {
             occluded: Some(answer.hit.is_some()),
             counters: answer.counters,
@@ -259,83 +228,6 @@ impl<'a> Tracer<'a> {
             ..WalkOptions::new(self.method, query)
         }
     }
-
-    /// How far to raise a start on the surface above what rounding may have moved it below
-    /// (zero in exact arithmetic): the surface is a height field, so up is always outside. The
-    /// point is `o + t*d`, each component within a few roundings of `|o| + |t*d|`; off by that
-    /// across an edge, the surface may be higher by the steepest slope times it.
-    fn lift<S: Scalar>(&self, ray: &Ray, hit: &Found<S>) -> f64 {
-        let t = hit.t.to_f64().abs();
-        let (ray_o, ray_d) = (ray.origin(), ray.dir());
-        let largest = (0..3).fold(0.0f64, |m, k| m.max(ray_o[k].abs() + t * ray_d[k].abs()));
-        64.0 * S::rounding_error(largest) * (1.0 + self.terrain.max_slope())
-    }
-
-    /// The hit point as a ray from the flat triangle starts at, in arithmetic `S`.
-    fn plane_point<S: Scalar>(&self, found: &Found<S>, ray: &Ray) -> [S; 3] {
-        let (ray_o, ray_d) = (ray.origin(), ray.dir());
-        let [x, y] = [0, 1].map(|k| S::along(ray_o[k], ray_d[k], &found.t));
-        // Rounding arithmetics take the height on the hit triangle's plane: exact on flat
-        // ground. Without rounding the ray's own point is on the plane, and enclosing it takes
-        // a fifth of the work of enclosing the plane's height over the enclosures of x and y;
-        // on a flat triangle the point's height is the triangle's, exactly: intervals must
-        // know it then, or the run and cell tests of a ray from a terrace's top, the highest
-        // sample of the runs and cells around it, cannot be settled where intervals walk (a
-        // path along a grid row, which the `f64` walk leaves to them), and each such ray is
-        // cast again in rationals, at a millisecond a ray.
-        let z = if S::EXACT {
-            match self.flat_height(found) {
-                Some(height) => S::from_f64(height),
-                None => S::along(ray_o[2], ray_d[2], &found.t),
-            }
-        } else {
-            let (i, j) = found.cell;
-            let heights = self.terrain.corner_heights(i, j).map(S::from_f64);
-            plane_height(found.triangle, found.cell, heights, x.clone(), y.clone())
-        };
-        [x, y, z]
-    }
-
-    /// The point where a ray hit the base, in arithmetic `S`, on the face's plane exactly.
-    fn base_point<S: Scalar>(&self, found: &Found<S>, ray: &Ray) -> [S; 3] {
-        let (ray_o, ray_d) = (ray.origin(), ray.dir());
-        let mut point = [0, 1, 2].map(|k| S::along(ray_o[k], ray_d[k], &found.t));
-        let field = self.terrain.field();
-        let (w, h) = (field.width() as i64 - 1, field.height() as i64 - 1);
-        match (found.face, self.base) {
-            (Face::Floor, Some(base)) => point[2] = S::from_f64(base.floor()),
-            (Face::Wall(Side::West), _) => point[0] = S::zero(),
-            (Face::Wall(Side::East), _) => point[0] = S::from_i64(w),
-            (Face::Wall(Side::South), _) => point[1] = S::zero(),
-            (Face::Wall(Side::North), _) => point[1] = S::from_i64(h),
-            _ => {}
-        }
-        point
-    }
-
-    /// Whether a ray in direction `dir` leaves the hit triangle's plane at once, so that it
-    /// touches the triangle it starts on only at its start (in floats decided with room to
-    /// spare for rounding: when in doubt the triangle is tested like any other).
-    fn leaves_at_once<S: Scalar>(&self, found: &Found<S>, dir: [f64; 3]) -> bool {
-        let heights = self.terrain.corner_heights(found.cell.0, found.cell.1);
-        let (gx, gy) = gradient(found.triangle, heights);
-        let (n, s) = (DVec3::new(-gx, -gy, 1.0), DVec3::from(dir));
-        let terms = [n.x * s.x, n.y * s.y, n.z * s.z];
-        let sum: f64 = terms.iter().sum();
-        if sum.abs() > 1e-9 * terms.iter().map(|t| t.abs()).sum::<f64>() {
-            return true;
-        }
-        // Without rounding the ray starts on the plane itself, and leaves it at once unless it
-        // runs in it: asked exactly (intervals cannot tell the two apart in the tests).
-        S::EXACT && crosses_plane(self.terrain, found.cell, found.triangle, dir)
-    }
-
-    /// The height of the hit triangle if it is flat (its three corners at one height).
-    fn flat_height<S: Scalar>(&self, found: &Found<S>) -> Option<f64> {
-        let heights = self.terrain.corner_heights(found.cell.0, found.cell.1);
-        let [a, b, c] = triangle_corners(found.triangle).map(|k| heights[k]);
-        (a == b && b == c).then_some(a)
-    }
 }
 
 /// Whether anything lies in the way from where `ray` first hits the surface towards `dir`, in
@@ -379,17 +271,18 @@ impl Generic for FromHit<'_> {
     }
 }
 
-/// [`Tracer::occluded`] in intervals: a ray with a decision they cannot settle is cast again
-/// in rationals from the exact hit point (where the start is a hit), and its answer marked
-/// as made exactly; otherwise the intervals are left unsettled for the caller to run again.
+/// [`Tracer::occluded_from`] in intervals: a ray with a decision they cannot settle (its
+/// own, or one of its start's) is cast again in rationals from the exact hit point (where the
+/// start is a hit), and its answer marked as made exactly; otherwise the intervals are left
+/// unsettled for the caller to run again.
 fn occluded_settling<S: Scalar>(
     tracer: &Tracer<'_>,
-    from: &Start<'_, S>,
+    departure: &Departure<'_, S>,
     dir: [f64; 3],
     skip_above: bool,
 ) -> Occlusion {
-    let (answer, is_settled) = settled(|| tracer.occluded_in(from, dir, skip_above));
-    if is_settled {
+    let (answer, is_settled) = settled(|| tracer.occluded_in(departure, dir, skip_above));
+    if is_settled && departure.settled {
         return answer;
     }
     let exact = |ray: &Ray, hit: &Found<S>| {
@@ -404,18 +297,20 @@ fn occluded_settling<S: Scalar>(
             face: hit.face,
         })
     };
-    let again = match *from {
+    let again = |from: &Start<'_, Exact>| {
+        let departure = tracer.departure(from);
+        tracer.occluded_in(&departure, dir, skip_above)
+    };
+    let again = match departure.from {
         // (The caller runs the whole ray again in rationals, see `run`.)
         Start::Point(_) => None,
-        Start::Hit { ray, hit } => exact(ray, hit)
-            .map(|hit| tracer.occluded_in(&Start::Hit { ray, hit: &hit }, dir, skip_above)),
+        Start::Hit { ray, hit } => exact(ray, hit).map(|hit| again(&Start::Hit { ray, hit: &hit })),
         Start::Near { ray, hit, point } => exact(ray, hit).map(|hit| {
-            let from = Start::Near {
+            again(&Start::Near {
                 ray,
                 hit: &hit,
                 point,
-            };
-            tracer.occluded_in(&from, dir, skip_above)
+            })
         }),
     };
     match again {

@@ -8,7 +8,7 @@ use super::pixel::{render_in_bands, Pixel};
 use super::single::segment;
 use super::{ffi, EmbreeScene};
 use crate::render::effects::pixel::per_sample;
-use crate::render::effects::sampling::{cone, cosine_hemisphere, point, seed_of};
+use crate::render::effects::sampling::{point, seed_of, ConeDirections, Hemisphere};
 use crate::render::{Frame, Renderer};
 use crate::Face;
 use glam::DVec3;
@@ -40,6 +40,7 @@ impl EmbreeScene {
         let soft = effects.sun_angle_deg > 0.0;
         let axis = shader.grid_dir(DVec3::from(shader.lighting.sun));
         let half = (effects.sun_angle_deg / 2.0).to_radians();
+        let cone = ConeDirections::around(axis, half);
         let scale = shader.terrain.world_from_grid().unwrap_or([1.0; 3]);
         let cast = AtomicU64::new(0);
         let width = frame.width;
@@ -55,7 +56,7 @@ impl EmbreeScene {
                     Some(s) if soft => {
                         for k in 0..effects.sun_rays {
                             let (u, v) = point(k, seed);
-                            self.occluded(s, cone(axis, half, u, v).into());
+                            self.occluded(s, cone.at(u, v).into());
                         }
                         rays += u64::from(effects.sun_rays);
                         false
@@ -70,9 +71,10 @@ impl EmbreeScene {
                     let p = DVec3::from(ray.origin()) + DVec3::from(ray.dir()) * hit.t;
                     let from = p + hit.up * (1e-6 * p.abs().max_element().max(1.0));
                     let normal = shader.normal(Face::Terrain, hit.cell, hit.triangle, p);
+                    let hemisphere = Hemisphere::around(normal);
                     for k in 0..effects.sky_rays {
                         let (u, v) = point(k, seed ^ 1);
-                        let grid = shader.grid_dir(cosine_hemisphere(normal, u, v));
+                        let grid = shader.grid_dir(hemisphere.cosine(u, v));
                         let across = (grid.x * scale[0]).hypot(grid.y * scale[1]);
                         let t_far = (effects.sky_distance / across).min(f64::from(f32::MAX));
                         self.occluded_within(from.into(), grid.into(), t_far);

@@ -4,9 +4,10 @@
 
 use crate::arith::Scalar;
 use crate::geometry::Ray;
-use crate::render::context::Context;
+use crate::render::context::{Context, OcclusionStart};
 use crate::traverse::Found;
 use glam::DVec3;
+use std::cell::OnceCell;
 
 /// An effect at a hit on the surface.
 pub trait Effect {
@@ -17,8 +18,8 @@ pub trait Effect {
 }
 
 /// A hit on the surface an effect starts from: the primary ray's hit `found`, the ray, and
-/// the point shaded (in `f64`).
-#[derive(Clone, Copy)]
+/// the point shaded (in `f64`); and where its occlusion rays start, worked out when an effect
+/// first asks and shared by the others.
 pub struct At<'h, S> {
     /// The primary ray's hit.
     pub found: &'h Found<S>,
@@ -26,4 +27,24 @@ pub struct At<'h, S> {
     pub ray: &'h Ray,
     /// The point shaded.
     pub p: DVec3,
+    start: OnceCell<OcclusionStart<'h, S>>,
+}
+
+impl<'h, S: Scalar> At<'h, S> {
+    /// The hit `found` of `ray`, shaded at `p`.
+    pub fn new(found: &'h Found<S>, ray: &'h Ray, p: DVec3) -> Self {
+        At {
+            found,
+            ray,
+            p,
+            start: OnceCell::new(),
+        }
+    }
+
+    /// Where the hit's occlusion rays start, in the context `cx` (the same for every context
+    /// of one frame: the terrain, its base and the shading decide it).
+    pub(super) fn start(&self, cx: &Context<'_>) -> &OcclusionStart<'h, S> {
+        self.start
+            .get_or_init(|| cx.occlusion_start(self.found, self.ray, self.p))
+    }
 }

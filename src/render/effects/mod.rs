@@ -13,6 +13,7 @@ mod sky;
 mod soft_shadow;
 mod stats;
 mod sun_cone;
+mod sun_disc;
 mod sun_shadow;
 mod time;
 mod water;
@@ -24,6 +25,7 @@ pub use settings::{Effects, DEFAULT_RAYS, DEFAULT_SKY_DISTANCE, MOST_RAYS, WIDES
 pub use sky::{open_sky_mean, SkyLight};
 pub use soft_shadow::SoftShadows;
 pub use stats::{EffectStats, SampleStats, SkyStats, SoftStats, WaterStats};
+pub(super) use sun_disc::SunDisc;
 pub use sun_shadow::SunShadow;
 pub use time::{nanos_since, EffectTime, TimeShares};
 pub use water::WaterReflection;

@@ -67,23 +67,59 @@ pub fn basis(n: DVec3) -> (DVec3, DVec3) {
     n.any_orthonormal_pair()
 }
 
-/// `(u, v)` to a direction of the hemisphere around the unit vector `n`, with density
-/// proportional to the cosine to `n` (Malley's method: the disc projected up).
-pub fn cosine_hemisphere(n: DVec3, u: f64, v: f64) -> DVec3 {
-    let (x, y) = disc(u, v);
-    let z = (1.0 - x * x - y * y).max(0.0).sqrt();
-    let (a, b) = basis(n);
-    a * x + b * y + n * z
+/// The hemisphere around a unit vector, with the basis its directions are drawn in, made once
+/// for all of a point's directions.
+#[derive(Clone, Copy, Debug)]
+pub struct Hemisphere {
+    n: DVec3,
+    a: DVec3,
+    b: DVec3,
 }
 
-/// `(u, v)` to a direction inside the cone of half-angle `half` (radians) around the unit
-/// vector `axis`: the disc of radius `tan(half)` one unit along the axis (the sun's disc as
-/// seen, uniform in area).
-pub fn cone(axis: DVec3, half: f64, u: f64, v: f64) -> DVec3 {
-    let (x, y) = disc(u, v);
-    let (a, b) = basis(axis);
-    let r = half.tan();
-    (axis + (a * x + b * y) * r).normalize()
+impl Hemisphere {
+    /// The hemisphere around the unit vector `n`.
+    pub fn around(n: DVec3) -> Hemisphere {
+        let (a, b) = basis(n);
+        Hemisphere { n, a, b }
+    }
+
+    /// `(u, v)` to a direction of the hemisphere, with density proportional to the cosine to
+    /// its vector (Malley's method: the disc projected up).
+    pub fn cosine(&self, u: f64, v: f64) -> DVec3 {
+        let (x, y) = disc(u, v);
+        let z = (1.0 - x * x - y * y).max(0.0).sqrt();
+        self.a * x + self.b * y + self.n * z
+    }
+}
+
+/// The directions of a cone, with the basis and radius they are drawn with, made once for
+/// all of them (a frame's soft shadows share one).
+#[derive(Clone, Copy, Debug)]
+pub struct ConeDirections {
+    axis: DVec3,
+    a: DVec3,
+    b: DVec3,
+    r: f64,
+}
+
+impl ConeDirections {
+    /// The cone of half-angle `half` (radians) around the unit vector `axis`.
+    pub fn around(axis: DVec3, half: f64) -> ConeDirections {
+        let (a, b) = basis(axis);
+        ConeDirections {
+            axis,
+            a,
+            b,
+            r: half.tan(),
+        }
+    }
+
+    /// `(u, v)` to a direction inside the cone: the disc of radius `tan(half)` one unit along
+    /// the axis (the sun's disc as seen, uniform in area).
+    pub fn at(&self, u: f64, v: f64) -> DVec3 {
+        let (x, y) = disc(u, v);
+        (self.axis + (self.a * x + self.b * y) * self.r).normalize()
+    }
 }
 
 #[cfg(test)]
@@ -111,11 +147,12 @@ mod tests {
     #[test]
     fn cosine_hemisphere_has_the_cosine_mean() {
         let n = DVec3::new(0.3, -0.2, 0.9).normalize();
+        let hemisphere = Hemisphere::around(n);
         let count = 4096;
         let mean: f64 = (0..count)
             .map(|i| {
                 let (u, v) = point(i, 77);
-                let d = cosine_hemisphere(n, u, v);
+                let d = hemisphere.cosine(u, v);
                 assert!((d.length() - 1.0).abs() < 1e-12);
                 assert!(d.dot(n) >= -1e-12, "{d} below the hemisphere");
                 d.dot(n)
@@ -130,10 +167,11 @@ mod tests {
     fn cone_directions_stay_inside() {
         let axis = DVec3::new(0.4, 0.3, 0.8).normalize();
         let half = 0.01f64;
+        let cone = ConeDirections::around(axis, half);
         let widest = (0..256)
             .map(|i| {
                 let (u, v) = point(i, 5);
-                cone(axis, half, u, v).dot(axis).clamp(-1.0, 1.0).acos()
+                cone.at(u, v).dot(axis).clamp(-1.0, 1.0).acos()
             })
             .fold(0.0f64, f64::max);
         assert!(

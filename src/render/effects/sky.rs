@@ -7,7 +7,7 @@
 
 use super::effect::{At, Effect};
 use super::horizon::{climbs_above, level_within, sector_of, slope_bound_within, Sector};
-use super::sampling::{cosine_hemisphere, point, seed_of};
+use super::sampling::{point, seed_of, Hemisphere};
 use crate::arith::Scalar;
 use crate::geometry::Ray;
 use crate::render::context::Context;
@@ -40,14 +40,7 @@ impl SkyLight {
         let found = cx.tracer().trace::<f64>(ray, None).hit?;
         let (o, d) = (ray.origin(), ray.dir());
         let p = DVec3::from(found.point(&o, &d));
-        Some(SkyLight.cast(
-            cx,
-            &At {
-                found: &found,
-                ray,
-                p,
-            },
-        ))
+        Some(SkyLight.cast(cx, &At::new(&found, ray, p)))
     }
 }
 
@@ -55,13 +48,13 @@ impl Effect for SkyLight {
     type Outcome = (DVec3, SkyRays);
 
     fn cast<S: Scalar>(&self, cx: &Context<'_>, at: &At<'_, S>) -> (DVec3, SkyRays) {
-        let At { found, ray, p } = *at;
-        let normal = cx.normal(found.face, found.cell, found.triangle, p);
-        let start = cx.occlusion_start(found, p);
+        let At { found, ray, p, .. } = *at;
+        let hemisphere = Hemisphere::around(cx.normal(found.face, found.cell, found.triangle, p));
+        let shared = at.start(cx);
+        let start = shared.point;
         let distance = cx.lighting.effects.sky_distance;
         let scale = cx.terrain.world_from_grid().unwrap_or([1.0; 3]);
         let reach = cx.sky_reach();
-        let room = cx.start_room::<S>(ray, start);
         let rays = cx.lighting.effects.sky_rays;
         let culling = cx.culling.horizon_clear;
         // Nothing above the point within reach: every rising ray is open.
@@ -86,7 +79,7 @@ impl Effect for SkyLight {
         let mut light = DVec3::ZERO;
         for index in 0..rays {
             let (u, v) = point(index, seed);
-            let dir = cosine_hemisphere(normal, u, v);
+            let dir = hemisphere.cosine(u, v);
             // (Traced and bounded in grid coordinates; coloured by the world direction.)
             let grid = cx.grid_dir(dir);
             let culled = grid.z > 0.0 && (level || (by_sector && climbs_above(grid, bound(grid))));
@@ -97,12 +90,13 @@ impl Effect for SkyLight {
                 // more than the rest of the ray's set-up.)
                 let across = (ax * ax + ay * ay).sqrt();
                 let t_max = (distance / across).is_finite().then(|| distance / across);
-                let near = far.map(|b| b.clear_beyond(cx.terrain, start.into(), grid.into(), room));
+                let near =
+                    far.map(|b| b.clear_beyond(cx.terrain, start.into(), grid.into(), shared.room));
                 let t_max = match near.flatten() {
                     Some(t) => Some(t_max.map_or(t, |m| m.min(t))),
                     None => t_max,
                 };
-                let mut answer = cx.occluded(found, ray, p, grid.into(), t_max);
+                let mut answer = cx.occluded(shared, grid.into(), t_max);
                 if let Some(near) = near.filter(|_| answer.occluded.is_some()) {
                     answer.counters.bound.record(near.is_none());
                 }

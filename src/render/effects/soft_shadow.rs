@@ -7,15 +7,15 @@
 //! is blocked may be settled as blocked whole ([`sun_cone`](super::sun_cone)) by one more ray.
 
 use super::effect::{At, Effect};
-use super::horizon::{climbs_above, slope_bound, Sector};
-use super::sampling::{cone, point, seed_of};
+use super::horizon::{climbs_above, slope_bound};
+use super::sampling::{point, seed_of};
 use super::sun_cone::{self, Cone};
 use crate::arith::Scalar;
 use crate::geometry::Ray;
 use crate::render::context::Context;
 use crate::render::sample::{Cast, Shadow, ShadowSkip, SoftShadow};
 use crate::traverse::{Counters, Found};
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 
 /// The purpose a soft shadow's samples are seeded with (see [`seed_of`]).
 const PURPOSE: u64 = 0x5011_d15c;
@@ -33,37 +33,34 @@ impl Effect for SoftShadows {
     type Outcome = Cast;
 
     fn cast<S: Scalar>(&self, cx: &Context<'_>, at: &At<'_, S>) -> Cast {
-        let At { found, ray, p } = *at;
+        let (found, ray) = (at.found, at.ray);
         let skip = |why| (Shadow::Skipped(why), Counters::default(), false);
         // The disc is drawn around the sun's direction in grid coordinates, where the rays and
         // the bounds are; on non-square cells it is stretched with the cells.
-        let axis = cx.grid_dir(DVec3::from(cx.lighting.sun));
-        // (Room for rounding: the lowest direction drawn is never lower than this.)
-        let half = (cx.lighting.effects.sun_angle_deg / 2.0).to_radians();
-        let lowest = axis.z.clamp(-1.0, 1.0).asin() - half * (1.0 + 1e-9);
-        let rises = lowest > 0.0;
+        let disc = cx.sun_disc();
+        let (axis, rises) = (disc.axis, disc.lowest > 0.0);
         let steepest = cx.terrain.max_slope() * (1.0 + 1e-9);
-        if cx.culling.no_shadow_possible && rises && lowest.tan() > steepest {
+        if cx.culling.no_shadow_possible && rises && disc.lowest_tan > steepest {
             return skip(ShadowSkip::NoShadowPossible);
         }
-        let start = cx.occlusion_start(found, p);
+        let shared = at.start(cx);
+        let start = shared.point;
         let (_, z_max) = cx.terrain.z_range();
         if cx.culling.above_terrain && rises && start.z > z_max {
             return skip(ShadowSkip::AboveTerrain);
         }
-        let whole_cone = Cone::new(start, axis, half);
-        let sector = sun_sector(axis, half);
+        let whole_cone = disc.cone.map(|cone| cone.moved_to(start));
         let rays = cx.lighting.effects.sun_rays;
         let bounded = cx.culling.horizon_clear && rays >= BOUNDED_FROM;
         if bounded && whole_cone.is_some_and(|c| sun_cone::clear(cx.terrain, &c)) {
             return skip(ShadowSkip::HorizonClear);
         }
         let bound = if bounded {
-            slope_bound(cx.terrain, start, sector)
+            slope_bound(cx.terrain, start, disc.sector)
         } else {
             f64::INFINITY
         };
-        if rises && lowest.tan() > bound {
+        if rises && disc.lowest_tan > bound {
             return skip(ShadowSkip::HorizonClear);
         }
         let seed = seed_of(ray.origin(), ray.dir(), PURPOSE);
@@ -85,12 +82,12 @@ impl Effect for SoftShadows {
                 }
             }
             let (u, v) = point(index, seed);
-            let dir = cone(axis, half, u, v);
+            let dir = disc.directions.at(u, v);
             if climbs_above(dir, bound) {
                 soft.clear += 1;
                 continue;
             }
-            let answer = cx.occluded_beyond(found, ray, p, start, (axis.into(), dir.into()));
+            let answer = cx.occluded_beyond(shared, (axis.into(), dir.into()));
             // (Not traced: it starts above the terrain and rises.)
             let Some(occluded) = answer.occluded else {
                 soft.clear += 1;
@@ -121,12 +118,4 @@ fn cone_blocked<S: Scalar>(
         Some(traced.hit?.t * dir.truncate().length())
     };
     sun_cone::blocked(cx.terrain, cone, (found.cell, found.triangle), first_touch)
-}
-
-/// The azimuths of the directions within `half` (radians) of `axis`, with room for rounding;
-/// `None` where they span a half turn or more (the cone holds the zenith, or nearly).
-fn sun_sector(axis: DVec3, half: f64) -> Option<Sector> {
-    let horizontal = DVec2::new(axis.x, axis.y);
-    let across = half.sin() / horizontal.length();
-    (across < 0.9).then(|| Sector::around(horizontal, across.asin() * (1.0 + 1e-6) + 1e-9))
 }

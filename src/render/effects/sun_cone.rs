@@ -94,6 +94,11 @@ impl Cone {
         })
     }
 
+    /// The same cone from `start`.
+    pub fn moved_to(self, start: DVec3) -> Cone {
+        Cone { start, ..self }
+    }
+
     /// The direction of the highest elevation at the axis's azimuth, unit.
     pub fn highest_direction(&self) -> DVec3 {
         DVec3::new(self.along.x, self.along.y, self.highest).normalize()

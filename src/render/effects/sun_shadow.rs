@@ -15,7 +15,6 @@ impl Effect for SunShadow {
     type Outcome = Cast;
 
     fn cast<S: Scalar>(&self, cx: &Context<'_>, at: &At<'_, S>) -> Cast {
-        let At { found, ray, p } = *at;
         let skip = |why| (Shadow::Skipped(why), Counters::default(), false);
         let sun = cx.grid_sun();
         // The sun climbs strictly steeper than any triangle (with room for the rounding of
@@ -26,8 +25,7 @@ impl Effect for SunShadow {
         if cx.culling.no_shadow_possible && climbs_steeper {
             return skip(ShadowSkip::NoShadowPossible);
         }
-        let start = cx.occlusion_start(found, p);
-        let occlusion = cx.occluded_beyond(found, ray, p, start, (sun, sun));
+        let occlusion = cx.occluded_beyond(at.start(cx), (sun, sun));
         match occlusion.occluded {
             Some(shadowed) => (
                 Shadow::Cast { shadowed },
