@@ -333,18 +333,11 @@ pub fn load_with(
             reason,
         },
     })?;
-    if is_store(&file) {
+    if super::store::is_store(&file) {
         return super::store::open(&file, len, path, options)
             .map_err(|e| LoadError::Store(Box::new(e)));
     }
     load_from(file, len, options, &path.display().to_string(), progress)
-}
-
-/// Whether `file` starts as a tile store does.
-fn is_store(file: &std::fs::File) -> bool {
-    use std::os::unix::fs::FileExt;
-    let mut start = [0u8; 16];
-    file.read_exact_at(&mut start, 0).is_ok() && &start == super::store::MAGIC
 }
 
 /// Loads a height field from the bytes of a file with the default options; `name` labels

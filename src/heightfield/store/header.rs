@@ -183,6 +183,12 @@ impl Header {
     }
 }
 
+/// Whether `file` starts as a store does.
+pub fn is_store(file: &File) -> bool {
+    let mut start = [0u8; 16];
+    file.read_exact_at(&mut start, 0).is_ok() && &start == MAGIC
+}
+
 /// A damaged store's error.
 pub fn damaged(path: &Path, why: String) -> StoreError {
     StoreError::Damaged {

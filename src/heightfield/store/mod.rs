@@ -14,7 +14,7 @@ mod open;
 mod prepare;
 pub mod residency;
 
-pub use header::{Header, Input, MAGIC};
+pub use header::{is_store, Header, Input, MAGIC};
 pub use open::open;
 pub use prepare::{prepare, save, Stage};
 
