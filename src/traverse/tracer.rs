@@ -94,9 +94,7 @@ impl<'a> Tracer<'a> {
     /// The first hit of `ray` (the least `t >= 0`), in arithmetic `S`. With `clearance`
     /// (a camera ray's, from its [`Wedges`](super::Wedges)), the ray touches nothing before
     /// its `t`, and a hierarchical walk starts there, at its level.
-    // (Always inlined: out of line, its answer, a few hundred bytes, is copied once more on
-    // its way back to a camera ray's shading.)
-    #[inline(always)]
+    #[inline]
     pub fn trace<S: Scalar>(&self, ray: &Ray, clearance: Option<Clearance>) -> ScalarTrace<S> {
         let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
         let walk = WalkOptions {
