@@ -249,6 +249,18 @@ fn unfinished_truncated_and_damaged_stores_are_refused_with_a_message() {
         "finished as if never stopped"
     );
 
+    // An output that is not a store, an input say, is refused and left as it was.
+    let input = std::fs::read(&tiles[0]).unwrap();
+    let keep_going = |_, _| ControlFlow::Continue(());
+    let onto_input = store::prepare(&tiles, &tiles[0], &LoadOptions::new(1.0), &keep_going);
+    let message = onto_input.unwrap_err().to_string();
+    assert!(message.contains("is not a tile store"), "{message}");
+    assert_eq!(
+        std::fs::read(&tiles[0]).unwrap(),
+        input,
+        "the input is untouched"
+    );
+
     let output = heightray(&[
         "render",
         dir.path().join("cut.hrt").to_str().unwrap(),

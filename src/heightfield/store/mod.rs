@@ -86,6 +86,14 @@ pub enum StoreError {
         /// Why.
         source: HeightfieldError,
     },
+    /// The output names a file that is not a store (an input, say): it is left as it is.
+    #[error(
+        "{path} exists and is not a tile store; give the store a new name (nothing was written)"
+    )]
+    NotAStore {
+        /// The output asked for.
+        path: PathBuf,
+    },
     /// Preparing was cancelled.
     #[error("preparing {path} was cancelled; run it again to go on")]
     Cancelled {

@@ -43,6 +43,7 @@ pub fn prepare(
     let cancelled = || StoreError::Cancelled {
         path: output.to_owned(),
     };
+    refuse_overwriting(output)?;
     let (file, mut header, room) = match resume(inputs, output) {
         Some(kept) => kept,
         None => {
@@ -79,6 +80,7 @@ pub fn prepare(
 
 /// Writes `field`, its samples and holes as they are, as the store `output`.
 pub fn save(field: &Heightfield, output: &Path) -> Result<Header, StoreError> {
+    refuse_overwriting(output)?;
     let (w, h) = (field.width() as u64, field.height() as u64);
     let mut header = Header::new(w, h, field.quantisation());
     header.georef = field.georef().copied();
@@ -126,6 +128,21 @@ fn finish(
     header.steepest = Some(built.steepest);
     header.write(file, room, output)?;
     file.sync_all().map_err(StoreError::io(output))
+}
+
+/// Refuses an `output` that exists and is not a store, an input among them: preparing
+/// truncates what it writes to.
+fn refuse_overwriting(output: &Path) -> Result<(), StoreError> {
+    let Ok(file) = File::open(output) else {
+        return Ok(());
+    };
+    let empty = file.metadata().is_ok_and(|m| m.is_file() && m.len() == 0);
+    match empty || super::is_store(&file) {
+        true => Ok(()),
+        false => Err(StoreError::NotAStore {
+            path: output.to_owned(),
+        }),
+    }
 }
 
 /// The store at `output` to go on with, where it was planned for these inputs (the same files,
