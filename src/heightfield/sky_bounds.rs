@@ -139,8 +139,7 @@ impl SkyBounds {
         if (x as usize) > self.nx || (y as usize) > self.ny {
             return None;
         }
-        let angle = dir[1].atan2(dir[0]).rem_euclid(2.0 * PI);
-        let sector = ((angle / (2.0 * PI / SKY_SECTORS as f64)) as usize).min(SKY_SECTORS - 1);
+        let sector = sector_of(dir[0], dir[1]);
         let bounds = self.blocks[by * self.nx + bx].get_or_init(|| self.fill(terrain, bx, by));
         let rings = &bounds[sector];
         let z = (start[2] - self.base) * self.per_step;
@@ -189,6 +188,32 @@ impl SkyBounds {
         }
         out
     }
+}
+
+/// The sector of the horizontal direction `(x, y)` (not both zero): its quadrant from the
+/// signs, then its quarter of the quadrant from the tangents of the quarters' edges. A
+/// direction within rounding of an edge may be put on either side: the sectors' patterns are
+/// widened by [`ANGLE_PAD`], far more than that. (No `atan2`, which costs a sky ray more than
+/// its look-up.)
+fn sector_of(x: f64, y: f64) -> usize {
+    // The direction in its quadrant's own axes `(a, b)`, both non-negative, `a` along the
+    // quadrant's first edge.
+    // (Each quadrant holds its first edge, as the angle's sectors do.)
+    let (quadrant, a, b) = if x > 0.0 && y >= 0.0 {
+        (0, x, y)
+    } else if x <= 0.0 && y > 0.0 {
+        (1, y, -x)
+    } else if x < 0.0 {
+        (2, -x, -y)
+    } else {
+        (3, -y, x)
+    };
+    // tan(pi/8) and tan(3pi/8): the quarters' inner edges (the middle one is the diagonal).
+    const LOW: f64 = std::f64::consts::SQRT_2 - 1.0;
+    const HIGH: f64 = std::f64::consts::SQRT_2 + 1.0;
+    const _: () = assert!(SKY_SECTORS == 16, "four sectors a quadrant");
+    let quarter = usize::from(b > LOW * a) + usize::from(b > a) + usize::from(b > HIGH * a);
+    quadrant * 4 + quarter
 }
 
 /// The mipmap blocks of one level that bound a ring in each sector, as offsets from the block
@@ -317,4 +342,33 @@ fn ray_meets(u: [f64; 2], [x0, y0, x1, y1]: [f64; 4]) -> bool {
         t1 = t1.min(a.max(b));
     }
     t0 <= t1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The sector found by the quadrant and tangents is the one the angle gives, for
+    /// directions all round, away from the edges by more than the sectors are widened.
+    #[test]
+    fn sector_of_agrees_with_the_angle() {
+        let width = 2.0 * PI / SKY_SECTORS as f64;
+        for k in 0..100_000 {
+            let angle = (k as f64 + 0.37) * 2.0 * PI / 100_000.0;
+            let from_edge = (angle / width - (angle / width).round()).abs() * width;
+            if from_edge < 10.0 * ANGLE_PAD {
+                continue;
+            }
+            let expected = (angle / width) as usize % SKY_SECTORS;
+            for length in [1e-3, 1.0, 7.5e5] {
+                let (x, y) = (length * angle.cos(), length * angle.sin());
+                assert_eq!(sector_of(x, y), expected, "angle {angle}, length {length}");
+            }
+        }
+        // The axes lie in the sectors that start there.
+        assert_eq!(sector_of(1.0, 0.0), 0);
+        assert_eq!(sector_of(0.0, 1.0), 4);
+        assert_eq!(sector_of(-1.0, 0.0), 8);
+        assert_eq!(sector_of(0.0, -1.0), 12);
+    }
 }

@@ -21,7 +21,7 @@ use crate::heightfield::Terrain;
 
 /// The most cells a short walk crosses; a ray whose reach may take it further is walked down
 /// the hierarchy, which skips more than it costs over such a distance.
-const MOST_CELLS: f64 = 6.0;
+const MOST_CELLS: f64 = 12.0;
 
 /// An occlusion ray from `o` towards `d` (the start not counting), asked only up to `reach`,
 /// its own triangle `start_triangle` left untested: `Some` whether it touches the surface, with
@@ -39,8 +39,7 @@ pub(super) fn short_walk(
         return None;
     }
     let t_end = segment_end(terrain, o, d)?.min(reach);
-    let path = Path::new(terrain, o, d)?;
-    let ray = RaySpace::new(o, d, d);
+    let mut walk = Path::new(terrain, o, d)?;
     // The block walk's margins: heights along the ray moved down where compared with a
     // highest sample, up where with a lowest.
     let slack = slack(&o[2], &d[2], &t_end);
@@ -50,18 +49,27 @@ pub(super) fn short_walk(
         (o[2], o[2])
     };
     let field = terrain.field();
+    let (samples, w) = (field.samples(), field.width());
+    // Where a crossing comes too near the segment's end for its order to be trusted (as
+    // `nearly(t_exit, t_end)` has it, for no `t_exit` below this).
+    let end_doubt = t_end - 5e-9 * larger(t_end, 1.0);
     let mut counters = Counters::default();
     counters.bbox.record(true);
-    let mut walk = path;
     loop {
-        let (t_lo, t_exit) = (walk.t, walk.exit());
-        if walk.at_lattice_point() || nearly(t_exit, t_end) || t_lo >= t_exit {
+        let t_lo = walk.t;
+        let t_exit = smaller(walk.next_u, walk.next_v);
+        if walk.at_lattice_point()
+            || t_lo >= t_exit
+            || (t_exit >= end_doubt && nearly(t_exit, t_end))
+        {
             return None;
         }
         let ends_inside = t_end < t_exit;
         let t_hi = if ends_inside { t_end } else { t_exit };
-        let (i, j) = walk.cell()?;
-        let (lowest, highest) = terrain.cell_sample_range(i, j);
+        let corners = &samples[walk.index..walk.index + w + 2];
+        let four = [corners[0], corners[1], corners[w], corners[w + 1]];
+        let lowest = four[0].min(four[1]).min(four[2].min(four[3]));
+        let highest = four[0].max(four[1]).max(four[2].max(four[3]));
         let (t_low_point, t_high_point) = if d[2] < 0.0 {
             (t_hi, t_lo)
         } else {
@@ -72,27 +80,51 @@ pub(super) fn short_walk(
             return None;
         }
         let may_hit = oz_low + d[2] * t_low_point <= field.height_of(highest);
-        if counters.cell.record(may_hit) && !field.is_hole_cell(i, j) {
-            let heights = terrain.corner_heights(i, j);
-            let hits = ray.cell_in_lanes(SimdPath::active(), (i, j), heights)?;
-            for (triangle, hit) in (0u8..2).zip(hits) {
-                if start_triangle == Some(((i, j), triangle)) {
-                    continue;
-                }
-                // A hit counts where the ray touches the triangle after its start (as the
-                // search's rule has it, a NaN is not before it).
-                let counts =
-                    hit.is_some_and(|hit| hit.t_last.is_none_or(|t| t > 0.0 || t.is_nan()));
-                if counters.triangle.record(counts) {
-                    return Some((true, counters));
-                }
-            }
+        if counters.cell.record(may_hit)
+            && cell_hits(terrain, &walk, four, start_triangle, &mut counters)?
+        {
+            return Some((true, counters));
         }
         if ends_inside {
             return Some((false, counters));
         }
-        walk.step();
+        walk.step()?;
     }
+}
+
+/// Whether the ray touches a triangle of the path's cell (with corner samples `four`) other
+/// than `start_triangle` after its start, counting the triangle tests; `None` where the lanes
+/// cannot answer.
+// (Out of line: the walk's loop keeps its registers for the cells that need no test.)
+#[inline(never)]
+fn cell_hits(
+    terrain: &Terrain,
+    walk: &Path,
+    four: [u16; 4],
+    start_triangle: Option<((usize, usize), u8)>,
+    counters: &mut Counters,
+) -> Option<bool> {
+    let field = terrain.field();
+    let (i, j) = walk.cell();
+    if field.is_hole_cell(i, j) {
+        return Some(false);
+    }
+    let heights = four.map(|sample| field.height_of(sample));
+    let hits = walk
+        .ray
+        .cell_in_lanes(SimdPath::active(), (i, j), heights)?;
+    for (triangle, hit) in (0u8..2).zip(hits) {
+        if start_triangle == Some(((i, j), triangle)) {
+            continue;
+        }
+        // A hit counts where the ray touches the triangle after its start (as the search's
+        // rule has it, a NaN is not before it).
+        let counts = hit.is_some_and(|hit| hit.t_last.is_none_or(|t| t > 0.0 || t.is_nan()));
+        if counters.triangle.record(counts) {
+            return Some(true);
+        }
+    }
+    Some(false)
 }
 
 /// Where the ray leaves the terrain's box, lengthened by its rounding as
@@ -113,108 +145,179 @@ fn segment_end(terrain: &Terrain, o: [f64; 3], d: [f64; 3]) -> Option<f64> {
 }
 
 /// Whether two crossings are too close for their order to be trusted: the near walk's rule.
+/// (Crossings are never NaN, so plain comparisons pick the larger: `f64::max`'s care for NaN
+/// would cost the walk's loop more than the rest of the rule.)
+#[inline(always)]
 fn nearly(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 4e-9 * a.abs().max(b.abs()).max(1.0)
+    (a - b).abs() <= 4e-9 * larger(larger(a.abs(), b.abs()), 1.0)
+}
+
+/// The larger of two numbers that are not NaN.
+#[inline(always)]
+fn larger(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
+/// The smaller of two numbers that are not NaN.
+#[inline(always)]
+fn smaller(a: f64, b: f64) -> f64 {
+    if a < b {
+        a
+    } else {
+        b
+    }
 }
 
 /// A path across the grid in its octant frame (`u` the horizontal axis it moves along most,
-/// both axes mirrored to increase, see [`Frame`](super::frame::Frame)), at one cell.
-#[derive(Clone, Copy)]
+/// both axes mirrored to increase, see [`Frame`](super::frame::Frame)), at one cell, which it
+/// also holds as the index of the cell's first sample, so that a step is an addition.
 struct Path {
+    ray: RaySpace<f64>,
     swap: bool,
     flip: [bool; 2],
-    o: [f64; 2],
-    inverse: [f64; 2],
+    o_u: f64,
+    o_v: f64,
+    inverse_u: f64,
+    inverse_v: f64,
     /// The frame cell `(cu, cv)`, and the ray parameter where the path entered it.
-    cell: [i64; 2],
+    cu: i64,
+    cv: i64,
     t: f64,
     /// Where the path crosses the next grid line of `u` and of `v`.
-    next: [f64; 2],
-    /// The valid frame cells, inclusive, per axis.
-    valid: [(i64, i64); 2],
-    /// The grid's cells per row, per column.
-    size: [usize; 2],
+    next_u: f64,
+    next_v: f64,
+    /// The cell's first sample, and how far that moves with a step along `u` and along `v`.
+    index: usize,
+    stride_u: isize,
+    stride_v: isize,
+    /// Steps left along `u` and `v` before the path leaves the grid.
+    left_u: u32,
+    left_v: u32,
 }
 
 impl Path {
-    /// The path of `o + t*d` from `t = 0`, or `None` where it starts on a grid line.
+    /// The path of `o + t*d` from `t = 0`, or `None` where it starts on a grid line or
+    /// outside the grid.
     fn new(terrain: &Terrain, o: [f64; 3], d: [f64; 3]) -> Option<Self> {
         let swap = d[1].abs() > d[0].abs();
         let (ku, kv) = if swap { (1, 0) } else { (0, 1) };
         let flip = [d[ku] < 0.0, d[kv] < 0.0];
         let mirror = |x: f64, flip: bool| if flip { -x } else { x };
-        let o = [mirror(o[ku], flip[0]), mirror(o[kv], flip[1])];
+        let start = [mirror(o[ku], flip[0]), mirror(o[kv], flip[1])];
         let dir = [mirror(d[ku], flip[0]), mirror(d[kv], flip[1])];
         // (Casts, not `fract` and `floor`, which are library calls on the baseline target;
         // the start lies on the grid, far inside the range of `i64`.)
-        let whole = o.map(|x| x as i64);
-        if (0..2).any(|k| whole[k] as f64 == o[k]) {
+        let whole = start.map(|x| x as i64);
+        if (0..2).any(|k| whole[k] as f64 == start[k]) {
             return None;
         }
         let field = terrain.field();
-        let size = [field.width() - 1, field.height() - 1];
-        let cells = |n: usize, flip: bool| {
-            let n = n as i64;
-            if flip {
-                (-n, -1)
-            } else {
-                (0, n - 1)
-            }
-        };
+        let w = field.width();
+        let size = [w - 1, field.height() - 1];
         let n = if swap { [size[1], size[0]] } else { size };
         let inverse = dir.map(|x| if x == 0.0 { 0.0 } else { 1.0 / x });
-        let cell = [0, 1].map(|k| whole[k] - i64::from(whole[k] as f64 > o[k]));
-        let mut path = Path {
+        let cell = [0, 1].map(|k| whole[k] - i64::from(whole[k] as f64 > start[k]));
+        // The original index along each frame axis, and the steps left before the last.
+        let along = [0, 1].map(|k| unmirror(cell[k], flip[k]));
+        let mut left = [0u32; 2];
+        for k in 0..2 {
+            let last = n[k] as i64 - 1;
+            if along[k] < 0 || along[k] > last {
+                return None;
+            }
+            let steps = if flip[k] { along[k] } else { last - along[k] };
+            left[k] = u32::try_from(steps).ok()?;
+        }
+        let (i, j) = if swap {
+            (along[1], along[0])
+        } else {
+            (along[0], along[1])
+        };
+        let stride = |axis: usize, flip: bool| {
+            let unit = if axis == 0 { 1 } else { w as isize };
+            if flip {
+                -unit
+            } else {
+                unit
+            }
+        };
+        let crossing = |k: usize| {
+            if inverse[k] == 0.0 {
+                f64::INFINITY
+            } else {
+                ((cell[k] + 1) as f64 - start[k]) * inverse[k]
+            }
+        };
+        Some(Path {
+            ray: RaySpace::new(o, d, d),
             swap,
             flip,
-            o,
-            inverse,
-            cell,
+            o_u: start[0],
+            o_v: start[1],
+            inverse_u: inverse[0],
+            inverse_v: inverse[1],
+            cu: cell[0],
+            cv: cell[1],
             t: 0.0,
-            next: [0.0; 2],
-            valid: [cells(n[0], flip[0]), cells(n[1], flip[1])],
-            size,
-        };
-        path.next = [0, 1].map(|k| path.crossing(k));
-        Some(path)
-    }
-
-    /// Where the path crosses the next grid line of axis `k` (never, moving along the other).
-    fn crossing(&self, k: usize) -> f64 {
-        if self.inverse[k] == 0.0 {
-            return f64::INFINITY;
-        }
-        ((self.cell[k] + 1) as f64 - self.o[k]) * self.inverse[k]
-    }
-
-    /// Where the path leaves its cell.
-    fn exit(&self) -> f64 {
-        self.next[0].min(self.next[1])
+            next_u: crossing(0),
+            next_v: crossing(1),
+            index: j as usize * w + i as usize,
+            stride_u: stride(ku, flip[0]),
+            stride_v: stride(kv, flip[1]),
+            left_u: left[0],
+            left_v: left[1],
+        })
     }
 
     /// Whether the path leaves its cell through a corner, or too near one to tell.
+    #[inline(always)]
     fn at_lattice_point(&self) -> bool {
-        nearly(self.next[0], self.next[1])
+        nearly(self.next_u, self.next_v)
     }
 
-    /// The original cell `(i, j)` the path is in, or `None` outside the grid.
-    fn cell(&self) -> Option<(usize, usize)> {
-        let [(u0, u1), (v0, v1)] = self.valid;
-        let [cu, cv] = self.cell;
-        if cu < u0 || cu > u1 || cv < v0 || cv > v1 {
-            return None;
+    /// The original cell `(i, j)` the path is in.
+    fn cell(&self) -> (usize, usize) {
+        let (a, b) = (
+            unmirror(self.cu, self.flip[0]) as usize,
+            unmirror(self.cv, self.flip[1]) as usize,
+        );
+        if self.swap {
+            (b, a)
+        } else {
+            (a, b)
         }
-        let unmirror = |c: i64, flip: bool| (if flip { -c - 1 } else { c }) as usize;
-        let (a, b) = (unmirror(cu, self.flip[0]), unmirror(cv, self.flip[1]));
-        let (i, j) = if self.swap { (b, a) } else { (a, b) };
-        (i < self.size[0] && j < self.size[1]).then_some((i, j))
     }
 
-    /// Moves into the next cell.
-    fn step(&mut self) {
-        let k = usize::from(self.next[1] < self.next[0]);
-        self.t = self.next[k];
-        self.cell[k] += 1;
-        self.next[k] = self.crossing(k);
+    /// Moves into the next cell; `None` where that lies off the grid. (A crossing is worked
+    /// out from its grid line, as the near walk does, not added up.)
+    #[inline(always)]
+    fn step(&mut self) -> Option<()> {
+        if self.next_v < self.next_u {
+            self.left_v = self.left_v.checked_sub(1)?;
+            self.t = self.next_v;
+            self.cv += 1;
+            self.next_v = ((self.cv + 1) as f64 - self.o_v) * self.inverse_v;
+            self.index = self.index.wrapping_add_signed(self.stride_v);
+        } else {
+            self.left_u = self.left_u.checked_sub(1)?;
+            self.t = self.next_u;
+            self.cu += 1;
+            self.next_u = ((self.cu + 1) as f64 - self.o_u) * self.inverse_u;
+            self.index = self.index.wrapping_add_signed(self.stride_u);
+        }
+        Some(())
+    }
+}
+
+/// A frame cell's index along its original axis.
+fn unmirror(c: i64, flip: bool) -> i64 {
+    if flip {
+        -c - 1
+    } else {
+        c
     }
 }
