@@ -13,6 +13,7 @@
 //! lattice point, an end on a grid line, a path leaving the grid or found under the surface,
 //! a long reach) it gives the ray back, and the full walk answers it.
 
+use super::counters::HitMiss;
 use super::search::slack;
 use super::Counters;
 use crate::arith::SimdPath;
@@ -48,14 +49,62 @@ pub(super) fn short_walk(
     } else {
         (o[2], o[2])
     };
-    let field = terrain.field();
-    let (samples, w) = (field.samples(), field.width());
-    // Where a crossing comes too near the segment's end for its order to be trusted (as
-    // `nearly(t_exit, t_end)` has it, for no `t_exit` below this).
-    let end_doubt = t_end - 5e-9 * larger(t_end, 1.0);
+    let segment = Segment {
+        oz_low,
+        oz_high,
+        dz: d[2],
+        t_end,
+        // Where a crossing comes too near the segment's end for its order to be trusted (as
+        // `nearly(t_exit, t_end)` has it, for no `t_exit` below this).
+        end_doubt: t_end - 5e-9 * larger(t_end, 1.0),
+    };
     let mut counters = Counters::default();
     counters.bbox.record(true);
-    loop {
+    // (One loop for falling rays and one for the others: which end of a cell's part of the
+    // segment is its lowest point is then known outside the loop.)
+    let touches = if d[2] < 0.0 {
+        cells::<true>(terrain, &mut walk, &segment, start_triangle, &mut counters)
+    } else {
+        cells::<false>(terrain, &mut walk, &segment, start_triangle, &mut counters)
+    };
+    touches.map(|touches| (touches, counters))
+}
+
+/// The ray's segment as the short walk compares it with the cells' samples.
+struct Segment {
+    /// The start's height moved down, and up, by the block walk's margin.
+    oz_low: f64,
+    oz_high: f64,
+    dz: f64,
+    t_end: f64,
+    end_doubt: f64,
+}
+
+/// The short walk's cells from `walk`'s on: whether the ray touches a triangle, or `None`
+/// where the full walk must answer it. `FALLING`: whether the ray goes down.
+#[inline(always)]
+fn cells<const FALLING: bool>(
+    terrain: &Terrain,
+    walk: &mut Path,
+    segment: &Segment,
+    start_triangle: Option<((usize, usize), u8)>,
+    counters: &mut Counters,
+) -> Option<bool> {
+    let field = terrain.field();
+    let (samples, w) = (field.samples(), field.width());
+    // (Held here, not read through `field` after every write to the counters.)
+    let (base, unit) = (field.height_of(0), field.step());
+    let height_of = |sample: u16| base + f64::from(sample) * unit;
+    let Segment {
+        oz_low,
+        oz_high,
+        dz,
+        t_end,
+        end_doubt,
+    } = *segment;
+    let mut cells = HitMiss::default();
+    let mut triangles = HitMiss::default();
+    let touches = loop {
         let t_lo = walk.t;
         let t_exit = smaller(walk.next_u, walk.next_v);
         if walk.at_lattice_point()
@@ -70,26 +119,24 @@ pub(super) fn short_walk(
         let four = [corners[0], corners[1], corners[w], corners[w + 1]];
         let lowest = four[0].min(four[1]).min(four[2].min(four[3]));
         let highest = four[0].max(four[1]).max(four[2].max(four[3]));
-        let (t_low_point, t_high_point) = if d[2] < 0.0 {
-            (t_hi, t_lo)
-        } else {
-            (t_lo, t_hi)
-        };
-        if oz_high + d[2] * t_high_point < field.height_of(lowest) {
+        let (t_low_point, t_high_point) = if FALLING { (t_hi, t_lo) } else { (t_lo, t_hi) };
+        if oz_high + dz * t_high_point < height_of(lowest) {
             // Under the surface: the block walk changes its tests there.
             return None;
         }
-        let may_hit = oz_low + d[2] * t_low_point <= field.height_of(highest);
-        if counters.cell.record(may_hit)
-            && cell_hits(terrain, &walk, four, start_triangle, &mut counters)?
+        let may_hit = oz_low + dz * t_low_point <= height_of(highest);
+        if cells.record(may_hit) && cell_hits(terrain, walk, four, start_triangle, &mut triangles)?
         {
-            return Some((true, counters));
+            break true;
         }
         if ends_inside {
-            return Some((false, counters));
+            break false;
         }
         walk.step()?;
-    }
+    };
+    counters.cell += cells;
+    counters.triangle += triangles;
+    Some(touches)
 }
 
 /// Whether the ray touches a triangle of the path's cell (with corner samples `four`) other
@@ -102,7 +149,7 @@ fn cell_hits(
     walk: &Path,
     four: [u16; 4],
     start_triangle: Option<((usize, usize), u8)>,
-    counters: &mut Counters,
+    triangles: &mut HitMiss,
 ) -> Option<bool> {
     let field = terrain.field();
     let (i, j) = walk.cell();
@@ -120,7 +167,7 @@ fn cell_hits(
         // A hit counts where the ray touches the triangle after its start (as the search's
         // rule has it, a NaN is not before it).
         let counts = hit.is_some_and(|hit| hit.t_last.is_none_or(|t| t > 0.0 || t.is_nan()));
-        if counters.triangle.record(counts) {
+        if triangles.record(counts) {
             return Some(true);
         }
     }
