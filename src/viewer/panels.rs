@@ -488,7 +488,7 @@ fn sampling_ui(ui: &mut Ui, model: &mut Model) {
         named(&mut model.widgets, "adaptive", adaptive);
     }
     if let Some(latest) = &model.latest {
-        super::stats_ui::effect_shares(ui, &latest.frame.totals);
+        super::stats_ui::effect_shares(ui, &latest.frame.totals, &latest.job.lighting.effects);
     }
 }
 
