@@ -67,5 +67,6 @@ registry! {
     }
     at_hit {
         sky_light: sky::SkyLight,
+        zenith: zenith::Zenith,
     }
 }
