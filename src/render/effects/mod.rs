@@ -67,6 +67,5 @@ registry! {
     }
     at_hit {
         sky_light: sky::SkyLight,
-        zenith: zenith::Zenith,
     }
 }
