@@ -240,13 +240,23 @@ impl FrameStats {
                 self.base_hits
             );
         }
-        let water = &self.effects.water;
-        if water.points > 0 {
-            out += &format!(
-                "water: {} pixels, {} reflected rays cast ({} met the terrain), {} culled (the sky, provably)\n",
-                water.points, water.rays, water.hits, water.culled_horizon_clear
-            );
+        for (label, counters) in self.effects.counted() {
+            out += &format!("{label}: {}\n", counts_line(&counters));
         }
         out
     }
+}
+
+/// An effect's counters as a line, `name count` by name (the queries left out: the table's
+/// queries are those of primary and shadow rays).
+fn counts_line(counters: &Value) -> String {
+    let Some(fields) = counters.as_object() else {
+        return String::new();
+    };
+    let counts: Vec<String> = fields
+        .iter()
+        .filter(|(_, count)| count.is_number())
+        .map(|(name, count)| format!("{} {count}", name.replace('_', " ")))
+        .collect();
+    counts.join(", ")
 }

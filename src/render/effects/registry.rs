@@ -114,6 +114,19 @@ macro_rules! registry {
                 serde_json::Value::Object(all)
             }
 
+            /// Each effect of the list that counted anything, by its label, with its
+            /// counters as `--stats` reports them.
+            pub fn counted(&self) -> Vec<(&'static str, serde_json::Value)> {
+                let mut counted = Vec::new();
+                $(
+                    if self.$name != Default::default() {
+                        let counters = serde_json::to_value(&self.$name).unwrap_or_default();
+                        counted.push((<$ty as Counted>::LABEL, counters));
+                    }
+                )*
+                counted
+            }
+
             /// The rays every effect of the list cast.
             pub fn rays(&self) -> u64 {
                 0 $(+ <$ty as Counted>::rays(&self.$name))*
