@@ -1,7 +1,7 @@
 //! What each effect costs, and how several samples per pixel converge: frames of one scene
 //! with each effect alone and all together, and images against a supersampled reference.
 
-use crate::render::effects::{pixel, Effects, Water};
+use crate::render::effects::{Around, Effects, Summary, Water};
 use crate::render::{Culling, Frame, FrameStats, Renderer, Scene, Shader};
 use crate::traverse::Method;
 use crate::Terrain;
@@ -28,29 +28,15 @@ impl EffectRow {
         self.totals.effects.samples.pixels.max(1) as f64
     }
 
-    /// The share of the soft shadow's possible rays left out: a cone settled whole would
-    /// have taken a ray per direction; rays that looked for a blocked cone count as cast
-    /// (`None` without soft shadows).
-    pub fn soft_culled(&self) -> Option<f64> {
-        let e = &self.totals.effects;
-        let per_point = u64::from(pixel::per_sample(&self.effects).sun_rays);
-        let s = &self.totals.skipped;
-        let settled = s.horizon_clear + s.no_shadow_possible + s.above_terrain;
-        let possible = settled * per_point + e.soft.directions;
-        (self.effects.sun_angle_deg > 0.0 && self.totals.shadow_rays == 0 && possible > 0)
-            .then(|| 1.0 - (e.soft.rays + e.soft.probes) as f64 / possible as f64)
-    }
-
-    /// The share of reflected rays left out (`None` where no water shows).
-    pub fn water_culled(&self) -> Option<f64> {
-        let water = &self.totals.effects.water;
-        (water.points > 0).then(|| water.culled as f64 / water.points as f64)
-    }
-
-    /// The share of sky rays left out (`None` without sky light).
-    pub fn sky_culled(&self) -> Option<f64> {
-        let sky = &self.totals.effects.sky;
-        (sky.directions > 0).then(|| 1.0 - sky.rays as f64 / sky.directions as f64)
+    /// Each effect of the list as the frame counted it: its rays, and the share of the rays
+    /// it could have cast that it left out.
+    pub fn each_effect(&self) -> Vec<Summary> {
+        let around = Around {
+            asked: &self.effects,
+            shadow_rays: self.totals.shadow_rays,
+            settled: self.totals.skipped.settled(),
+        };
+        self.totals.effects.each(&around)
     }
 }
 

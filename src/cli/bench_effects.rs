@@ -85,32 +85,52 @@ fn low_water(scene: &heightray::render::Scene) -> anyhow::Result<Water> {
     Ok(Water { level, ..water })
 }
 
-/// The costs table: time and rays per pixel by kind, as ratios to the first (plain) row.
+/// The costs table: time and rays per pixel by kind, as ratios to the first (plain) row,
+/// a column of rays and one of the share left out per effect of the list.
 fn print_costs(out: &mut impl Write, rows: &[EffectRow]) -> anyhow::Result<()> {
-    writeln!(out, "| frame | ms | x plain | camera rays/px | shadow rays/px | soft rays/px | sky rays/px | water rays/px | soft culled | sky culled | water culled |")?;
+    let words: Vec<&str> = rows
+        .first()
+        .map(|row| row.each_effect().iter().map(|e| e.word).collect())
+        .unwrap_or_default();
+    let columns = |what: &str| {
+        words
+            .iter()
+            .map(|w| format!(" {w} {what} |"))
+            .collect::<String>()
+    };
     writeln!(
         out,
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "| frame | ms | x plain | camera rays/px | shadow rays/px |{}{}",
+        columns("rays/px"),
+        columns("culled")
+    )?;
+    writeln!(
+        out,
+        "|---|---:|---:|---:|---:|{}",
+        "---:|".repeat(2 * words.len())
     )?;
     let plain = rows.first().map_or(1.0, |r| r.time.as_secs_f64());
     let percent = |share: Option<f64>| share.map_or("-".into(), |s| format!("{:.0}%", 100.0 * s));
     for row in rows {
         let (t, px) = (&row.totals, row.pixel_count());
         let per = |n: u64| n as f64 / px;
+        let effects = row.each_effect();
+        let rays: String = effects
+            .iter()
+            .map(|e| format!(" {:.2} |", per(e.rays)))
+            .collect();
+        let culled: String = effects
+            .iter()
+            .map(|e| format!(" {} |", percent(e.culled)))
+            .collect();
         writeln!(
             out,
-            "| {} | {:.0} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} |",
+            "| {} | {:.0} | {:.2} | {:.2} | {:.2} |{rays}{culled}",
             row.label,
             row.time.as_secs_f64() * 1e3,
             row.time.as_secs_f64() / plain,
             per(t.primary_rays),
             per(t.shadow_rays),
-            per(t.effects.soft.rays),
-            per(t.effects.sky.rays),
-            per(t.effects.water.rays),
-            percent(row.soft_culled()),
-            percent(row.sky_culled()),
-            percent(row.water_culled()),
         )?;
     }
     Ok(())
@@ -149,7 +169,8 @@ fn versus_embree(
         let cast = pool.install(|| embree.render_effects(&renderer, &mut frame));
         let time = start.elapsed().as_secs_f64();
         let t = &row.totals;
-        let ours = t.shadow_rays + t.effects.soft.rays + t.effects.soft.probes + t.effects.sky.rays;
+        let effect_rays: u64 = row.each_effect().iter().map(|e| e.rays).sum();
+        let ours = t.shadow_rays + effect_rays;
         let px = row.pixel_count();
         let ms = row.time.as_secs_f64();
         writeln!(
@@ -182,12 +203,14 @@ fn versus_embree(
 }
 
 fn row_json(row: &EffectRow) -> serde_json::Value {
-    json!({
+    let mut json = json!({
         "frame": row.label, "ms": row.time.as_secs_f64() * 1e3,
-        "soft_culled": row.soft_culled(), "sky_culled": row.sky_culled(),
-        "water_culled": row.water_culled(),
         "stats": row.totals.to_json(),
-    })
+    });
+    for effect in row.each_effect() {
+        json[format!("{}_culled", effect.word)] = json!(effect.culled);
+    }
+    json
 }
 
 /// Uniform and adaptive samples against the scene rendered `SUPERSAMPLING` times larger

@@ -164,9 +164,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         output_file::save_rgb(&args.output, &frame.pixels, (width, height))
             .map_err(anyhow::Error::msg)?;
     }
-    let effects = &frame.totals.effects;
-    let rays =
-        frame.totals.primary_rays + frame.totals.shadow_rays + effects.soft.rays + effects.sky.rays;
+    let rays = frame.totals.primary_rays + frame.totals.shadow_rays + frame.totals.effects.rays();
     // (Before the table: a reader of the table that stops early loses none of the files.)
     if let Some(path) = &args.stats {
         // The sun as a compass bearing (0 north, 90 east) and elevation, in degrees.

@@ -28,10 +28,11 @@ pub use accumulate::{reach, Accumulation};
 pub use camera::{Camera, CameraError, Window, MAX_PIXELS};
 pub use context::{Context, Culling};
 pub use contours::Contours;
+pub use effects::{Reflection, Shadow, ShadowSkip, SkyRays, SoftShadow};
 pub use frame::Frame;
 pub use passes::{Renderer, PASS_BLOCKS};
 pub use ramp::{HeightSpan, Ramp};
-pub use sample::{Reflection, Sample, Shadow, ShadowSkip, SkyRays, SoftShadow, WaterPixel};
+pub use sample::Sample;
 pub use scene::{
     bytes_from_hex, bytes_from_linear, level_in_map_units, level_z, linear_from_bytes,
 };

@@ -1,15 +1,17 @@
 //! From a ray to a colour: the primary ray, the shadow ray only where it can change the pixel,
-//! Lambert shading with an elevation ramp, sky and fog.
+//! Lambert shading with an elevation ramp, sky and fog; the effects of the list in
+//! [`effects`] asked in their stages (before the hit, at it), each changing the light.
 
 use super::camera::Camera;
 use super::context::{Context, Culling};
 use super::contours::Contours;
 use super::effects::pixel::per_sample;
 use super::effects::{
-    nanos_since, At, Effect, EffectTime, SkyLight, SoftShadows, SunShadow, WaterReflection,
+    self, nanos_since, At, Cast, Effect, EffectTime, Light, Shadow, ShadowSkip, SoftShadows,
+    SunShadow,
 };
 use super::gamma;
-use super::sample::{Cast, Sample, Shadow, ShadowSkip};
+use super::sample::Sample;
 use super::scene::Lighting;
 use super::tally::{Counting, Tally};
 use crate::arith::{with_numbers, Arith, Generic, Numbers, Scalar, WithNumbers};
@@ -228,22 +230,15 @@ impl<'a> Shader<'a> {
     ) -> DVec3 {
         let primary = self.tracer().trace::<S>(ray, clearance);
         tally.primary(&primary.counters, primary.hit.as_ref().map(|f| f.face));
-        if let Some(water) = &self.lighting.effects.water {
-            let field = self.terrain.field();
-            let terrain_t = primary.hit.as_ref().map(|found| found.t.to_f64());
-            if let Some(t) = water.crossing(ray.origin(), ray.dir(), terrain_t, field) {
-                let start = Instant::now();
-                let water = WaterReflection(water).cast::<S>(&self.cx, ray, t);
-                tally.water(water.reflection, &water.counters);
-                if water.redone {
-                    tally.redone();
-                }
-                tally.time(&EffectTime {
-                    water: nanos_since(start),
-                    ..EffectTime::default()
-                });
-                return water.rgb;
+        // Effects are timed as they run; hard shadows are not, so a plain frame reads no clock.
+        let mut time = EffectTime::default();
+        let shown = effects::before_hit::<S>(&self.cx, ray, primary.hit.as_ref(), tally, &mut time);
+        if let Some((colour, redone)) = shown {
+            if redone {
+                tally.redone();
             }
+            tally.time(&time);
+            return colour;
         }
         let Some(found) = primary.hit else {
             return self.sky_seen(ray);
@@ -264,15 +259,13 @@ impl<'a> Shader<'a> {
         let at = At::new(&found, ray, p);
         let facing = this.facing(found.face, found.cell, found.triangle, p);
         let mut redone = false;
-        // Effects are timed as they run; hard shadows are not, so a plain frame reads no clock.
-        let mut time = EffectTime::default();
         let soft = self.lighting.effects.sun_angle_deg > 0.0;
         let shadow = if self.lighting.shadows {
             let start = soft.then(Instant::now);
             let (shadow, counters, exactly) = shadow(this, &at, facing);
             tally.shadow(shadow, &counters);
             redone |= exactly;
-            time.soft = start.map_or(0, nanos_since);
+            time.soft_shadow = start.map_or(0, nanos_since);
             shadow
         } else {
             Shadow::NotAsked
@@ -287,17 +280,12 @@ impl<'a> Shader<'a> {
                 face: found.face,
             }));
         }
-        let colour = if self.lighting.effects.sky_light {
-            let start = Instant::now();
-            let (light, sky) = SkyLight.cast(this, &at);
-            tally.sky(&sky);
-            redone |= sky.redone;
-            time.sky = nanos_since(start);
-            self.lit_colour(ray, (found.face, p), t, facing, shadow, light)
-        } else {
-            let ambient = DVec3::splat(self.lighting.ambient);
-            self.lit_colour(ray, (found.face, p), t, facing, shadow, ambient)
+        let mut light = Light {
+            sun: shadow.sun_seen(),
+            ambient: DVec3::splat(self.lighting.ambient),
         };
+        redone |= effects::at_hit::<S>(this, &at, &mut light, tally, &mut time);
+        let colour = self.lit_colour(ray, (found.face, p), t, facing, light);
         if redone {
             tally.redone();
         }
@@ -329,16 +317,17 @@ impl<'a> Shader<'a> {
         facing: f64,
         shadow: Shadow,
     ) -> u32 {
-        let ambient = DVec3::splat(self.lighting.ambient);
-        gamma::pack(
-            self.lit_colour(ray, at, t, facing, shadow, ambient)
-                .to_array(),
-        )
+        let light = Light {
+            sun: shadow.sun_seen(),
+            ambient: DVec3::splat(self.lighting.ambient),
+        };
+        gamma::pack(self.lit_colour(ray, at, t, facing, light).to_array())
     }
 
     /// The colour of the surface at `p` on `face`, `t` along `ray`, facing the sun as
-    /// [`Context::facing`] says, in the shadow `shadow` says, lit by `ambient` (the scene's
-    /// ambient term, or the sky's light where the scene has sky light); in linear light.
+    /// [`Context::facing`] says, lit by `light` (the share of the sun its shadow and the
+    /// effects leave, and the ambient light: the scene's term, or what an effect such as sky
+    /// light puts in its place); in linear light.
     #[inline(always)]
     fn lit_colour(
         &self,
@@ -346,15 +335,10 @@ impl<'a> Shader<'a> {
         (face, p): (Face, DVec3),
         t: f64,
         facing: f64,
-        shadow: Shadow,
-        ambient: DVec3,
+        light: Light,
     ) -> DVec3 {
-        let lit = match shadow {
-            Shadow::Cast { shadowed: true } => 0.0,
-            Shadow::Soft(soft) => facing.max(0.0) * soft.visible(),
-            _ => facing.max(0.0),
-        };
-        let light = ambient + DVec3::splat(self.lighting.intensity * lit);
+        let lit = facing.max(0.0) * light.sun;
+        let light = light.ambient + DVec3::splat(self.lighting.intensity * lit);
         let colour = self.marked_albedo(ray, (face, p), t) * light;
         self.fogged_rgb(ray, t, colour)
     }

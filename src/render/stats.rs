@@ -31,7 +31,9 @@ impl PixelStats {
         };
         stats.add_queries(&sample.primary);
         stats.add_queries(&sample.secondary);
-        stats.add_queries(&sample.sky.counters);
+        for queries in sample.effects.queries_at_hit() {
+            stats.add_queries(&queries);
+        }
         stats
     }
 
@@ -72,6 +74,14 @@ pub struct Skipped {
     pub horizon_clear: u64,
 }
 
+impl Skipped {
+    /// Points whose shadow the sun's rules settled whole, with no ray: every reason but
+    /// facing away.
+    pub fn settled(&self) -> u64 {
+        self.horizon_clear + self.no_shadow_possible + self.above_terrain
+    }
+}
+
 /// Totals of a frame (or of any set of pixels). Two frames' totals are equal when they
 /// counted the same rays, however long those took.
 #[derive(Clone, Copy, Debug, Default, AddAssign)]
@@ -92,7 +102,7 @@ pub struct FrameStats {
     pub primary: Counters,
     /// The shadow rays' queries.
     pub shadow: Counters,
-    /// Soft shadows, sky light and samples per pixel.
+    /// Each effect's counters, and samples per pixel.
     pub effects: EffectStats,
     /// Pixels with a decision exact mode made again exactly after intervals left it unsettled
     /// (see [`Sample::redone`]).
@@ -230,13 +240,23 @@ impl FrameStats {
                 self.base_hits
             );
         }
-        let water = &self.effects.water;
-        if water.points > 0 {
-            out += &format!(
-                "water: {} pixels, {} reflected rays cast ({} met the terrain), {} culled (the sky, provably)\n",
-                water.points, water.rays, water.hits, water.culled
-            );
+        for (label, counters) in self.effects.counted() {
+            out += &format!("{label}: {}\n", counts_line(&counters));
         }
         out
     }
+}
+
+/// An effect's counters as a line, `name count` by name (the queries left out: the table's
+/// queries are those of primary and shadow rays).
+fn counts_line(counters: &Value) -> String {
+    let Some(fields) = counters.as_object() else {
+        return String::new();
+    };
+    let counts: Vec<String> = fields
+        .iter()
+        .filter(|(_, count)| count.is_number())
+        .map(|(name, count)| format!("{} {count}", name.replace('_', " ")))
+        .collect();
+    counts.join(", ")
 }

@@ -5,14 +5,15 @@
 //! A frame's pixels then carry no counters of their own: only their colour and heat-map
 //! queries leave the shader.
 
-use super::effects::EffectTime;
-use super::sample::{Reflection, Sample, Shadow, ShadowSkip, SkyRays};
+use super::effects::{AtHit, BeforeHit, EffectTime, Kept, Record, Shadow, ShadowSkip, SoftShadows};
+use super::sample::Sample;
 use super::stats::{FrameStats, PixelStats};
 use crate::geometry::Face;
 use crate::traverse::Counters;
 
-/// Counts what a sample's rays asked, as they are cast.
-pub trait Tally {
+/// Counts what a sample's rays asked, as they are cast; each effect's outcome goes through
+/// [`Record`].
+pub trait Tally: Record {
     /// The sample is traced again from the start: forget what it counted so far. Counts in a
     /// frame cannot be taken back, so by default nothing is forgotten: only numbers that
     /// never trace a sample twice count straight into a frame (see
@@ -22,10 +23,6 @@ pub trait Tally {
     fn primary(&mut self, counters: &Counters, hit: Option<Face>);
     /// What became of its shadow, and the shadow rays' queries (a scene with shadows only).
     fn shadow(&mut self, shadow: Shadow, counters: &Counters);
-    /// Its sky-light rays (a scene with sky light only).
-    fn sky(&mut self, sky: &SkyRays);
-    /// What became of the reflection of the water it shows, and the reflected ray's queries.
-    fn water(&mut self, reflection: Reflection, counters: &Counters);
     /// A decision on it was made again exactly ([`Sample::redone`]); noted once per sample.
     fn redone(&mut self);
     /// The time its effects took (a frame with effects only).
@@ -51,6 +48,19 @@ impl<'a> Counting<'a> {
     }
 }
 
+impl Record for Counting<'_> {
+    #[inline(always)]
+    fn before_hit<E: BeforeHit + Kept>(&mut self, outcome: &E::Outcome, queries: &Counters) {
+        self.frame.before_hit::<E>(outcome, queries);
+        self.pixel.add_queries(queries);
+    }
+    #[inline(always)]
+    fn at_hit<E: AtHit + Kept>(&mut self, outcome: &E::Outcome) {
+        self.frame.at_hit::<E>(outcome);
+        self.pixel.add_queries(&E::queries(outcome));
+    }
+}
+
 impl Tally for Counting<'_> {
     #[inline(always)]
     fn primary(&mut self, counters: &Counters, hit: Option<Face>) {
@@ -63,22 +73,25 @@ impl Tally for Counting<'_> {
         self.pixel.add_queries(counters);
     }
     #[inline(always)]
-    fn sky(&mut self, sky: &SkyRays) {
-        self.frame.sky(sky);
-        self.pixel.add_queries(&sky.counters);
-    }
-    #[inline(always)]
-    fn water(&mut self, reflection: Reflection, counters: &Counters) {
-        self.frame.water(reflection, counters);
-        self.pixel.add_queries(counters);
-    }
-    #[inline(always)]
     fn redone(&mut self) {
         self.frame.redone();
     }
     #[inline(always)]
     fn time(&mut self, time: &EffectTime) {
         self.frame.time += *time;
+    }
+}
+
+impl Record for FrameStats {
+    #[inline(always)]
+    fn before_hit<E: BeforeHit + Kept>(&mut self, outcome: &E::Outcome, queries: &Counters) {
+        // (In place of the shadow ray: its queries count with the shadow rays', as secondary.)
+        self.shadow += *queries;
+        self.effects.count::<E>(outcome);
+    }
+    #[inline(always)]
+    fn at_hit<E: AtHit + Kept>(&mut self, outcome: &E::Outcome) {
+        self.effects.count::<E>(outcome);
     }
 }
 
@@ -103,18 +116,8 @@ impl Tally for FrameStats {
             Shadow::Skipped(ShadowSkip::NoShadowPossible) => self.skipped.no_shadow_possible += 1,
             Shadow::Skipped(ShadowSkip::AboveTerrain) => self.skipped.above_terrain += 1,
             Shadow::Skipped(ShadowSkip::HorizonClear) => self.skipped.horizon_clear += 1,
-            Shadow::Soft(soft) => self.effects.add_soft(&soft),
+            Shadow::Soft(soft) => self.effects.count::<SoftShadows>(&soft),
         }
-    }
-    #[inline(always)]
-    fn sky(&mut self, sky: &SkyRays) {
-        self.effects.add_sky(sky);
-    }
-    #[inline(always)]
-    fn water(&mut self, reflection: Reflection, counters: &Counters) {
-        // (The reflected ray's queries count with the shadow rays', as secondary rays.)
-        self.shadow += *counters;
-        self.effects.add_reflection(reflection);
     }
     #[inline(always)]
     fn redone(&mut self) {
@@ -123,6 +126,16 @@ impl Tally for FrameStats {
     #[inline(always)]
     fn time(&mut self, time: &EffectTime) {
         self.time += *time;
+    }
+}
+
+impl Record for Sample {
+    fn before_hit<E: BeforeHit + Kept>(&mut self, outcome: &E::Outcome, queries: &Counters) {
+        *E::outcome_mut(&mut self.effects) = *outcome;
+        self.secondary = *queries;
+    }
+    fn at_hit<E: AtHit + Kept>(&mut self, outcome: &E::Outcome) {
+        *E::outcome_mut(&mut self.effects) = *outcome;
     }
 }
 
@@ -135,12 +148,6 @@ impl Tally for Sample {
     }
     fn shadow(&mut self, shadow: Shadow, counters: &Counters) {
         (self.shadow, self.secondary) = (shadow, *counters);
-    }
-    fn sky(&mut self, sky: &SkyRays) {
-        self.sky = *sky;
-    }
-    fn water(&mut self, reflection: Reflection, counters: &Counters) {
-        (self.reflection, self.secondary) = (reflection, *counters);
     }
     fn redone(&mut self) {
         self.redone = true;
@@ -157,12 +164,7 @@ impl Sample {
         if self.shadow != Shadow::NotAsked {
             tally.shadow(self.shadow, &self.secondary);
         }
-        if self.sky.of > 0 {
-            tally.sky(&self.sky);
-        }
-        if self.reflection != Reflection::NotWater {
-            tally.water(self.reflection, &self.secondary);
-        }
+        self.effects.record_into(&self.secondary, tally);
         if self.redone {
             tally.redone();
         }

@@ -243,6 +243,7 @@ impl App {
             Action::ApplyClock => self.model.apply_clock(),
             Action::PlayFlythrough => flythrough::play(&mut self.model),
             Action::StopFlythrough => flythrough::stop(&mut self.model),
+            Action::Notify(text) => self.model.notify(text),
         }
     }
 
@@ -322,7 +323,8 @@ impl App {
                 &model.shown.terrain,
                 model.latest.as_deref(),
             ));
-            panels::fit_to_window(ui, model);
+            let fit = panels::fit_to_window(ui, &mut model.widgets, &mut model.narrow_window);
+            actions.extend(fit);
             if model.widgets.panels_visible {
                 panels::side_panel_ui(ui, model, &mut actions);
             }

@@ -7,7 +7,7 @@ use super::orbit::{MIN_PITCH_DEG, PITCH_LIMIT_DEG};
 use super::overlay_ui::overlay_ui;
 use super::relief_ui::{exaggeration_ui, georeferencing_ui};
 use super::settings::{fog, ArithKind};
-use super::state::{Action, Decoding, LoadRequest, Model, Source};
+use super::state::{Action, Decoding, LoadRequest, Model, Source, Widgets};
 use super::stats_ui::statistics_ui;
 use super::water_ui::water_ui;
 use super::widgets::named;
@@ -26,24 +26,28 @@ const NARROW_BELOW: f32 = 900.0;
 /// Below this window width the panel hides itself (H brings it back).
 const HIDE_BELOW: f32 = 640.0;
 
-/// Hides the panel when the window becomes too narrow for it and the view, and shows it
-/// again when the window widens, unless H was pressed in between. Called every frame.
-pub fn fit_to_window(ui: &Ui, model: &mut Model) {
-    if model.widgets.panels_visible {
-        model.widgets.panel_auto_hidden = false;
+/// Hides the panel (in `widgets`) when the window becomes too narrow for it and the view, and
+/// shows it again when the window widens, unless H was pressed in between; `narrow_window`
+/// keeps what the window was. Called every frame; returns the notice that says why the panel
+/// went.
+pub fn fit_to_window(ui: &Ui, widgets: &mut Widgets, narrow_window: &mut bool) -> Option<Action> {
+    if widgets.panels_visible {
+        widgets.panel_auto_hidden = false;
     }
     let narrow = ui.available_width() < HIDE_BELOW;
-    if narrow == model.narrow_window {
-        return;
+    if narrow == *narrow_window {
+        return None;
     }
-    model.narrow_window = narrow;
-    if narrow && model.widgets.panels_visible {
-        model.widgets.panels_visible = false;
-        model.widgets.panel_auto_hidden = true;
-        model.notify("The window is narrow: the panel is hidden (H shows it)");
-    } else if !narrow && model.widgets.panel_auto_hidden {
-        model.widgets.panels_visible = true;
+    *narrow_window = narrow;
+    if narrow && widgets.panels_visible {
+        (widgets.panels_visible, widgets.panel_auto_hidden) = (false, true);
+        // (The notice is set once this frame's actions run: draw again to show it.)
+        ui.ctx().request_repaint();
+        let notice = "The window is narrow: the panel is hidden (H shows it)";
+        return Some(Action::Notify(notice.into()));
     }
+    widgets.panels_visible |= !narrow && widgets.panel_auto_hidden;
+    None
 }
 
 /// The panel on the right, with one collapsible section per concern. Only the sections
@@ -488,7 +492,7 @@ fn sampling_ui(ui: &mut Ui, model: &mut Model) {
         named(&mut model.widgets, "adaptive", adaptive);
     }
     if let Some(latest) = &model.latest {
-        super::stats_ui::effect_shares(ui, &latest.frame.totals);
+        super::stats_ui::effect_shares(ui, &latest.frame.totals, &latest.job.lighting.effects);
     }
 }
 

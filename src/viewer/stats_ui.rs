@@ -6,6 +6,7 @@ use super::settings::HeatMode;
 use super::state::{Telemetry, Widgets};
 use super::widgets::named;
 use super::worker::RenderedFrame;
+use crate::render::effects::{Around, Effects, Summary};
 use crate::render::{FrameStats, PASS_BLOCKS};
 use crate::traverse::{Counters, HitMiss};
 use crate::Method;
@@ -226,19 +227,22 @@ fn latency_ui(ui: &mut Ui, telemetry: &Telemetry) {
 }
 
 /// Each kind of ray's share of the frame's rays and of its thread time, where effects cast
-/// any or took time.
-pub(super) fn effect_shares(ui: &mut egui::Ui, totals: &crate::render::FrameStats) {
-    let effects = &totals.effects;
-    let kinds = [
+/// any or took time, and each effect's counters; the frame was rendered with `asked`.
+pub(super) fn effect_shares(ui: &mut egui::Ui, totals: &FrameStats, asked: &Effects) {
+    let around = Around {
+        asked,
+        shadow_rays: totals.shadow_rays,
+        settled: totals.skipped.settled(),
+    };
+    let effects = totals.effects.each(&around);
+    let mut kinds = vec![
         ("camera", totals.primary_rays),
         ("shadow", totals.shadow_rays),
-        ("soft shadow", effects.soft.rays + effects.soft.probes),
-        ("sky", effects.sky.rays),
-        ("water", effects.water.rays),
     ];
+    kinds.extend(effects.iter().map(|e| (e.label, e.rays)));
     let all: u64 = kinds.iter().map(|(_, n)| n).sum();
     let percent = |share: f64| format!("{:.0}%", 100.0 * share);
-    let effect_rays = effects.soft.rays + effects.sky.rays + effects.water.rays;
+    let effect_rays: u64 = effects.iter().map(|e| e.rays).sum();
     if effect_rays > 0 && all > 0 {
         let shares: Vec<String> = kinds
             .iter()
@@ -252,16 +256,11 @@ pub(super) fn effect_shares(ui: &mut egui::Ui, totals: &crate::render::FrameStat
         .shares()
         .filter(|t| t.camera < 1.0 || t.later_samples > 0.0)
     {
-        let parts = [
-            ("camera and shading", time.camera),
-            ("soft shadow", time.soft),
-            ("sky", time.sky),
-            ("water", time.water),
-        ];
+        let parts = [("camera and shading", time.camera)].into_iter();
         let shares: Vec<String> = parts
-            .iter()
+            .chain(time.effects.iter().copied())
             .filter(|(_, share)| *share > 0.0)
-            .map(|(kind, share)| format!("{kind} {}", percent(*share)))
+            .map(|(kind, share)| format!("{kind} {}", percent(share)))
             .collect();
         let label = ui.label(format!("time: {}", shares.join(", ")));
         label.on_hover_text(
@@ -278,12 +277,34 @@ pub(super) fn effect_shares(ui: &mut egui::Ui, totals: &crate::render::FrameStat
     if effect_rays == 0 {
         return;
     }
-    let culled = |asked: u64, cast: u64| 100.0 * (1.0 - cast as f64 / asked.max(1) as f64);
+    let left_out: Vec<String> = effects
+        .iter()
+        .filter_map(|e| Some(format!("{} {}", e.label, percent(e.culled?))))
+        .collect();
     ui.weak(format!(
-        "left out: {:.0}% of sky rays (provably open), {:.0}% of soft-shadow directions at penumbra points, {} whole sun cones provably clear, {} provably blocked",
-        culled(effects.sky.directions, effects.sky.rays),
-        culled(effects.soft.directions, effects.soft.rays + effects.soft.probes),
+        "left out (provably clear or blocked): {}; {} whole sun cones provably clear",
+        left_out.join(", "),
         totals.skipped.horizon_clear,
-        effects.soft.blocked,
     ));
+    for effect in effects.iter().filter(|e| e.rays > 0) {
+        counters_ui(ui, effect);
+    }
+}
+
+/// An effect's counters, by their names in the statistics.
+fn counters_ui(ui: &mut Ui, effect: &Summary) {
+    let Some(counters) = effect.counters.as_object() else {
+        return;
+    };
+    egui::CollapsingHeader::new(format!("{} counters", effect.label))
+        .id_salt(effect.name)
+        .show(ui, |ui| {
+            egui::Grid::new(effect.name).num_columns(2).show(ui, |ui| {
+                for (name, value) in counters {
+                    ui.label(name.replace('_', " "));
+                    ui.label(value.to_string());
+                    ui.end_row();
+                }
+            });
+        });
 }

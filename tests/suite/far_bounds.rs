@@ -423,7 +423,7 @@ fn sky_light_frames_are_the_same_with_sky_bounds_on_and_off() {
                 on.pixels, walked.pixels,
                 "{arith:?}, {sky_rays} rays to {sky_distance}"
             );
-            let bound = on.totals.effects.sky.queries.bound;
+            let bound = on.totals.effects.sky_light.queries.bound;
             // (`f32`'s room for the rounding of its start is too wide to settle many.)
             if arith != Arith::F32 {
                 assert!(bound.miss > 0, "{arith:?}: the sky's bounds settle rays");

@@ -198,7 +198,7 @@ fn frames_with_every_effect_are_the_same_walked_near_or_not() {
             let far = frame(&terrain, lighting, arith, false);
             assert_eq!(near.pixels, far.pixels, "{name} in {arith}");
             let (totals, effects) = (near.totals, near.totals.effects);
-            let cast = totals.shadow_rays + effects.soft.rays + effects.sky.rays;
+            let cast = totals.shadow_rays + effects.soft_shadow.rays + effects.sky_light.rays;
             assert!(cast > 0, "{name}: shadow and effect rays cast");
         }
     }

@@ -128,8 +128,14 @@ fn a_sun_set_below_the_horizon_gives_a_night_sky_and_casts_no_rays_towards_it() 
         "{totals:?}"
     );
     assert_eq!(totals.shadow_rays, 0);
-    assert_eq!(totals.effects.soft.rays + totals.effects.soft.directions, 0);
-    assert_eq!(totals.effects.sky.rays + totals.effects.sky.directions, 0);
+    assert_eq!(
+        totals.effects.soft_shadow.rays + totals.effects.soft_shadow.directions,
+        0
+    );
+    assert_eq!(
+        totals.effects.sky_light.rays + totals.effects.sky_light.directions,
+        0
+    );
     let mut sky_pixels = 0;
     for (k, (&dark, &lit)) in night.pixels.iter().zip(&day.pixels).enumerate() {
         if hits[k] {

@@ -56,14 +56,14 @@ fn water_covers_the_terrain_below_its_level_and_only_there() {
     for x in [0.5, 10.0, 22.9, 23.05, 23.12] {
         let sample = shade(&terrain, true, Culling::default(), &down(x), Arith::F64);
         assert_eq!(sample.rgb, expected, "x = {x}: {:06x}", sample.rgb);
-        assert_eq!(sample.reflection, Reflection::Clear, "x = {x}");
+        assert_eq!(sample.effects.water, Reflection::Clear, "x = {x}");
     }
     // At or above the level (the face reaches 1 at x = 23.125): the terrain, as without water.
     for x in [23.125, 23.2, 24.0, 30.0] {
         let wet = shade(&terrain, true, Culling::default(), &down(x), Arith::F64);
         let dry = shade(&terrain, false, Culling::default(), &down(x), Arith::F64);
         assert_eq!(wet.rgb, dry.rgb, "x = {x}");
-        assert_eq!(wet.reflection, Reflection::NotWater, "x = {x}");
+        assert_eq!(wet.effects.water, Reflection::NotWater, "x = {x}");
     }
 }
 
@@ -82,7 +82,7 @@ fn the_reflection_of_the_ridge_appears_where_the_mirror_geometry_puts_it() {
                 ..Culling::default()
             },
         ] {
-            let at = |s: f64| shade(&terrain, true, culling, &ray(s), arith).reflection;
+            let at = |s: f64| shade(&terrain, true, culling, &ray(s), arith).effects.water;
             for s in [0.25, 0.3, 0.4, 0.5, 0.54] {
                 assert_eq!(at(s), Reflection::Cast { hit: true }, "s = {s}, {arith:?}");
             }

@@ -4,9 +4,8 @@
 //! the rays were traced.
 
 use super::EmbreeHit;
-use crate::render::effects::EffectTime;
+use crate::render::effects::{EffectTime, Outcomes};
 use crate::render::{Frame, FrameStats, PixelStats, Sample, Shader, Shadow, ShadowSkip};
-use crate::render::{Reflection, SkyRays};
 use crate::traverse::Counters;
 use crate::Face;
 use crate::Ray;
@@ -72,8 +71,7 @@ impl Pixel {
             shadow: Shadow::NotAsked,
             primary: Counters::default(),
             secondary: Counters::default(),
-            sky: SkyRays::default(),
-            reflection: Reflection::NotWater,
+            effects: Outcomes::default(),
             redone: false,
             time: EffectTime::default(),
         };

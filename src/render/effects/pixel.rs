@@ -12,6 +12,8 @@ use super::Effects;
 use crate::geometry::Ray;
 use crate::render::camera::Camera;
 use crate::render::gamma;
+use serde_json::{json, Value};
+use std::ops::AddAssign;
 use std::time::Instant;
 
 /// Samples every adaptive pixel takes before it may stop; also the batch it adds at a time.
@@ -137,6 +139,41 @@ impl Estimate {
     pub fn rgb(&self) -> u32 {
         let n = f64::from(self.taken.max(1));
         gamma::pack(self.sum.map(|s| s / n))
+    }
+}
+
+/// Samples per pixel: how many pixels took how many camera rays.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SampleStats {
+    /// Pixels finished.
+    pub pixels: u64,
+    /// Pixels by samples taken: entry `k` counts those that took `2^k` to `2^(k+1) - 1`.
+    pub histogram: [u64; 11],
+}
+
+impl SampleStats {
+    /// Counts one finished pixel that took `samples` camera rays.
+    pub fn add(&mut self, samples: u32) {
+        self.pixels += 1;
+        let bucket = (31 - samples.max(1).leading_zeros()) as usize;
+        self.histogram[bucket.min(10)] += 1;
+    }
+
+    /// The samples as JSON; `camera_rays` is the frame's primary rays (for their mean).
+    pub fn to_json(&self, camera_rays: u64) -> Value {
+        json!({
+            "mean": camera_rays as f64 / self.pixels.max(1) as f64,
+            "pixels_by_power_of_two": self.histogram,
+        })
+    }
+}
+
+impl AddAssign for SampleStats {
+    fn add_assign(&mut self, rhs: SampleStats) {
+        self.pixels += rhs.pixels;
+        for (a, b) in self.histogram.iter_mut().zip(rhs.histogram) {
+            *a += b;
+        }
     }
 }
 

@@ -5,15 +5,17 @@
 //! azimuth, a direction that climbs more steeply than the terrain within the distance can
 //! rise in its sector is open without a walk.
 
-use super::effect::{At, Effect};
+use super::effect::{Around, At, AtHit, Counted, Effect, Light, Sampled};
 use super::horizon::{climbs_above, level_within, sector_of, slope_bound_within, Sector};
 use super::sampling::{point, seed_of, Hemisphere};
 use crate::arith::Scalar;
 use crate::geometry::Ray;
 use crate::render::context::Context;
-use crate::render::sample::SkyRays;
 use crate::render::sky_gradient::{horizon, sky_colour, zenith};
+use crate::traverse::Counters;
+use derive_more::AddAssign;
 use glam::DVec3;
+use serde::Serialize;
 
 /// Sectors of azimuth the terrain's rise around a point is bounded in.
 const SECTORS: usize = 8;
@@ -116,5 +118,104 @@ impl Effect for SkyLight {
         let brightness = (open_mean.x + open_mean.y + open_mean.z) / 3.0;
         let ambient = light * (cx.lighting.ambient / (f64::from(rays) * brightness));
         (ambient, sky)
+    }
+}
+
+/// A point's sky-light rays.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SkyRays {
+    /// Directions asked.
+    pub of: u16,
+    /// Directions that reach the sky.
+    pub open: u16,
+    /// Directions traced (the others climbed above the terrain's bound).
+    pub cast: u16,
+    /// The traced rays' queries.
+    pub counters: Counters,
+    /// A triangle test intervals could not settle was decided exactly.
+    pub redone: bool,
+}
+
+impl SkyRays {
+    /// The cosine-weighted share of the hemisphere open to the sky (the sky-view factor).
+    pub fn open_share(&self) -> f64 {
+        f64::from(self.open) / f64::from(self.of.max(1))
+    }
+
+    /// Directions left out because they provably reach the sky.
+    pub fn culled(&self) -> u16 {
+        self.of - self.cast
+    }
+}
+
+/// Sky light of a frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, AddAssign, Serialize)]
+pub struct SkyStats {
+    /// Points lit by the sky.
+    pub points: u64,
+    /// Directions asked.
+    pub directions: u64,
+    /// Directions traced.
+    pub rays: u64,
+    /// Directions left out: they climbed above the terrain's bound, so reach the sky.
+    pub culled_horizon_clear: u64,
+    /// Directions that reached the sky.
+    pub open: u64,
+    /// Points whose every direction climbed above the terrain's bound: no ray at all.
+    pub points_without_rays: u64,
+    /// The traced rays' queries.
+    pub queries: Counters,
+}
+
+impl Counted for SkyLight {
+    const NAME: &'static str = "sky_light";
+    const LABEL: &'static str = "sky";
+    const WORD: &'static str = "sky";
+    type Outcome = SkyRays;
+    type Stats = SkyStats;
+
+    fn count(sky: &SkyRays, stats: &mut SkyStats) {
+        if sky.of == 0 {
+            return;
+        }
+        stats.points += 1;
+        stats.directions += u64::from(sky.of);
+        stats.rays += u64::from(sky.cast);
+        stats.culled_horizon_clear += u64::from(sky.culled());
+        stats.open += u64::from(sky.open);
+        stats.points_without_rays += u64::from(sky.cast == 0);
+        stats.queries += sky.counters;
+    }
+
+    fn rays(stats: &SkyStats) -> u64 {
+        stats.rays
+    }
+
+    fn culled(stats: &SkyStats, _: &Around<'_>) -> Option<f64> {
+        (stats.directions > 0).then(|| 1.0 - stats.rays as f64 / stats.directions as f64)
+    }
+}
+
+impl Sampled for SkyLight {
+    fn asked(cx: &Context<'_>) -> bool {
+        cx.lighting.effects.sky_light
+    }
+}
+
+impl AtHit for SkyLight {
+    /// The sky's light in place of the ambient term.
+    #[inline(always)]
+    fn at_hit<S: Scalar>(cx: &Context<'_>, at: &At<'_, S>, light: &mut Light) -> SkyRays {
+        let (ambient, sky) = SkyLight.cast(cx, at);
+        light.ambient = ambient;
+        sky
+    }
+
+    fn queries(sky: &SkyRays) -> Counters {
+        sky.counters
+    }
+
+    fn redone(sky: &SkyRays) -> bool {
+        sky.redone
     }
 }

@@ -5,17 +5,24 @@
 //! bounds cost more than the rays); elsewhere each direction of a stratified set over the disc is a
 //! shadow ray, unless it alone climbs above that bound. A cone whose first direction traced
 //! is blocked may be settled as blocked whole ([`sun_cone`](super::sun_cone)) by one more ray.
+//!
+//! Its outcome fills the sun's shadow of a sample ([`Shadow::Soft`]) in place of the hard
+//! shadow's one ray; points its rules settle whole count with the hard shadows' skips
+//! ([`crate::render::FrameStats::skipped`]).
 
-use super::effect::{At, Effect};
+use super::effect::{Around, At, Counted, Effect};
 use super::horizon::{climbs_above, slope_bound};
+use super::pixel::per_sample;
 use super::sampling::{point, seed_of};
 use super::sun_cone::{self, Cone};
+use super::sun_shadow::{Cast, Shadow, ShadowSkip, SoftShadow};
 use crate::arith::Scalar;
 use crate::geometry::Ray;
 use crate::render::context::Context;
-use crate::render::sample::{Cast, Shadow, ShadowSkip, SoftShadow};
 use crate::traverse::{Counters, Found};
+use derive_more::AddAssign;
 use glam::DVec3;
+use serde::Serialize;
 
 /// The purpose a soft shadow's samples are seeded with (see [`seed_of`]).
 const PURPOSE: u64 = 0x5011_d15c;
@@ -118,4 +125,55 @@ fn cone_blocked<S: Scalar>(
         Some(traced.hit?.t * dir.truncate().length())
     };
     sun_cone::blocked(cx.terrain, cone, (found.cell, found.triangle), first_touch)
+}
+
+/// Soft shadows of a frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, AddAssign, Serialize)]
+pub struct SoftStats {
+    /// Points that needed directions towards the sun's disc (a penumbra or not proven).
+    pub points: u64,
+    /// Directions asked at those points.
+    pub directions: u64,
+    /// Directions traced as shadow rays.
+    pub rays: u64,
+    /// Rays that looked for a cone blocked whole (beside the directions).
+    pub probes: u64,
+    /// Points whose cone was settled as blocked whole.
+    pub points_blocked: u64,
+    /// Directions not traced: they climbed above the terrain's bound, or the cone was
+    /// settled as blocked.
+    pub culled: u64,
+    /// Directions that reached the sun.
+    pub clear: u64,
+}
+
+impl Counted for SoftShadows {
+    const NAME: &'static str = "soft_shadow";
+    const LABEL: &'static str = "soft shadow";
+    const WORD: &'static str = "soft";
+    type Outcome = SoftShadow;
+    type Stats = SoftStats;
+
+    fn count(soft: &SoftShadow, stats: &mut SoftStats) {
+        stats.points += 1;
+        stats.directions += u64::from(soft.of);
+        stats.rays += u64::from(soft.cast);
+        stats.probes += u64::from(soft.probed);
+        stats.points_blocked += u64::from(soft.blocked);
+        stats.culled += u64::from(soft.of - soft.cast);
+        stats.clear += u64::from(soft.clear);
+    }
+
+    fn rays(stats: &SoftStats) -> u64 {
+        stats.rays + stats.probes
+    }
+
+    /// A cone settled whole would have taken a ray per direction; rays that looked for a
+    /// blocked cone count as cast.
+    fn culled(stats: &SoftStats, frame: &Around<'_>) -> Option<f64> {
+        let per_point = u64::from(per_sample(frame.asked).sun_rays);
+        let possible = frame.settled * per_point + stats.directions;
+        (frame.asked.sun_angle_deg > 0.0 && frame.shadow_rays == 0 && possible > 0)
+            .then(|| 1.0 - (stats.rays + stats.probes) as f64 / possible as f64)
+    }
 }

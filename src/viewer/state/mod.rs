@@ -64,6 +64,8 @@ pub enum Action {
     PlayFlythrough,
     /// End the preview, restoring the render scale and the view it started from.
     StopFlythrough,
+    /// Show this notice.
+    Notify(String),
 }
 
 /// Everything the UI shows and edits.

@@ -62,12 +62,12 @@ fn each_effect_culling_rule_on_or_off_gives_the_same_image() {
         let frame = render(culling);
         assert_eq!(frame.pixels, all.pixels, "{culling:?}");
         let effects = (frame.totals.effects, all.totals.effects);
-        assert!(effects.0.sky.rays >= effects.1.sky.rays);
-        assert!(effects.0.soft.rays >= effects.1.soft.rays);
+        assert!(effects.0.sky_light.rays >= effects.1.sky_light.rays);
+        assert!(effects.0.soft_shadow.rays >= effects.1.soft_shadow.rays);
     }
     let (culled, brute) = (all.totals, render(none).totals);
     assert!(
-        culled.effects.sky.rays < brute.effects.sky.rays,
+        culled.effects.sky_light.rays < brute.effects.sky_light.rays,
         "the scene culls sky rays"
     );
     assert!(
@@ -106,10 +106,10 @@ fn effects_off_cast_no_effect_rays_and_change_nothing() {
     let effects = frame.totals.effects;
     assert_eq!(
         (
-            effects.soft.rays,
-            effects.sky.rays,
-            effects.soft.points,
-            effects.sky.points
+            effects.soft_shadow.rays,
+            effects.sky_light.rays,
+            effects.soft_shadow.points,
+            effects.sky_light.points
         ),
         (0, 0, 0, 0)
     );

@@ -398,7 +398,11 @@ fn a_frame_counts_what_its_samples_record() {
         );
         // Shadow rays and (with sky light) sky rays were counted.
         assert!(totals.shadow_rays > 100, "{arith}: {totals:?}");
-        assert_eq!(totals.effects.sky.rays > 0, effects.sky_light, "{arith}");
+        assert_eq!(
+            totals.effects.sky_light.rays > 0,
+            effects.sky_light,
+            "{arith}"
+        );
         let reflected = totals.effects.water.rays;
         assert_eq!(reflected > 0, effects.water.is_some(), "{arith}");
     }
