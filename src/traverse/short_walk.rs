@@ -16,7 +16,7 @@
 use super::counters::HitMiss;
 use super::search::slack;
 use super::Counters;
-use crate::arith::SimdPath;
+use crate::arith::{larger, smaller, SimdPath};
 use crate::geometry::RaySpace;
 use crate::heightfield::Terrain;
 
@@ -197,26 +197,6 @@ fn segment_end(terrain: &Terrain, o: [f64; 3], d: [f64; 3]) -> Option<f64> {
 #[inline(always)]
 fn nearly(a: f64, b: f64) -> bool {
     (a - b).abs() <= 4e-9 * larger(larger(a.abs(), b.abs()), 1.0)
-}
-
-/// The larger of two numbers that are not NaN.
-#[inline(always)]
-fn larger(a: f64, b: f64) -> f64 {
-    if a > b {
-        a
-    } else {
-        b
-    }
-}
-
-/// The smaller of two numbers that are not NaN.
-#[inline(always)]
-fn smaller(a: f64, b: f64) -> f64 {
-    if a < b {
-        a
-    } else {
-        b
-    }
 }
 
 /// A path across the grid in its octant frame (`u` the horizontal axis it moves along most,

@@ -1,5 +1,6 @@
 //! A packet's rays in lanes, and the node test made for all of them at once.
 
+use crate::arith::{larger, smaller};
 use crate::geometry::Ray;
 use crate::heightfield::Terrain;
 use crate::traverse::frame::{clip, Frame};
@@ -147,27 +148,6 @@ impl Lanes {
         let t_enter = larger(larger(tu0, tv0), self.t_lo[l]);
         let t_exit = smaller(smaller(tu1, tv1), self.t_hi[l]);
         (t_enter, t_exit)
-    }
-}
-
-/// The larger of two values that are not NaN (one instruction, `maxpd`, where `f64::max` is
-/// three).
-#[inline(always)]
-fn larger(a: f64, b: f64) -> f64 {
-    if a > b {
-        a
-    } else {
-        b
-    }
-}
-
-/// The smaller of two values that are not NaN (`minpd`).
-#[inline(always)]
-fn smaller(a: f64, b: f64) -> f64 {
-    if a < b {
-        a
-    } else {
-        b
     }
 }
 
