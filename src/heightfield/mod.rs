@@ -33,7 +33,7 @@ pub use builtin::{Builtin, BUILTINS};
 pub use drape::{Drape, DrapeError, Placement};
 pub use error::HeightfieldError;
 pub use fetch::Window;
-pub use generate::landscape;
+pub use generate::{landscape, landscape_window};
 pub use georef::{Georef, GeorefError, Georeferencing, HeightUnit, HeightUnitSource, MapUnits};
 pub use limits::{MAX_DECODED_BYTES, MAX_SAMPLES};
 pub use load::{
