@@ -356,6 +356,10 @@ impl Heightfield {
     pub fn is_mapped(&self) -> bool {
         self.samples.is_mapped()
     }
+    /// The bytes of the tile store the samples are mapped from, if they are.
+    pub fn store_bytes(&self) -> Option<u64> {
+        self.samples.mapping_len()
+    }
     /// How many samples hold no data.
     pub fn nodata_count(&self) -> usize {
         self.nodata.as_ref().map_or(0, NoDataMask::count)
