@@ -23,6 +23,9 @@ pub enum ValueError {
     /// Not three numbers.
     #[error("expected three comma-separated numbers, got '{0}'")]
     Triple(String),
+    /// Not four whole numbers.
+    #[error("expected X,Y,WIDTH,HEIGHT (four whole numbers), got '{0}'")]
+    Window(String),
     /// Not a number.
     #[error("'{0}' is not a number")]
     Number(String),
@@ -98,6 +101,23 @@ pub fn per_set(s: &str) -> Result<usize, ValueError> {
     in_range(s, 1..=1 << 16, "a number of rays per set")
 }
 
+/// Samples per side of a generated map made window by window (a million: 10^12 samples).
+pub fn generated_map_size(s: &str) -> Result<usize, ValueError> {
+    in_range(s, 2..=1_000_000, "samples per side")
+}
+
+/// A window `X,Y,WIDTH,HEIGHT` of whole numbers.
+pub fn window(s: &str) -> Result<[usize; 4], ValueError> {
+    let numbers: Vec<usize> = s
+        .split(',')
+        .map(|p| p.trim().parse::<usize>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| ValueError::Window(s.to_owned()))?;
+    numbers
+        .try_into()
+        .map_err(|_| ValueError::Window(s.to_owned()))
+}
+
 /// Samples per side of a generated landscape.
 pub fn landscape_size(s: &str) -> Result<usize, ValueError> {
     in_range(s, 2..=16385, "samples per side")
@@ -151,6 +171,9 @@ mod tests {
         let message = |e: ValueError| e.to_string();
         assert!(message(per_set("100000000").unwrap_err()).contains("65536"));
         assert!(message(landscape_size("0").unwrap_err()).contains("2 to 16385"));
+        assert_eq!(window("0, 5000,5000,10"), Ok([0, 5000, 5000, 10]));
+        assert!(message(window("1,2,3").unwrap_err()).contains("X,Y,WIDTH,HEIGHT"));
+        assert!(window("1,2,-3,4").is_err());
         assert_eq!(bench_image_size("512"), Ok(512));
         assert!(capped_threads(1) == 1);
     }

@@ -60,17 +60,29 @@ pub fn summary(label: &Path, terrain: &Terrain, read_time: Duration) {
     );
 }
 
-/// After work on a map from a tile store: the process's peak resident memory, the budget its
-/// pages were held to, and where its page faults were served from.
+/// After work on a map from a tile store: its size, the process's resident memory now and at
+/// most, the budget its pages were held to, and where its page faults were served from (the
+/// page cache's hit rate).
 pub fn store_memory(terrain: &Terrain) {
-    if !terrain.field().is_mapped() {
+    let field = terrain.field();
+    let Some(bytes) = field.store_bytes() else {
         return;
-    }
+    };
     let memory = residency::process_memory();
     let store = residency::residency();
+    let hits = memory
+        .hit_rate()
+        .map_or("no page faults".to_owned(), |rate| {
+            format!("{:.2}% served from memory", rate * 100.0)
+        });
     eprintln!(
-        "tile store: peak resident memory {:.0} MB (the store's pages held to {:.0} MB, {:.0} MB \
-         let go of); page faults: {} served from memory, {} read from disk",
+        "tile store: {}x{} samples, {:.2} GB; resident memory {:.0} MB, peak {:.0} MB (the \
+         store's pages held to {:.0} MB, {:.0} MB let go of); page faults {hits} ({} from \
+         memory, {} read from disk)",
+        field.width(),
+        field.height(),
+        bytes as f64 / 1e9,
+        memory.resident as f64 / 1e6,
         memory.peak_resident as f64 / 1e6,
         residency::budget() as f64 / 1e6,
         store.released as f64 / 1e6,

@@ -67,8 +67,9 @@ pub enum Command {
     /// `effects` (what each effect costs), `compare` (two binaries' `speed` in turn).
     #[command(subcommand)]
     Bench(BenchCommand),
-    /// Write a generated landscape (16-bit grayscale PNG) of the built-in generator.
-    Generate(GenerateArgs),
+    /// Write a generated landscape of the built-in generator: a 16-bit grayscale PNG, or a
+    /// GeoTIFF of the whole map or of one window of it (a tile of a map of any size).
+    Generate(generate::GenerateArgs),
     /// Join tiles made by `render --tile` or `--tiles` into the whole picture.
     Merge(MergeArgs),
     /// Encode a folder of frames (`frame-00000.png`...) as an H.264 MP4 with ffmpeg.
@@ -272,19 +273,6 @@ pub struct AccuracyArgs {
     /// Plot time per ray against error rate (PNG or SVG).
     #[arg(long)]
     pub plot: Option<PathBuf>,
-}
-
-#[derive(clap::Args, Debug)]
-pub struct GenerateArgs {
-    /// Samples per side.
-    #[arg(long, default_value_t = 513, value_parser = knobs::landscape_size)]
-    pub size: usize,
-    /// Noise seed.
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
-    /// Output PNG.
-    #[arg(short, long)]
-    pub output: PathBuf,
 }
 
 #[derive(clap::Args, Debug)]

@@ -23,6 +23,17 @@ pub enum HeightfieldError {
         /// Samples along y.
         height: usize,
     },
+    /// A window that is not all inside its map.
+    #[error(
+        "the window {},{},{},{} (x,y,width,height) is not inside the {size}x{size} map",
+        window[0], window[1], window[2], window[3]
+    )]
+    Window {
+        /// Its column, row, width and height.
+        window: [usize; 4],
+        /// The map's samples per side.
+        size: usize,
+    },
     /// A z scale that is negative, NaN or infinite.
     #[error("z scale must be a finite number >= 0, got {}", Compact(*.0))]
     BadZScale(f64),

@@ -30,6 +30,68 @@ pub fn landscape(size: usize, seed: u64, z_scale: f64) -> Result<Heightfield, He
     Heightfield::from_fn(size, size, 65535, z_scale, |x, y| samples[y * size + x])
 }
 
+/// Samples per side of the coarse grid the fixed normalisation of [`landscape_window`] is
+/// taken over: about a second of one core, the same for every window.
+const RANGE_GRID: usize = 1025;
+
+/// How far the fixed normalisation reaches past the coarse grid's range, as a fraction of it:
+/// finer grids find peaks and pits the coarse one passes between.
+const RANGE_MARGIN: f64 = 0.03;
+
+/// The samples of one window of a generated landscape of `size x size` samples, `[x, y, w,
+/// h]` in image order (column `x`, row `y`, row 0 the northern edge), row by row from the
+/// top. Unlike [`landscape`] the heights are normalised over a range fixed by the seed alone
+/// (not the window's nor the map's own), so windows of the same map join seamlessly and a
+/// map of any size can be made window by window.
+pub fn landscape_window(
+    size: usize,
+    seed: u64,
+    [x0, y0, w, h]: [usize; 4],
+) -> Result<Vec<u16>, HeightfieldError> {
+    check_size(w, h)?;
+    if size < 2 || x0.saturating_add(w) > size || y0.saturating_add(h) > size {
+        return Err(HeightfieldError::Window {
+            window: [x0, y0, w, h],
+            size,
+        });
+    }
+    let (lo, hi) = fixed_range(seed);
+    let range = hi - lo;
+    let scale = 1.0 / (size - 1) as f64;
+    Ok((0..w * h)
+        .into_par_iter()
+        .map(|k| {
+            let (column, row) = (x0 + k % w, y0 + k / w);
+            // Field y runs north from the southern edge, image rows south from the northern.
+            let height = shape(column as f64 * scale, (size - 1 - row) as f64 * scale, seed);
+            ((height - lo) / range * 65535.0)
+                .round()
+                .clamp(0.0, 65535.0) as u16
+        })
+        .collect())
+}
+
+/// The range of heights [`landscape_window`] maps onto 0..65535: the coarse grid's, widened.
+fn fixed_range(seed: u64) -> (f64, f64) {
+    let scale = 1.0 / (RANGE_GRID - 1) as f64;
+    let (lo, hi) = (0..RANGE_GRID * RANGE_GRID)
+        .into_par_iter()
+        .map(|k| {
+            let h = shape(
+                (k % RANGE_GRID) as f64 * scale,
+                (k / RANGE_GRID) as f64 * scale,
+                seed,
+            );
+            (h, h)
+        })
+        .reduce(
+            || (f64::INFINITY, f64::NEG_INFINITY),
+            |a, b| (a.0.min(b.0), a.1.max(b.1)),
+        );
+    let margin = (hi - lo).max(f64::MIN_POSITIVE) * RANGE_MARGIN;
+    (lo - margin, hi + margin)
+}
+
 /// Height (arbitrary units) at `(x, y)` in the unit square.
 fn shape(x: f64, y: f64, seed: u64) -> f64 {
     // Rolling hills: fractal value noise.
@@ -117,5 +179,23 @@ mod tests {
         assert_eq!(a.samples(), b.samples());
         assert_eq!(a.samples().iter().max(), Some(&65535));
         assert_eq!(a.samples().iter().min(), Some(&0));
+    }
+
+    #[test]
+    fn a_window_is_the_same_part_of_any_window_holding_it() {
+        let whole = landscape_window(40, 3, [0, 0, 40, 40]).unwrap();
+        let part = landscape_window(40, 3, [7, 11, 20, 9]).unwrap();
+        for (k, sample) in part.iter().enumerate() {
+            assert_eq!(*sample, whole[(11 + k / 20) * 40 + 7 + k % 20]);
+        }
+        // Inside the range, not clipped at either end.
+        assert!(whole.iter().all(|&s| s > 0 && s < 65535));
+    }
+
+    #[test]
+    fn a_window_outside_the_map_is_refused() {
+        let error = landscape_window(40, 3, [30, 0, 11, 5]).unwrap_err();
+        assert!(error.to_string().contains("30,0,11,5"), "{error}");
+        assert!(landscape_window(40, 3, [usize::MAX, 0, 2, 2]).is_err());
     }
 }

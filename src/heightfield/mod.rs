@@ -33,7 +33,7 @@ pub use builtin::{Builtin, BUILTINS};
 pub use drape::{Drape, DrapeError, Placement};
 pub use error::HeightfieldError;
 pub use fetch::Window;
-pub use generate::landscape;
+pub use generate::{landscape, landscape_window};
 pub use georef::{Georef, GeorefError, Georeferencing, HeightUnit, HeightUnitSource, MapUnits};
 pub use limits::{MAX_DECODED_BYTES, MAX_SAMPLES};
 pub use load::{
@@ -355,6 +355,10 @@ impl Heightfield {
     /// Whether the samples are mapped from a tile store rather than held in memory.
     pub fn is_mapped(&self) -> bool {
         self.samples.is_mapped()
+    }
+    /// The bytes of the tile store the samples are mapped from, if they are.
+    pub fn store_bytes(&self) -> Option<u64> {
+        self.samples.mapping_len()
     }
     /// How many samples hold no data.
     pub fn nodata_count(&self) -> usize {

@@ -39,9 +39,10 @@ impl Terrain {
             field.width(),
             field.height(),
         );
-        if field.is_mapped() {
+        if let Some(bytes) = field.store_bytes() {
             line += &format!(
-                ", mapped from a tile store (memory budget {:.1} GB)",
+                ", mapped from a tile store of {:.2} GB (memory budget {:.1} GB)",
+                bytes as f64 / 1e9,
                 super::store::residency::budget() as f64 / 1e9
             );
         }

@@ -17,9 +17,10 @@ pub struct Values<T: Copy + 'static> {
 /// What keeps a [`Values`]' memory alive.
 enum Owner<T> {
     Heap(Vec<T>),
-    /// A mapping of which the values are a part (kept, never read: the values point into it).
+    /// A mapping of which the values are a part (kept and measured, never read through: the
+    /// values point into it).
     Map {
-        _mapping: Arc<Mmap>,
+        mapping: Arc<Mmap>,
     },
 }
 
@@ -55,7 +56,7 @@ impl<T: Copy + 'static> Values<T> {
             ptr,
             len,
             owner: Arc::new(Owner::Map {
-                _mapping: Arc::clone(map),
+                mapping: Arc::clone(map),
             }),
         })
     }
@@ -76,6 +77,14 @@ impl<T: Copy + 'static> Values<T> {
     /// Whether the values are part of a mapped file rather than held in memory.
     pub fn is_mapped(&self) -> bool {
         matches!(*self.owner, Owner::Map { .. })
+    }
+
+    /// The length in bytes of the whole mapped file the values are part of, if they are.
+    pub fn mapping_len(&self) -> Option<u64> {
+        match &*self.owner {
+            Owner::Map { mapping } => Some(mapping.len() as u64),
+            Owner::Heap(_) => None,
+        }
     }
 }
 

@@ -1,5 +1,5 @@
 //! TIFFs as print and GIS workflows take them: 8- or 16-bit RGB (with an alpha band where the
-//! picture has transparent parts), or 32-bit float values; a GeoTIFF's georeferencing
+//! picture has transparent parts), 16-bit heights or 32-bit float values; a GeoTIFF's georeferencing
 //! (ModelPixelScale, ModelTiepoint and GeoKeyDirectory, GeoTIFF 1.1) where the map has it, and
 //! the resolution in dots per inch where asked. Deflate-compressed.
 
@@ -11,7 +11,7 @@ use crate::heightfield::geokeys::{
 use crate::heightfield::{Georef, MapUnits};
 use std::io::{Seek, Write};
 use thiserror::Error;
-use tiff::encoder::colortype::{ColorType, Gray32Float, RGB16, RGB8, RGBA16, RGBA8};
+use tiff::encoder::colortype::{ColorType, Gray16, Gray32Float, RGB16, RGB8, RGBA16, RGBA8};
 use tiff::encoder::compression::DeflateLevel;
 use tiff::encoder::{Compression, Predictor, Rational, TiffEncoder, TiffValue};
 use tiff::tags::{ResolutionUnit, Tag};
@@ -131,6 +131,16 @@ pub fn write_values<W: Write + Seek>(
     tags: &TiffTags,
 ) -> Result<(), EncodeError> {
     encode::<Gray32Float, _>(out, (width, height), values, tags, Some("nan"))
+}
+
+/// Writes one band of 16-bit samples row by row from the top (heights in whole map units).
+pub fn write_gray16<W: Write + Seek>(
+    out: W,
+    (width, height): (u32, u32),
+    samples: &[u16],
+    tags: &TiffTags,
+) -> Result<(), EncodeError> {
+    encode::<Gray16, _>(out, (width, height), samples, tags, None)
 }
 
 /// Writes an image of colour type `C` with the tags, compressed.

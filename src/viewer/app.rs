@@ -220,8 +220,11 @@ impl App {
                 }
             }
             let field = terrain.field();
+            let store = field.store_bytes().map_or(String::new(), |bytes| {
+                format!(" (a tile store of {:.2} GB)", bytes as f64 / 1e9)
+            });
             model.notify(format!(
-                "Opened {}: {} x {} samples, acceleration data built in {:.1} ms",
+                "Opened {}: {} x {} samples{store}, acceleration data built in {:.1} ms",
                 model.shown.source.label(),
                 field.width(),
                 field.height(),
@@ -287,6 +290,8 @@ impl App {
             self.model.error = Some(refused.to_string());
         }
         self.model.telemetry.redraw.record(started.elapsed());
+        let model = &mut self.model;
+        model.telemetry.measure_store(model.shown.terrain.field());
         if self
             .presented
             .after_present(&self.hooks, &mut self.model, &self.worker)

@@ -131,7 +131,18 @@ fn report(model: &Model, counts: &Counts) -> Value {
             "p95": model.telemetry.redraw.percentiles().map(|p| p.1),
         },
         "last_screenshot": counts.last_screenshot,
+        "store": store_report(model),
     })
+}
+
+/// The tile store on screen: its size, the memory resident and the page faults.
+fn store_report(model: &Model) -> Option<Value> {
+    let s = model.telemetry.store?;
+    Some(json!({
+        "samples": s.samples, "bytes": s.bytes, "resident": s.memory.resident,
+        "peak_resident": s.memory.peak_resident, "store_resident": s.residency.resident,
+        "minor_faults": s.memory.minor_faults, "major_faults": s.memory.major_faults,
+    }))
 }
 
 /// The frame on screen: size, passes, times and ray counts.

@@ -289,6 +289,7 @@ fn heightmap_ui(ui: &mut Ui, model: &mut Model, actions: &mut Vec<Action>) {
         terrain.build_time().as_secs_f64() * 1e3,
         terrain.accel_bytes() as f64 / 1e6
     ));
+    super::stats_ui::store_ui(ui, model.telemetry.store.as_ref());
 }
 
 /// Fills the path field in with the file on screen whenever a new one is shown, however it

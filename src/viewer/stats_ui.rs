@@ -3,7 +3,7 @@
 
 use super::probe_ui::QUERY_KINDS;
 use super::settings::HeatMode;
-use super::state::{Telemetry, Widgets};
+use super::state::{StoreFigures, Telemetry, Widgets};
 use super::widgets::named;
 use super::worker::RenderedFrame;
 use crate::render::effects::{Around, Effects, Summary};
@@ -33,6 +33,7 @@ pub fn statistics_ui(
         .on_hover_text("where it hits, and every query it and its shadow ray make");
     named(widgets, "probe_toggle", probe);
     heat_map_ui(ui, widgets, heat, method);
+    store_ui(ui, telemetry.store.as_ref());
     let Some(latest) = latest else {
         ui.label("no frame yet");
         return;
@@ -85,6 +86,37 @@ pub fn statistics_ui(
     totals_ui(ui, totals);
     queries_ui(ui, totals);
     latency_ui(ui, telemetry);
+}
+
+/// The tile store on screen, if the map is one: its size, the memory resident now and at most,
+/// and how often a page the walks asked for was in memory (the page cache's hit rate).
+pub fn store_ui(ui: &mut Ui, figures: Option<&StoreFigures>) {
+    let Some(f) = figures else {
+        return;
+    };
+    ui.label(format!(
+        "tile store: {:.3} G samples, {:.2} GB",
+        f.samples as f64 / 1e9,
+        f.bytes as f64 / 1e9
+    ));
+    ui.label(format!(
+        "resident memory {:.0} MB, peak {:.0} MB (the store's pages {:.0} MB, peak {:.0} MB)",
+        f.memory.resident as f64 / 1e6,
+        f.memory.peak_resident as f64 / 1e6,
+        f.residency.resident as f64 / 1e6,
+        f.residency.peak as f64 / 1e6
+    ));
+    let hits = f.memory.hit_rate().map_or("none yet".to_owned(), |rate| {
+        format!("{:.2}% from memory", rate * 100.0)
+    });
+    ui.label(format!(
+        "page faults: {hits} ({} read from disk)",
+        f.memory.major_faults
+    ))
+    .on_hover_text(
+        "a page a walk touches that is not mapped yet faults: served from the page cache \
+         (the tile cache) or read from the disk",
+    );
 }
 
 fn totals_ui(ui: &mut Ui, totals: &FrameStats) {

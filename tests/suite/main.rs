@@ -25,6 +25,7 @@ mod far_rays;
 mod flight;
 mod float_modes;
 mod formats;
+mod generated_tiles;
 mod georeferencing;
 mod hard_cases;
 mod holes;

@@ -65,10 +65,12 @@ pub fn residency() -> Residency {
     }
 }
 
-/// The whole process's memory as the kernel counts it: its peak resident bytes, and its page
-/// faults served from memory (the page cache) and from the disk.
+/// The whole process's memory as the kernel counts it: its resident bytes now and at most,
+/// and its page faults served from memory (the page cache) and from the disk.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ProcessMemory {
+    /// Bytes resident now (VmRSS), 0 where unknown.
+    pub resident: u64,
     /// The most bytes resident at once (VmHWM), 0 where unknown.
     pub peak_resident: u64,
     /// Faults on pages already in memory.
@@ -77,26 +79,38 @@ pub struct ProcessMemory {
     pub major_faults: u64,
 }
 
+impl ProcessMemory {
+    /// The fraction of page faults served from memory: how often a page a walk asked for was
+    /// in the page cache (the tile cache) rather than read from the disk; `None` before any.
+    pub fn hit_rate(&self) -> Option<f64> {
+        let all = self.minor_faults + self.major_faults;
+        (all > 0).then(|| self.minor_faults as f64 / all as f64)
+    }
+}
+
 /// This process's memory so far.
 pub fn process_memory() -> ProcessMemory {
     let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
-    let peak_kb = status
-        .lines()
-        .find_map(|line| line.strip_prefix("VmHWM:"))
-        .and_then(|rest| {
-            rest.trim()
-                .trim_end_matches("kB")
-                .trim()
-                .parse::<u64>()
-                .ok()
-        });
+    let kb = |key: &str| {
+        status
+            .lines()
+            .find_map(|line| line.strip_prefix(key))
+            .and_then(|rest| {
+                rest.trim()
+                    .trim_end_matches("kB")
+                    .trim()
+                    .parse::<u64>()
+                    .ok()
+            })
+    };
     // SAFETY: getrusage fills the struct it is given; a zeroed `rusage` is a valid one.
     let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
     // SAFETY: as above, for this process.
     let ok = unsafe { libc::getrusage(libc::RUSAGE_SELF, &mut usage) } == 0;
     let count = |n: libc::c_long| if ok { u64::try_from(n).unwrap_or(0) } else { 0 };
     ProcessMemory {
-        peak_resident: peak_kb.unwrap_or(0) * 1024,
+        resident: kb("VmRSS:").unwrap_or(0) * 1024,
+        peak_resident: kb("VmHWM:").unwrap_or(0) * 1024,
         minor_faults: count(usage.ru_minflt),
         major_faults: count(usage.ru_majflt),
     }

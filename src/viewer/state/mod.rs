@@ -18,7 +18,7 @@ pub use loads::{
     SceneSetup, Source, Stage,
 };
 pub use sun::{clock_text, default_local, SunClock};
-pub use telemetry::{Capped, Notice, Telemetry, MOST_VIEW_PIXELS};
+pub use telemetry::{Capped, Notice, StoreFigures, Telemetry, MOST_VIEW_PIXELS};
 pub use widgets::{ContourControls, DropLoads, OverlayControls, Widgets};
 
 use super::accuracy::AccuracyState;

@@ -1,9 +1,15 @@
 //! What the viewer measures and reports: latencies, a lowered render size, messages.
 
 use super::loads::Progress;
+use crate::heightfield::store::residency::{self, ProcessMemory, Residency};
+use crate::heightfield::Heightfield;
 use crate::viewer::compose::HeatScale;
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
+
+/// How often a tile store's figures are measured again while the view redraws: reading the
+/// process's status each redraw would cost more than showing it.
+const STORE_EVERY: Duration = Duration::from_millis(500);
 
 /// The most pixels a view is rendered at (2048x2048, a 2560x1600 screen's fit): a larger
 /// window shows the frame scaled up, and a frame's memory (24 bytes a pixel, up to three
@@ -31,6 +37,22 @@ impl std::fmt::Display for Capped {
             MOST_VIEW_PIXELS / 1e6
         )
     }
+}
+
+/// The tile store the map on screen is mapped from: its size, and the memory its watcher and
+/// the kernel count, as last measured.
+#[derive(Clone, Copy, Debug)]
+pub struct StoreFigures {
+    /// Its samples.
+    pub samples: u64,
+    /// Its file's bytes.
+    pub bytes: u64,
+    /// Its pages resident, as the watcher saw them.
+    pub residency: Residency,
+    /// The process's resident memory and page faults.
+    pub memory: ProcessMemory,
+    /// When they were measured.
+    pub at: Instant,
 }
 
 /// Times from an input to the first frame on screen that shows its effect.
@@ -122,4 +144,31 @@ pub struct Telemetry {
     pub redraw: Latency,
     /// Set while the view renders at fewer pixels than it shows.
     pub capped: Option<Capped>,
+    /// The figures of the tile store on screen, if the map is one.
+    pub store: Option<StoreFigures>,
+}
+
+impl Telemetry {
+    /// Measures the tile store `field` is mapped from again, where it is one and its figures
+    /// are older than [`STORE_EVERY`] or another store's.
+    pub fn measure_store(&mut self, field: &Heightfield) {
+        let Some(bytes) = field.store_bytes() else {
+            self.store = None;
+            return;
+        };
+        let samples = (field.width() * field.height()) as u64;
+        let fresh = |s: &StoreFigures| {
+            (s.bytes, s.samples) == (bytes, samples) && s.at.elapsed() < STORE_EVERY
+        };
+        if self.store.as_ref().is_some_and(fresh) {
+            return;
+        }
+        self.store = Some(StoreFigures {
+            samples,
+            bytes,
+            residency: residency::residency(),
+            memory: residency::process_memory(),
+            at: Instant::now(),
+        });
+    }
 }
