@@ -48,6 +48,25 @@ pub(super) struct Layout {
     pub min_len: usize,
 }
 
+impl Layout {
+    /// The finest level whose blocks, with all above it, are at most `most` values in both
+    /// stacks together (the top, if none is): where its highest and its lowest samples start.
+    pub fn upper_levels(&self, most: usize) -> (usize, usize) {
+        let from = |k: u32| {
+            let (max, min) = (
+                self.max[(k - 1) as usize].0,
+                self.min[(k - LOWEST_FROM) as usize].0,
+            );
+            (max, min, self.max_len - max + self.min_len - min)
+        };
+        let k = (LOWEST_FROM..=self.top)
+            .find(|&k| from(k).2 <= most)
+            .unwrap_or(self.top);
+        let (max, min, _) = from(k);
+        (max, min)
+    }
+}
+
 /// The level whose one block covers a `w x h` grid (level 2 at least, for the lowest samples:
 /// a grid of one or two cells has its one block twice).
 fn top_level(w: usize, h: usize) -> u32 {

@@ -21,6 +21,7 @@ mod maxima;
 mod mipmap;
 mod nodata;
 pub mod place;
+mod preview;
 pub mod relief;
 mod sky_bounds;
 pub mod store;
@@ -43,6 +44,7 @@ pub use load::{
 pub use maxima::{CellMaxima, LineMaxima};
 pub use mipmap::Mipmap;
 pub use nodata::NoDataMask;
+pub use preview::Preview;
 pub use sky_bounds::{SkyBounds, SKY_SECTORS};
 pub use strips::{StripBounds, BLOCK as STRIP_BLOCK, STRIP};
 pub(crate) use terrain::world_from_grid;

@@ -1,7 +1,7 @@
 //! A height field with the acceleration data the traversals use.
 
 use super::fetch::FETCH_AHEAD_BYTES;
-use super::{CellMaxima, Heightfield, LineMaxima, Mipmap, SkyBounds, StripBounds};
+use super::{CellMaxima, Heightfield, LineMaxima, Mipmap, Preview, SkyBounds, StripBounds};
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
@@ -12,6 +12,8 @@ pub struct Terrain {
     field: Heightfield,
     mipmap: Mipmap,
     lines: OnceLock<Lines>,
+    /// The coarse stand-in of a mapped map, made on first use.
+    preview: OnceLock<Option<Arc<Preview>>>,
     /// The strip bounds of the last direction asked for (see [`Terrain::strip_bounds`]).
     strips: Memo<([f64; 3], f64), StripBounds>,
     /// The sky bounds of the last reach asked for (see [`Terrain::sky_bounds`]).
@@ -54,6 +56,7 @@ impl Terrain {
             field,
             mipmap,
             lines: OnceLock::new(),
+            preview: OnceLock::new(),
             strips: Memo::default(),
             sky: Memo::default(),
             build_time: start.elapsed(),
@@ -174,6 +177,23 @@ impl Terrain {
     /// `None` where they cannot help (see [`SkyBounds::new`]).
     pub fn sky_bounds(&self, reach: f64) -> Option<Arc<SkyBounds>> {
         self.sky.get_or_make(reach, || SkyBounds::new(self, reach))
+    }
+    /// The same terrain with its box's height range widened to `lo..hi` (a range that holds
+    /// its own): colours by height then follow that range.
+    pub(super) fn with_z_range(mut self, lo: f64, hi: f64) -> Self {
+        self.bounds.0[2] = self.bounds.0[2].min(lo);
+        self.bounds.1[2] = self.bounds.1[2].max(hi);
+        self
+    }
+    /// A coarse stand-in for a map mapped from a tile store, made once from its mipmap's
+    /// upper levels (see [`Preview`]); `None` for a map held in memory or small enough.
+    pub fn preview(&self) -> Option<&Preview> {
+        if !self.field.is_mapped() {
+            return None;
+        }
+        self.preview
+            .get_or_init(|| Preview::of(self).map(Arc::new))
+            .as_deref()
     }
     /// Lowest and highest height of the field.
     pub fn z_range(&self) -> (f64, f64) {

@@ -114,6 +114,13 @@ impl Renderer<'_> {
         self.passes(frame, next, cancelled, Paint::Blocks, Walking::Singly)
     }
 
+    /// [`Renderer::render_pass`] painting only the pixels it traces: what the frame shows at
+    /// the others (a preview of the view) stays until their own pass traces them.
+    pub fn refine_pass(&self, frame: &mut Frame, cancelled: &(dyn Fn() -> bool + Sync)) -> bool {
+        let next = frame.passes_done..(frame.passes_done + 1).min(PASS_BLOCKS.len());
+        self.passes(frame, next, cancelled, Paint::Pixels, Walking::Singly)
+    }
+
     /// Renders the passes `passes`, band by band; see [`Renderer::render_pass`]. The camera
     /// rays start from their clearance in the camera's [`Wedges`] (made for these passes, each
     /// wedge when a ray first asks).

@@ -127,7 +127,14 @@ fn frame_status_ui(
             painter.galley(min, galley, Color32::WHITE);
         }
     }
-    if !frame.complete() {
+    if let Some(level) = latest.preview {
+        lines.push(format!(
+            "reading the map: pass {}/{} over a 1:{} preview",
+            frame.passes_done,
+            PASS_BLOCKS.len(),
+            1u64 << level
+        ));
+    } else if !frame.complete() {
         lines.push(format!(
             "refining: pass {}/{} ({} px blocks)",
             frame.passes_done,

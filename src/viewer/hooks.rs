@@ -158,6 +158,7 @@ fn frame_report(model: &Model) -> Option<Value> {
         "width": latest.frame.width,
         "height": latest.frame.height,
         "passes_done": latest.frame.passes_done,
+        "preview_level": latest.preview,
         "complete": latest.frame.complete(),
         "elapsed_ms": latest.elapsed().as_secs_f64() * 1e3,
         "pass_ms": pass_ms,

@@ -41,7 +41,14 @@ pub fn statistics_ui(
     let frame = &latest.frame;
     let elapsed = latest.elapsed().as_secs_f64();
     let passes = frame.passes_done;
-    let label = if frame.complete() {
+    let label = if let Some(level) = latest.preview {
+        format!(
+            "pass {passes}/{} over a 1:{} preview while the map is read, {:.0} ms so far",
+            PASS_BLOCKS.len(),
+            1u64 << level,
+            elapsed * 1e3
+        )
+    } else if frame.complete() {
         format!("complete in {:.0} ms", elapsed * 1e3)
     } else {
         format!(

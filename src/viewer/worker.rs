@@ -3,10 +3,13 @@
 //!
 //! A job carries a generation number; submitting a new job bumps the shared counter, which the
 //! running pass sees through `render_pass`'s `cancelled` check within one row. Only
-//! the refining passes are cancelled: the first, coarse one is always shown.
+//! the refining passes are cancelled: the first, coarse one is always shown (or, for a map
+//! read from a tile store, the preview of it the first pass refines).
 
 use super::mailbox::Mailbox;
 use super::orbit::Orbit;
+use crate::heightfield::Preview;
+use crate::render::effects::Effects;
 use crate::render::Accumulation;
 use crate::render::{Camera, Contours, Culling, Frame, Lighting, Renderer, Shader};
 use crate::{Arith, Method, Terrain};
@@ -45,9 +48,33 @@ impl RenderJob {
     }
 }
 
+/// A renderer of `job`'s view of its map's `preview`: lit as the job's (fog and the floor's
+/// depth scaled with it), with the sun's hard shadow and no other effect.
+fn preview_renderer<'a>(job: &RenderJob, preview: &'a Preview) -> Renderer<'a> {
+    let scale = preview.world_from_grid[2];
+    let mut lighting = job.lighting;
+    lighting.effects = Effects {
+        sun_angle_deg: 0.0,
+        sky_light: false,
+        samples: 1,
+        water: None,
+        ..lighting.effects
+    };
+    lighting.fog *= scale;
+    lighting.base.depth = lighting.base.depth.map(|d| d / scale);
+    Renderer {
+        shader: Shader::new(&preview.terrain, lighting, job.method, Culling::default()),
+        camera: job.camera.in_grid(Some(preview.world_from_grid)),
+        arith: Arith::F64,
+    }
+}
+
 /// A frame after some passes, as published to the window.
 pub struct RenderedFrame {
     pub frame: Frame,
+    /// The mipmap level of the map's preview the frame shows where no pass has traced a
+    /// pixel yet (see [`Preview`]), if it shows one.
+    pub preview: Option<u32>,
     pub generation: u64,
     /// The job it belongs to (the camera maps window pixels to the rays that were traced).
     pub job: RenderJob,
@@ -68,7 +95,9 @@ impl RenderedFrame {
     /// Whether nothing more will be rendered for this job: every pass, and every round of
     /// samples per pixel.
     pub fn finished(&self) -> bool {
-        self.frame.complete() && (self.samples.0 >= self.samples.1 || self.sampling == 0)
+        self.preview.is_none()
+            && self.frame.complete()
+            && (self.samples.0 >= self.samples.1 || self.sampling == 0)
     }
 }
 
@@ -187,6 +216,34 @@ fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJo
     let start = Instant::now();
     let mut pass_times = Vec::new();
     let mut spare: Option<Arc<RenderedFrame>> = None;
+    // A map read from a tile store is first shown from its preview, made of the levels held
+    // in memory: the real passes then wait on the disk behind a picture, and paint only the
+    // pixels they trace over it.
+    let coarse = job.terrain.preview();
+    let mut preview = coarse.map(|coarse| coarse.level);
+    if let Some(coarse) = coarse {
+        preview_renderer(&job, coarse).render(&mut frame);
+        // (No pass of the view itself is done, and none of its rays counted.)
+        frame.passes_done = 0;
+        frame.totals = Default::default();
+        pass_times.push(start.elapsed());
+        let rendered = Arc::new(RenderedFrame {
+            frame: std::mem::replace(&mut frame, Frame::new(0, 0)),
+            preview,
+            generation,
+            job: job.clone(),
+            pass_times: pass_times.clone(),
+            samples: (0, 0),
+            sampling: 0,
+        });
+        *shared.latest.lock().unwrap_or_else(PoisonError::into_inner) = Some(Arc::clone(&rendered));
+        notify();
+        wait_until_presented(shared, generation);
+        if superseded() {
+            return;
+        }
+        frame = rendered.frame.clone();
+    }
     loop {
         // The coarse first pass always finishes (it is short): were it cancelled too, a
         // stream of camera moves could keep every job from ever showing a frame.
@@ -197,9 +254,14 @@ fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJo
         };
         let rendered = if frame.complete() {
             rounds.accumulate(&mut sums, &mut frame, cancelled)
+        } else if preview.is_some() {
+            renderer.refine_pass(&mut frame, cancelled)
         } else {
             renderer.render_pass(&mut frame, cancelled)
         };
+        if frame.complete() {
+            preview = None;
+        }
         if !rendered {
             return;
         }
@@ -208,6 +270,7 @@ fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJo
         // made after the window has been told, off the path from input to screen.
         let rendered = Arc::new(RenderedFrame {
             frame: std::mem::replace(&mut frame, Frame::new(0, 0)),
+            preview,
             generation,
             job: job.clone(),
             pass_times: pass_times.clone(),
@@ -226,7 +289,7 @@ fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJo
         if complete {
             return;
         }
-        if pass_times.len() == 1 {
+        if pass_times.len() == 1 && preview.is_none() {
             // Leave the cores to the window until the coarse pass is on screen: refining
             // alongside would slow the very redraw that shows the input's effect.
             wait_until_presented(shared, generation);
@@ -315,6 +378,56 @@ mod tests {
         assert_eq!(last.frame.pixels, whole.pixels);
         assert_eq!(last.frame.stats, whole.stats);
         assert_eq!(last.frame.totals, whole.totals);
+    }
+
+    /// A map read from a tile store is shown from its preview first; the passes then paint
+    /// only the pixels they trace over it, and the last shows the image a render in one go
+    /// makes of the map itself.
+    #[test]
+    fn a_store_is_shown_from_its_preview_then_refined_to_the_renderers_image() {
+        use crate::heightfield::{load, store, Heightfield};
+        let dir = std::env::temp_dir().join(format!("preview-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("wide.hrt");
+        let _ = std::fs::remove_file(&path);
+        let hills = |i: usize, j: usize| {
+            let (x, y) = (i as f64 / 300.0, j as f64 / 7.0);
+            (2000.0 + 1500.0 * (x.sin() * y.cos())) as u16
+        };
+        let field = Heightfield::from_fn(4100, 40, 4000, 400.0, hills).unwrap();
+        store::save(&field, &path).unwrap();
+        let mut job = small_job();
+        job.terrain = Arc::new(Terrain::new(load(&path, 400.0).unwrap()));
+        job.orbit = Orbit::framing(&job.terrain);
+        job.camera = job.orbit.camera((48, 32)).unwrap();
+        let level = job.terrain.preview().map(|preview| preview.level);
+        assert_eq!(level, Some(2), "4,099 cells in blocks of 4 fit in 2048");
+        let mut whole = Frame::new(48, 32);
+        job.renderer(job.arith).render(&mut whole);
+        let (published, heard) = mpsc::channel();
+        let worker = RenderWorker::start(move || {
+            let _ = published.send(());
+        })
+        .unwrap();
+        worker.submit(job);
+        let mut shown = Vec::new();
+        let last = loop {
+            heard.recv_timeout(Duration::from_secs(20)).unwrap();
+            let latest = worker.latest().unwrap();
+            shown.push((latest.preview, latest.frame.passes_done));
+            if latest.finished() {
+                break latest;
+            }
+        };
+        let passes: Vec<_> = (0..=crate::render::PASS_BLOCKS.len())
+            .map(|done| (level.filter(|_| done < 4), done))
+            .collect();
+        assert_eq!(shown, passes);
+        assert_eq!(last.frame.pixels, whole.pixels);
+        assert_eq!(last.frame.stats, whole.stats);
+        assert_eq!(last.frame.totals, whole.totals);
+        drop(worker);
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     /// When the window hears of the complete frame, the worker already says it is idle: the

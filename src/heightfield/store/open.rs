@@ -1,12 +1,13 @@
 //! Opening a store: its header read and checked, the file mapped read-only, and a height field
 //! made of the mapped values with its mipmap ready.
 
-use super::header::{damaged, Header};
+use super::header::{damaged, Header, Sections};
 use super::{residency, Prebuilt, StoreError};
 use crate::heightfield::georef::Georeferencing;
 use crate::heightfield::{Heightfield, LoadOptions, Mipmap, NoDataMask, Values};
 use memmap2::{Advice, Mmap};
 use std::fs::File;
+use std::ops::Range;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -59,7 +60,7 @@ pub fn open(
         }
         _ => None,
     };
-    residency::watch(&map);
+    residency::watch(&map, upper_levels(&map, w, h, &sections));
     let georef = match (header.georef, options.height_unit) {
         (Some(georef), Some(unit)) => Georeferencing::Map(georef.with_height_unit(unit)),
         (Some(georef), None) => Georeferencing::Map(georef),
@@ -75,4 +76,23 @@ pub fn open(
             }
         })?;
     Ok(field.with_georeferencing(georef.with_cells_checked(w, h)))
+}
+
+/// The byte ranges of `map` that hold the mipmap's upper levels, which every walk reads: those
+/// from the finest level that keeps them within a sixteenth of the memory budget. They are
+/// asked of the disk at once, read ahead in whole, and kept.
+fn upper_levels(map: &Mmap, w: usize, h: usize, sections: &Sections) -> Vec<Range<usize>> {
+    let most = usize::try_from(residency::budget() / 16 / 2).unwrap_or(usize::MAX);
+    let (max, min) = Mipmap::layout(w, h).upper_levels(most);
+    let range = |(at, len): (u64, u64), from: usize| {
+        let (at, len) = (at as usize, len as usize);
+        at + 2 * from..at + 2 * len
+    };
+    let ranges = vec![range(sections.max, max), range(sections.min, min)];
+    for range in &ranges {
+        let len = range.end.saturating_sub(range.start);
+        // (A hint: where it is not taken, the pages come as walks touch them.)
+        let _ = map.advise_range(Advice::WillNeed, range.start, len);
+    }
+    ranges
 }

@@ -1,43 +1,48 @@
 //! How much of the open stores stays in memory: the pages the walks touch are read in on
-//! demand (the kernel's page cache is the tile cache), and a watcher keeps the pages mapped
-//! into the process within a budget, letting go of the longest-held megabytes first when they
-//! exceed it. A page let go of is read again, from the page cache or the disk, when a walk
-//! next touches it: the answers never change, only the time.
+//! demand (the kernel's page cache is the tile cache), and a watcher keeps the process's
+//! resident memory within a budget, letting go of the longest-held megabytes of a store first
+//! when it nears it. The mipmap's upper levels, which every walk reads, stay pinned. A page
+//! let go of is read again, from the page cache or the disk, when a walk next touches it: the
+//! answers never change, only the time.
 
 use memmap2::{Mmap, UncheckedAdvice};
+use std::ops::Range;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Weak};
 use std::time::Duration;
 
-/// Bytes of a store's pages kept mapped at most; 0 for the default.
+/// The process's resident bytes at most; 0 for the default.
 static BUDGET: AtomicU64 = AtomicU64::new(0);
 
-/// The most bytes of stores' pages resident at once, as the watchers saw them.
+/// The most bytes of mapped files resident at once, as the watchers saw them.
 static PEAK: AtomicU64 = AtomicU64::new(0);
 
-/// Bytes resident when the watchers last looked.
+/// Bytes of mapped files resident when the watchers last looked.
 static RESIDENT: AtomicU64 = AtomicU64::new(0);
 
-/// Bytes let go of to stay within the budget.
+/// Bytes of mapped files let go of to stay within the budget.
 static RELEASED: AtomicU64 = AtomicU64::new(0);
 
-/// How often a watcher looks while the pages resident are under half the budget.
+/// How often a watcher looks while the process is under half the budget.
 const EVERY: Duration = Duration::from_millis(250);
 
-/// How often it looks above that: walks touch pages fast, and between two looks the pages
-/// resident may grow past the budget.
+/// How often it looks above that: walks touch pages fast, and between two looks the process
+/// may grow past the budget.
 const CLOSELY: Duration = Duration::from_millis(20);
 
 /// Pages are let go of in chunks of this many bytes.
 const CHUNK: usize = 1 << 20;
 
-/// Sets the budget of mapped store pages, in bytes (0: the default, half the machine's
-/// memory).
+/// Chunks let go of before the process's memory is looked at again.
+const RELEASE_BATCH: usize = 64;
+
+/// Sets the budget of the process's resident memory, in bytes (0: the default, half the
+/// machine's memory).
 pub fn set_budget(bytes: u64) {
     BUDGET.store(bytes, Ordering::Relaxed);
 }
 
-/// The budget of mapped store pages, in bytes.
+/// The budget of the process's resident memory, in bytes.
 pub fn budget() -> u64 {
     match BUDGET.load(Ordering::Relaxed) {
         0 => machine_memory() / 2,
@@ -45,7 +50,8 @@ pub fn budget() -> u64 {
     }
 }
 
-/// What the watchers saw: bytes of store pages resident now, at most, and let go of.
+/// What the watchers saw: bytes of mapped files (the stores' pages, and the program's own)
+/// resident now, at most, and let go of.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Residency {
     /// Resident when last looked.
@@ -71,6 +77,9 @@ pub fn residency() -> Residency {
 pub struct ProcessMemory {
     /// Bytes resident now (VmRSS), 0 where unknown.
     pub resident: u64,
+    /// Bytes of mapped files resident now (RssFile: the stores' pages, and the program's
+    /// own), 0 where unknown.
+    pub file_resident: u64,
     /// The most bytes resident at once (VmHWM), 0 where unknown.
     pub peak_resident: u64,
     /// Faults on pages already in memory.
@@ -110,36 +119,47 @@ pub fn process_memory() -> ProcessMemory {
     let count = |n: libc::c_long| if ok { u64::try_from(n).unwrap_or(0) } else { 0 };
     ProcessMemory {
         resident: kb("VmRSS:").unwrap_or(0) * 1024,
+        file_resident: kb("RssFile:").unwrap_or(0) * 1024,
         peak_resident: kb("VmHWM:").unwrap_or(0) * 1024,
         minor_faults: count(usage.ru_minflt),
         major_faults: count(usage.ru_majflt),
     }
 }
 
-/// Watches `map` on a thread of its own until it is dropped, keeping its resident pages
-/// within the budget.
-pub fn watch(map: &Arc<Mmap>) {
+/// Watches `map` on a thread of its own until it is dropped, keeping the process's resident
+/// memory within the budget by letting go of the map's pages, never those in `pinned` (byte
+/// ranges of the map).
+pub fn watch(map: &Arc<Mmap>, pinned: Vec<Range<usize>>) {
     let map = Arc::downgrade(map);
     let spawned = std::thread::Builder::new()
         .name("store residency".into())
-        .spawn(move || Watcher::new(map).run());
+        .spawn(move || Watcher::new(map, &pinned).run());
     // Without a watcher the map still works; only its memory is not held to the budget.
     drop(spawned);
 }
 
-/// A map's watcher: for each chunk, the look at which its pages were first seen resident.
+/// A map's watcher: for each chunk, the look at which its pages were first seen resident
+/// ([`PINNED`] for chunks never let go of).
 struct Watcher {
     map: Weak<Mmap>,
     since: Vec<u64>,
     looks: u64,
 }
 
+/// The mark of a pinned chunk.
+const PINNED: u64 = u64::MAX - 1;
+
 impl Watcher {
-    fn new(map: Weak<Mmap>) -> Self {
+    fn new(map: Weak<Mmap>, pinned: &[Range<usize>]) -> Self {
         let chunks = map.upgrade().map_or(0, |m| m.len().div_ceil(CHUNK));
+        let mut since = vec![u64::MAX; chunks];
+        for range in pinned {
+            let end = range.end.div_ceil(CHUNK).min(chunks);
+            since[(range.start / CHUNK).min(end)..end].fill(PINNED);
+        }
         Watcher {
             map,
-            since: vec![u64::MAX; chunks],
+            since,
             looks: 0,
         }
     }
@@ -152,8 +172,8 @@ impl Watcher {
             let Some(map) = self.map.upgrade() else {
                 return;
             };
-            let resident = self.look(&map);
-            wait = if resident > budget() / 2 {
+            let process = self.look(&map);
+            wait = if process > budget() / 2 {
                 CLOSELY
             } else {
                 EVERY
@@ -161,49 +181,54 @@ impl Watcher {
         }
     }
 
-    /// Counts the resident pages chunk by chunk and, over the budget, lets go of the chunks
-    /// held longest until half the budget remains; returns the bytes resident then.
+    /// With the process over three quarters of the budget, lets go of the map's chunks held
+    /// longest (pinned chunks stay) until the process is at half the budget; returns the
+    /// process's bytes resident then. (`mincore` sees the page cache, a superset of the pages
+    /// mapped here: chunks are let go of a batch at a time, and the process's own count says
+    /// when enough were.)
     fn look(&mut self, map: &Mmap) -> u64 {
         self.looks += 1;
         let pages = resident_pages(map);
-        let page = page_size();
-        let per_chunk = CHUNK / page;
-        let mut resident: Vec<(usize, u64)> = Vec::new();
-        let mut total = 0u64;
+        let per_chunk = CHUNK / page_size();
+        let mut held = Vec::new();
         for (k, chunk) in pages.chunks(per_chunk).enumerate() {
-            let count = chunk.iter().filter(|&&p| p & 1 != 0).count() as u64;
-            if count == 0 {
-                self.since[k] = u64::MAX;
-                continue;
-            }
-            if self.since[k] == u64::MAX {
-                self.since[k] = self.looks;
-            }
-            total += count * page as u64;
-            resident.push((k, count * page as u64));
-        }
-        PEAK.fetch_max(total, Ordering::Relaxed);
-        let budget = budget();
-        if total > budget {
-            resident.sort_by_key(|&(k, _)| self.since[k]);
-            let keep = budget / 2;
-            for (k, bytes) in resident {
-                if total <= keep {
-                    break;
+            match self.since[k] {
+                PINNED => {}
+                _ if !chunk.iter().any(|&p| p & 1 != 0) => self.since[k] = u64::MAX,
+                u64::MAX => {
+                    self.since[k] = self.looks;
+                    held.push(k);
                 }
-                let (at, len) = (k * CHUNK, CHUNK.min(map.len() - k * CHUNK));
-                // SAFETY: the map is a read-only shared mapping of a file: pages let go of are
-                // read again from the file, unchanged, when next touched.
-                if unsafe { map.unchecked_advise_range(UncheckedAdvice::DontNeed, at, len) }.is_ok()
-                {
-                    total -= bytes;
-                    RELEASED.fetch_add(bytes, Ordering::Relaxed);
+                _ => held.push(k),
+            }
+        }
+        let budget = budget();
+        let mut memory = process_memory();
+        if memory.resident > budget / 4 * 3 {
+            held.sort_by_key(|&k| self.since[k]);
+            for batch in held.chunks(RELEASE_BATCH) {
+                for &k in batch {
+                    let (at, len) = (k * CHUNK, CHUNK.min(map.len() - k * CHUNK));
+                    // SAFETY: the map is a read-only shared mapping of a file: pages let go
+                    // of are read again from the file, unchanged, when next touched.
+                    let _ =
+                        unsafe { map.unchecked_advise_range(UncheckedAdvice::DontNeed, at, len) };
                     self.since[k] = u64::MAX;
                 }
+                let after = process_memory();
+                RELEASED.fetch_add(
+                    memory.file_resident.saturating_sub(after.file_resident),
+                    Ordering::Relaxed,
+                );
+                memory = after;
+                if memory.resident <= budget / 2 {
+                    break;
+                }
             }
         }
-        RESIDENT.store(total, Ordering::Relaxed);
-        total
+        RESIDENT.store(memory.file_resident, Ordering::Relaxed);
+        PEAK.fetch_max(memory.file_resident, Ordering::Relaxed);
+        memory.resident
     }
 }
 
