@@ -275,10 +275,11 @@ fn unfinished_truncated_and_damaged_stores_are_refused_with_a_message() {
 #[test]
 fn a_store_let_go_of_while_four_threads_trace_answers_as_the_map_in_memory() {
     let dir = tempfile::tempdir().unwrap();
-    let field = heightray::heightfield::landscape(257, 3, 60.0).unwrap();
+    let field = heightray::heightfield::landscape(1025, 3, 60.0).unwrap();
     let hrt = dir.path().join("land.hrt");
     store::save(&field, &hrt).unwrap();
-    // Every look of the watcher (each 20 ms while over half the budget) lets go of every page.
+    // Every look of the watcher (each 20 ms while over half the budget) lets go of every page
+    // not pinned.
     residency::set_budget(4096);
     let stored =
         heightray::heightfield::load_with(&hrt, &LoadOptions::new(field.z_scale()), &|_| {
@@ -294,8 +295,8 @@ fn a_store_let_go_of_while_four_threads_trace_answers_as_the_map_in_memory() {
                 let mut random = crate::common::random::Rng(0x9e37_79b9 + seed);
                 for _ in 0..4000 {
                     let o = [
-                        random.within(-50.0, 300.0),
-                        random.within(-50.0, 300.0),
+                        random.within(-50.0, 1100.0),
+                        random.within(-50.0, 1100.0),
                         random.within(70.0, 200.0),
                     ];
                     let d = [
