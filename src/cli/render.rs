@@ -3,6 +3,7 @@
 //! `--tiles`, a poster's tiles ([`super::render_tiles`]).
 
 use super::{loading, render_frames, render_ortho, render_progress, render_tiles, RenderArgs};
+use heightray::heightfield::store;
 use heightray::output_file;
 use heightray::render::animation::Animation;
 use heightray::render::annotate::{Annotations, Marked, Sheet};
@@ -47,10 +48,13 @@ impl Setup {
         let read_time = start.elapsed();
         let method = args.method.unwrap_or(scene.method);
         let arith = args.arith.unwrap_or(scene.arith);
-        let pool = super::knobs::worker_pool(args.threads)?;
         let field = scene.field;
         let terrain = loading::stage("building acceleration data", || Terrain::new(field));
         loading::summary(&args.scene, &terrain, read_time);
+        let pool = super::knobs::worker_pool(
+            args.threads
+                .or_else(|| terrain.field().is_mapped().then(store::threads)),
+        )?;
         let mut lighting = scene.lighting;
         if let Some(samples) = args.samples {
             anyhow::ensure!(

@@ -8,13 +8,13 @@
 
 use super::mailbox::Mailbox;
 use super::orbit::Orbit;
-use crate::heightfield::Preview;
+use crate::heightfield::{store, Preview};
 use crate::render::effects::Effects;
 use crate::render::Accumulation;
 use crate::render::{Camera, Contours, Culling, Frame, Lighting, Renderer, Shader};
 use crate::{Arith, Method, Terrain};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::{Arc, Mutex, PoisonError};
+use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -118,7 +118,7 @@ pub struct RenderWorker {
 
 impl RenderWorker {
     /// Starts the thread; `notify` is called (from the thread) after each published pass.
-    pub fn start(notify: impl Fn() + Send + 'static) -> std::io::Result<RenderWorker> {
+    pub fn start(notify: impl Fn() + Send + Sync + 'static) -> std::io::Result<RenderWorker> {
         let shared = Arc::new(Shared {
             jobs: Mailbox::new(),
             latest: Mutex::new(None),
@@ -179,12 +179,32 @@ impl Drop for RenderWorker {
     }
 }
 
-fn render_loop(shared: &Shared, notify: &dyn Fn()) {
+fn render_loop(shared: &Shared, notify: &(dyn Fn() + Sync)) {
     while let Some((generation, job)) = shared.jobs.take() {
         shared.rendering.store(true, Ordering::SeqCst);
-        render_job(shared, notify, generation, job);
+        match store_pool(&job) {
+            Some(pool) => pool.install(|| render_job(shared, notify, generation, job)),
+            None => render_job(shared, notify, generation, job),
+        }
         shared.rendering.store(false, Ordering::SeqCst);
     }
+}
+
+/// The threads that trace a map mapped from a tile store (made once): more than the cores,
+/// so that walks waiting on the disk leave them to others (see [`store::threads`]).
+fn store_pool(job: &RenderJob) -> Option<&'static rayon::ThreadPool> {
+    static POOL: OnceLock<Option<rayon::ThreadPool>> = OnceLock::new();
+    if !job.terrain.field().is_mapped() {
+        return None;
+    }
+    let pool = || {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(store::threads())
+            .thread_name(|k| format!("heightray-store-{k}"))
+            .build()
+            .ok()
+    };
+    POOL.get_or_init(pool).as_ref()
 }
 
 /// Waits (briefly) until the window has shown `generation`, or a newer job has come.
@@ -196,7 +216,7 @@ fn wait_until_presented(shared: &Shared, generation: u64) {
 }
 
 /// Renders passes until the frame is complete or a newer job cancels it.
-fn render_job(shared: &Shared, notify: &dyn Fn(), generation: u64, job: RenderJob) {
+fn render_job(shared: &Shared, notify: &(dyn Fn() + Sync), generation: u64, job: RenderJob) {
     let (width, height) = job.camera.size();
     let mut frame = Frame::new(width, height);
     // The passes trace one ray per pixel; samples per pixel follow in rounds, one sample of

@@ -22,6 +22,15 @@ use super::{HeightfieldError, LoadError, Mipmap};
 use std::path::PathBuf;
 use thiserror::Error;
 
+/// Threads a core that trace a map from a store: a walk that waits on the disk for a page
+/// leaves its core to another, and the disk serves several reads at once.
+const THREADS_PER_CORE: usize = 4;
+
+/// The threads that trace a map from a store on this machine ([`THREADS_PER_CORE`] a core).
+pub fn threads() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get()) * THREADS_PER_CORE
+}
+
 /// The acceleration data a store holds ready, in place of building it when a terrain is made.
 #[derive(Clone, Debug)]
 pub struct Prebuilt {
