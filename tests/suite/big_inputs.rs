@@ -106,7 +106,7 @@ impl Spec<'_> {
             )
         };
         let keys: [u16; 16] = [1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 32633];
-        let mut entries: Vec<(u16, (u16, u32, Vec<u8>))> = vec![
+        let mut entries: Vec<Entry> = vec![
             (256, long(self.size[0])),
             (257, long(self.size[1])),
             (258, short(bits)),
@@ -181,6 +181,9 @@ impl Spec<'_> {
         self.file(&blobs, &which)
     }
 }
+
+/// A directory entry: its tag, and its type, count and value's bytes.
+type Entry = (u16, (u16, u32, Vec<u8>));
 
 fn deflate(bytes: &[u8]) -> Vec<u8> {
     let mut out = Vec::new();
@@ -273,6 +276,8 @@ fn big_tiff() -> Vec<u8> {
 /// most memory it held resident, in bytes.
 fn peak_memory(args: &[&str], dir: &Path) -> (bool, String, u64) {
     let log = dir.join("stderr.txt");
+    // wait4 below reaps it, with what it used.
+    #[allow(clippy::zombie_processes)]
     let child = Command::new(env!("CARGO_BIN_EXE_heightray"))
         .args(args)
         .stdout(Stdio::null())
@@ -412,7 +417,7 @@ fn small_geotiffs_by_strips_and_tiles_make_the_stores_of_their_whole_file_loads(
         let tif = dir.path().join(format!("{name}.tif"));
         std::fs::write(&tif, spec.of(&z)).unwrap();
         let hrt = dir.path().join(format!("{name}.hrt"));
-        let header = prepare(&[tif.clone()], &hrt).unwrap();
+        let header = prepare(std::slice::from_ref(&tif), &hrt).unwrap();
         let (field, stored) = (whole(&tif), whole(&hrt));
         assert_same(&stored, &field, name);
         assert_eq!(
@@ -482,8 +487,11 @@ fn a_damaged_big_geotiff_is_refused_with_a_message() {
     let refused = |name: &str, bytes: &[u8]| {
         let path = dir.path().join(name);
         std::fs::write(&path, bytes).unwrap();
-        let message =
-            prepare(&[path.clone()], &dir.path().join(format!("{name}.hrt"))).expect_err(name);
+        let message = prepare(
+            std::slice::from_ref(&path),
+            &dir.path().join(format!("{name}.hrt")),
+        )
+        .expect_err(name);
         assert!(message.contains(path.to_str().unwrap()), "{message}");
         message
     };
