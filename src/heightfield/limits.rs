@@ -18,14 +18,8 @@ pub(super) fn check_header(
     height: u64,
     bytes_per_pixel: u64,
 ) -> Result<(), LoadError> {
+    check_least(name, width, height)?;
     let name = name.to_owned();
-    if width < 2 || height < 2 {
-        return Err(LoadError::TooSmall {
-            name,
-            width,
-            height,
-        });
-    }
     let samples = width.saturating_mul(height);
     if samples > MAX_SAMPLES {
         return Err(LoadError::TooManySamples {
@@ -41,6 +35,19 @@ pub(super) fn check_header(
             width,
             height,
             bytes,
+        });
+    }
+    Ok(())
+}
+
+/// Refuses a raster of `width` x `height` pixels too small for a field (read in parts, it may
+/// be larger than a field in memory may).
+pub(super) fn check_least(name: &str, width: u64, height: u64) -> Result<(), LoadError> {
+    if width < 2 || height < 2 {
+        return Err(LoadError::TooSmall {
+            name: name.to_owned(),
+            width,
+            height,
         });
     }
     Ok(())

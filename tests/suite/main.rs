@@ -9,6 +9,7 @@ mod common;
 mod annotations;
 mod bad_input;
 mod base;
+mod big_inputs;
 mod cell_lanes;
 mod cli_bench;
 mod cli_compare;

@@ -16,6 +16,7 @@ mod picture;
 mod png;
 pub(super) mod raster;
 mod tiff;
+pub(super) mod tiff_chunks;
 mod watched;
 
 use super::limits::{self, MAX_DECODED_BYTES, MAX_SAMPLES};
@@ -323,7 +324,17 @@ pub fn load_with(
     options: &LoadOptions,
     progress: Progress,
 ) -> Result<Heightfield, LoadError> {
-    let (file, len) = regular_file::open(path).map_err(|error| match error {
+    let (file, len) = open_regular(path)?;
+    if super::store::is_store(&file) {
+        return super::store::open(&file, len, path, options)
+            .map_err(|e| LoadError::Store(Box::new(e)));
+    }
+    load_from(file, len, options, &path.display().to_string(), progress)
+}
+
+/// Opens the regular file at `path`, with its length.
+fn open_regular(path: &Path) -> Result<(std::fs::File, u64), LoadError> {
+    regular_file::open(path).map_err(|error| match error {
         OpenError::NotAFile(what) => LoadError::NotAFile {
             path: path.to_owned(),
             what,
@@ -332,12 +343,7 @@ pub fn load_with(
             path: path.to_owned(),
             reason,
         },
-    })?;
-    if super::store::is_store(&file) {
-        return super::store::open(&file, len, path, options)
-            .map_err(|e| LoadError::Store(Box::new(e)));
-    }
-    load_from(file, len, options, &path.display().to_string(), progress)
+    })
 }
 
 /// Loads a height field from the bytes of a file with the default options; `name` labels
@@ -425,6 +431,17 @@ fn decode<R: Read + Seek>(
             start: first_bytes(&start),
         }),
     }
+}
+
+/// Whether the file at `path` is a TIFF, as loading tells the formats apart (a file that
+/// cannot be read is not).
+pub(super) fn is_tiff(path: &Path) -> bool {
+    let Ok((file, _)) = regular_file::open(path) else {
+        return false;
+    };
+    let mut start = Vec::with_capacity(8);
+    file.take(8).read_to_end(&mut start).is_ok()
+        && Format::of(&start, &path.display().to_string()) == Some(Format::Tiff)
 }
 
 /// The longest TIFF read whole before decoding.

@@ -70,11 +70,7 @@ impl Values {
 impl Raster {
     /// The height field, with the options' z scale, no-data value and height unit.
     pub fn into_field(self, options: &LoadOptions) -> Result<Heightfield, HeightfieldError> {
-        let georef = match (&self.georef, options.height_unit) {
-            (Georeferencing::Map(g), Some(unit)) => Georeferencing::Map(g.with_height_unit(unit)),
-            (georef, _) => georef.clone(),
-        };
-        let georef = georef.with_cells_checked(self.width, self.height);
+        let georef = placed(&self.georef, options, self.width, self.height);
         Ok(self.into_samples(options)?.with_georeferencing(georef))
     }
 
@@ -88,14 +84,11 @@ impl Raster {
                 got: self.values.len(),
             });
         }
-        let nodata = match options.nodata {
-            NoDataValue::Off => None,
-            NoDataValue::Value(v) => Some(v),
-            NoDataValue::Auto => match self.values {
-                Values::Unsigned { .. } | Values::TerrainRgb { .. } => self.file_nodata,
-                _ => self.file_nodata.or(Some(SRTM_NODATA)),
-            },
-        };
+        let unsigned = matches!(
+            self.values,
+            Values::Unsigned { .. } | Values::TerrainRgb { .. }
+        );
+        let nodata = nodata_value(options, unsigned, self.file_nodata);
         let quantise =
             |value: &dyn Fn(usize) -> f64| quantise(width, height, value, nodata, options.z_scale);
         match self.values {
@@ -126,6 +119,41 @@ impl Raster {
     }
 }
 
+/// Where a raster of `width` x `height` samples that `georef` places lies, with the options'
+/// height unit; ignored where its cells are of no size a map has.
+pub(super) fn placed(
+    georef: &Georeferencing,
+    options: &LoadOptions,
+    width: usize,
+    height: usize,
+) -> Georeferencing {
+    let georef = match (georef, options.height_unit) {
+        (Georeferencing::Map(g), Some(unit)) => Georeferencing::Map(g.with_height_unit(unit)),
+        (georef, _) => georef.clone(),
+    };
+    georef.with_cells_checked(width, height)
+}
+
+/// The raster value that means no data, as `options` say, for a raster of `unsigned` samples
+/// (or terrain-RGB pixels) or not, whose file declares `file_nodata`.
+pub(super) fn nodata_value(
+    options: &LoadOptions,
+    unsigned: bool,
+    file_nodata: Option<f64>,
+) -> Option<f64> {
+    match options.nodata {
+        NoDataValue::Off => None,
+        NoDataValue::Value(v) => Some(v),
+        NoDataValue::Auto if unsigned => file_nodata,
+        NoDataValue::Auto => file_nodata.or(Some(SRTM_NODATA)),
+    }
+}
+
+/// Whether the value `v` of a raster whose no-data value is `nodata` has data.
+pub(super) fn has_data(v: f64, nodata: Option<f64>) -> bool {
+    v.is_finite() && Some(v) != nodata
+}
+
 /// The height in metres a terrain-RGB pixel encodes.
 fn terrain_rgb(encoding: TerrainRgb, r: u8, g: u8, b: u8) -> f64 {
     let (r, g, b) = (f64::from(r), f64::from(g), f64::from(b));
@@ -145,7 +173,7 @@ fn quantise(
     nodata: Option<f64>,
     z_scale: f64,
 ) -> Result<Heightfield, HeightfieldError> {
-    let valid = |v: f64| v.is_finite() && Some(v) != nodata;
+    let valid = |v: f64| has_data(v, nodata);
     let mut range = ValueRange::EMPTY;
     for v in (0..width * height).map(value).filter(|&v| valid(v)) {
         range.include(v);

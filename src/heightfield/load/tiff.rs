@@ -3,10 +3,11 @@
 //! GeoTIFF's GDAL_NODATA value and georeferencing.
 
 use super::geotiff;
-use super::limits::{check_header, MAX_DECODED_BYTES};
+use super::limits::{check_header, check_least, MAX_DECODED_BYTES};
 use super::picture;
 use super::raster::{Raster, Values};
 use super::{decode_error, LoadError};
+use crate::heightfield::georef::Georeferencing;
 use std::io::{Read, Seek};
 use thiserror::Error;
 use tiff::decoder::{Decoder, DecodingResult, Limits};
@@ -44,6 +45,28 @@ pub enum ChunkError {
         /// The file's bytes.
         len: u64,
     },
+    /// Fewer strips or tiles than the image's size needs.
+    #[error("it has {got} {what}s, where its size needs {needed}")]
+    Count {
+        /// "strip" or "tile".
+        what: &'static str,
+        /// The chunks its tags give.
+        got: usize,
+        /// The chunks its size needs.
+        needed: usize,
+    },
+    /// A strip or tile that decodes to another number of samples than its size holds.
+    #[error("{what} {index} does not decode to its {w}x{h} samples")]
+    Size {
+        /// "strip" or "tile".
+        what: &'static str,
+        /// Which one.
+        index: usize,
+        /// Its samples along x.
+        w: usize,
+        /// Along y.
+        h: usize,
+    },
     /// Too few compressed bytes for the decoded size the header claims.
     #[error(
         "its {what}s hold {total} bytes, which cannot decode to the {needed} bytes its header \
@@ -59,14 +82,31 @@ pub enum ChunkError {
     },
 }
 
-/// Decodes the first image of a TIFF from `input`, reading only what its directory points at.
-pub fn decode(input: impl Read + Seek, len: u64, name: &str) -> Result<Raster, LoadError> {
+/// What a TIFF's first directory says of its image, read before any sample is.
+pub(super) struct Described {
+    pub width: u32,
+    pub height: u32,
+    /// Bits per sample.
+    pub bits: u16,
+    /// The no-data value the file itself declares (GDAL_NODATA).
+    pub file_nodata: Option<f64>,
+    pub georef: Georeferencing,
+}
+
+/// Reads the size, sample type, no-data value and georeferencing of the first image of the
+/// TIFF `decoder` reads, `len` bytes long, and checks that its strips or tiles lie within the
+/// file; its size is checked against the limits of a map decoded `whole`, else only against
+/// the least a field has.
+pub(super) fn describe<R: Read + Seek>(
+    decoder: &mut Decoder<R>,
+    len: u64,
+    name: &str,
+    whole: bool,
+) -> Result<Described, LoadError> {
     let unsupported = |what: String| LoadError::Unsupported {
         name: name.into(),
         what,
     };
-    // Reads the header and the first directory only: the size is checked before decoding.
-    let mut decoder = Decoder::new(input).map_err(|e| decode_error(name, e))?;
     let (width, height) = decoder.dimensions().map_err(|e| decode_error(name, e))?;
     let compression = decoder
         .get_tag_unsigned::<u16>(Tag::Compression)
@@ -89,19 +129,41 @@ pub fn decode(input: impl Read + Seek, len: u64, name: &str) -> Result<Raster, L
             })
         }
     };
-    check_header(name, width.into(), height.into(), u64::from(bits / 8))?;
+    match whole {
+        true => check_header(name, width.into(), height.into(), u64::from(bits / 8))?,
+        false => check_least(name, width.into(), height.into())?,
+    }
     let needed = u64::from(width) * u64::from(height) * u64::from(bits / 8);
-    check_chunks(&mut decoder, len, needed).map_err(|reason| decode_error(name, reason))?;
+    check_chunks(decoder, len, needed).map_err(|reason| decode_error(name, reason))?;
     let file_nodata = decoder
         .get_tag_ascii_string(Tag::GdalNodata)
         .ok()
         .and_then(|text| text.trim_matches(['\0', ' ']).parse::<f64>().ok());
-    let georef = geotiff::georeferencing(&mut decoder, height);
+    let georef = geotiff::georeferencing(decoder, height);
+    Ok(Described {
+        width,
+        height,
+        bits: bits.into(),
+        file_nodata,
+        georef,
+    })
+}
+
+/// The decoder's limits for buffers of up to [`MAX_DECODED_BYTES`].
+pub(super) fn limits() -> Limits {
     let buffer_limit = usize::try_from(MAX_DECODED_BYTES).unwrap_or(usize::MAX);
     let mut limits = Limits::default();
     limits.decoding_buffer_size = buffer_limit;
     limits.intermediate_buffer_size = buffer_limit;
-    let mut decoder = decoder.with_limits(limits);
+    limits
+}
+
+/// Decodes the first image of a TIFF from `input`, reading only what its directory points at.
+pub fn decode(input: impl Read + Seek, len: u64, name: &str) -> Result<Raster, LoadError> {
+    // Reads the header and the first directory only: the size is checked before decoding.
+    let mut decoder = Decoder::new(input).map_err(|e| decode_error(name, e))?;
+    let described = describe(&mut decoder, len, name, true)?;
+    let mut decoder = decoder.with_limits(limits());
     let values = match decoder.read_image().map_err(|e| decode_error(name, e))? {
         DecodingResult::U8(v) => Values::Unsigned {
             samples: v.into_iter().map(u16::from).collect(),
@@ -117,19 +179,23 @@ pub fn decode(input: impl Read + Seek, len: u64, name: &str) -> Result<Raster, L
         DecodingResult::U32(v) => Values::U32(v),
         DecodingResult::F32(v) => Values::F32(v),
         DecodingResult::F64(v) => Values::F64(v),
-        _ => {
-            return Err(unsupported(format!(
-                "a TIFF of {bits}-bit samples of this type"
-            )))
-        }
+        _ => return Err(unsupported_type(name, described.bits)),
     };
     Ok(Raster {
-        width: width as usize,
-        height: height as usize,
+        width: described.width as usize,
+        height: described.height as usize,
         values,
-        file_nodata,
-        georef,
+        file_nodata: described.file_nodata,
+        georef: described.georef,
     })
+}
+
+/// A TIFF of `bits`-bit samples of a type not read (64-bit integers, 16-bit floats).
+pub(super) fn unsupported_type(name: &str, bits: u16) -> LoadError {
+    LoadError::Unsupported {
+        name: name.into(),
+        what: format!("a TIFF of {bits}-bit samples of this type"),
+    }
 }
 
 /// The most bytes a compressed byte decodes to in the codecs read (Deflate's limit is about

@@ -54,9 +54,15 @@ impl Rows<'_> {
             row.resize(n, 0);
             return Ok(());
         }
+        let first = at + (2 * n * j) as u64;
+        if is_hole(self.file, first, 2 * n as u64) {
+            row.clear();
+            row.resize(n, 0);
+            return Ok(());
+        }
         let mut bytes = vec![0u8; 2 * n];
         self.file
-            .read_exact_at(&mut bytes, at + (2 * n * j) as u64)
+            .read_exact_at(&mut bytes, first)
             .map_err(StoreError::io(self.path))?;
         row.clear();
         row.extend(
@@ -97,6 +103,32 @@ impl Rows<'_> {
         Ok((first..first + w)
             .map(|k| words[k / 64 - word0] & (1 << (k % 64)) != 0)
             .collect())
+    }
+}
+
+/// Whether the `len` bytes of `file` from byte `at` lie in a hole, never written (zeros, as a
+/// one input's zero blocks and the gaps of a mosaic are): they are not read, which would fill
+/// memory with pages of zeros. Where the system cannot tell, they are read.
+fn is_hole(file: &File, at: u64, len: u64) -> bool {
+    #[cfg(any(target_os = "linux", target_os = "android"))]
+    {
+        use std::os::fd::AsRawFd;
+        let Ok(offset) = libc::off_t::try_from(at) else {
+            return false;
+        };
+        // SAFETY: the descriptor is open for as long as `file`; the offset lseek moves is not
+        // the one positioned reads and writes use.
+        let data = unsafe { libc::lseek(file.as_raw_fd(), offset, libc::SEEK_DATA) };
+        match u64::try_from(data) {
+            Ok(data) => data >= at.saturating_add(len),
+            // No data from `at` to the end of the file.
+            Err(_) => std::io::Error::last_os_error().raw_os_error() == Some(libc::ENXIO),
+        }
+    }
+    #[cfg(not(any(target_os = "linux", target_os = "android")))]
+    {
+        let _ = (file, at, len);
+        false
     }
 }
 

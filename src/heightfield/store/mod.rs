@@ -9,10 +9,12 @@
 //! stopped. It must not be changed while a map is open from it.
 
 mod build;
+mod chunked;
 mod header;
 mod open;
 mod prepare;
 pub mod residency;
+mod write;
 
 pub use header::{is_store, Header, Input, MAGIC};
 pub use open::open;

@@ -4,15 +4,17 @@
 //! same preparation again.
 
 use super::build::build;
-use super::header::{Header, Input, Sections};
+use super::chunked;
+use super::header::{Header, Input};
+use super::write::{Placing, Writer};
 use super::StoreError;
 use crate::heightfield::georef::{Georef, Georeferencing};
+use crate::heightfield::load::is_tiff;
 use crate::heightfield::load::mosaic::{one_grid, tile_offsets, value};
 use crate::heightfield::load::raster::ValueRange;
 use crate::heightfield::{load_with, Heightfield, LoadOptions, Quantisation};
 use std::fs::{File, OpenOptions};
 use std::ops::ControlFlow;
-use std::os::unix::fs::FileExt;
 use std::path::{Path, PathBuf};
 
 /// What preparing is doing, for a progress bar.
@@ -59,13 +61,37 @@ pub fn prepare(
         if header.inputs[k].written {
             continue;
         }
-        if progress(Stage::Writing, (n - 1 - k) as f64 / n as f64).is_break() {
-            return Err(cancelled());
-        }
+        let step =
+            |f: f64| match progress(Stage::Writing, (n - 1 - k) as f64 / n as f64 + f / n as f64) {
+                ControlFlow::Break(()) => Err(cancelled()),
+                ControlFlow::Continue(()) => Ok(()),
+            };
+        step(0.0)?;
         let input = &header.inputs[k];
-        let field = load_with(&input.path, &options, &|_| ControlFlow::Continue(()))?;
         let writer = Writer::of((&file, output), &header, &sections);
-        writer.input(&field, input.at, header.quantisation, n == 1)?;
+        let (q, whole) = (header.quantisation, n == 1);
+        if is_tiff(&input.path) {
+            let how = (q, whole, header.holes.is_some());
+            chunked::write(
+                (&input.path, &options),
+                &writer,
+                (input.at, input.size),
+                how,
+                step,
+            )?;
+        } else {
+            let field = load_with(&input.path, &options, &|_| ControlFlow::Continue(()))?;
+            let own = field.quantisation();
+            writer.field(
+                &field,
+                &Placing {
+                    at: input.at,
+                    own,
+                    store: q,
+                    whole,
+                },
+            )?;
+        }
         header.inputs[k].written = true;
         header.write(&file, room, output)?;
     }
@@ -88,7 +114,16 @@ pub fn save(field: &Heightfield, output: &Path) -> Result<Header, StoreError> {
     let (file, room) = create(output, &header)?;
     let sections = header.sections(room);
     let writer = Writer::of((&file, output), &header, &sections);
-    writer.input(field, [0, 0], header.quantisation, true)?;
+    let q = header.quantisation;
+    writer.field(
+        field,
+        &Placing {
+            at: [0, 0],
+            own: q,
+            store: q,
+            whole: true,
+        },
+    )?;
     let covered = vec![true; field.height()];
     let keep_going = |_, _| ControlFlow::Continue(());
     finish((&file, output), (&mut header, room), &covered, &keep_going)?;
@@ -172,11 +207,18 @@ fn plan(
     output: &Path,
 ) -> Result<Header, StoreError> {
     let mut read = Vec::with_capacity(inputs.len());
+    let n = inputs.len();
     for (k, path) in inputs.iter().enumerate() {
-        if progress(k as f64 / inputs.len() as f64).is_break() {
-            return Err(StoreError::Cancelled {
+        let step = |f: f64| match progress((k as f64 + f) / n as f64) {
+            ControlFlow::Break(()) => Err(StoreError::Cancelled {
                 path: output.to_owned(),
-            });
+            }),
+            ControlFlow::Continue(()) => Ok(()),
+        };
+        step(0.0)?;
+        if is_tiff(path) {
+            read.push(chunked::plan(path, options, n > 1, step)?);
+            continue;
         }
         let field = load_with(path, options, &|_| ControlFlow::Continue(()))?;
         let bytes = std::fs::metadata(path).map_err(StoreError::io(path))?.len();
@@ -191,7 +233,7 @@ fn plan(
             bytes,
             size: [field.width() as u64, field.height() as u64],
             range,
-            holes: field.nodata_count(),
+            holes: field.nodata_count() as u64,
             quantisation: field.quantisation(),
             georef: field.georeferencing().clone(),
         });
@@ -207,18 +249,18 @@ fn plan(
 }
 
 /// What planning reads of an input.
-struct Planned {
-    path: PathBuf,
+pub(super) struct Planned {
+    pub path: PathBuf,
     /// The file's length.
-    bytes: u64,
+    pub bytes: u64,
     /// Samples along x and y.
-    size: [u64; 2],
+    pub size: [u64; 2],
     /// The range of its heights with data.
-    range: ValueRange,
+    pub range: ValueRange,
     /// Samples without data.
-    holes: usize,
-    quantisation: Quantisation,
-    georef: Georeferencing,
+    pub holes: u64,
+    pub quantisation: Quantisation,
+    pub georef: Georeferencing,
 }
 
 impl Planned {
@@ -294,93 +336,4 @@ fn plan_mosaic(read: &[Planned]) -> Result<Header, StoreError> {
         .map(|(input, offset)| input.input([0, 1].map(|axis| (offset[axis] - lo[axis]) as u64)))
         .collect();
     Ok(header)
-}
-
-/// Writes inputs' samples and valid bits into a store.
-struct Writer<'a> {
-    file: &'a File,
-    path: &'a Path,
-    width: u64,
-    samples_at: u64,
-    valid_at: Option<u64>,
-}
-
-impl<'a> Writer<'a> {
-    /// The writer into the store `file` at `path` of `header`, its sections as `sections`.
-    fn of((file, path): (&'a File, &'a Path), header: &Header, sections: &Sections) -> Self {
-        Writer {
-            file,
-            path,
-            width: header.width,
-            samples_at: sections.samples.0,
-            valid_at: sections.valid.map(|(at, _)| at),
-        }
-    }
-
-    /// Writes the samples of `field` with data at `at`, quantised as the store's, or, where
-    /// the field is the store's one input, every sample as it is.
-    fn input(
-        &self,
-        field: &Heightfield,
-        at: [u64; 2],
-        q: Quantisation,
-        whole: bool,
-    ) -> Result<(), StoreError> {
-        let (lowest, step) = match q {
-            Quantisation::Offset { lowest, step } => (lowest, step),
-            Quantisation::Maxval(_) => (0.0, 1.0),
-        };
-        let mut row = Vec::with_capacity(field.width());
-        for j in 0..field.height() {
-            let first = (at[1] + j as u64) * self.width + at[0];
-            row.clear();
-            row.extend((0..field.width()).map(|i| {
-                let valid = !field.is_nodata(i, j);
-                match whole {
-                    true => (field.sample(i, j), valid),
-                    false if valid => (ValueRange::sample(value(field, i, j), lowest, step), true),
-                    false => (0, false),
-                }
-            }));
-            self.row(first, &row, whole)?;
-        }
-        Ok(())
-    }
-
-    /// Writes one row of samples from sample `first` on, each with whether it has data: the
-    /// runs of samples with data, marked valid, and where `all`, those without too.
-    fn row(&self, first: u64, row: &[(u16, bool)], all: bool) -> Result<(), StoreError> {
-        let mut k = 0;
-        while k < row.len() {
-            let run = row[k..].iter().take_while(|s| s.1 || all).count();
-            if run > 0 {
-                let bytes: Vec<u8> = row[k..k + run]
-                    .iter()
-                    .flat_map(|s| s.0.to_le_bytes())
-                    .collect();
-                self.file
-                    .write_all_at(&bytes, self.samples_at + 2 * (first + k as u64))
-                    .map_err(StoreError::io(self.path))?;
-            }
-            k += run.max(1);
-        }
-        let Some(valid_at) = self.valid_at else {
-            return Ok(());
-        };
-        let (word0, word1) = (first / 64, (first + row.len() as u64).div_ceil(64));
-        let mut bytes = vec![0u8; 8 * (word1 - word0) as usize];
-        let at = valid_at + 8 * word0;
-        self.file
-            .read_exact_at(&mut bytes, at)
-            .map_err(StoreError::io(self.path))?;
-        for (i, sample) in row.iter().enumerate() {
-            if sample.1 {
-                let k = first + i as u64 - 64 * word0;
-                bytes[(k / 8) as usize] |= 1 << (k % 8);
-            }
-        }
-        self.file
-            .write_all_at(&bytes, at)
-            .map_err(StoreError::io(self.path))
-    }
 }
