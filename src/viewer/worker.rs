@@ -372,15 +372,28 @@ mod tests {
         }
     }
 
+    /// A worker held inside `notify` after each frame it publishes until `looked` is told:
+    /// the test sees every published frame (not for ever: a failed assertion drops the worker,
+    /// which waits for this).
+    fn held_worker() -> (RenderWorker, mpsc::Receiver<()>, mpsc::Sender<()>) {
+        let (published, heard) = mpsc::channel();
+        let (looked, go_on) = mpsc::channel::<()>();
+        let go_on = Mutex::new(go_on);
+        let worker = RenderWorker::start(move || {
+            let _ = published.send(());
+            let _ = go_on
+                .lock()
+                .map(|go_on| go_on.recv_timeout(Duration::from_secs(20)));
+        })
+        .unwrap();
+        (worker, heard, looked)
+    }
+
     /// Each pass is refined in the buffers of the pass before the last (nothing here holds
     /// it): the last pass shows the image and counts a render in one go makes.
     #[test]
     fn passes_refined_in_reused_buffers_end_with_the_renderers_image() {
-        let (published, heard) = mpsc::channel();
-        let worker = RenderWorker::start(move || {
-            let _ = published.send(());
-        })
-        .unwrap();
+        let (worker, heard, looked) = held_worker();
         let job = small_job();
         let mut whole = Frame::new(40, 24);
         job.renderer(job.arith).render(&mut whole);
@@ -390,6 +403,7 @@ mod tests {
             heard.recv_timeout(Duration::from_secs(10)).unwrap();
             passes += 1;
             let latest = worker.latest().unwrap();
+            looked.send(()).unwrap();
             if latest.finished() {
                 break latest;
             }
@@ -424,17 +438,14 @@ mod tests {
         assert_eq!(level, Some(2), "4,099 cells in blocks of 4 fit in 2048");
         let mut whole = Frame::new(48, 32);
         job.renderer(job.arith).render(&mut whole);
-        let (published, heard) = mpsc::channel();
-        let worker = RenderWorker::start(move || {
-            let _ = published.send(());
-        })
-        .unwrap();
+        let (worker, heard, looked) = held_worker();
         worker.submit(job);
         let mut shown = Vec::new();
         let last = loop {
             heard.recv_timeout(Duration::from_secs(20)).unwrap();
             let latest = worker.latest().unwrap();
             shown.push((latest.preview, latest.frame.passes_done));
+            looked.send(()).unwrap();
             if latest.finished() {
                 break latest;
             }
@@ -451,21 +462,10 @@ mod tests {
     }
 
     /// When the window hears of the complete frame, the worker already says it is idle: the
-    /// window reports `busy` as it shows that frame and may draw nothing after it. Here the
-    /// worker is held inside `notify` until the test has asked.
+    /// window reports `busy` as it shows that frame and may draw nothing after it.
     #[test]
     fn a_complete_frame_is_published_with_the_worker_idle() {
-        let (published, heard) = mpsc::channel();
-        let (checked, go_on) = mpsc::channel::<()>();
-        let go_on = Mutex::new(go_on);
-        let worker = RenderWorker::start(move || {
-            let _ = published.send(());
-            // (Not for ever: a failed assertion drops the worker, which waits for this.)
-            let _ = go_on
-                .lock()
-                .map(|go_on| go_on.recv_timeout(Duration::from_secs(10)));
-        })
-        .unwrap();
+        let (worker, heard, checked) = held_worker();
         worker.submit(small_job());
         let mut passes = 0;
         loop {
