@@ -36,6 +36,9 @@ pub struct Culling {
     /// Walk only the first cells of a shadow or sky-light ray that bounds kept for the terrain
     /// ahead prove clear beyond them (the sun's [`StripBounds`], the sky's [`SkyBounds`]).
     pub far_bounds: bool,
+    /// Settle the sky-light rays the kept bounds leave unsettled as blocked where a probe
+    /// finds them under the surface ([`SkyRays::probed`]).
+    pub probes: bool,
     /// Start each camera ray's walk where its wedge's profile proves it clear of the surface,
     /// and settle the rays above their wedge's whole profile with no walk ([`Wedges`]).
     pub camera_clearance: bool,
@@ -53,6 +56,7 @@ impl Default for Culling {
             horizon_clear: true,
             cone_blocked: true,
             far_bounds: true,
+            probes: true,
             camera_clearance: true,
             near_walk: true,
         }

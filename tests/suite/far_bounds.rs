@@ -431,3 +431,37 @@ fn sky_light_frames_are_the_same_with_sky_bounds_on_and_off() {
         }
     }
 }
+
+/// Probes under the surface settle sky rays as blocked without changing a pixel: the walk,
+/// in each arithmetic (exact too), finds every ray they settle blocked.
+#[test]
+fn sky_light_frames_are_the_same_with_probes_on_and_off() {
+    let terrain = Terrain::new(landscape(65, 7, 16.0).unwrap());
+    let off = Culling {
+        probes: false,
+        ..Culling::default()
+    };
+    for (sky_rays, sky_distance) in [(16, 64.0), (8, 20.0), (8, f64::INFINITY)] {
+        let effects = Effects {
+            sky_light: true,
+            sky_rays,
+            sky_distance,
+            ..Effects::default()
+        };
+        for arith in [Arith::F32, Arith::F64, Arith::Exact] {
+            let sun = [0.4, 0.3, 0.5];
+            let on = render_with(&terrain, sun, effects, arith, Culling::default());
+            let walked = render_with(&terrain, sun, effects, arith, off);
+            let what = format!("{arith:?}, {sky_rays} rays to {sky_distance}");
+            assert_eq!(on.pixels, walked.pixels, "{what}");
+            let (probed, not) = (
+                on.totals.effects.sky_light.probed_blocked,
+                walked.totals.effects.sky_light.probed_blocked,
+            );
+            assert_eq!(not, 0, "{what}");
+            if arith != Arith::F32 && sky_distance.is_finite() {
+                assert!(probed > 0, "{what}: probes settle rays");
+            }
+        }
+    }
+}

@@ -35,6 +35,7 @@
 mod effect;
 mod horizon;
 pub mod pixel;
+mod probe;
 mod registry;
 pub(crate) mod sampling;
 mod settings;

@@ -6,11 +6,13 @@
 //! rise in its sector is open without a walk.
 
 use super::effect::{Around, At, AtHit, Counted, Effect, Light, Sampled};
+use super::probe::blocked_under_surface;
 use super::horizon::{climbs_above, level_within, sector_of, slope_bound_within, Sector};
 use super::sampling::{point, seed_of, Hemisphere};
 use crate::arith::Scalar;
-use crate::geometry::Ray;
+use crate::geometry::{Face, Ray};
 use crate::render::context::Context;
+use crate::render::scene::Normals;
 use crate::render::sky_gradient::{horizon, sky_colour, zenith};
 use crate::traverse::Counters;
 use derive_more::AddAssign;
@@ -64,6 +66,11 @@ impl Effect for SkyLight {
         // A sector's bound costs a few walks: worth it where its sector holds several rays.
         // (Where the sky's bounds are kept, they settle the far part of each ray instead.)
         let far = cx.sky.as_ref().filter(|_| cx.culling.far_bounds);
+        // A ray the bounds leave unsettled is probed under the surface first, where it starts
+        // on its flat triangle.
+        let probing = cx.culling.probes
+            && cx.lighting.normals == Normals::Flat
+            && found.face == Face::Terrain;
         let by_sector = culling && !level && rays > SECTORS as u32 && far.is_none();
         // Each sector's bound, found when a direction in it first asks.
         let mut bounds = [None; SECTORS];
@@ -98,6 +105,13 @@ impl Effect for SkyLight {
                     Some(t) => Some(t_max.map_or(t, |m| m.min(t))),
                     None => t_max,
                 };
+                let probed = |t_max: f64| {
+                    blocked_under_surface(cx.terrain, start, shared.room, grid, t_max)
+                };
+                if probing && near.is_some_and(|n| n.is_none()) && t_max.is_some_and(probed) {
+                    sky.probed += 1;
+                    continue;
+                }
                 let mut answer = cx.occluded(shared, grid.into(), t_max);
                 if let Some(near) = near.filter(|_| answer.occluded.is_some()) {
                     answer.counters.bound.record(near.is_none());
@@ -128,8 +142,10 @@ pub struct SkyRays {
     pub of: u16,
     /// Directions that reach the sky.
     pub open: u16,
-    /// Directions traced (the others climbed above the terrain's bound).
+    /// Directions traced (the others climbed above the terrain's bound, or were probed).
     pub cast: u16,
+    /// Directions found blocked by probes under the surface, not traced.
+    pub probed: u16,
     /// The traced rays' queries.
     pub counters: Counters,
     /// A triangle test intervals could not settle was decided exactly.
@@ -144,7 +160,7 @@ impl SkyRays {
 
     /// Directions left out because they provably reach the sky.
     pub fn culled(&self) -> u16 {
-        self.of - self.cast
+        self.of - self.cast - self.probed
     }
 }
 
@@ -159,6 +175,8 @@ pub struct SkyStats {
     pub rays: u64,
     /// Directions left out: they climbed above the terrain's bound, so reach the sky.
     pub culled_horizon_clear: u64,
+    /// Directions left out: probes found them under the surface, so blocked.
+    pub probed_blocked: u64,
     /// Directions that reached the sky.
     pub open: u64,
     /// Points whose every direction climbed above the terrain's bound: no ray at all.
@@ -182,6 +200,7 @@ impl Counted for SkyLight {
         stats.directions += u64::from(sky.of);
         stats.rays += u64::from(sky.cast);
         stats.culled_horizon_clear += u64::from(sky.culled());
+        stats.probed_blocked += u64::from(sky.probed);
         stats.open += u64::from(sky.open);
         stats.points_without_rays += u64::from(sky.cast == 0);
         stats.queries += sky.counters;

@@ -65,6 +65,7 @@ fn each_rule() -> Vec<Culling> {
         off(|c| c.horizon_clear = false),
         off(|c| c.cone_blocked = false),
         off(|c| c.far_bounds = false),
+        off(|c| c.probes = false),
         off(|c| c.camera_clearance = false),
         off(|c| c.near_walk = false),
         NONE,

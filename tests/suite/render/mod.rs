@@ -20,6 +20,7 @@ pub(crate) const NO_CULLING: Culling = Culling {
     horizon_clear: false,
     cone_blocked: false,
     far_bounds: false,
+    probes: false,
     camera_clearance: false,
     near_walk: false,
 };
