@@ -239,31 +239,8 @@ fn render_job(shared: &Shared, notify: &(dyn Fn() + Sync), generation: u64, job:
     // A map read from a tile store is first shown from its preview, made of the levels held
     // in memory: the real passes then wait on the disk behind a picture, and paint only the
     // pixels they trace over it.
-    let coarse = job.terrain.preview();
+    let mut coarse = job.terrain.preview();
     let mut preview = coarse.map(|coarse| coarse.level);
-    if let Some(coarse) = coarse {
-        preview_renderer(&job, coarse).render(&mut frame);
-        // (No pass of the view itself is done, and none of its rays counted.)
-        frame.passes_done = 0;
-        frame.totals = Default::default();
-        pass_times.push(start.elapsed());
-        let rendered = Arc::new(RenderedFrame {
-            frame: std::mem::replace(&mut frame, Frame::new(0, 0)),
-            preview,
-            generation,
-            job: job.clone(),
-            pass_times: pass_times.clone(),
-            samples: (0, 0),
-            sampling: 0,
-        });
-        *shared.latest.lock().unwrap_or_else(PoisonError::into_inner) = Some(Arc::clone(&rendered));
-        notify();
-        wait_until_presented(shared, generation);
-        if superseded() {
-            return;
-        }
-        frame = rendered.frame.clone();
-    }
     loop {
         // The coarse first pass always finishes (it is short): were it cancelled too, a
         // stream of camera moves could keep every job from ever showing a frame.
@@ -272,7 +249,13 @@ fn render_job(shared: &Shared, notify: &(dyn Fn() + Sync), generation: u64, job:
         } else {
             &superseded
         };
-        let rendered = if frame.complete() {
+        let rendered = if let Some(coarse) = coarse.take() {
+            preview_renderer(&job, coarse).render(&mut frame);
+            // (No pass of the view itself is done, and none of its rays counted.)
+            frame.passes_done = 0;
+            frame.totals = Default::default();
+            true
+        } else if frame.complete() {
             rounds.accumulate(&mut sums, &mut frame, cancelled)
         } else if preview.is_some() {
             renderer.refine_pass(&mut frame, cancelled)
@@ -288,16 +271,15 @@ fn render_job(shared: &Shared, notify: &(dyn Fn() + Sync), generation: u64, job:
         pass_times.push(start.elapsed());
         // The pass is handed over as it is and shown at once; the copy to refine further is
         // made after the window has been told, off the path from input to screen.
-        let rendered = Arc::new(RenderedFrame {
-            frame: std::mem::replace(&mut frame, Frame::new(0, 0)),
+        let taken = std::mem::replace(&mut frame, Frame::new(0, 0));
+        let rendered = publish(
+            shared,
+            taken,
             preview,
-            generation,
-            job: job.clone(),
-            pass_times: pass_times.clone(),
-            samples: (sums.done, sums.total),
-            sampling: sums.active,
-        });
-        *shared.latest.lock().unwrap_or_else(PoisonError::into_inner) = Some(Arc::clone(&rendered));
+            (generation, &job),
+            &pass_times,
+            &sums,
+        );
         let complete = rendered.finished();
         if complete {
             // Done before the window hears of it: the window reports whether the worker is
@@ -309,7 +291,7 @@ fn render_job(shared: &Shared, notify: &(dyn Fn() + Sync), generation: u64, job:
         if complete {
             return;
         }
-        if pass_times.len() == 1 && preview.is_none() {
+        if pass_times.len() == 1 {
             // Leave the cores to the window until the coarse pass is on screen: refining
             // alongside would slow the very redraw that shows the input's effect.
             wait_until_presented(shared, generation);
@@ -320,6 +302,29 @@ fn render_job(shared: &Shared, notify: &(dyn Fn() + Sync), generation: u64, job:
         frame = copy_to_refine(shared, spare.take(), &rendered);
         spare = Some(rendered);
     }
+}
+
+/// Publishes `frame` of `job` (of `generation`) as the newest, with its passes' times and
+/// its samples so far.
+fn publish(
+    shared: &Shared,
+    frame: Frame,
+    preview: Option<u32>,
+    (generation, job): (u64, &RenderJob),
+    pass_times: &[Duration],
+    sums: &Accumulation,
+) -> Arc<RenderedFrame> {
+    let rendered = Arc::new(RenderedFrame {
+        frame,
+        preview,
+        generation,
+        job: job.clone(),
+        pass_times: pass_times.to_vec(),
+        samples: (sums.done, sums.total),
+        sampling: sums.active,
+    });
+    *shared.latest.lock().unwrap_or_else(PoisonError::into_inner) = Some(Arc::clone(&rendered));
+    rendered
 }
 
 /// The copy of `rendered` that the next pass refines, made in the buffers of `before` (the

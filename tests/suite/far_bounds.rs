@@ -401,47 +401,12 @@ fn bounds_kept_from_another_sun_give_the_frame_of_fresh_ones() {
     assert_eq!(moved.totals, fresh.totals);
 }
 
-#[test]
-fn sky_light_frames_are_the_same_with_sky_bounds_on_and_off() {
+/// Sky-light frames with `off` and with every rule on, in each arithmetic (exact too), for a
+/// few sky rays and distances: the same pixels; `check` looks at the frame with every rule
+/// on.
+fn sky_frames_the_same_with(off: Culling, check: impl Fn(&Frame, &str, Arith, f64)) {
     let terrain = Terrain::new(landscape(65, 7, 16.0).unwrap());
-    let off = Culling {
-        far_bounds: false,
-        ..Culling::default()
-    };
     for (sky_rays, sky_distance) in [(16, 64.0), (4, 12.0), (8, f64::INFINITY)] {
-        let effects = Effects {
-            sky_light: true,
-            sky_rays,
-            sky_distance,
-            ..Effects::default()
-        };
-        for arith in [Arith::F32, Arith::F64, Arith::Exact] {
-            let sun = [0.4, 0.3, 0.5];
-            let on = render_with(&terrain, sun, effects, arith, Culling::default());
-            let walked = render_with(&terrain, sun, effects, arith, off);
-            assert_eq!(
-                on.pixels, walked.pixels,
-                "{arith:?}, {sky_rays} rays to {sky_distance}"
-            );
-            let bound = on.totals.effects.sky_light.queries.bound;
-            // (`f32`'s room for the rounding of its start is too wide to settle many.)
-            if arith != Arith::F32 {
-                assert!(bound.miss > 0, "{arith:?}: the sky's bounds settle rays");
-            }
-        }
-    }
-}
-
-/// Probes under the surface settle sky rays as blocked without changing a pixel: the walk,
-/// in each arithmetic (exact too), finds every ray they settle blocked.
-#[test]
-fn sky_light_frames_are_the_same_with_probes_on_and_off() {
-    let terrain = Terrain::new(landscape(65, 7, 16.0).unwrap());
-    let off = Culling {
-        probes: false,
-        ..Culling::default()
-    };
-    for (sky_rays, sky_distance) in [(16, 64.0), (8, 20.0), (8, f64::INFINITY)] {
         let effects = Effects {
             sky_light: true,
             sky_rays,
@@ -454,14 +419,38 @@ fn sky_light_frames_are_the_same_with_probes_on_and_off() {
             let walked = render_with(&terrain, sun, effects, arith, off);
             let what = format!("{arith:?}, {sky_rays} rays to {sky_distance}");
             assert_eq!(on.pixels, walked.pixels, "{what}");
-            let (probed, not) = (
-                on.totals.effects.sky_light.probed_blocked,
-                walked.totals.effects.sky_light.probed_blocked,
-            );
-            assert_eq!(not, 0, "{what}");
-            if arith != Arith::F32 && sky_distance.is_finite() {
-                assert!(probed > 0, "{what}: probes settle rays");
-            }
+            check(&on, &what, arith, sky_distance);
         }
     }
+}
+
+#[test]
+fn sky_light_frames_are_the_same_with_sky_bounds_on_and_off() {
+    let off = Culling {
+        far_bounds: false,
+        ..Culling::default()
+    };
+    sky_frames_the_same_with(off, |on, what, arith, _| {
+        // (`f32`'s room for the rounding of its start is too wide to settle many.)
+        if arith != Arith::F32 {
+            let bound = on.totals.effects.sky_light.queries.bound;
+            assert!(bound.miss > 0, "{what}: the sky's bounds settle rays");
+        }
+    });
+}
+
+/// Probes under the surface settle sky rays as blocked without changing a pixel: the walk,
+/// in each arithmetic, finds every ray they settle blocked.
+#[test]
+fn sky_light_frames_are_the_same_with_probes_on_and_off() {
+    let off = Culling {
+        probes: false,
+        ..Culling::default()
+    };
+    sky_frames_the_same_with(off, |on, what, arith, sky_distance| {
+        if arith != Arith::F32 && sky_distance.is_finite() {
+            let probed = on.totals.effects.sky_light.probed_blocked;
+            assert!(probed > 0, "{what}: probes settle rays");
+        }
+    });
 }
