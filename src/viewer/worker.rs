@@ -104,6 +104,10 @@ impl RenderedFrame {
 struct Shared {
     /// The newest job; a pass of any other generation stops.
     jobs: Mailbox<RenderJob>,
+    /// The terrain (by address) whose view's first pass was last traced, and how long that
+    /// took: a map read from a tile store is shown from its preview only while first passes
+    /// are slow (its pages on the disk).
+    first_pass: Mutex<Option<(usize, Duration)>>,
     latest: Mutex<Option<Arc<RenderedFrame>>>,
     rendering: AtomicBool,
     /// The newest generation the window has put on screen.
@@ -121,6 +125,7 @@ impl RenderWorker {
     pub fn start(notify: impl Fn() + Send + Sync + 'static) -> std::io::Result<RenderWorker> {
         let shared = Arc::new(Shared {
             jobs: Mailbox::new(),
+            first_pass: Mutex::new(None),
             latest: Mutex::new(None),
             rendering: AtomicBool::new(false),
             presented: AtomicU64::new(0),
@@ -190,6 +195,19 @@ fn render_loop(shared: &Shared, notify: &(dyn Fn() + Sync)) {
     }
 }
 
+/// Whether the last first pass traced over `job`'s terrain took so little that a preview
+/// would show it no sooner.
+fn quick_first_pass(shared: &Shared, job: &RenderJob) -> bool {
+    /// A first pass quicker than this shows the map sooner than a preview of it does.
+    const PREVIEW_WORTH: Duration = Duration::from_millis(250);
+    let terrain = Arc::as_ptr(&job.terrain) as usize;
+    let last = *shared
+        .first_pass
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner);
+    last.is_some_and(|(of, took)| of == terrain && took < PREVIEW_WORTH)
+}
+
 /// The threads that trace a map mapped from a tile store (made once): more than the cores,
 /// so that walks waiting on the disk leave them to others (see [`store::threads`]).
 fn store_pool(job: &RenderJob) -> Option<&'static rayon::ThreadPool> {
@@ -239,9 +257,13 @@ fn render_job(shared: &Shared, notify: &(dyn Fn() + Sync), generation: u64, job:
     // A map read from a tile store is first shown from its preview, made of the levels held
     // in memory: the real passes then wait on the disk behind a picture, and paint only the
     // pixels they trace over it.
-    let mut coarse = job.terrain.preview();
+    let mut coarse = job
+        .terrain
+        .preview()
+        .filter(|_| !quick_first_pass(shared, &job));
     let mut preview = coarse.map(|coarse| coarse.level);
     loop {
+        let pass_start = Instant::now();
         // The coarse first pass always finishes (it is short): were it cancelled too, a
         // stream of camera moves could keep every job from ever showing a frame.
         let cancelled: &(dyn Fn() -> bool + Sync) = if pass_times.is_empty() {
@@ -267,6 +289,13 @@ fn render_job(shared: &Shared, notify: &(dyn Fn() + Sync), generation: u64, job:
         }
         if !rendered {
             return;
+        }
+        if frame.passes_done == 1 && pass_times.len() <= 1 {
+            let terrain = Arc::as_ptr(&job.terrain) as usize;
+            *shared
+                .first_pass
+                .lock()
+                .unwrap_or_else(PoisonError::into_inner) = Some((terrain, pass_start.elapsed()));
         }
         pass_times.push(start.elapsed());
         // The pass is handed over as it is and shown at once; the copy to refine further is
@@ -462,6 +491,13 @@ mod tests {
         assert_eq!(last.frame.pixels, whole.pixels);
         assert_eq!(last.frame.stats, whole.stats);
         assert_eq!(last.frame.totals, whole.totals);
+        // Its first pass was quick: the same map's next view shows no preview.
+        worker.submit(last.job.clone());
+        heard.recv_timeout(Duration::from_secs(20)).unwrap();
+        let next = worker.latest().unwrap();
+        assert_eq!((next.preview, next.frame.passes_done), (None, 1));
+        // (Without a sender left, the worker waits no more inside `notify`.)
+        drop(looked);
         drop(worker);
         std::fs::remove_dir_all(&dir).unwrap();
     }
