@@ -104,14 +104,9 @@ impl SkyBounds {
 
     /// Bytes held, every block's bounds made or not.
     pub fn bytes(&self) -> usize {
-        let patterns: usize = self
-            .patterns
-            .iter()
-            .flat_map(|p| &p.by_sector)
-            .map(Vec::len)
-            .sum();
+        let patterns: usize = self.patterns.iter().map(|p| p.blocks.len()).sum();
         self.blocks.len() * std::mem::size_of::<OnceLock<BlockBounds>>()
-            + patterns * std::mem::size_of::<(i32, i32)>()
+            + patterns * std::mem::size_of::<((i32, i32), u16)>()
     }
 
     /// Whether a ray from `start` (grid coordinates) in direction `dir` certainly touches no
@@ -174,15 +169,21 @@ impl SkyBounds {
                 cells_x.div_ceil(1 << k) as i64,
                 cells_y.div_ceil(1 << k) as i64,
             );
-            for (rings, offsets) in out.iter_mut().zip(&pattern.by_sector) {
-                let mut highest = 0u16;
-                for &(dx, dy) in offsets {
-                    let (qx, qy) = (x + i64::from(dx), y + i64::from(dy));
-                    if (0..nx).contains(&qx) && (0..ny).contains(&qy) {
-                        highest =
-                            highest.max(terrain.block_max_sample(k, qx as usize, qy as usize));
+            // (Each block read once, for every sector it bounds.)
+            let mut highest = [0u16; SKY_SECTORS];
+            for &((dx, dy), sectors) in &pattern.blocks {
+                let (qx, qy) = (x + i64::from(dx), y + i64::from(dy));
+                if (0..nx).contains(&qx) && (0..ny).contains(&qy) {
+                    let block = terrain.block_max_sample(k, qx as usize, qy as usize);
+                    let mut bits = sectors;
+                    while bits != 0 {
+                        let s = bits.trailing_zeros() as usize;
+                        highest[s] = highest[s].max(block);
+                        bits &= bits - 1;
                     }
                 }
+            }
+            for (rings, highest) in out.iter_mut().zip(highest) {
                 rings[i] = (f64::from(highest) / self.unit).ceil().min(255.0) as u8;
             }
         }
@@ -223,7 +224,8 @@ fn sector_of(x: f64, y: f64) -> usize {
 #[derive(Debug)]
 struct RingPattern {
     level: u32,
-    by_sector: [Vec<(i32, i32)>; SKY_SECTORS],
+    /// Each block of the ring, once, with the sectors (bit `s` for sector `s`) it bounds.
+    blocks: Vec<((i32, i32), u16)>,
 }
 
 impl RingPattern {
@@ -242,7 +244,7 @@ impl RingPattern {
             )
         });
         let reach = (outer / size).ceil() as i32 + 1;
-        let mut by_sector: [Vec<(i32, i32)>; SKY_SECTORS] = Default::default();
+        let mut blocks = Vec::new();
         for dy in -reach..=reach {
             for dx in -reach..=reach {
                 // `q - p` for `q` in the block at the offset and `p` in the start's.
@@ -259,14 +261,15 @@ impl RingPattern {
                 if near > outer || far < inner {
                     continue;
                 }
-                for (cone, offsets) in cones.iter().zip(by_sector.iter_mut()) {
-                    if cone.meets(d) {
-                        offsets.push((dx, dy));
-                    }
+                let sectors = (0..SKY_SECTORS)
+                    .filter(|&s| cones[s].meets(d))
+                    .fold(0u16, |bits, s| bits | 1 << s);
+                if sectors != 0 {
+                    blocks.push(((dx, dy), sectors));
                 }
             }
         }
-        RingPattern { level, by_sector }
+        RingPattern { level, blocks }
     }
 }
 
