@@ -35,6 +35,7 @@ mod settings;
 mod sources;
 mod state;
 mod stats_ui;
+mod store_view;
 mod sun_clock;
 mod user_event;
 mod view;

@@ -8,13 +8,12 @@
 
 use super::mailbox::Mailbox;
 use super::orbit::Orbit;
-use crate::heightfield::{store, Preview};
-use crate::render::effects::Effects;
+use super::store_view::{preview_renderer, store_pool};
 use crate::render::Accumulation;
 use crate::render::{Camera, Contours, Culling, Frame, Lighting, Renderer, Shader};
 use crate::{Arith, Method, Terrain};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::{Arc, Mutex, OnceLock, PoisonError};
+use std::sync::{Arc, Mutex, PoisonError};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -48,32 +47,11 @@ impl RenderJob {
     }
 }
 
-/// A renderer of `job`'s view of its map's `preview`: lit as the job's (fog and the floor's
-/// depth scaled with it), with the sun's hard shadow and no other effect.
-fn preview_renderer<'a>(job: &RenderJob, preview: &'a Preview) -> Renderer<'a> {
-    let scale = preview.world_from_grid[2];
-    let mut lighting = job.lighting;
-    lighting.effects = Effects {
-        sun_angle_deg: 0.0,
-        sky_light: false,
-        samples: 1,
-        water: None,
-        ..lighting.effects
-    };
-    lighting.fog *= scale;
-    lighting.base.depth = lighting.base.depth.map(|d| d / scale);
-    Renderer {
-        shader: Shader::new(&preview.terrain, lighting, job.method, Culling::default()),
-        camera: job.camera.in_grid(Some(preview.world_from_grid)),
-        arith: Arith::F64,
-    }
-}
-
 /// A frame after some passes, as published to the window.
 pub struct RenderedFrame {
     pub frame: Frame,
     /// The mipmap level of the map's preview the frame shows where no pass has traced a
-    /// pixel yet (see [`Preview`]), if it shows one.
+    /// pixel yet (see [`Preview`](crate::heightfield::Preview)), if it shows one.
     pub preview: Option<u32>,
     pub generation: u64,
     /// The job it belongs to (the camera maps window pixels to the rays that were traced).
@@ -187,7 +165,7 @@ impl Drop for RenderWorker {
 fn render_loop(shared: &Shared, notify: &(dyn Fn() + Sync)) {
     while let Some((generation, job)) = shared.jobs.take() {
         shared.rendering.store(true, Ordering::SeqCst);
-        match store_pool(&job) {
+        match store_pool(&job.terrain) {
             Some(pool) => pool.install(|| render_job(shared, notify, generation, job)),
             None => render_job(shared, notify, generation, job),
         }
@@ -206,23 +184,6 @@ fn quick_first_pass(shared: &Shared, job: &RenderJob) -> bool {
         .lock()
         .unwrap_or_else(PoisonError::into_inner);
     last.is_some_and(|(of, took)| of == terrain && took < PREVIEW_WORTH)
-}
-
-/// The threads that trace a map mapped from a tile store (made once): more than the cores,
-/// so that walks waiting on the disk leave them to others (see [`store::threads`]).
-fn store_pool(job: &RenderJob) -> Option<&'static rayon::ThreadPool> {
-    static POOL: OnceLock<Option<rayon::ThreadPool>> = OnceLock::new();
-    if !job.terrain.field().is_mapped() {
-        return None;
-    }
-    let pool = || {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(store::threads())
-            .thread_name(|k| format!("heightray-store-{k}"))
-            .build()
-            .ok()
-    };
-    POOL.get_or_init(pool).as_ref()
 }
 
 /// Waits (briefly) until the window has shown `generation`, or a newer job has come.
@@ -272,7 +233,8 @@ fn render_job(shared: &Shared, notify: &(dyn Fn() + Sync), generation: u64, job:
             &superseded
         };
         let rendered = if let Some(coarse) = coarse.take() {
-            preview_renderer(&job, coarse).render(&mut frame);
+            let (lighting, method) = (job.lighting, job.method);
+            preview_renderer(coarse, job.camera, lighting, method).render(&mut frame);
             // (No pass of the view itself is done, and none of its rays counted.)
             frame.passes_done = 0;
             frame.totals = Default::default();
