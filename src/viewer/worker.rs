@@ -10,7 +10,7 @@ use super::mailbox::Mailbox;
 use super::orbit::Orbit;
 use super::store_view::{preview_renderer, store_pool};
 use crate::render::Accumulation;
-use crate::render::{Camera, Contours, Culling, Frame, Lighting, Renderer, Shader};
+use crate::render::{Camera, Contours, Culling, Frame, Lighting, Renderer, Shader, PASS_BLOCKS};
 use crate::{Arith, Method, Terrain};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
@@ -82,10 +82,10 @@ impl RenderedFrame {
 struct Shared {
     /// The newest job; a pass of any other generation stops.
     jobs: Mailbox<RenderJob>,
-    /// The terrain (by address) whose view's first pass was last traced, and how long that
-    /// took: a map read from a tile store is shown from its preview only while first passes
-    /// are slow (its pages on the disk).
-    first_pass: Mutex<Option<(usize, Duration)>>,
+    /// The terrain (by address) whose view's first pass was last traced, and the seconds it
+    /// took a pixel: a map read from a tile store is shown from its preview only while first
+    /// passes are slow (its pages on the disk).
+    first_pass: Mutex<Option<(usize, f64)>>,
     latest: Mutex<Option<Arc<RenderedFrame>>>,
     rendering: AtomicBool,
     /// The newest generation the window has put on screen.
@@ -173,17 +173,25 @@ fn render_loop(shared: &Shared, notify: &(dyn Fn() + Sync)) {
     }
 }
 
-/// Whether the last first pass traced over `job`'s terrain took so little that a preview
-/// would show it no sooner.
+/// Whether `job`'s first pass, at the pace of the last one traced over its terrain (per
+/// pixel: views while moving are smaller), takes so little that a preview would show the map
+/// no sooner.
 fn quick_first_pass(shared: &Shared, job: &RenderJob) -> bool {
-    /// A first pass quicker than this shows the map sooner than a preview of it does.
-    const PREVIEW_WORTH: Duration = Duration::from_millis(250);
+    /// A first pass quicker than this many seconds shows the map sooner than a preview does.
+    const PREVIEW_WORTH: f64 = 0.25;
     let terrain = Arc::as_ptr(&job.terrain) as usize;
     let last = *shared
         .first_pass
         .lock()
         .unwrap_or_else(PoisonError::into_inner);
-    last.is_some_and(|(of, took)| of == terrain && took < PREVIEW_WORTH)
+    let pixels = first_pass_pixels(job.camera.size());
+    last.is_some_and(|(of, pace)| of == terrain && pace * pixels < PREVIEW_WORTH)
+}
+
+/// The pixels the first pass of a `width x height` frame traces.
+fn first_pass_pixels((width, height): (u32, u32)) -> f64 {
+    let block = PASS_BLOCKS[0];
+    f64::from(width.div_ceil(block)) * f64::from(height.div_ceil(block))
 }
 
 /// Waits (briefly) until the window has shown `generation`, or a newer job has come.
@@ -254,10 +262,11 @@ fn render_job(shared: &Shared, notify: &(dyn Fn() + Sync), generation: u64, job:
         }
         if frame.passes_done == 1 && pass_times.len() <= 1 {
             let terrain = Arc::as_ptr(&job.terrain) as usize;
+            let pace = pass_start.elapsed().as_secs_f64() / first_pass_pixels((width, height));
             *shared
                 .first_pass
                 .lock()
-                .unwrap_or_else(PoisonError::into_inner) = Some((terrain, pass_start.elapsed()));
+                .unwrap_or_else(PoisonError::into_inner) = Some((terrain, pace));
         }
         pass_times.push(start.elapsed());
         // The pass is handed over as it is and shown at once; the copy to refine further is
