@@ -39,16 +39,20 @@ impl Preview {
             nx.max(ny) < MOST_SIDE
         })?;
         let (nx, ny) = blocks(level, w, h);
-        let midpoint = |bi: usize, bj: usize| {
-            let (hi, lo) = (mipmap.highest(level, bi, bj), mipmap.lowest(level, bi, bj));
-            (u32::from(hi) + u32::from(lo)) as f64 / 2.0
-        };
+        // (Each block's midpoint once: up to four corners share it.)
+        let midpoints: Vec<f64> = (0..ny)
+            .flat_map(|bj| (0..nx).map(move |bi| (bi, bj)))
+            .map(|(bi, bj)| {
+                let (hi, lo) = (mipmap.highest(level, bi, bj), mipmap.lowest(level, bi, bj));
+                (u32::from(hi) + u32::from(lo)) as f64 / 2.0
+            })
+            .collect();
         let corner = |i: usize, j: usize| {
             let around = |n: usize, k: usize| k.saturating_sub(1)..(k + 1).min(n);
             let (mut sum, mut count) = (0.0, 0.0);
             for bj in around(ny, j) {
                 for bi in around(nx, i) {
-                    sum += midpoint(bi, bj);
+                    sum += midpoints[bj * nx + bi];
                     count += 1.0;
                 }
             }

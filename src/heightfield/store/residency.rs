@@ -144,6 +144,8 @@ struct Watcher {
     map: Weak<Mmap>,
     since: Vec<u64>,
     looks: u64,
+    /// Per page, what `mincore` said at the last look (kept: a large map's is megabytes).
+    pages: Vec<u8>,
 }
 
 /// The mark of a pinned chunk.
@@ -161,6 +163,7 @@ impl Watcher {
             map,
             since,
             looks: 0,
+            pages: Vec::new(),
         }
     }
 
@@ -188,10 +191,10 @@ impl Watcher {
     /// when enough were.)
     fn look(&mut self, map: &Mmap) -> u64 {
         self.looks += 1;
-        let pages = resident_pages(map);
+        resident_pages(map, &mut self.pages);
         let per_chunk = CHUNK / page_size();
         let mut held = Vec::new();
-        for (k, chunk) in pages.chunks(per_chunk).enumerate() {
+        for (k, chunk) in self.pages.chunks(per_chunk).enumerate() {
             match self.since[k] {
                 PINNED => {}
                 _ if !chunk.iter().any(|&p| p & 1 != 0) => self.since[k] = u64::MAX,
@@ -232,9 +235,10 @@ impl Watcher {
     }
 }
 
-/// Per page of `map`, whether it is resident (bit 0), as `mincore` says; none where it fails.
-fn resident_pages(map: &Mmap) -> Vec<u8> {
-    let mut pages = vec![0u8; map.len().div_ceil(page_size())];
+/// Per page of `map`, whether it is resident (bit 0), as `mincore` says, into `pages`; none
+/// where it fails.
+fn resident_pages(map: &Mmap, pages: &mut Vec<u8>) {
+    pages.resize(map.len().div_ceil(page_size()), 0);
     // SAFETY: the range is the whole mapping, page-aligned at its start, and the vector holds
     // one byte per page of it, as mincore writes.
     let ok = unsafe {
@@ -247,7 +251,6 @@ fn resident_pages(map: &Mmap) -> Vec<u8> {
     if ok != 0 {
         pages.clear();
     }
-    pages
 }
 
 /// The machine's page size.
