@@ -12,8 +12,16 @@
 //! ring's inner edge exceeds it, the ray passes above the whole ring (it climbs). Blocks are
 //! grown by [`PAD`], sectors by [`ANGLE_PAD`], bounds rounded up, and the caller's room covers
 //! the rounding of the ray's start.
+//!
+//! The part nearer than the first ring is bounded by slope: each block keeps, per sector, how
+//! fast the surface can rise along the sector's azimuths over every triangle within [`NEAR`]
+//! of the block. The surface is continuous where no cell is a hole, so along a ray's path it
+//! rises from the start's own height no faster than that: a ray from a point on its own flat
+//! triangle that climbs faster, by a margin for the rounding of its start, stays above every
+//! other triangle until the rings take over (see [`SkyBounds::clear_beyond`]).
 
 use super::Terrain;
+use crate::geometry::gradient;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
@@ -26,10 +34,21 @@ const BLOCK: usize = 1 << BLOCK_LEVEL;
 
 /// Ring edges (horizontal distance from the ray's start) before the sky distance cuts them:
 /// the part nearer than the first is always walked.
-const EDGES: [f64; 6] = [2.0, 6.0, 14.0, 30.0, 62.0, 126.0];
+const EDGES: [f64; 13] = [
+    2.0, 3.0, 4.0, 6.0, 8.0, 11.0, 16.0, 22.0, 32.0, 45.0, 64.0, 90.0, 128.0,
+];
 
 /// The most rings a block holds per sector.
 const RINGS: usize = EDGES.len();
+
+/// How far (horizontally) a ray's near part runs: to the first ring's inner edge, and past it
+/// by the little [`SkyBounds::clear_beyond`] adds to the part it leaves to walk.
+const NEAR: f64 = EDGES[0] + NEAR_PAST;
+const NEAR_PAST: f64 = 1e-3;
+
+/// The rise stored for a block whose near triangles are not one continuous surface (a hole
+/// among them): no ray's near part is settled there.
+const NO_RISE: i8 = i8::MAX;
 
 /// How far each block is grown (cells), and each sector (radians): far more than a start or
 /// a direction can be off by rounding.
@@ -45,8 +64,15 @@ const COARSE: f64 = 4.0;
 /// large map) is bounded by blocks large enough to keep it this small.
 const ACROSS: f64 = 64.0;
 
-/// Each sector's ring bounds for one block, in units of [`SkyBounds::unit`] samples.
-type BlockBounds = [[u8; RINGS]; SKY_SECTORS];
+/// One block's bounds.
+#[derive(Debug)]
+struct BlockBounds {
+    /// Each sector's ring bounds, in units of [`SkyBounds::unit`] samples.
+    rings: [[u8; RINGS]; SKY_SECTORS],
+    /// Each sector's steepest rise near the block, in units of [`SkyBounds::rise_unit`] (or
+    /// [`NO_RISE`]).
+    rises: [i8; SKY_SECTORS],
+}
 
 /// Upper bounds on the terrain around each block, by sector and ring (see the module docs).
 #[derive(Debug)]
@@ -63,6 +89,10 @@ pub struct SkyBounds {
     unit: f64,
     base: f64,
     per_step: f64,
+    /// The sectors, widened by [`ANGLE_PAD`].
+    cones: [Cone; SKY_SECTORS],
+    /// Slope per stored unit of rise.
+    rise_unit: f64,
 }
 
 impl SkyBounds {
@@ -74,7 +104,7 @@ impl SkyBounds {
         if !(reach > EDGES[0] && field.step() > 0.0) {
             return None;
         }
-        let mut edges: Vec<f64> = EDGES.into_iter().filter(|&e| e * 1.5 < reach).collect();
+        let mut edges: Vec<f64> = EDGES.into_iter().filter(|&e| e * 1.25 < reach).collect();
         edges.push(reach);
         let cells = |n: usize| (n - 1).div_ceil(BLOCK);
         let (nx, ny) = (cells(field.width()), cells(field.height()));
@@ -94,6 +124,9 @@ impl SkyBounds {
             unit: f64::from(highest.div_ceil(255).max(1)),
             base: field.height_of(0),
             per_step: 1.0 / field.step(),
+            cones: sector_cones(),
+            rise_unit: terrain.max_slope().max(f64::MIN_POSITIVE) * (1.0 + 1e-9)
+                / f64::from(NO_RISE - 1),
         })
     }
 
@@ -111,19 +144,22 @@ impl SkyBounds {
 
     /// Whether a ray from `start` (grid coordinates) in direction `dir` certainly touches no
     /// triangle beyond a few cells out, within the reach: `Some(t)` where it is clear from
-    /// `start + t * dir` on, so that only `[0, t]` is left to walk. `room` is how far (in
-    /// height) the ray's true start may lie below `start`.
+    /// `start + t * dir` on, so that only `[0, t]` is left to walk, and `Some(0.0)` where it
+    /// is clear all the way. `room` is how far (in height) the ray's true start may lie below
+    /// `start`. `near`, where the start lies on its own flat triangle (see [`NearStart`]),
+    /// lets the near part be settled too.
     pub fn clear_beyond(
         &self,
         terrain: &Terrain,
         start: [f64; 3],
         dir: [f64; 3],
         room: f64,
+        near: Option<NearStart>,
     ) -> Option<f64> {
         // (Not `hypot`: a direction cannot overflow, and `hypot` costs as much as the look-up.)
         let across = (dir[0] * dir[0] + dir[1] * dir[1]).sqrt();
         let climb = dir[2] / across;
-        if !(climb > 0.0 && climb.is_finite() && start.iter().all(|c| c.is_finite())) {
+        if !(climb.is_finite() && start.iter().all(|c| c.is_finite())) {
             return None;
         }
         let (x, y) = (start[0] / BLOCK as f64, start[1] / BLOCK as f64);
@@ -136,21 +172,30 @@ impl SkyBounds {
         }
         let sector = sector_of(dir[0], dir[1]);
         let bounds = self.blocks[by * self.nx + bx].get_or_init(|| self.fill(terrain, bx, by));
-        let rings = &bounds[sector];
+        let rings = &bounds.rings[sector];
         let z = (start[2] - self.base) * self.per_step;
         let rise = climb * self.per_step;
-        let error = 1e-9 * (z.abs() + rise * self.reach().min(1e9) + f64::from(u16::MAX))
-            + room * self.per_step * (1.0 + rise);
-        // The nearest edge from which every ring out to the reach is clear.
+        let error = 1e-9 * (z.abs() + rise.abs() * self.reach().min(1e9) + f64::from(u16::MAX))
+            + room * self.per_step * (1.0 + rise.abs());
+        // The nearest edge from which every ring out to the reach is clear: the ray is lowest
+        // over a ring at its inner edge if it climbs, at its outer edge if it falls.
+        let lowest = usize::from(rise < 0.0);
         let mut from = None;
         for i in (0..self.edges.len() - 1).rev() {
             let bound = f64::from(rings[i]) * self.unit;
-            if z + rise * self.edges[i] - error <= bound {
+            if z + rise * self.edges[i + lowest] - error <= bound {
                 break;
             }
             from = Some(self.edges[i]);
         }
-        from.map(|edge| (edge + 1e-3) / across)
+        let rise = bounds.rises[sector];
+        let near_clear = near.is_some_and(|near| {
+            rise != NO_RISE && climb > f64::from(rise) * self.rise_unit + near.margin
+        });
+        match from {
+            Some(edge) if edge == self.edges[0] && near_clear => Some(0.0),
+            from => from.map(|edge| (edge + NEAR_PAST) / across),
+        }
     }
 
     /// Every sector's ring bounds for block `(bx, by)`: the highest sample over each ring's
@@ -158,6 +203,14 @@ impl SkyBounds {
     // (Out of line: made once per block, it would only crowd the sky ray.)
     #[inline(never)]
     fn fill(&self, terrain: &Terrain, bx: usize, by: usize) -> BlockBounds {
+        BlockBounds {
+            rings: self.rings(terrain, bx, by),
+            rises: self.rises(terrain, bx, by),
+        }
+    }
+
+    /// Every sector's ring bounds for block `(bx, by)`.
+    fn rings(&self, terrain: &Terrain, bx: usize, by: usize) -> [[u8; RINGS]; SKY_SECTORS] {
         let field = terrain.field();
         let (cells_x, cells_y) = (field.width() - 1, field.height() - 1);
         let mut out = [[0u8; RINGS]; SKY_SECTORS];
@@ -188,6 +241,77 @@ impl SkyBounds {
             }
         }
         out
+    }
+
+    /// Every sector's steepest rise along its azimuths over the triangles of the cells within
+    /// [`NEAR`] of block `(bx, by)` (grown by [`PAD`]), rounded up; [`NO_RISE`] where one of
+    /// those cells is a hole.
+    fn rises(&self, terrain: &Terrain, bx: usize, by: usize) -> [i8; SKY_SECTORS] {
+        let field = terrain.field();
+        let cells = |b: usize, n: usize| {
+            let from = (b * BLOCK) as f64 - NEAR - PAD;
+            let to = ((b + 1) * BLOCK) as f64 + NEAR + PAD;
+            (from.floor().max(0.0) as usize)..=(to.floor() as usize).min(n - 2)
+        };
+        let (xs, ys) = (cells(bx, field.width()), cells(by, field.height()));
+        let mut gradients = Vec::with_capacity(2 * xs.clone().count() * ys.clone().count());
+        for j in ys {
+            for i in xs.clone() {
+                if field.is_hole_cell(i, j) {
+                    return [NO_RISE; SKY_SECTORS];
+                }
+                let heights = terrain.corner_heights(i, j);
+                gradients.extend([0, 1].map(|k| gradient(k, heights)));
+            }
+        }
+        self.cones.each_ref().map(|cone| {
+            let steepest = gradients.iter().fold(f64::NEG_INFINITY, |m, &(gx, gy)| {
+                m.max(cone.steepest_rise([gx, gy]))
+            });
+            // (Rounded up, whichever its sign.)
+            let steepest = steepest + 1e-9 * self.rise_unit * f64::from(NO_RISE);
+            let units = (steepest / self.rise_unit).ceil();
+            units.clamp(-f64::from(NO_RISE - 1), f64::from(NO_RISE - 1)) as i8
+        })
+    }
+}
+
+/// A sky ray's start on its own flat triangle, at least [`NearStart::INSIDE`] inside it: for
+/// so short a way from it the ray can meet no other triangle, and beyond that it is above
+/// every triangle where it out-climbs their rise by `margin` (see [`SkyBounds::clear_beyond`]).
+#[derive(Clone, Copy, Debug)]
+pub struct NearStart {
+    margin: f64,
+}
+
+impl NearStart {
+    /// How far inside its triangle (horizontally, in cells) a start must lie.
+    pub const INSIDE: f64 = 1e-4;
+
+    /// The start at `p` (grid coordinates, `z` on the surface within `room`, and `x`, `y`
+    /// within `room` of the true start's) on triangle `triangle` of `cell`: `None` where it
+    /// lies within [`NearStart::INSIDE`] of the triangle's edges.
+    pub fn on_triangle(
+        terrain: &Terrain,
+        (cell, triangle): ((usize, usize), u8),
+        p: [f64; 3],
+        room: f64,
+    ) -> Option<NearStart> {
+        let (fx, fy) = (p[0] - cell.0 as f64, p[1] - cell.1 as f64);
+        // Triangle 0 is the cell's half with `fx >= fy` (see `gradient`).
+        let edges = if triangle == 0 {
+            [fy, 1.0 - fx, (fx - fy) * std::f64::consts::FRAC_1_SQRT_2]
+        } else {
+            [fx, 1.0 - fy, (fy - fx) * std::f64::consts::FRAC_1_SQRT_2]
+        };
+        if !edges.iter().all(|&e| e > NearStart::INSIDE) {
+            return None;
+        }
+        // Past `INSIDE`, the ray must clear the surface by more than its start's room (which
+        // the steepest slope spreads over the horizontal part) and its own rounding.
+        let room = room * (1.0 + 2.0 * terrain.max_slope()) + 1e-9 * (1.0 + p[2].abs());
+        let margin = room / NearStart::INSIDE;
+        margin.is_finite().then_some(NearStart { margin })
     }
 }
 
@@ -236,13 +360,7 @@ impl RingPattern {
         let small = (2.0 * outer / ACROSS).log2().ceil().max(0.0) as u32;
         let level = fine.max(small).max(BLOCK_LEVEL).min(top.max(BLOCK_LEVEL));
         let size = f64::from(1u32 << level);
-        let width = 2.0 * PI / SKY_SECTORS as f64;
-        let cones: [Cone; SKY_SECTORS] = std::array::from_fn(|s| {
-            Cone::new(
-                s as f64 * width - ANGLE_PAD,
-                (s + 1) as f64 * width + ANGLE_PAD,
-            )
-        });
+        let cones = sector_cones();
         let reach = (outer / size).ceil() as i32 + 1;
         let mut blocks = Vec::new();
         for dy in -reach..=reach {
@@ -292,6 +410,17 @@ fn distances([x0, y0, x1, y1]: [f64; 4]) -> Option<(f64, f64)> {
     (near.is_finite() && far.is_finite()).then_some((near, far))
 }
 
+/// The sectors, each widened by [`ANGLE_PAD`] on both sides.
+fn sector_cones() -> [Cone; SKY_SECTORS] {
+    let width = 2.0 * PI / SKY_SECTORS as f64;
+    std::array::from_fn(|s| {
+        Cone::new(
+            s as f64 * width - ANGLE_PAD,
+            (s + 1) as f64 * width + ANGLE_PAD,
+        )
+    })
+}
+
 /// The directions between two azimuths (less than a half turn apart).
 #[derive(Debug)]
 struct Cone {
@@ -310,6 +439,17 @@ impl Cone {
     /// Whether direction `c` lies inside (edges included).
     fn inside(&self, c: [f64; 2]) -> bool {
         cross(self.lo, c) >= 0.0 && cross(c, self.hi) >= 0.0
+    }
+
+    /// The most `g . u` over the cone's unit vectors `u`: how fast a plane of gradient `g`
+    /// rises along the steepest of its azimuths.
+    fn steepest_rise(&self, g: [f64; 2]) -> f64 {
+        let dot = |u: [f64; 2]| u[0] * g[0] + u[1] * g[1];
+        if self.inside(g) {
+            (g[0] * g[0] + g[1] * g[1]).sqrt()
+        } else {
+            dot(self.lo).max(dot(self.hi))
+        }
     }
 
     /// Whether the rectangle `[x0, y0, x1, y1]` may hold a point of the cone (false only

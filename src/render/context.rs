@@ -39,6 +39,10 @@ pub struct Culling {
     /// Settle the sky-light rays the kept bounds leave unsettled as blocked where a probe
     /// finds them under the surface ([`SkyRays::probed`]).
     pub probes: bool,
+    /// Settle the first cells of sky-light rays that start on their own flat triangle and
+    /// climb faster than the surface can rise near it
+    /// ([`NearStart`](crate::heightfield::NearStart)).
+    pub near_slopes: bool,
     /// Start each camera ray's walk where its wedge's profile proves it clear of the surface,
     /// and settle the rays above their wedge's whole profile with no walk ([`Wedges`]).
     pub camera_clearance: bool,
@@ -57,6 +61,7 @@ impl Default for Culling {
             cone_blocked: true,
             far_bounds: true,
             probes: true,
+            near_slopes: true,
             camera_clearance: true,
             near_walk: true,
         }

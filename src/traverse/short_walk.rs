@@ -22,7 +22,12 @@ use crate::heightfield::Terrain;
 
 /// The most cells a short walk crosses; a ray whose reach may take it further is walked down
 /// the hierarchy, which skips more than it costs over such a distance.
-const MOST_CELLS: f64 = 12.0;
+const MOST_CELLS: f64 = 160.0;
+
+/// The mipmap level whose blocks the walk skips where the ray passes above their highest
+/// sample: no cell of such a block passes its cell test, so the answer is the same.
+const SKIP_LEVEL: u32 = 2;
+const SKIP: i64 = 1 << SKIP_LEVEL;
 
 /// An occlusion ray from `o` towards `d` (the start not counting), asked only up to `reach`,
 /// its own triangle `start_triangle` left untested: `Some` whether it touches the surface, with
@@ -104,8 +109,31 @@ fn cells<const FALLING: bool>(
     } = *segment;
     let mut cells = HitMiss::default();
     let mut triangles = HitMiss::default();
+    let mut blocks = HitMiss::default();
+    let skipping = terrain.mipmap().top() >= SKIP_LEVEL;
+    // Where the path leaves the block it was last tested in.
+    let mut block_until = f64::NEG_INFINITY;
     let touches = loop {
         let t_lo = walk.t;
+        if skipping && t_lo >= block_until {
+            let t_exit = walk.block_exit();
+            let t_hi = if t_end < t_exit { t_end } else { t_exit };
+            let t_low_point = if FALLING { t_hi } else { t_lo };
+            let (bi, bj) = walk.block();
+            let highest = terrain.mipmap().highest(SKIP_LEVEL, bi, bj);
+            // Above the block's highest sample, no cell of it passes its cell test.
+            if !blocks.record(oz_low + dz * t_low_point <= height_of(highest)) {
+                if t_end < t_exit {
+                    if nearly(t_exit, t_end) {
+                        return None;
+                    }
+                    break false;
+                }
+                walk.leave_block(t_exit)?;
+                continue;
+            }
+            block_until = t_exit;
+        }
         let t_exit = smaller(walk.next_u, walk.next_v);
         if walk.at_lattice_point()
             || t_lo >= t_exit
@@ -125,7 +153,10 @@ fn cells<const FALLING: bool>(
             return None;
         }
         let may_hit = oz_low + dz * t_low_point <= height_of(highest);
-        if cells.record(may_hit) && cell_hits(terrain, walk, four, start_triangle, &mut triangles)?
+        // (The lanes test the whole cell, past the segment's end too.)
+        let span = (t_lo, t_exit);
+        if cells.record(may_hit)
+            && cell_hits(terrain, walk, four, span, start_triangle, &mut triangles)?
         {
             break true;
         }
@@ -134,20 +165,22 @@ fn cells<const FALLING: bool>(
         }
         walk.step()?;
     };
+    counters.block += blocks;
     counters.cell += cells;
     counters.triangle += triangles;
     Some(touches)
 }
 
-/// Whether the ray touches a triangle of the path's cell (with corner samples `four`) other
-/// than `start_triangle` after its start, counting the triangle tests; `None` where the lanes
-/// cannot answer.
+/// Whether the ray touches a triangle of the path's cell (with corner samples `four`, crossed
+/// from `t_lo` to `t_hi` in `span`) other than `start_triangle` after its start, counting the triangle
+/// tests; `None` where the lanes cannot answer.
 // (Out of line: the walk's loop keeps its registers for the cells that need no test.)
 #[inline(never)]
 fn cell_hits(
     terrain: &Terrain,
-    walk: &Path,
+    walk: &mut Path,
     four: [u16; 4],
+    span: (f64, f64),
     start_triangle: Option<((usize, usize), u8)>,
     triangles: &mut HitMiss,
 ) -> Option<bool> {
@@ -157,8 +190,14 @@ fn cell_hits(
         return Some(false);
     }
     let heights = four.map(|sample| field.height_of(sample));
+    let own = start_triangle
+        .filter(|&(cell, _)| cell == (i, j))
+        .map(|(_, k)| k);
+    if passes_above(walk, (i, j), heights, span, own) {
+        return Some(false);
+    }
     let hits = walk
-        .ray
+        .ray_space()
         .cell_in_lanes(SimdPath::active(), (i, j), heights)?;
     for (triangle, hit) in (0u8..2).zip(hits) {
         if start_triangle == Some(((i, j), triangle)) {
@@ -172,6 +211,53 @@ fn cell_hits(
         }
     }
     Some(false)
+}
+
+/// Whether the ray passes clearly above both triangles of cell `(i, j)` (corner heights
+/// `heights`) while it crosses it, from `t_lo` to `t_hi`, leaving out triangle `own` (the
+/// ray's start lies on it): then no triangle test can find a touch. The surface is planar on
+/// each triangle, so the ray clears it where it clears it at the ends of its path over each
+/// triangle: where it enters and leaves the cell and where it crosses the diagonal. Each
+/// must clear by far more than rounding can move the ray or the surface; a path over `own`
+/// alone needs nothing, and near the diagonal or near the surface the lanes decide.
+fn passes_above(
+    walk: &Path,
+    (i, j): (usize, usize),
+    [z00, z10, z01, z11]: [f64; 4],
+    (t_lo, t_hi): (f64, f64),
+    own: Option<u8>,
+) -> bool {
+    let ([ox, oy, oz], [dx, dy, dz]) = (walk.o, walk.d);
+    let at = |t: f64| (ox + dx * t - i as f64, oy + dy * t - j as f64, oz + dz * t);
+    // (The triangle of a point: 0 where `fx >= fy`, as `Heightfield::surface_z` splits.)
+    let plane = |k: u8, fx: f64, fy: f64| {
+        if k == 0 {
+            z00 + fx * (z10 - z00) + fy * (z11 - z10)
+        } else {
+            z00 + fy * (z01 - z00) + fx * (z11 - z01)
+        }
+    };
+    let room = 1e-9 * (1.0 + oz.abs() + z00.abs() + z11.abs() + (dz * t_hi).abs());
+    let (a, b) = (at(t_lo), at(t_hi));
+    let (side_a, side_b) = (a.0 - a.1, b.0 - b.1);
+    // Too near the diagonal to tell which triangle a point is over.
+    if side_a.abs() <= room || side_b.abs() <= room {
+        return false;
+    }
+    let (k_a, k_b) = (u8::from(side_a < 0.0), u8::from(side_b < 0.0));
+    let clears =
+        |k: u8, (fx, fy, z): (f64, f64, f64)| Some(k) == own || z - plane(k, fx, fy) > room;
+    if k_a == k_b {
+        return clears(k_a, a) && clears(k_b, b);
+    }
+    // The diagonal's crossing, over both triangles.
+    let s = side_a / (side_a - side_b);
+    let m = (
+        a.0 + s * (b.0 - a.0),
+        a.1 + s * (b.1 - a.1),
+        a.2 + s * (b.2 - a.2),
+    );
+    clears(k_a, a) && clears(k_a, m) && clears(k_b, m) && clears(k_b, b)
 }
 
 /// Where the ray leaves the terrain's box, lengthened by its rounding as
@@ -203,7 +289,10 @@ fn nearly(a: f64, b: f64) -> bool {
 /// both axes mirrored to increase, see [`Frame`](super::frame::Frame)), at one cell, which it
 /// also holds as the index of the cell's first sample, so that a step is an addition.
 struct Path {
-    ray: RaySpace<f64>,
+    /// The ray, and its space for the triangle tests, made when a cell first needs them.
+    o: [f64; 3],
+    d: [f64; 3],
+    ray: Option<RaySpace<f64>>,
     swap: bool,
     flip: [bool; 2],
     o_u: f64,
@@ -280,7 +369,9 @@ impl Path {
             }
         };
         Some(Path {
-            ray: RaySpace::new(o, d, d),
+            o,
+            d,
+            ray: None,
             swap,
             flip,
             o_u: start[0],
@@ -300,6 +391,12 @@ impl Path {
         })
     }
 
+    /// The ray's space for the triangle tests.
+    fn ray_space(&mut self) -> &RaySpace<f64> {
+        let (o, d) = (self.o, self.d);
+        self.ray.get_or_insert_with(|| RaySpace::new(o, d, d))
+    }
+
     /// Whether the path leaves its cell through a corner, or too near one to tell.
     #[inline(always)]
     fn at_lattice_point(&self) -> bool {
@@ -316,6 +413,54 @@ impl Path {
             (b, a)
         } else {
             (a, b)
+        }
+    }
+
+    /// The block of level [`SKIP_LEVEL`] the cell lies in (original indices).
+    fn block(&self) -> (usize, usize) {
+        let (i, j) = self.cell();
+        (i >> SKIP_LEVEL, j >> SKIP_LEVEL)
+    }
+
+    /// Where the path leaves the cell's block of level [`SKIP_LEVEL`]: the first crossing of
+    /// the block's far edge along `u` or `v`, from the grid line as [`Path::step`] finds it.
+    #[inline(always)]
+    fn block_exit(&self) -> f64 {
+        let line = |c: i64, flip: bool| {
+            // The frame coordinate of the block's far edge: its original cells count down
+            // where the axis is mirrored.
+            if flip {
+                -(unmirror(c, true) & !(SKIP - 1))
+            } else {
+                (c | (SKIP - 1)) + 1
+            }
+        };
+        let crossing = |c: i64, flip: bool, o: f64, inverse: f64| {
+            if inverse == 0.0 {
+                f64::INFINITY
+            } else {
+                (line(c, flip) as f64 - o) * inverse
+            }
+        };
+        smaller(
+            crossing(self.cu, self.flip[0], self.o_u, self.inverse_u),
+            crossing(self.cv, self.flip[1], self.o_v, self.inverse_v),
+        )
+    }
+
+    /// Steps to the first cell past the block the path leaves at `t_exit` (see
+    /// [`Path::block_exit`]); `None` where it leaves through a corner, or too near one to
+    /// tell, or off the grid.
+    #[inline(always)]
+    fn leave_block(&mut self, t_exit: f64) -> Option<()> {
+        loop {
+            if self.at_lattice_point() {
+                return None;
+            }
+            self.step()?;
+            if self.t >= t_exit {
+                return Some(());
+            }
         }
     }
 

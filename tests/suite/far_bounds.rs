@@ -1,13 +1,16 @@
 //! Bounds kept for the terrain ahead of occlusion rays: the sun's strip bounds and the sky's
 //! sector bounds. Every ray they call clear beyond a point touches no triangle from there on
 //! (within the sky's reach), by the exact reference: suns along the axes, the diagonals, a
-//! grid line, very steep and very low, sky rays in every sector, on fields with holes,
+//! grid line, very steep and very low, sky rays in every sector, climbing and falling, from
+//! their start where it lies well inside its triangle, on fields with holes,
 //! plateaus and map edges. Frames are the same with the bounds on and off, and with bounds
 //! kept from an earlier sun.
 
 use crate::common::random::Rng;
 use crate::common::reference::{first_touch, q, ExactField, ExactRay, Q};
-use heightray::heightfield::{landscape, NoDataMask, Quantisation, SkyBounds, StripBounds};
+use heightray::heightfield::{
+    landscape, NearStart, NoDataMask, Quantisation, SkyBounds, StripBounds,
+};
 use heightray::render::effects::Effects;
 use heightray::render::{Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Shader};
 use heightray::{Arith, Heightfield, Method, Terrain};
@@ -57,9 +60,20 @@ fn field(rng: &mut Rng, n: usize) -> Heightfield {
 fn touches(
     field: &Heightfield,
     exact: &ExactField,
-    (o, dir): ([f64; 3], [f64; 3]),
+    ray: ([f64; 3], [f64; 3]),
     t: f64,
     t_end: f64,
+) -> bool {
+    touches_other(field, exact, ray, (t, t_end), None)
+}
+
+/// [`touches`], leaving out triangle `own` (`(cell, triangle)`, the one a ray starts on).
+fn touches_other(
+    field: &Heightfield,
+    exact: &ExactField,
+    (o, dir): ([f64; 3], [f64; 3]),
+    (t, t_end): (f64, f64),
+    own: Option<([usize; 2], u8)>,
 ) -> bool {
     let ray = ExactRay {
         o: std::array::from_fn(|k| q(o[k]) + q(dir[k]) * q(t)),
@@ -78,6 +92,7 @@ fn touches(
             }
             let within = |touch: &Q| t_end.is_infinite() || *touch <= q(t_end) - q(t);
             let touched = (0..2)
+                .filter(|&k| own != Some(([i, j], k)))
                 .any(|k| first_touch(exact, &ray, [i, j], k).is_some_and(|touch| within(&touch)));
             if touched {
                 return true;
@@ -87,8 +102,8 @@ fn touches(
     false
 }
 
-/// Whether the climbing ray from `o` stays more than a unit above `highest` wherever its path
-/// comes within a cell of the cell at `corner` (a filter with room far beyond rounding).
+/// Whether the ray from `o` stays more than a unit above `highest` wherever its path comes
+/// within a cell of the cell at `corner` (a filter with room far beyond rounding).
 fn passes_far_above(o: [f64; 3], dir: [f64; 3], corner: [f64; 2], highest: f64) -> bool {
     let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
     for k in 0..2 {
@@ -103,7 +118,8 @@ fn passes_far_above(o: [f64; 3], dir: [f64; 3], corner: [f64; 2], highest: f64) 
         t0 = t0.max(a.min(b));
         t1 = t1.min(a.max(b));
     }
-    t0 > t1 || o[2] + dir[2] * t0 > highest + 1.0
+    let lowest = if dir[2] < 0.0 { t1 } else { t0 };
+    t0 > t1 || o[2] + dir[2] * lowest > highest + 1.0
 }
 
 #[test]
@@ -272,10 +288,10 @@ fn sky_rays_called_clear_beyond_a_point_touch_nothing_from_there_on_within_the_r
                     }
                     _ => azimuth,
                 };
-                let climb = [0.02, 0.2, 0.7, 2.5][rng.below(4)];
+                let climb = [-0.4, -0.05, 0.02, 0.2, 0.7, 2.5][rng.below(6)];
                 let dir = [azimuth.cos(), azimuth.sin(), climb];
                 asked += 1;
-                let Some(t) = bounds.clear_beyond(&terrain, start, dir, 0.0) else {
+                let Some(t) = bounds.clear_beyond(&terrain, start, dir, 0.0, None) else {
                     continue;
                 };
                 clear += 1;
@@ -288,6 +304,58 @@ fn sky_rays_called_clear_beyond_a_point_touch_nothing_from_there_on_within_the_r
         }
     }
     assert!(clear * 4 > asked, "{clear} of {asked} rays called clear");
+}
+
+/// A point well inside triangle `k` of a random cell of `field`, on its plane.
+fn start_inside(field: &Heightfield, rng: &mut Rng) -> ((usize, usize), u8, [f64; 3]) {
+    let cell = (rng.below(field.width() - 1), rng.below(field.height() - 1));
+    let k = rng.below(2) as u8;
+    let (a, b) = (rng.within(0.0, 1.0), rng.within(0.0, 1.0));
+    // Triangle 0 holds the cell's points with `fx >= fy`.
+    let (fx, fy) = if (k == 0) == (a >= b) { (a, b) } else { (b, a) };
+    let z = field.surface_z(cell, (fx, fy));
+    (cell, k, [cell.0 as f64 + fx, cell.1 as f64 + fy, z])
+}
+
+#[test]
+fn sky_rays_called_clear_from_their_start_touch_no_triangle_but_their_own() {
+    let mut rng = Rng(0x0051_7a11_0c0e);
+    let (mut asked, mut clear) = (0, 0);
+    for round in 0..12 {
+        let field = if round == 0 {
+            landscape(33, 5, 12.0).unwrap()
+        } else {
+            field(&mut rng, 10 + 2 * round)
+        };
+        let exact = ExactField::new(&field);
+        let terrain = Terrain::new(field.clone());
+        for reach in [f64::INFINITY, 9.0, 20.0] {
+            let bounds = SkyBounds::new(&terrain, reach).expect("a reach beyond the walked part");
+            for _ in 0..80 {
+                let (cell, k, start) = start_inside(&field, &mut rng);
+                let room = 1e-12 * (1.0 + start[2].abs());
+                let Some(near) = NearStart::on_triangle(&terrain, (cell, k), start, room) else {
+                    continue;
+                };
+                let azimuth = rng.within(0.0, std::f64::consts::TAU);
+                let climb = [-0.6, -0.1, 0.05, 0.3, 1.0, 4.0][rng.below(6)];
+                let dir = [azimuth.cos(), azimuth.sin(), climb];
+                asked += 1;
+                if bounds.clear_beyond(&terrain, start, dir, room, Some(near)) != Some(0.0) {
+                    continue;
+                }
+                clear += 1;
+                let t_end = reach / dir[0].hypot(dir[1]);
+                let own = Some(([cell.0, cell.1], k));
+                assert!(
+                    !touches_other(&field, &exact, (start, dir), (0.0, t_end), own),
+                    "round {round}, reach {reach}, dir {dir:?}, start {start:?} on {own:?}: touches the surface"
+                );
+            }
+        }
+    }
+    // (Rough random fields rise steeply near most starts: few rays outclimb them.)
+    assert!(clear >= 100, "{clear} of {asked} rays called clear");
 }
 
 #[test]
@@ -422,6 +490,20 @@ fn sky_frames_the_same_with(off: Culling, check: impl Fn(&Frame, &str, Arith, f6
             check(&on, &what, arith, sky_distance);
         }
     }
+}
+
+#[test]
+fn sky_light_frames_are_the_same_with_near_slopes_on_and_off() {
+    let off = Culling {
+        near_slopes: false,
+        ..Culling::default()
+    };
+    sky_frames_the_same_with(off, |on, what, arith, sky_distance| {
+        if arith != Arith::F32 && sky_distance.is_finite() {
+            let settled = on.totals.effects.sky_light.culled_horizon_clear;
+            assert!(settled > 0, "{what}: the near slopes settle rays");
+        }
+    });
 }
 
 #[test]

@@ -11,6 +11,7 @@ use super::horizon::{climbs_above, level_within, sector_of, slope_bound_within, 
 use super::sampling::{point, seed_of, Hemisphere};
 use crate::arith::Scalar;
 use crate::geometry::{Face, Ray};
+use crate::heightfield::NearStart;
 use crate::render::context::Context;
 use crate::render::scene::Normals;
 use crate::render::sky_gradient::{horizon, sky_colour, zenith};
@@ -66,11 +67,14 @@ impl Effect for SkyLight {
         // A sector's bound costs a few walks: worth it where its sector holds several rays.
         // (Where the sky's bounds are kept, they settle the far part of each ray instead.)
         let far = cx.sky.as_ref().filter(|_| cx.culling.far_bounds);
-        // A ray the bounds leave unsettled is probed under the surface first, where it starts
-        // on its flat triangle.
-        let probing = cx.culling.probes
-            && cx.lighting.normals == Normals::Flat
-            && found.face == Face::Terrain;
+        // Where the rays start on their own flat triangle, the bounds may settle their first
+        // cells too; a ray they leave unsettled is probed under the surface first.
+        let on_triangle = cx.lighting.normals == Normals::Flat && found.face == Face::Terrain;
+        let probing = cx.culling.probes && on_triangle;
+        let own = (found.cell, found.triangle);
+        let on_own = (on_triangle && cx.culling.near_slopes)
+            .then(|| NearStart::on_triangle(cx.terrain, own, start.into(), shared.room))
+            .flatten();
         let by_sector = culling && !level && rays > SECTORS as u32 && far.is_none();
         // Each sector's bound, found when a direction in it first asks.
         let mut bounds = [None; SECTORS];
@@ -92,15 +96,17 @@ impl Effect for SkyLight {
             // (Traced and bounded in grid coordinates; coloured by the world direction.)
             let grid = cx.grid_dir(dir);
             let culled = grid.z > 0.0 && (level || (by_sector && climbs_above(grid, bound(grid))));
-            let open = culled || {
+            // How far the kept bounds leave the ray to walk: `Some(0.0)` where not at all.
+            let near = far.filter(|_| !culled).map(|b| {
+                b.clear_beyond(cx.terrain, start.into(), grid.into(), shared.room, on_own)
+            });
+            let open = culled || near == Some(Some(0.0)) || {
                 // (The ray's `t` runs along the unit grid direction.)
                 let (ax, ay) = (grid.x * scale[0], grid.y * scale[1]);
                 // (Not `hypot`: its care for overflow, needless for a unit direction, costs
                 // more than the rest of the ray's set-up.)
                 let across = (ax * ax + ay * ay).sqrt();
                 let t_max = (distance / across).is_finite().then(|| distance / across);
-                let near =
-                    far.map(|b| b.clear_beyond(cx.terrain, start.into(), grid.into(), shared.room));
                 let t_max = match near.flatten() {
                     Some(t) => Some(t_max.map_or(t, |m| m.min(t))),
                     None => t_max,

@@ -21,6 +21,7 @@ pub(crate) const NO_CULLING: Culling = Culling {
     cone_blocked: false,
     far_bounds: false,
     probes: false,
+    near_slopes: false,
     camera_clearance: false,
     near_walk: false,
 };
