@@ -20,6 +20,7 @@
 //! triangle that climbs faster, by a margin for the rounding of its start, stays above every
 //! other triangle until the rings take over (see [`SkyBounds::clear_beyond`]).
 
+use super::near_rise::{steepest_rise, NearStart};
 use super::Terrain;
 use crate::geometry::gradient;
 use std::f64::consts::PI;
@@ -190,7 +191,7 @@ impl SkyBounds {
         }
         let rise = bounds.rises[sector];
         let near_clear = near.is_some_and(|near| {
-            rise != NO_RISE && climb > f64::from(rise) * self.rise_unit + near.margin
+            rise != NO_RISE && near.outclimbs(climb, f64::from(rise) * self.rise_unit)
         });
         match from {
             Some(edge) if edge == self.edges[0] && near_clear => Some(0.0),
@@ -266,52 +267,13 @@ impl SkyBounds {
         }
         self.cones.each_ref().map(|cone| {
             let steepest = gradients.iter().fold(f64::NEG_INFINITY, |m, &(gx, gy)| {
-                m.max(cone.steepest_rise([gx, gy]))
+                m.max(steepest_rise(cone.lo, cone.hi, [gx, gy]))
             });
             // (Rounded up, whichever its sign.)
             let steepest = steepest + 1e-9 * self.rise_unit * f64::from(NO_RISE);
             let units = (steepest / self.rise_unit).ceil();
             units.clamp(-f64::from(NO_RISE - 1), f64::from(NO_RISE - 1)) as i8
         })
-    }
-}
-
-/// A sky ray's start on its own flat triangle, at least [`NearStart::INSIDE`] inside it: for
-/// so short a way from it the ray can meet no other triangle, and beyond that it is above
-/// every triangle where it out-climbs their rise by `margin` (see [`SkyBounds::clear_beyond`]).
-#[derive(Clone, Copy, Debug)]
-pub struct NearStart {
-    margin: f64,
-}
-
-impl NearStart {
-    /// How far inside its triangle (horizontally, in cells) a start must lie.
-    pub const INSIDE: f64 = 1e-4;
-
-    /// The start at `p` (grid coordinates, `z` on the surface within `room`, and `x`, `y`
-    /// within `room` of the true start's) on triangle `triangle` of `cell`: `None` where it
-    /// lies within [`NearStart::INSIDE`] of the triangle's edges.
-    pub fn on_triangle(
-        terrain: &Terrain,
-        (cell, triangle): ((usize, usize), u8),
-        p: [f64; 3],
-        room: f64,
-    ) -> Option<NearStart> {
-        let (fx, fy) = (p[0] - cell.0 as f64, p[1] - cell.1 as f64);
-        // Triangle 0 is the cell's half with `fx >= fy` (see `gradient`).
-        let edges = if triangle == 0 {
-            [fy, 1.0 - fx, (fx - fy) * std::f64::consts::FRAC_1_SQRT_2]
-        } else {
-            [fx, 1.0 - fy, (fy - fx) * std::f64::consts::FRAC_1_SQRT_2]
-        };
-        if !edges.iter().all(|&e| e > NearStart::INSIDE) {
-            return None;
-        }
-        // Past `INSIDE`, the ray must clear the surface by more than its start's room (which
-        // the steepest slope spreads over the horizontal part) and its own rounding.
-        let room = room * (1.0 + 2.0 * terrain.max_slope()) + 1e-9 * (1.0 + p[2].abs());
-        let margin = room / NearStart::INSIDE;
-        margin.is_finite().then_some(NearStart { margin })
     }
 }
 
@@ -439,17 +401,6 @@ impl Cone {
     /// Whether direction `c` lies inside (edges included).
     fn inside(&self, c: [f64; 2]) -> bool {
         cross(self.lo, c) >= 0.0 && cross(c, self.hi) >= 0.0
-    }
-
-    /// The most `g . u` over the cone's unit vectors `u`: how fast a plane of gradient `g`
-    /// rises along the steepest of its azimuths.
-    fn steepest_rise(&self, g: [f64; 2]) -> f64 {
-        let dot = |u: [f64; 2]| u[0] * g[0] + u[1] * g[1];
-        if self.inside(g) {
-            (g[0] * g[0] + g[1] * g[1]).sqrt()
-        } else {
-            dot(self.lo).max(dot(self.hi))
-        }
     }
 
     /// Whether the rectangle `[x0, y0, x1, y1]` may hold a point of the cone (false only

@@ -25,6 +25,7 @@
 //! unit of `u`; it need only be followed until it rises above the highest sample, so its look-up
 //! takes the largest bound over the strips its `w` passes through up to there.
 
+use super::near_rise::{ConeRises, NearStart};
 use super::Heightfield;
 
 /// Strip width across the direction, in cells.
@@ -63,6 +64,10 @@ pub struct StripBounds {
     per_du: f64,
     /// The highest sample: a ray above it is above all the terrain.
     top: f64,
+    /// How fast the surface rises along the disc's azimuths near each block, for the part a
+    /// look-up leaves to walk (see [`StripBounds::clear_before`]); `None` where the disc
+    /// spans nearly half a turn of azimuths.
+    rises: Option<ConeRises>,
 }
 
 /// The blocks of one strip that meet the map, `first..first + len`, stored from `at` on.
@@ -167,6 +172,7 @@ impl StripBounds {
             climb_across: climb * nu as f64,
             per_du: 1.0 / du.abs(),
             top,
+            rises: disc_azimuths(dir, half).map(|cone| ConeRises::build(field, cone, NEAR)),
         };
         let mut column = Vec::with_capacity(blocks);
         for j in 0..count {
@@ -211,7 +217,21 @@ impl StripBounds {
 
     /// Bytes held.
     pub fn bytes(&self) -> usize {
-        self.bounds.len() * 2 + self.strips.len() * std::mem::size_of::<StripRange>()
+        self.bounds.len() * 2
+            + self.strips.len() * std::mem::size_of::<StripRange>()
+            + self.rises.as_ref().map_or(0, ConeRises::bytes)
+    }
+
+    /// Whether a ray from `start` towards `dir` that [`StripBounds::clear_beyond`] calls clear
+    /// from `t` on is clear before `t` too: it starts well inside its own flat triangle
+    /// (`near`) and outclimbs the surface around it all the way to `t`.
+    pub fn clear_before(&self, start: [f64; 3], dir: [f64; 3], t: f64, near: NearStart) -> bool {
+        let Some(rises) = &self.rises else {
+            return false;
+        };
+        // (Not `hypot`: a direction cannot overflow.)
+        let across = (dir[0] * dir[0] + dir[1] * dir[1]).sqrt();
+        rises.outclimbed(start, dir[2] / across, t * across, near)
     }
 
     /// The highest `s - climb*(u - u_c)` over the vertices of the cells that the strip `j`'s
@@ -314,6 +334,25 @@ impl StripBounds {
             f64::from(self.bounds[range.at as usize + c - first])
         }
     }
+}
+
+/// How far (horizontally, in cells) the part a look-up leaves to walk can run: to the next
+/// column line more than a cell ahead, at most `BLOCK + 1` columns of `u`, along a direction
+/// at most `sqrt(2)` times longer than its `u`.
+const NEAR: f64 = (BLOCK + 1) as f64 * std::f64::consts::SQRT_2 + 1e-2;
+
+/// The azimuths of the directions within `half` (radians) of `dir`, as the unit vectors at
+/// either end, widened for rounding; `None` where they span nearly half a turn or more.
+fn disc_azimuths(dir: [f64; 3], half: f64) -> Option<([f64; 2], [f64; 2])> {
+    let length = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
+    let horizontal = dir[0].hypot(dir[1]) / length;
+    // The widest azimuth off the axis of a circular cone: asin(sin(half) / cos(elevation)).
+    // (NaN, from a vertical direction, spans every azimuth.)
+    let across = Some(half.sin() / horizontal).filter(|&a| a < 0.9)?;
+    let spread = across.asin() * (1.0 + 1e-6) + 1e-7;
+    let mid = dir[1].atan2(dir[0]);
+    let unit = |angle: f64| [angle.cos(), angle.sin()];
+    Some((unit(mid - spread), unit(mid + spread)))
 }
 
 /// The lowest climb `dz / |du|` of any direction within `half` of `(du, dv, dz)` (`du` the

@@ -9,8 +9,8 @@ use super::scene::{Lighting, Normals};
 use super::sky_gradient::{horizon, night_sky_colour, sky_colour, NIGHT_HORIZON};
 use crate::arith::Scalar;
 use crate::geometry::{Base, Face, Ray};
-use crate::heightfield::{SkyBounds, StripBounds, Terrain};
-use crate::traverse::{Departure, Found, Method, Occlusion, Start, Tracer};
+use crate::heightfield::{NearStart, SkyBounds, StripBounds, Terrain};
+use crate::traverse::{Counters, Departure, Found, Method, Occlusion, Start, Tracer};
 use glam::DVec3;
 use std::borrow::Cow;
 use std::sync::Arc;
@@ -39,9 +39,8 @@ pub struct Culling {
     /// Settle the sky-light rays the kept bounds leave unsettled as blocked where a probe
     /// finds them under the surface ([`SkyRays::probed`]).
     pub probes: bool,
-    /// Settle the first cells of sky-light rays that start on their own flat triangle and
-    /// climb faster than the surface can rise near it
-    /// ([`NearStart`](crate::heightfield::NearStart)).
+    /// Settle the first cells of shadow, soft-shadow and sky-light rays that start on their
+    /// own flat triangle and climb faster than the surface can rise near it ([`NearStart`]).
     pub near_slopes: bool,
     /// Start each camera ray's walk where its wedge's profile proves it clear of the surface,
     /// and settle the rays above their wedge's whole profile with no walk ([`Wedges`]).
@@ -241,7 +240,25 @@ impl<'a> Context<'a> {
         let Some(strips) = strips.filter(|_| self.culling.far_bounds) else {
             return self.occluded(start, dir, None);
         };
-        let near = strips.clear_beyond(start.point.to_array(), dir, start.room);
+        let point = start.point.to_array();
+        let near = strips.clear_beyond(point, dir, start.room);
+        // Clear beyond the look-up, and before it by the slopes around a start on its own
+        // triangle: no walk at all (a ray that starts above the terrain and rises is left to
+        // the rule that skips it).
+        let (_, z_max) = self.terrain.z_range();
+        let skipped = self.culling.above_terrain && dir[2] > 0.0 && point[2] > z_max;
+        if let (Some(t), Some(from), false) = (near, start.near, skipped) {
+            if strips.clear_before(point, dir, t, from) {
+                let mut counters = Counters::default();
+                counters.bound.record(false);
+                return Occlusion {
+                    occluded: Some(false),
+                    counters,
+                    cells: Vec::new(),
+                    exactly: false,
+                };
+            }
+        }
         let mut occlusion = self.occluded(start, dir, near);
         occlusion.counters.bound.record(near.is_none());
         occlusion
@@ -298,9 +315,16 @@ impl<'a> Context<'a> {
             },
             None => Start::Hit { ray, hit: found },
         };
+        // A start on its own flat triangle, well inside it, whose rays' first cells the
+        // slopes around it may settle.
+        let on_own = near.is_none() && found.face == Face::Terrain && self.culling.near_slopes;
+        let own = (found.cell, found.triangle);
         OcclusionStart {
             point,
             room,
+            near: on_own
+                .then(|| NearStart::on_triangle(self.terrain, own, point.to_array(), room))
+                .flatten(),
             departure: self.tracer().departure(&from),
         }
     }
@@ -314,5 +338,7 @@ pub(crate) struct OcclusionStart<'h, S> {
     pub(super) point: DVec3,
     /// How far (in height) the true start may lie below `point`.
     pub(super) room: f64,
+    /// Where the start lies well inside its own flat triangle.
+    pub(super) near: Option<NearStart>,
     departure: Departure<'h, S>,
 }

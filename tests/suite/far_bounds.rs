@@ -153,6 +153,68 @@ fn rays_called_clear_beyond_a_point_touch_nothing_from_there_on() {
     assert!(clear * 3 > asked, "{clear} of {asked} rays called clear");
 }
 
+#[test]
+fn sun_rays_called_clear_from_their_start_touch_no_triangle_but_their_own() {
+    let mut rng = Rng(0x005e_ed0f_0c0e);
+    let (mut asked, mut clear) = (0, 0);
+    for round in 0..12 {
+        let field = if round == 0 {
+            landscape(33, 3, 12.0).unwrap()
+        } else {
+            field(&mut rng, 8 + round)
+        };
+        let exact = ExactField::new(&field);
+        let terrain = Terrain::new(field.clone());
+        for sun in SUNS {
+            for half in [0.0, 0.05] {
+                // (A disc around a sun this low dips under the horizon: no bounds.)
+                let Some(bounds) = StripBounds::build(&field, sun, half) else {
+                    assert!(half > 0.0, "the sun climbs");
+                    continue;
+                };
+                for _ in 0..30 {
+                    let (cell, k, start) = start_inside(&field, &mut rng);
+                    let room = 1e-12 * (1.0 + start[2].abs());
+                    let Some(near) = NearStart::on_triangle(&terrain, (cell, k), start, room)
+                    else {
+                        continue;
+                    };
+                    // The axis, or a direction of the disc.
+                    let dir = match half > 0.0 {
+                        true => tilted(sun, rng.within(-half, half), rng.within(-half, half)),
+                        false => sun,
+                    };
+                    asked += 1;
+                    let Some(t) = bounds.clear_beyond(start, dir, room) else {
+                        continue;
+                    };
+                    if !bounds.clear_before(start, dir, t, near) {
+                        continue;
+                    }
+                    clear += 1;
+                    let own = Some(([cell.0, cell.1], k));
+                    assert!(
+                        !touches_other(&field, &exact, (start, dir), (0.0, f64::INFINITY), own),
+                        "round {round}, sun {sun:?} (disc {half}), dir {dir:?}, start {start:?} on {own:?}: touches the surface"
+                    );
+                }
+            }
+        }
+    }
+    // (Rough random fields rise steeply near most starts: few rays outclimb them.)
+    assert!(clear >= 100, "{clear} of {asked} rays called clear");
+}
+
+/// `dir` turned by about `a` and `b` radians about two axes across it (a direction of a
+/// disc around it of half-angle at least `|a| + |b|`, within rounding).
+fn tilted(dir: [f64; 3], a: f64, b: f64) -> [f64; 3] {
+    let d = glam::DVec3::from(dir).normalize();
+    let (p, q) = d.any_orthonormal_pair();
+    // (Scaled so that the angle off the axis stays within `a` and `b`'s sum.)
+    let turned = d + p * a.tan() * 0.7 + q * b.tan() * 0.7;
+    turned.normalize().into()
+}
+
 /// A low flat field with a few tall single samples: rays of a disc that drift across the
 /// strips meet spikes that the strips along the axis never hold.
 fn spikes(rng: &mut Rng, n: usize) -> Heightfield {
@@ -488,6 +550,38 @@ fn sky_frames_the_same_with(off: Culling, check: impl Fn(&Frame, &str, Arith, f6
             let what = format!("{arith:?}, {sky_rays} rays to {sky_distance}");
             assert_eq!(on.pixels, walked.pixels, "{what}");
             check(&on, &what, arith, sky_distance);
+        }
+    }
+}
+
+#[test]
+fn shadow_frames_are_the_same_with_near_slopes_on_and_off() {
+    let terrain = Terrain::new(landscape(65, 7, 16.0).unwrap());
+    let off = Culling {
+        near_slopes: false,
+        ..Culling::default()
+    };
+    for (sun_angle_deg, sun_rays) in [(0.0, 1), (0.53, 8), (4.0, 16)] {
+        let effects = Effects {
+            sun_angle_deg,
+            sun_rays,
+            ..Effects::default()
+        };
+        for arith in [Arith::F32, Arith::F64, Arith::Exact] {
+            // Rays settled whole walk no cell.
+            let (mut cells_on, mut cells_walked) = (0, 0);
+            for sun in [[0.4, 0.3, 0.5], [-1.0, 0.0, 0.3], [0.7, -0.7, 0.2]] {
+                let on = render_with(&terrain, sun, effects, arith, Culling::default());
+                let walked = render_with(&terrain, sun, effects, arith, off);
+                let what = format!("{arith:?}, sun {sun:?}, disc {sun_angle_deg} deg");
+                assert_eq!(on.pixels, walked.pixels, "{what}");
+                cells_on += on.totals.shadow.cell.total();
+                cells_walked += walked.totals.shadow.cell.total();
+            }
+            if arith != Arith::F32 {
+                let what = format!("{arith:?}, disc {sun_angle_deg} deg");
+                assert!(cells_on < cells_walked, "{what}: the slopes settle rays");
+            }
         }
     }
 }

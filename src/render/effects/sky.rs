@@ -11,7 +11,6 @@ use super::horizon::{climbs_above, level_within, sector_of, slope_bound_within, 
 use super::sampling::{point, seed_of, Hemisphere};
 use crate::arith::Scalar;
 use crate::geometry::{Face, Ray};
-use crate::heightfield::NearStart;
 use crate::render::context::Context;
 use crate::render::scene::Normals;
 use crate::render::sky_gradient::{horizon, sky_colour, zenith};
@@ -67,14 +66,10 @@ impl Effect for SkyLight {
         // A sector's bound costs a few walks: worth it where its sector holds several rays.
         // (Where the sky's bounds are kept, they settle the far part of each ray instead.)
         let far = cx.sky.as_ref().filter(|_| cx.culling.far_bounds);
-        // Where the rays start on their own flat triangle, the bounds may settle their first
-        // cells too; a ray they leave unsettled is probed under the surface first.
+        // A ray the bounds leave unsettled is probed under the surface first, where it starts
+        // on its flat triangle.
         let on_triangle = cx.lighting.normals == Normals::Flat && found.face == Face::Terrain;
         let probing = cx.culling.probes && on_triangle;
-        let own = (found.cell, found.triangle);
-        let on_own = (on_triangle && cx.culling.near_slopes)
-            .then(|| NearStart::on_triangle(cx.terrain, own, start.into(), shared.room))
-            .flatten();
         let by_sector = culling && !level && rays > SECTORS as u32 && far.is_none();
         // Each sector's bound, found when a direction in it first asks.
         let mut bounds = [None; SECTORS];
@@ -98,7 +93,7 @@ impl Effect for SkyLight {
             let culled = grid.z > 0.0 && (level || (by_sector && climbs_above(grid, bound(grid))));
             // How far the kept bounds leave the ray to walk: `Some(0.0)` where not at all.
             let near = far.filter(|_| !culled).map(|b| {
-                b.clear_beyond(cx.terrain, start.into(), grid.into(), shared.room, on_own)
+                b.clear_beyond(cx.terrain, start.into(), grid.into(), shared.room, shared.near)
             });
             let open = culled || near == Some(Some(0.0)) || {
                 // (The ray's `t` runs along the unit grid direction.)
