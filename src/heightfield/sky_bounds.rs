@@ -34,10 +34,8 @@ const BLOCK_LEVEL: u32 = 2;
 const BLOCK: usize = 1 << BLOCK_LEVEL;
 
 /// Ring edges (horizontal distance from the ray's start) before the sky distance cuts them:
-/// the part nearer than the first is always walked.
-const EDGES: [f64; 13] = [
-    2.0, 3.0, 4.0, 6.0, 8.0, 11.0, 16.0, 22.0, 32.0, 45.0, 64.0, 90.0, 128.0,
-];
+/// the part nearer than the first is settled by slope or walked.
+const EDGES: [f64; 6] = [2.0, 4.0, 8.0, 16.0, 32.0, 64.0];
 
 /// The most rings a block holds per sector.
 const RINGS: usize = EDGES.len();
