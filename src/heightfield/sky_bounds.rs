@@ -20,7 +20,7 @@
 //! triangle that climbs faster, by a margin for the rounding of its start, stays above every
 //! other triangle until the rings take over (see [`SkyBounds::clear_beyond`]).
 
-use super::near_rise::{steepest_rise, NearStart};
+use super::near_rise::NearStart;
 use super::Terrain;
 use crate::geometry::gradient;
 use std::f64::consts::PI;
@@ -253,20 +253,36 @@ impl SkyBounds {
             (from.floor().max(0.0) as usize)..=(to.floor() as usize).min(n - 2)
         };
         let (xs, ys) = (cells(bx, field.width()), cells(by, field.height()));
-        let mut gradients = Vec::with_capacity(2 * xs.clone().count() * ys.clone().count());
+        // A plane of gradient `g` rises along `u` at `g . u`: each sector's rise is the most of
+        // that along its two edges, or `|g|` where the sector holds `g`'s own azimuth (the
+        // rise along the sector's azimuths peaks at an edge unless it holds the peak).
+        let edges: [[f64; 2]; 2 * SKY_SECTORS] =
+            std::array::from_fn(|k| [self.cones[k / 2].lo, self.cones[k / 2].hi][k % 2]);
+        let mut along = [f64::NEG_INFINITY; 2 * SKY_SECTORS];
+        let mut steepest = [f64::NEG_INFINITY; SKY_SECTORS];
         for j in ys {
             for i in xs.clone() {
                 if field.is_hole_cell(i, j) {
                     return [NO_RISE; SKY_SECTORS];
                 }
                 let heights = terrain.corner_heights(i, j);
-                gradients.extend([0, 1].map(|k| gradient(k, heights)));
+                for (gx, gy) in [0, 1].map(|k| gradient(k, heights)) {
+                    // (Plain comparisons: no NaN here, and they keep the loop in lanes.)
+                    for (best, u) in along.iter_mut().zip(&edges) {
+                        let rise = gx * u[0] + gy * u[1];
+                        *best = if rise > *best { rise } else { *best };
+                    }
+                    let own = sector_of(gx, gy);
+                    for s in [own + SKY_SECTORS - 1, own, own + 1].map(|s| s % SKY_SECTORS) {
+                        if self.cones[s].inside([gx, gy]) {
+                            steepest[s] = steepest[s].max((gx * gx + gy * gy).sqrt());
+                        }
+                    }
+                }
             }
         }
-        self.cones.each_ref().map(|cone| {
-            let steepest = gradients.iter().fold(f64::NEG_INFINITY, |m, &(gx, gy)| {
-                m.max(steepest_rise(cone.lo, cone.hi, [gx, gy]))
-            });
+        std::array::from_fn(|s| {
+            let steepest = steepest[s].max(along[2 * s]).max(along[2 * s + 1]);
             // (Rounded up, whichever its sign.)
             let steepest = steepest + 1e-9 * self.rise_unit * f64::from(NO_RISE);
             let units = (steepest / self.rise_unit).ceil();
