@@ -116,7 +116,7 @@ fn cells<const FALLING: bool>(
     let touches = loop {
         let t_lo = walk.t;
         if skipping && t_lo >= block_until {
-            let t_exit = walk.block_exit();
+            let (t_exit, through_u, line) = walk.block_exit();
             let t_hi = if t_end < t_exit { t_end } else { t_exit };
             let t_low_point = if FALLING { t_hi } else { t_lo };
             let (bi, bj) = walk.block();
@@ -129,7 +129,7 @@ fn cells<const FALLING: bool>(
                     }
                     break false;
                 }
-                walk.leave_block(t_exit)?;
+                walk.leave_block(t_exit, through_u, line)?;
                 continue;
             }
             block_until = t_exit;
@@ -423,9 +423,10 @@ impl Path {
     }
 
     /// Where the path leaves the cell's block of level [`SKIP_LEVEL`]: the first crossing of
-    /// the block's far edge along `u` or `v`, from the grid line as [`Path::step`] finds it.
+    /// the block's far edge along `u` or `v`, from the grid line as [`Path::step`] finds it,
+    /// with the axis it crosses (`u` or not) and the edge's frame coordinate there.
     #[inline(always)]
-    fn block_exit(&self) -> f64 {
+    fn block_exit(&self) -> (f64, bool, i64) {
         let line = |c: i64, flip: bool| {
             // The frame coordinate of the block's far edge: its original cells count down
             // where the axis is mirrored.
@@ -435,33 +436,77 @@ impl Path {
                 (c | (SKIP - 1)) + 1
             }
         };
-        let crossing = |c: i64, flip: bool, o: f64, inverse: f64| {
+        let crossing = |line: i64, o: f64, inverse: f64| {
             if inverse == 0.0 {
                 f64::INFINITY
             } else {
-                (line(c, flip) as f64 - o) * inverse
+                (line as f64 - o) * inverse
             }
         };
-        smaller(
-            crossing(self.cu, self.flip[0], self.o_u, self.inverse_u),
-            crossing(self.cv, self.flip[1], self.o_v, self.inverse_v),
-        )
+        let (line_u, line_v) = (line(self.cu, self.flip[0]), line(self.cv, self.flip[1]));
+        let (t_u, t_v) = (
+            crossing(line_u, self.o_u, self.inverse_u),
+            crossing(line_v, self.o_v, self.inverse_v),
+        );
+        // (Ties go to `u`, as `step` takes them.)
+        if t_v < t_u {
+            (t_v, false, line_v)
+        } else {
+            (t_u, true, line_u)
+        }
     }
 
-    /// Steps to the first cell past the block the path leaves at `t_exit` (see
-    /// [`Path::block_exit`]); `None` where it leaves through a corner, or too near one to
-    /// tell, or off the grid.
+    /// Moves to the first cell past the block the path leaves at `t_exit` across the edge at
+    /// `line` of axis `u` (`through_u`) or `v` (see [`Path::block_exit`]): the cell
+    /// [`Path::step`] would reach, found from the other axis' grid lines with the same
+    /// arithmetic; `None` where the path leaves through a corner, or too near one to tell, or
+    /// off the grid.
     #[inline(always)]
-    fn leave_block(&mut self, t_exit: f64) -> Option<()> {
-        loop {
-            if self.at_lattice_point() {
+    fn leave_block(&mut self, t_exit: f64, through_u: bool, line: i64) -> Option<()> {
+        let (c, o, inverse) = match through_u {
+            true => (self.cv, self.o_v, self.inverse_v),
+            false => (self.cu, self.o_u, self.inverse_u),
+        };
+        // Where the path leaves cell `c` of the other axis.
+        let far = |c: i64| ((c + 1) as f64 - o) * inverse;
+        let mut other = c;
+        if inverse != 0.0 {
+            // A first guess from the position, then the grid lines decide, as `step` does:
+            // the path has crossed every line of the other axis it reaches before `t_exit`.
+            let guess = (o + t_exit / inverse) as i64 - 1;
+            other = guess.max(c);
+            while other > c && far(other - 1) >= t_exit {
+                other -= 1;
+            }
+            while far(other) < t_exit {
+                other += 1;
+            }
+            if nearly(far(other), t_exit) || (other > c && nearly(far(other - 1), t_exit)) {
                 return None;
             }
-            self.step()?;
-            if self.t >= t_exit {
-                return Some(());
-            }
         }
+        let (new_u, new_v) = if through_u {
+            (line, other)
+        } else {
+            (other, line)
+        };
+        let (steps_u, steps_v) = (new_u - self.cu, new_v - self.cv);
+        self.left_u = self.left_u.checked_sub(u32::try_from(steps_u).ok()?)?;
+        self.left_v = self.left_v.checked_sub(u32::try_from(steps_v).ok()?)?;
+        self.index = self.index.wrapping_add_signed(
+            steps_u as isize * self.stride_u + steps_v as isize * self.stride_v,
+        );
+        self.cu = new_u;
+        self.cv = new_v;
+        self.t = t_exit;
+        // (An axis the path runs along never crosses a line: its crossing stays infinite.)
+        let next = |c: i64, o: f64, inverse: f64| match inverse == 0.0 {
+            true => f64::INFINITY,
+            false => ((c + 1) as f64 - o) * inverse,
+        };
+        self.next_u = next(self.cu, self.o_u, self.inverse_u);
+        self.next_v = next(self.cv, self.o_v, self.inverse_v);
+        Some(())
     }
 
     /// Moves into the next cell; `None` where that lies off the grid. (A crossing is worked
