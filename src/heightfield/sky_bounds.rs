@@ -138,7 +138,7 @@ impl SkyBounds {
     pub fn bytes(&self) -> usize {
         let patterns: usize = self.patterns.iter().map(|p| p.blocks.len()).sum();
         self.blocks.len() * std::mem::size_of::<OnceLock<BlockBounds>>()
-            + patterns * std::mem::size_of::<((i32, i32), u16)>()
+            + patterns * std::mem::size_of::<((i32, i32), [u16; SKY_SECTORS])>()
     }
 
     /// Whether a ray from `start` (grid coordinates) in direction `dir` certainly touches no
@@ -221,17 +221,15 @@ impl SkyBounds {
                 cells_x.div_ceil(1 << k) as i64,
                 cells_y.div_ceil(1 << k) as i64,
             );
-            // (Each block read once, for every sector it bounds.)
+            // (Each block read once, and taken into every sector it bounds at once, through
+            // its lanes: all ones for those sectors, zero for the others.)
             let mut highest = [0u16; SKY_SECTORS];
-            for &((dx, dy), sectors) in &pattern.blocks {
+            for (&(dx, dy), lanes) in pattern.blocks.iter().zip(&pattern.lanes) {
                 let (qx, qy) = (x + i64::from(dx), y + i64::from(dy));
                 if (0..nx).contains(&qx) && (0..ny).contains(&qy) {
                     let block = terrain.block_max_sample(k, qx as usize, qy as usize);
-                    let mut bits = sectors;
-                    while bits != 0 {
-                        let s = bits.trailing_zeros() as usize;
-                        highest[s] = highest[s].max(block);
-                        bits &= bits - 1;
+                    for (best, lane) in highest.iter_mut().zip(lanes) {
+                        *best = (*best).max(block & lane);
                     }
                 }
             }
@@ -324,8 +322,10 @@ fn sector_of(x: f64, y: f64) -> usize {
 #[derive(Debug)]
 struct RingPattern {
     level: u32,
-    /// Each block of the ring, once, with the sectors (bit `s` for sector `s`) it bounds.
-    blocks: Vec<((i32, i32), u16)>,
+    /// Each block of the ring, once, as its offset.
+    blocks: Vec<(i32, i32)>,
+    /// The sectors each block bounds: lane `s` all ones where it bounds sector `s`, else 0.
+    lanes: Vec<[u16; SKY_SECTORS]>,
 }
 
 impl RingPattern {
@@ -338,7 +338,7 @@ impl RingPattern {
         let size = f64::from(1u32 << level);
         let cones = sector_cones();
         let reach = (outer / size).ceil() as i32 + 1;
-        let mut blocks = Vec::new();
+        let (mut blocks, mut lanes) = (Vec::new(), Vec::new());
         for dy in -reach..=reach {
             for dx in -reach..=reach {
                 // `q - p` for `q` in the block at the offset and `p` in the start's.
@@ -359,11 +359,22 @@ impl RingPattern {
                     .filter(|&s| cones[s].meets(d))
                     .fold(0u16, |bits, s| bits | 1 << s);
                 if sectors != 0 {
-                    blocks.push(((dx, dy), sectors));
+                    blocks.push((dx, dy));
+                    lanes.push(std::array::from_fn(|s| {
+                        if sectors & 1 << s != 0 {
+                            u16::MAX
+                        } else {
+                            0
+                        }
+                    }));
                 }
             }
         }
-        RingPattern { level, blocks }
+        RingPattern {
+            level,
+            blocks,
+            lanes,
+        }
     }
 }
 
