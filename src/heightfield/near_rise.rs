@@ -10,7 +10,6 @@
 
 use super::Heightfield;
 use super::Terrain;
-use crate::geometry::gradient;
 
 /// An occlusion ray's start on its own flat triangle, at least [`NearStart::INSIDE`] inside
 /// it: for so short a way from it the ray can meet no other triangle, and beyond that it is
@@ -57,19 +56,6 @@ impl NearStart {
     }
 }
 
-/// The most `g . u` over the unit vectors `u` from `lo` counter-clockwise to `hi` (less than
-/// a half turn apart): how fast a plane of gradient `g` rises along the steepest of those
-/// azimuths.
-pub(super) fn steepest_rise(lo: [f64; 2], hi: [f64; 2], g: [f64; 2]) -> f64 {
-    let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
-    let dot = |u: [f64; 2]| u[0] * g[0] + u[1] * g[1];
-    if cross(lo, g) >= 0.0 && cross(g, hi) >= 0.0 {
-        (g[0] * g[0] + g[1] * g[1]).sqrt()
-    } else {
-        dot(lo).max(dot(hi))
-    }
-}
-
 /// Cells per side of a block [`ConeRises`] keeps one rise for.
 const BLOCK: usize = 4;
 
@@ -92,43 +78,61 @@ impl ConeRises {
     /// than a half turn apart, already widened for rounding) over `field`, for ray parts
     /// `reach` cells long.
     pub fn build(field: &Heightfield, (lo, hi): ([f64; 2], [f64; 2]), reach: f64) -> ConeRises {
-        let (cells_x, cells_y) = (field.width() - 1, field.height() - 1);
-        // Each cell's steepest triangle, then the most over the cells of each block's reach
-        // (rows, then columns).
-        let cell_rise = |i: usize, j: usize| {
-            if field.is_hole_cell(i, j) {
-                return f64::INFINITY;
-            }
-            let heights = [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(a, b)| field.z(i + a, j + b));
-            [0, 1]
-                .map(|k| steepest_rise(lo, hi, gradient(k, heights).into()))
-                .into_iter()
-                .fold(f64::NEG_INFINITY, f64::max)
-        };
+        let (w, cells_x, cells_y) = (field.width(), field.width() - 1, field.height() - 1);
         let (nx, ny) = (cells_x.div_ceil(BLOCK), cells_y.div_ceil(BLOCK));
-        let grow = (reach + 1e-6).ceil() as usize;
-        let span =
-            |b: usize, n: usize| (b * BLOCK).saturating_sub(grow)..((b + 1) * BLOCK + grow).min(n);
-        let cells: Vec<f64> = (0..cells_y)
-            .flat_map(|j| (0..cells_x).map(move |i| (i, j)))
-            .map(|(i, j)| cell_rise(i, j))
+        // Each block's steepest triangle, in samples per cell, in one pass over the rows: in
+        // `f32`, exact on the samples' differences, the rest rounded up below.
+        let ([lx, ly], [hx, hy]) = (lo.map(|c| c as f32), hi.map(|c| c as f32));
+        let rise = |gx: f32, gy: f32| {
+            let along = (gx * lx + gy * ly).max(gx * hx + gy * hy);
+            let inside = lx * gy - ly * gx >= 0.0 && gx * hy - gy * hx >= 0.0;
+            if inside {
+                (gx * gx + gy * gy).sqrt()
+            } else {
+                along
+            }
+        };
+        let samples = field.samples();
+        let mut own = vec![f32::NEG_INFINITY; nx * ny];
+        // (A row of cells at a time, branch-free, so that it runs in lanes.)
+        let mut cells = vec![0f32; cells_x];
+        for j in 0..cells_y {
+            let (below, above) = (&samples[j * w..(j + 1) * w], &samples[(j + 1) * w..]);
+            for (i, cell) in cells.iter_mut().enumerate() {
+                let [a, b] = [below[i], below[i + 1]].map(f32::from);
+                let [c, d] = [above[i], above[i + 1]].map(f32::from);
+                // The cell's two triangles (see `gradient`).
+                *cell = rise(b - a, d - b).max(rise(d - c, c - a));
+            }
+            let blocks = &mut own[(j / BLOCK) * nx..(j / BLOCK + 1) * nx];
+            for (best, four) in blocks.iter_mut().zip(cells.chunks(BLOCK)) {
+                *best = four.iter().copied().fold(*best, f32::max);
+            }
+        }
+        if field.nodata_count() > 0 {
+            for j in 0..cells_y {
+                for i in (0..cells_x).filter(|&i| field.is_hole_cell(i, j)) {
+                    own[(j / BLOCK) * nx + i / BLOCK] = f32::INFINITY;
+                }
+            }
+        }
+        // The most over the blocks within the reach of each (rows, then columns).
+        let grow = ((reach + 1e-6) / BLOCK as f64).ceil() as usize;
+        let span = |b: usize, n: usize| b.saturating_sub(grow)..(b + grow + 1).min(n);
+        let highest = |values: &[f32]| values.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+        let across: Vec<f32> = (0..ny * nx)
+            .map(|k| highest(&own[(k / nx) * nx..][span(k % nx, nx)]))
             .collect();
-        let across: Vec<f64> = (0..cells_y)
-            .flat_map(|j| (0..nx).map(move |bx| (bx, j)))
-            .map(|(bx, j)| {
-                let row = &cells[j * cells_x..(j + 1) * cells_x];
-                row[span(bx, cells_x)]
-                    .iter()
-                    .copied()
-                    .fold(f64::NEG_INFINITY, f64::max)
-            })
-            .collect();
-        let blocks: Vec<f64> = (0..ny)
-            .flat_map(|by| (0..nx).map(move |bx| (bx, by)))
-            .map(|(bx, by)| {
-                span(by, cells_y)
-                    .map(|j| across[j * nx + bx])
-                    .fold(f64::NEG_INFINITY, f64::max)
+        let step = field.step();
+        let blocks: Vec<f64> = (0..ny * nx)
+            .map(|k| {
+                let (bx, by) = (k % nx, k / nx);
+                let most = span(by, ny)
+                    .map(|b| across[b * nx + bx])
+                    .fold(f32::NEG_INFINITY, f32::max);
+                // (Up by far more than `f32` rounds a rise of samples, then into heights.)
+                let most = f64::from(most);
+                (most + 1e-5 * most.abs() + 1e-5) * step
             })
             .collect();
         let steepest = blocks
