@@ -8,15 +8,13 @@
 
 use crate::common::random::Rng;
 use crate::common::reference::{first_touch, q, ExactField, ExactRay, Q};
-use heightray::heightfield::{
-    landscape, NearStart, NoDataMask, Quantisation, SkyBounds, StripBounds,
-};
+use heightray::heightfield::{landscape, NoDataMask, Quantisation, SkyBounds, StripBounds};
 use heightray::render::effects::Effects;
 use heightray::render::{Camera, Culling, Frame, Lighting, Normals, Ramp, Renderer, Shader};
 use heightray::{Arith, Heightfield, Method, Terrain};
 
 /// Suns (grid directions) of every kind the bounds must handle.
-const SUNS: [[f64; 3]; 10] = [
+pub(crate) const SUNS: [[f64; 3]; 10] = [
     [1.0, 0.0, 0.3],
     [-1.0, 0.0, 0.5],
     [0.0, 1.0, 0.2],
@@ -30,7 +28,7 @@ const SUNS: [[f64; 3]; 10] = [
 ];
 
 /// A random field: rough, terraced (plateaus) or smooth, some with holes.
-fn field(rng: &mut Rng, n: usize) -> Heightfield {
+pub(crate) fn field(rng: &mut Rng, n: usize) -> Heightfield {
     let (w, h) = (n + rng.below(9), n + rng.below(9));
     let style = rng.below(3);
     let samples: Vec<u16> = (0..w * h)
@@ -68,7 +66,7 @@ fn touches(
 }
 
 /// [`touches`], leaving out triangle `own` (`(cell, triangle)`, the one a ray starts on).
-fn touches_other(
+pub(crate) fn touches_other(
     field: &Heightfield,
     exact: &ExactField,
     (o, dir): ([f64; 3], [f64; 3]),
@@ -151,68 +149,6 @@ fn rays_called_clear_beyond_a_point_touch_nothing_from_there_on() {
     }
     // A good share of the rays is settled: the test is not vacuous.
     assert!(clear * 3 > asked, "{clear} of {asked} rays called clear");
-}
-
-#[test]
-fn sun_rays_called_clear_from_their_start_touch_no_triangle_but_their_own() {
-    let mut rng = Rng(0x005e_ed0f_0c0e);
-    let (mut asked, mut clear) = (0, 0);
-    for round in 0..12 {
-        let field = if round == 0 {
-            landscape(33, 3, 12.0).unwrap()
-        } else {
-            field(&mut rng, 8 + round)
-        };
-        let exact = ExactField::new(&field);
-        let terrain = Terrain::new(field.clone());
-        for sun in SUNS {
-            for half in [0.0, 0.05] {
-                // (A disc around a sun this low dips under the horizon: no bounds.)
-                let Some(bounds) = StripBounds::build(&field, sun, half) else {
-                    assert!(half > 0.0, "the sun climbs");
-                    continue;
-                };
-                for _ in 0..30 {
-                    let (cell, k, start) = start_inside(&field, &mut rng);
-                    let room = 1e-12 * (1.0 + start[2].abs());
-                    let Some(near) = NearStart::on_triangle(&terrain, (cell, k), start, room)
-                    else {
-                        continue;
-                    };
-                    // The axis, or a direction of the disc.
-                    let dir = match half > 0.0 {
-                        true => tilted(sun, rng.within(-half, half), rng.within(-half, half)),
-                        false => sun,
-                    };
-                    asked += 1;
-                    let Some(t) = bounds.clear_beyond(start, dir, room) else {
-                        continue;
-                    };
-                    if !bounds.clear_before(start, dir, t, near) {
-                        continue;
-                    }
-                    clear += 1;
-                    let own = Some(([cell.0, cell.1], k));
-                    assert!(
-                        !touches_other(&field, &exact, (start, dir), (0.0, f64::INFINITY), own),
-                        "round {round}, sun {sun:?} (disc {half}), dir {dir:?}, start {start:?} on {own:?}: touches the surface"
-                    );
-                }
-            }
-        }
-    }
-    // (Rough random fields rise steeply near most starts: few rays outclimb them.)
-    assert!(clear >= 100, "{clear} of {asked} rays called clear");
-}
-
-/// `dir` turned by about `a` and `b` radians about two axes across it (a direction of a
-/// disc around it of half-angle at least `|a| + |b|`, within rounding).
-fn tilted(dir: [f64; 3], a: f64, b: f64) -> [f64; 3] {
-    let d = glam::DVec3::from(dir).normalize();
-    let (p, q) = d.any_orthonormal_pair();
-    // (Scaled so that the angle off the axis stays within `a` and `b`'s sum.)
-    let turned = d + p * a.tan() * 0.7 + q * b.tan() * 0.7;
-    turned.normalize().into()
 }
 
 /// A low flat field with a few tall single samples: rays of a disc that drift across the
@@ -325,99 +261,74 @@ fn start_on(field: &Heightfield, rng: &mut Rng) -> [f64; 3] {
     [x, y, ground + [0.0, 0.0, 0.3, 5.0][rng.below(4)]]
 }
 
+/// One field's sky bounds for one reach, with what the checks need.
+pub(crate) struct SkyCase<'a> {
+    pub field: &'a Heightfield,
+    pub exact: &'a ExactField,
+    pub terrain: &'a Terrain,
+    pub bounds: &'a SkyBounds,
+}
+
+/// `check` (given the round and the reach) on sky bounds for reaches unlimited, 9 and 20 over `rounds` fields: a landscape,
+/// then random ones of growing size (rough, terraced or smooth, some with holes).
+pub(crate) fn each_sky_bounds(
+    rng: &mut Rng,
+    rounds: usize,
+    mut check: impl FnMut(&mut Rng, (usize, f64), SkyCase<'_>),
+) {
+    for round in 0..rounds {
+        let field = if round == 0 {
+            landscape(33, 5, 12.0).unwrap()
+        } else {
+            field(rng, 10 + 2 * round)
+        };
+        let exact = ExactField::new(&field);
+        let terrain = Terrain::new(field.clone());
+        for reach in [f64::INFINITY, 9.0, 20.0] {
+            let bounds = SkyBounds::new(&terrain, reach).expect("a reach beyond the walked part");
+            let (field, exact, terrain, bounds) = (&field, &exact, &terrain, &bounds);
+            let case = SkyCase {
+                field,
+                exact,
+                terrain,
+                bounds,
+            };
+            check(rng, (round, reach), case);
+        }
+    }
+}
+
 #[test]
 fn sky_rays_called_clear_beyond_a_point_touch_nothing_from_there_on_within_the_reach() {
     let mut rng = Rng(0x0051_7a11_b0d5);
     let (mut asked, mut clear) = (0, 0);
-    for round in 0..10 {
-        let field = if round == 0 {
-            landscape(33, 5, 12.0).unwrap()
-        } else {
-            field(&mut rng, 10 + 2 * round)
-        };
-        let exact = ExactField::new(&field);
-        let terrain = Terrain::new(field.clone());
-        for reach in [f64::INFINITY, 9.0, 20.0] {
-            let bounds = SkyBounds::new(&terrain, reach).expect("a reach beyond the walked part");
-            for _ in 0..60 {
-                let start = start_on(&field, &mut rng);
-                let azimuth = rng.within(0.0, std::f64::consts::TAU);
-                // Along the axes and the sectors' edges too.
-                let azimuth = match rng.below(3) {
-                    0 => {
-                        (azimuth / std::f64::consts::FRAC_PI_8).round()
-                            * std::f64::consts::FRAC_PI_8
-                    }
-                    _ => azimuth,
-                };
-                let climb = [-0.4, -0.05, 0.02, 0.2, 0.7, 2.5][rng.below(6)];
-                let dir = [azimuth.cos(), azimuth.sin(), climb];
-                asked += 1;
-                let Some(t) = bounds.clear_beyond(&terrain, start, dir, 0.0, None) else {
-                    continue;
-                };
-                clear += 1;
-                let t_end = reach / dir[0].hypot(dir[1]);
-                assert!(
-                    !touches(&field, &exact, (start, dir), t, t_end),
-                    "round {round}, reach {reach}, dir {dir:?}, start {start:?}: touches the surface beyond t = {t}"
-                );
-            }
+    each_sky_bounds(&mut rng, 10, |rng, (round, reach), case| {
+        for _ in 0..60 {
+            let start = start_on(case.field, rng);
+            let azimuth = rng.within(0.0, std::f64::consts::TAU);
+            // Along the axes and the sectors' edges too.
+            let azimuth = match rng.below(3) {
+                0 => (azimuth / std::f64::consts::FRAC_PI_8).round() * std::f64::consts::FRAC_PI_8,
+                _ => azimuth,
+            };
+            let climb = [-0.4, -0.05, 0.02, 0.2, 0.7, 2.5][rng.below(6)];
+            let dir = [azimuth.cos(), azimuth.sin(), climb];
+            asked += 1;
+            let Some(t) = case
+                .bounds
+                .clear_beyond(case.terrain, start, dir, 0.0, None)
+            else {
+                continue;
+            };
+            clear += 1;
+            let t_end = reach / dir[0].hypot(dir[1]);
+            assert!(
+                !touches(case.field, case.exact, (start, dir), t, t_end),
+                "round {round}, reach {reach}, dir {dir:?}, start {start:?}: touches the surface beyond t = {t}"
+            );
         }
-    }
+    });
     assert!(clear * 4 > asked, "{clear} of {asked} rays called clear");
-}
-
-/// A point well inside triangle `k` of a random cell of `field`, on its plane.
-fn start_inside(field: &Heightfield, rng: &mut Rng) -> ((usize, usize), u8, [f64; 3]) {
-    let cell = (rng.below(field.width() - 1), rng.below(field.height() - 1));
-    let k = rng.below(2) as u8;
-    let (a, b) = (rng.within(0.0, 1.0), rng.within(0.0, 1.0));
-    // Triangle 0 holds the cell's points with `fx >= fy`.
-    let (fx, fy) = if (k == 0) == (a >= b) { (a, b) } else { (b, a) };
-    let z = field.surface_z(cell, (fx, fy));
-    (cell, k, [cell.0 as f64 + fx, cell.1 as f64 + fy, z])
-}
-
-#[test]
-fn sky_rays_called_clear_from_their_start_touch_no_triangle_but_their_own() {
-    let mut rng = Rng(0x0051_7a11_0c0e);
-    let (mut asked, mut clear) = (0, 0);
-    for round in 0..12 {
-        let field = if round == 0 {
-            landscape(33, 5, 12.0).unwrap()
-        } else {
-            field(&mut rng, 10 + 2 * round)
-        };
-        let exact = ExactField::new(&field);
-        let terrain = Terrain::new(field.clone());
-        for reach in [f64::INFINITY, 9.0, 20.0] {
-            let bounds = SkyBounds::new(&terrain, reach).expect("a reach beyond the walked part");
-            for _ in 0..80 {
-                let (cell, k, start) = start_inside(&field, &mut rng);
-                let room = 1e-12 * (1.0 + start[2].abs());
-                let Some(near) = NearStart::on_triangle(&terrain, (cell, k), start, room) else {
-                    continue;
-                };
-                let azimuth = rng.within(0.0, std::f64::consts::TAU);
-                let climb = [-0.6, -0.1, 0.05, 0.3, 1.0, 4.0][rng.below(6)];
-                let dir = [azimuth.cos(), azimuth.sin(), climb];
-                asked += 1;
-                if bounds.clear_beyond(&terrain, start, dir, room, Some(near)) != Some(0.0) {
-                    continue;
-                }
-                clear += 1;
-                let t_end = reach / dir[0].hypot(dir[1]);
-                let own = Some(([cell.0, cell.1], k));
-                assert!(
-                    !touches_other(&field, &exact, (start, dir), (0.0, t_end), own),
-                    "round {round}, reach {reach}, dir {dir:?}, start {start:?} on {own:?}: touches the surface"
-                );
-            }
-        }
-    }
-    // (Rough random fields rise steeply near most starts: few rays outclimb them.)
-    assert!(clear >= 100, "{clear} of {asked} rays called clear");
 }
 
 #[test]
@@ -435,7 +346,7 @@ fn render(terrain: &Terrain, sun: [f64; 3], arith: Arith, culling: Culling) -> F
     render_with(terrain, sun, Effects::default(), arith, culling)
 }
 
-fn render_with(
+pub(crate) fn render_with(
     terrain: &Terrain,
     sun: [f64; 3],
     effects: Effects,
@@ -534,7 +445,7 @@ fn bounds_kept_from_another_sun_give_the_frame_of_fresh_ones() {
 /// Sky-light frames with `off` and with every rule on, in each arithmetic (exact too), for a
 /// few sky rays and distances: the same pixels; `check` looks at the frame with every rule
 /// on.
-fn sky_frames_the_same_with(off: Culling, check: impl Fn(&Frame, &str, Arith, f64)) {
+pub(crate) fn sky_frames_the_same_with(off: Culling, check: impl Fn(&Frame, &str, Arith, f64)) {
     let terrain = Terrain::new(landscape(65, 7, 16.0).unwrap());
     for (sky_rays, sky_distance) in [(16, 64.0), (4, 12.0), (8, f64::INFINITY)] {
         let effects = Effects {
@@ -552,52 +463,6 @@ fn sky_frames_the_same_with(off: Culling, check: impl Fn(&Frame, &str, Arith, f6
             check(&on, &what, arith, sky_distance);
         }
     }
-}
-
-#[test]
-fn shadow_frames_are_the_same_with_near_slopes_on_and_off() {
-    let terrain = Terrain::new(landscape(65, 7, 16.0).unwrap());
-    let off = Culling {
-        near_slopes: false,
-        ..Culling::default()
-    };
-    for (sun_angle_deg, sun_rays) in [(0.0, 1), (0.53, 8), (4.0, 16)] {
-        let effects = Effects {
-            sun_angle_deg,
-            sun_rays,
-            ..Effects::default()
-        };
-        for arith in [Arith::F32, Arith::F64, Arith::Exact] {
-            // Rays settled whole walk no cell.
-            let (mut cells_on, mut cells_walked) = (0, 0);
-            for sun in [[0.4, 0.3, 0.5], [-1.0, 0.0, 0.3], [0.7, -0.7, 0.2]] {
-                let on = render_with(&terrain, sun, effects, arith, Culling::default());
-                let walked = render_with(&terrain, sun, effects, arith, off);
-                let what = format!("{arith:?}, sun {sun:?}, disc {sun_angle_deg} deg");
-                assert_eq!(on.pixels, walked.pixels, "{what}");
-                cells_on += on.totals.shadow.cell.total();
-                cells_walked += walked.totals.shadow.cell.total();
-            }
-            if arith != Arith::F32 {
-                let what = format!("{arith:?}, disc {sun_angle_deg} deg");
-                assert!(cells_on < cells_walked, "{what}: the slopes settle rays");
-            }
-        }
-    }
-}
-
-#[test]
-fn sky_light_frames_are_the_same_with_near_slopes_on_and_off() {
-    let off = Culling {
-        near_slopes: false,
-        ..Culling::default()
-    };
-    sky_frames_the_same_with(off, |on, what, arith, sky_distance| {
-        if arith != Arith::F32 && sky_distance.is_finite() {
-            let settled = on.totals.effects.sky_light.culled_horizon_clear;
-            assert!(settled > 0, "{what}: the near slopes settle rays");
-        }
-    });
 }
 
 #[test]

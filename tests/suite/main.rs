@@ -33,6 +33,7 @@ mod holes;
 mod hostile_input;
 mod loader_fuzz;
 mod mosaics;
+mod near_slopes;
 mod near_walk;
 mod ortho_contours;
 mod orthophotos;
