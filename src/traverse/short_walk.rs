@@ -15,7 +15,7 @@
 
 mod path;
 
-use self::path::Path;
+use self::path::{nearly, Path, SKIP_LEVEL};
 use super::counters::HitMiss;
 use super::search::slack;
 use super::Counters;
@@ -25,11 +25,6 @@ use crate::heightfield::Terrain;
 /// The most cells a short walk crosses; a ray whose reach may take it further is walked down
 /// the hierarchy, which skips more than it costs over such a distance.
 const MOST_CELLS: f64 = 160.0;
-
-/// The mipmap level whose blocks the walk skips where the ray passes above their highest
-/// sample: no cell of such a block passes its cell test, so the answer is the same.
-const SKIP_LEVEL: u32 = 2;
-const SKIP: i64 = 1 << SKIP_LEVEL;
 
 /// An occlusion ray from `o` towards `d` (the start not counting), asked only up to `reach`,
 /// its own triangle `start_triangle` left untested: `Some` whether it touches the surface, with
@@ -277,12 +272,4 @@ fn segment_end(terrain: &Terrain, o: [f64; 3], d: [f64; 3]) -> Option<f64> {
         }
     }
     Some(t1 + 8.0 * f64::EPSILON * t1.abs())
-}
-
-/// Whether two crossings are too close for their order to be trusted: the near walk's rule.
-/// (Crossings are never NaN, so plain comparisons pick the larger: `f64::max`'s care for NaN
-/// would cost the walk's loop more than the rest of the rule.)
-#[inline(always)]
-fn nearly(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 4e-9 * larger(larger(a.abs(), b.abs()), 1.0)
 }

@@ -1,37 +1,50 @@
 //! The short walk's path across the grid: its cells one by one, or a block of them at once.
 
-use super::{nearly, SKIP, SKIP_LEVEL};
+use crate::arith::larger;
 use crate::geometry::RaySpace;
 use crate::heightfield::Terrain;
 
+/// The mipmap level whose blocks the walk skips where the ray passes above their highest
+/// sample: no cell of such a block passes its cell test, so the answer is the same.
+pub(super) const SKIP_LEVEL: u32 = 2;
+const SKIP: i64 = 1 << SKIP_LEVEL;
+
+/// Whether two crossings are too close for their order to be trusted: the near walk's rule.
+/// (Crossings are never NaN, so plain comparisons pick the larger: `f64::max`'s care for NaN
+/// would cost the walk's loop more than the rest of the rule.)
+#[inline(always)]
+pub(super) fn nearly(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 4e-9 * larger(larger(a.abs(), b.abs()), 1.0)
+}
+
 /// A path across the grid in its octant frame (`u` the horizontal axis it moves along most,
-/// both axes mirrored to increase, see [`Frame`](super::frame::Frame)), at one cell, which it
+/// both axes mirrored to increase, see [`Frame`](super::super::frame::Frame)), at one cell, which it
 /// also holds as the index of the cell's first sample, so that a step is an addition.
 pub(super) struct Path {
     /// The ray, and its space for the triangle tests, made when a cell first needs them.
     pub(super) o: [f64; 3],
     pub(super) d: [f64; 3],
-    pub(super) ray: Option<RaySpace<f64>>,
-    pub(super) swap: bool,
-    pub(super) flip: [bool; 2],
-    pub(super) o_u: f64,
-    pub(super) o_v: f64,
-    pub(super) inverse_u: f64,
-    pub(super) inverse_v: f64,
+    ray: Option<RaySpace<f64>>,
+    swap: bool,
+    flip: [bool; 2],
+    o_u: f64,
+    o_v: f64,
+    inverse_u: f64,
+    inverse_v: f64,
     /// The frame cell `(cu, cv)`, and the ray parameter where the path entered it.
-    pub(super) cu: i64,
-    pub(super) cv: i64,
+    cu: i64,
+    cv: i64,
     pub(super) t: f64,
     /// Where the path crosses the next grid line of `u` and of `v`.
     pub(super) next_u: f64,
     pub(super) next_v: f64,
     /// The cell's first sample, and how far that moves with a step along `u` and along `v`.
     pub(super) index: usize,
-    pub(super) stride_u: isize,
-    pub(super) stride_v: isize,
+    stride_u: isize,
+    stride_v: isize,
     /// Steps left along `u` and `v` before the path leaves the grid.
-    pub(super) left_u: u32,
-    pub(super) left_v: u32,
+    left_u: u32,
+    left_v: u32,
 }
 
 impl Path {
