@@ -67,6 +67,7 @@ const NO_RISE: i8 = i8::MAX;
 #[derive(Clone, Debug)]
 pub struct ConeRises {
     nx: usize,
+    ny: usize,
     rises: Vec<i8>,
     /// Height per horizontal cell per stored unit.
     unit: f64,
@@ -151,6 +152,7 @@ impl ConeRises {
             .collect();
         ConeRises {
             nx,
+            ny,
             rises,
             unit,
             reach,
@@ -165,8 +167,7 @@ impl ConeRises {
         if !(x >= 0.0 && y >= 0.0 && across <= self.reach) {
             return false;
         }
-        let ny = self.rises.len() / self.nx.max(1);
-        let (bx, by) = ((x as usize).min(self.nx - 1), (y as usize).min(ny - 1));
+        let (bx, by) = ((x as usize).min(self.nx - 1), (y as usize).min(self.ny - 1));
         let rise = self.rises[by * self.nx + bx];
         rise != NO_RISE && near.outclimbs(climb, f64::from(rise) * self.unit)
     }
