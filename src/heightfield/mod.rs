@@ -47,7 +47,7 @@ pub use mipmap::Mipmap;
 pub use near_rise::{ConeRises, NearStart};
 pub use nodata::NoDataMask;
 pub use preview::Preview;
-pub use sky_bounds::{SkyBounds, SKY_SECTORS};
+pub use sky_bounds::{SkyBounds, Unsettled, SKY_SECTORS};
 pub use strips::{StripBounds, BLOCK as STRIP_BLOCK, STRIP};
 pub(crate) use terrain::world_from_grid;
 pub use terrain::{Lines, Terrain};

@@ -18,7 +18,7 @@
 //! of the block. The surface is continuous where no cell is a hole, so along a ray's path it
 //! rises from the start's own height no faster than that: a ray from a point on its own flat
 //! triangle that climbs faster, by a margin for the rounding of its start, stays above every
-//! other triangle until the rings take over (see [`SkyBounds::clear_beyond`]).
+//! other triangle until the rings take over (see [`SkyBounds::unsettled`]).
 
 use super::near_rise::NearStart;
 use super::Terrain;
@@ -41,7 +41,7 @@ const EDGES: [f64; 6] = [2.0, 4.0, 8.0, 16.0, 32.0, 64.0];
 const RINGS: usize = EDGES.len();
 
 /// How far (horizontally) a ray's near part runs: to the first ring's inner edge, and past it
-/// by the little [`SkyBounds::clear_beyond`] adds to the part it leaves to walk.
+/// by the little [`SkyBounds::unsettled`] adds to the part it leaves to walk.
 const NEAR: f64 = EDGES[0] + NEAR_PAST;
 const NEAR_PAST: f64 = 1e-3;
 
@@ -62,6 +62,17 @@ const COARSE: f64 = 4.0;
 /// The most blocks across a ring's look-up pattern: a far ring (an unlimited reach over a
 /// large map) is bounded by blocks large enough to keep it this small.
 const ACROSS: f64 = 64.0;
+
+/// The part of a sky ray its bounds leave to walk, as `t` along the ray as given.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Unsettled {
+    /// The ray touches no triangle but its own before this (its near part is settled by
+    /// slope), or 0.
+    pub from: f64,
+    /// The ray touches no triangle beyond this (the rings clear it), or `None`: it may, up to
+    /// the reach.
+    pub to: Option<f64>,
+}
 
 /// One block's bounds.
 #[derive(Debug)]
@@ -141,33 +152,36 @@ impl SkyBounds {
             + patterns * std::mem::size_of::<((i32, i32), [u16; SKY_SECTORS])>()
     }
 
-    /// Whether a ray from `start` (grid coordinates) in direction `dir` certainly touches no
-    /// triangle beyond a few cells out, within the reach: `Some(t)` where it is clear from
-    /// `start + t * dir` on, so that only `[0, t]` is left to walk, and `Some(0.0)` where it
-    /// is clear all the way. `room` is how far (in height) the ray's true start may lie below
-    /// `start`. `near`, where the start lies on its own flat triangle (see [`NearStart`]),
-    /// lets the near part be settled too.
-    pub fn clear_beyond(
+    /// The part of a ray from `start` (grid coordinates) in direction `dir`, within the
+    /// reach, that the bounds leave to walk (see [`Unsettled`]); `None` where they prove it
+    /// touches no triangle but its own all the way. `room` is how far (in height) the ray's
+    /// true start may lie below `start`. `near`, where the start lies on its own flat triangle
+    /// (see [`NearStart`]), lets the near part be settled too.
+    pub fn unsettled(
         &self,
         terrain: &Terrain,
         start: [f64; 3],
         dir: [f64; 3],
         room: f64,
         near: Option<NearStart>,
-    ) -> Option<f64> {
+    ) -> Option<Unsettled> {
+        const ALL: Unsettled = Unsettled {
+            from: 0.0,
+            to: None,
+        };
         // (Not `hypot`: a direction cannot overflow, and `hypot` costs as much as the look-up.)
         let across = (dir[0] * dir[0] + dir[1] * dir[1]).sqrt();
         let climb = dir[2] / across;
         if !(climb.is_finite() && start.iter().all(|c| c.is_finite())) {
-            return None;
+            return Some(ALL);
         }
         let (x, y) = (start[0] / BLOCK as f64, start[1] / BLOCK as f64);
         if !(x >= 0.0 && y >= 0.0) {
-            return None;
+            return Some(ALL);
         }
         let (bx, by) = ((x as usize).min(self.nx - 1), (y as usize).min(self.ny - 1));
         if (x as usize) > self.nx || (y as usize) > self.ny {
-            return None;
+            return Some(ALL);
         }
         let sector = sector_of(dir[0], dir[1]);
         let bounds = self.blocks[by * self.nx + bx].get_or_init(|| self.fill(terrain, bx, by));
@@ -179,22 +193,30 @@ impl SkyBounds {
         // The nearest edge from which every ring out to the reach is clear: the ray is lowest
         // over a ring at its inner edge if it climbs, at its outer edge if it falls.
         let lowest = usize::from(rise < 0.0);
-        let mut from = None;
+        let mut beyond = None;
         for i in (0..self.edges.len() - 1).rev() {
             let bound = f64::from(rings[i]) * self.unit;
             if z + rise * self.edges[i + lowest] - error <= bound {
                 break;
             }
-            from = Some(self.edges[i]);
+            beyond = Some(self.edges[i]);
         }
         let rise = bounds.rises[sector];
         let near_clear = near.is_some_and(|near| {
             rise != NO_RISE && near.outclimbs(climb, f64::from(rise) * self.rise_unit)
         });
-        match from {
-            Some(edge) if edge == self.edges[0] && near_clear => Some(0.0),
-            from => from.map(|edge| (edge + NEAR_PAST) / across),
+        if near_clear && beyond == Some(self.edges[0]) {
+            return None;
         }
+        Some(Unsettled {
+            // (Short of the first edge by far more than the rounding of `t`.)
+            from: if near_clear {
+                self.edges[0] * (1.0 - 1e-9) / across
+            } else {
+                0.0
+            },
+            to: beyond.map(|edge| (edge + NEAR_PAST) / across),
+        })
     }
 
     /// Every sector's ring bounds for block `(bx, by)`: the highest sample over each ring's

@@ -274,7 +274,18 @@ impl<'a> Context<'a> {
         dir: [f64; 3],
         t_max: Option<f64>,
     ) -> Occlusion {
-        let tracer = self.tracer();
+        self.occluded_between(start, dir, (0.0, t_max))
+    }
+
+    /// [`Context::occluded`] for a ray known (by the kept bounds) to touch no triangle but
+    /// its own before `clear` (see [`Tracer::clear_before`]).
+    pub(super) fn occluded_between<S: Scalar>(
+        &self,
+        start: &OcclusionStart<'_, S>,
+        dir: [f64; 3],
+        (clear, t_max): (f64, Option<f64>),
+    ) -> Occlusion {
+        let tracer = self.tracer().clear_before(clear);
         let tracer = match t_max {
             Some(t) => tracer.within(t),
             None => tracer,

@@ -26,15 +26,16 @@ use crate::heightfield::Terrain;
 /// the hierarchy, which skips more than it costs over such a distance.
 const MOST_CELLS: f64 = 160.0;
 
-/// An occlusion ray from `o` towards `d` (the start not counting), asked only up to `reach`,
-/// its own triangle `start_triangle` left untested: `Some` whether it touches the surface, with
-/// its queries, or `None` where the full walk must answer it.
+/// An occlusion ray from `o` towards `d` (the start not counting), asked only from `clear`
+/// (before which the caller knows it touches no triangle but its own) up to `reach`, its own
+/// triangle `start_triangle` left untested: `Some` whether it touches the surface, with its
+/// queries, or `None` where the full walk must answer it.
 #[inline]
 pub(super) fn short_walk(
     terrain: &Terrain,
     o: [f64; 3],
     d: [f64; 3],
-    reach: f64,
+    (clear, reach): (f64, f64),
     start_triangle: Option<((usize, usize), u8)>,
 ) -> Option<(bool, Counters)> {
     let across = reach * (d[0].abs() + d[1].abs());
@@ -42,7 +43,8 @@ pub(super) fn short_walk(
         return None;
     }
     let t_end = segment_end(terrain, o, d)?.min(reach);
-    let mut walk = Path::new(terrain, o, d)?;
+    // (Where the clear part reaches the end, the walk still looks at its last cell.)
+    let mut walk = Path::new(terrain, o, d, smaller(clear, t_end))?;
     // The block walk's margins: heights along the ray moved down where compared with a
     // highest sample, up where with a lowest.
     let slack = slack(&o[2], &d[2], &t_end);

@@ -22,6 +22,9 @@ pub struct Tracer<'a> {
     record_cells: bool,
     /// Occlusion rays look no further than this `t` (see [`Tracer::within`]).
     reach: Option<f64>,
+    /// Occlusion rays touch no triangle but their own before this `t` (see
+    /// [`Tracer::clear_before`]).
+    clear: f64,
     /// Walk the first cells of a path one by one (see [`Tracer::walking_near`]).
     near: bool,
     /// The base under the terrain, part of the surface where given (see [`Tracer::with_base`]).
@@ -51,6 +54,7 @@ impl<'a> Tracer<'a> {
             method,
             record_cells: false,
             reach: None,
+            clear: 0.0,
             near: true,
             base: None,
         }
@@ -74,6 +78,13 @@ impl<'a> Tracer<'a> {
             reach: Some(t_max),
             ..self
         }
+    }
+
+    /// The same tracer, its occlusion rays known (by the caller's bounds) to touch no
+    /// triangle but their own before `t` (in the arithmetic's own `t`): a short walk starts
+    /// there, the full walk as before (the answer is the same).
+    pub fn clear_before(self, t: f64) -> Self {
+        Tracer { clear: t, ..self }
     }
 
     /// The same tracer, walking the first cells of a first-hit ray from its clearance one by
@@ -207,8 +218,13 @@ impl<'a> Tracer<'a> {
         {
             return None;
         }
-        let (occluded, counters) =
-            super::short_walk::short_walk(self.terrain, *o, dir, reach, start_triangle)?;
+        let (occluded, counters) = super::short_walk::short_walk(
+            self.terrain,
+            *o,
+            dir,
+            (self.clear, reach),
+            start_triangle,
+        )?;
         Some(Occlusion {
             occluded: Some(occluded),
             counters,

@@ -28,7 +28,7 @@ fn start_inside(field: &Heightfield, rng: &mut Rng) -> ((usize, usize), u8, [f64
 #[test]
 fn sky_rays_called_clear_from_their_start_touch_no_triangle_but_their_own() {
     let mut rng = Rng(0x0051_7a11_0c0e);
-    let (mut asked, mut clear) = (0, 0);
+    let (mut asked, mut clear, mut whole) = (0, 0, 0);
     each_sky_bounds(&mut rng, 12, |rng, (round, reach), case| {
         for _ in 0..80 {
             let (cell, k, start) = start_inside(case.field, rng);
@@ -40,24 +40,31 @@ fn sky_rays_called_clear_from_their_start_touch_no_triangle_but_their_own() {
             let climb = [-0.6, -0.1, 0.05, 0.3, 1.0, 4.0][rng.below(6)];
             let dir = [azimuth.cos(), azimuth.sin(), climb];
             asked += 1;
-            if case
-                .bounds
-                .clear_beyond(case.terrain, start, dir, room, Some(near))
-                != Some(0.0)
-            {
-                continue;
-            }
-            clear += 1;
             let t_end = reach / dir[0].hypot(dir[1]);
             let own = Some(([cell.0, cell.1], k));
+            // Clear all the way, or before the part left to walk.
+            let clear_to = match case
+                .bounds
+                .unsettled(case.terrain, start, dir, room, Some(near))
+            {
+                None => t_end,
+                Some(part) if part.from > 0.0 => part.from,
+                Some(_) => continue,
+            };
+            clear += 1;
+            whole += usize::from(clear_to == t_end);
             assert!(
-                !touches_other(case.field, case.exact, (start, dir), (0.0, t_end), own),
-                "round {round}, reach {reach}, dir {dir:?}, start {start:?} on {own:?}: touches the surface"
+                !touches_other(case.field, case.exact, (start, dir), (0.0, clear_to), own),
+                "round {round}, reach {reach}, dir {dir:?}, start {start:?} on {own:?}: touches the surface before {clear_to}"
             );
         }
     });
     // (Rough random fields rise steeply near most starts: few rays outclimb them.)
     assert!(clear >= 100, "{clear} of {asked} rays called clear");
+    assert!(
+        whole >= 20 && whole < clear,
+        "{whole} of {clear} rays called clear all the way"
+    );
 }
 
 #[test]

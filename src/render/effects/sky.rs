@@ -91,31 +91,34 @@ impl Effect for SkyLight {
             // (Traced and bounded in grid coordinates; coloured by the world direction.)
             let grid = cx.grid_dir(dir);
             let culled = grid.z > 0.0 && (level || (by_sector && climbs_above(grid, bound(grid))));
-            // How far the kept bounds leave the ray to walk: `Some(0.0)` where not at all.
-            let near = far.filter(|_| !culled).map(|b| {
-                b.clear_beyond(cx.terrain, start.into(), grid.into(), shared.room, shared.near)
+            // What the kept bounds leave the ray to walk: `Some(None)` where nothing.
+            let part = far.filter(|_| !culled).map(|b| {
+                b.unsettled(cx.terrain, start.into(), grid.into(), shared.room, shared.near)
             });
-            let open = culled || near == Some(Some(0.0)) || {
+            let open = culled || part == Some(None) || {
+                let part = part.flatten();
                 // (The ray's `t` runs along the unit grid direction.)
                 let (ax, ay) = (grid.x * scale[0], grid.y * scale[1]);
                 // (Not `hypot`: its care for overflow, needless for a unit direction, costs
                 // more than the rest of the ray's set-up.)
                 let across = (ax * ax + ay * ay).sqrt();
                 let t_max = (distance / across).is_finite().then(|| distance / across);
-                let t_max = match near.flatten() {
+                let t_max = match part.and_then(|p| p.to) {
                     Some(t) => Some(t_max.map_or(t, |m| m.min(t))),
                     None => t_max,
                 };
                 let probed = |t_max: f64| {
                     blocked_under_surface(cx.terrain, start, shared.room, grid, t_max)
                 };
-                if probing && near.is_some_and(|n| n.is_none()) && t_max.is_some_and(probed) {
+                let ring_bound = part.is_some_and(|p| p.to.is_some());
+                if probing && part.is_some() && !ring_bound && t_max.is_some_and(probed) {
                     sky.probed += 1;
                     continue;
                 }
-                let mut answer = cx.occluded(shared, grid.into(), t_max);
-                if let Some(near) = near.filter(|_| answer.occluded.is_some()) {
-                    answer.counters.bound.record(near.is_none());
+                let clear = part.map_or(0.0, |p| p.from);
+                let mut answer = cx.occluded_between(shared, grid.into(), (clear, t_max));
+                if part.is_some() && answer.occluded.is_some() {
+                    answer.counters.bound.record(!ring_bound);
                 }
                 if answer.occluded.is_some() {
                     sky.cast += 1;

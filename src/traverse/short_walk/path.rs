@@ -1,6 +1,6 @@
 //! The short walk's path across the grid: its cells one by one, or a block of them at once.
 
-use crate::arith::larger;
+use crate::arith::{larger, smaller};
 use crate::geometry::RaySpace;
 use crate::heightfield::Terrain;
 
@@ -48,19 +48,33 @@ pub(super) struct Path {
 }
 
 impl Path {
-    /// The path of `o + t*d` from `t = 0`, or `None` where it starts on a grid line or
+    /// The path of `o + t*d` from `t = from` (its point there off every grid line by far
+    /// more than rounding), else from `t = 0`; `None` where it starts on a grid line or
     /// outside the grid.
-    pub(super) fn new(terrain: &Terrain, o: [f64; 3], d: [f64; 3]) -> Option<Self> {
+    pub(super) fn new(terrain: &Terrain, o: [f64; 3], d: [f64; 3], from: f64) -> Option<Self> {
         let swap = d[1].abs() > d[0].abs();
         let (ku, kv) = if swap { (1, 0) } else { (0, 1) };
         let flip = [d[ku] < 0.0, d[kv] < 0.0];
         let mirror = |x: f64, flip: bool| if flip { -x } else { x };
         let start = [mirror(o[ku], flip[0]), mirror(o[kv], flip[1])];
         let dir = [mirror(d[ku], flip[0]), mirror(d[kv], flip[1])];
+        let later = [0, 1].map(|k| start[k] + dir[k] * from);
+        // (A point this far from the grid lines lies in the cell whose lines' crossings,
+        // worked out as `step` does, come before and after `from`.)
+        let off_lines = |x: [f64; 2]| {
+            x.iter().all(|&x| {
+                let part = (x - x as i64 as f64).abs();
+                smaller(part, 1.0 - part) > 1e-9 * larger(x.abs(), 1.0)
+            })
+        };
+        let (point, t) = match from > 0.0 && off_lines(later) {
+            true => (later, from),
+            false => (start, 0.0),
+        };
         // (Casts, not `fract` and `floor`, which are library calls on the baseline target;
-        // the start lies on the grid, far inside the range of `i64`.)
-        let whole = start.map(|x| x as i64);
-        if (0..2).any(|k| whole[k] as f64 == start[k]) {
+        // the point lies on the grid, far inside the range of `i64`.)
+        let whole = point.map(|x| x as i64);
+        if (0..2).any(|k| whole[k] as f64 == point[k]) {
             return None;
         }
         let field = terrain.field();
@@ -68,7 +82,7 @@ impl Path {
         let size = [w - 1, field.height() - 1];
         let n = if swap { [size[1], size[0]] } else { size };
         let inverse = dir.map(|x| if x == 0.0 { 0.0 } else { 1.0 / x });
-        let cell = [0, 1].map(|k| whole[k] - i64::from(whole[k] as f64 > start[k]));
+        let cell = [0, 1].map(|k| whole[k] - i64::from(whole[k] as f64 > point[k]));
         // The original index along each frame axis, and the steps left before the last.
         let along = [0, 1].map(|k| unmirror(cell[k], flip[k]));
         let mut left = [0u32; 2];
@@ -112,7 +126,7 @@ impl Path {
             inverse_v: inverse[1],
             cu: cell[0],
             cv: cell[1],
-            t: 0.0,
+            t,
             next_u: crossing(0),
             next_v: crossing(1),
             index: j as usize * w + i as usize,
