@@ -26,6 +26,9 @@ use crate::heightfield::Terrain;
 /// the hierarchy, which skips more than it costs over such a distance.
 const MOST_CELLS: f64 = 160.0;
 
+/// The coarsest mipmap level whose blocks the walk passes over at once.
+const MOST_LEVEL: u32 = 4;
+
 /// An occlusion ray from `o` towards `d` (the start not counting), asked only from `clear`
 /// (before which the caller knows it touches no triangle but its own) up to `reach`, its own
 /// triangle `start_triangle` left untested: `Some` whether it touches the surface, with its
@@ -109,17 +112,22 @@ fn cells<const FALLING: bool>(
     let mut cells = HitMiss::default();
     let mut triangles = HitMiss::default();
     let mut blocks = HitMiss::default();
-    let skipping = terrain.mipmap().top() >= SKIP_LEVEL;
-    // Where the path leaves the block it was last tested in.
+    let top = terrain.mipmap().top();
+    let skipping = top >= SKIP_LEVEL;
+    let coarsest = top.min(MOST_LEVEL);
+    // The level of the next block to test: one up after a block passed over, one down
+    // after one that may be touched, as the block walk climbs and descends.
+    let mut level = SKIP_LEVEL;
+    // Where the path leaves the block of the finest level it was last tested in.
     let mut block_until = f64::NEG_INFINITY;
     let touches = loop {
         let t_lo = walk.t;
         if skipping && t_lo >= block_until {
-            let (t_exit, through_u, line) = walk.block_exit();
+            let (t_exit, through_u, line) = walk.block_exit(level);
             let t_hi = if t_end < t_exit { t_end } else { t_exit };
             let t_low_point = if FALLING { t_hi } else { t_lo };
-            let (bi, bj) = walk.block();
-            let highest = terrain.mipmap().highest(SKIP_LEVEL, bi, bj);
+            let (bi, bj) = walk.block(level);
+            let highest = terrain.mipmap().highest(level, bi, bj);
             // Above the block's highest sample, no cell of it passes its cell test.
             if !blocks.record(oz_low + dz * t_low_point <= height_of(highest)) {
                 if t_end < t_exit {
@@ -129,6 +137,11 @@ fn cells<const FALLING: bool>(
                     break false;
                 }
                 walk.leave_block(t_exit, through_u, line)?;
+                level = coarsest.min(level + 1);
+                continue;
+            }
+            if level > SKIP_LEVEL {
+                level -= 1;
                 continue;
             }
             block_until = t_exit;

@@ -111,7 +111,7 @@ fn camera_rays_from_their_clearance_hit_the_same_walked_near_or_down_the_mipmap(
 #[test]
 fn occlusion_rays_with_a_reach_answer_the_same_walked_short_or_down_the_mipmap() {
     let mut rng = Rng(0x7368_6f72);
-    let (mut asked, mut occluded, mut short) = (0, 0, 0);
+    let (mut asked, mut occluded, mut short, mut later) = (0, 0, 0, 0);
     for case in 0..40 {
         let (w, h) = (17 + rng.below(30), 17 + rng.below(30));
         let terrain = random_terrain(&mut rng, w, h, case % 2 == 0);
@@ -155,9 +155,28 @@ fn occlusion_rays_with_a_reach_answer_the_same_walked_short_or_down_the_mipmap()
                 occluded += usize::from(walked_short.occluded == Some(true));
                 // (A ray the short walk gives back is walked down the mipmap alone.)
                 short += usize::from(walked_short.counters != walked_down.counters);
+                // Known clear before a point (the mipmap walk finds nothing up to it), the
+                // ray walked short from there answers the same.
+                let clear = rng.within(0.0, reach);
+                let clear_to_there = tracer
+                    .within(clear)
+                    .walking_near(false)
+                    .occluded::<f64>(&from, dir, false);
+                if clear_to_there.occluded == Some(false) {
+                    let from_there = tracer
+                        .within(reach)
+                        .clear_before(clear)
+                        .occluded::<f64>(&from, dir, false);
+                    assert_eq!(
+                        from_there.occluded, walked_down.occluded,
+                        "case {case}, {method:?}, {ray:?} towards {dir:?} within {reach}, clear before {clear}"
+                    );
+                    later += usize::from(from_there.counters.cell != walked_short.counters.cell);
+                }
             }
         }
     }
+    assert!(later * 4 > asked, "{later} of {asked} walked from later on");
     // Both answers occur often, and most rays take the short walk.
     assert!(
         occluded * 5 > asked && occluded * 5 < asked * 4,

@@ -4,10 +4,9 @@ use crate::arith::{larger, smaller};
 use crate::geometry::RaySpace;
 use crate::heightfield::Terrain;
 
-/// The mipmap level whose blocks the walk skips where the ray passes above their highest
-/// sample: no cell of such a block passes its cell test, so the answer is the same.
+/// The finest mipmap level whose blocks the walk skips where the ray passes above their
+/// highest sample: no cell of such a block passes its cell test, so the answer is the same.
 pub(super) const SKIP_LEVEL: u32 = 2;
-const SKIP: i64 = 1 << SKIP_LEVEL;
 
 /// Whether two crossings are too close for their order to be trusted: the near walk's rule.
 /// (Crossings are never NaN, so plain comparisons pick the larger: `f64::max`'s care for NaN
@@ -162,24 +161,25 @@ impl Path {
         }
     }
 
-    /// The block of level [`SKIP_LEVEL`] the cell lies in (original indices).
-    pub(super) fn block(&self) -> (usize, usize) {
+    /// The block of mipmap level `level` the cell lies in (original indices).
+    pub(super) fn block(&self, level: u32) -> (usize, usize) {
         let (i, j) = self.cell();
-        (i >> SKIP_LEVEL, j >> SKIP_LEVEL)
+        (i >> level, j >> level)
     }
 
-    /// Where the path leaves the cell's block of level [`SKIP_LEVEL`]: the first crossing of
+    /// Where the path leaves the cell's block of mipmap level `level`: the first crossing of
     /// the block's far edge along `u` or `v`, from the grid line as [`Path::step`] finds it,
     /// with the axis it crosses (`u` or not) and the edge's frame coordinate there.
     #[inline(always)]
-    pub(super) fn block_exit(&self) -> (f64, bool, i64) {
+    pub(super) fn block_exit(&self, level: u32) -> (f64, bool, i64) {
+        let last = (1i64 << level) - 1;
         let line = |c: i64, flip: bool| {
             // The frame coordinate of the block's far edge: its original cells count down
             // where the axis is mirrored.
             if flip {
-                -(unmirror(c, true) & !(SKIP - 1))
+                -(unmirror(c, true) & !last)
             } else {
-                (c | (SKIP - 1)) + 1
+                (c | last) + 1
             }
         };
         let crossing = |line: i64, o: f64, inverse: f64| {
