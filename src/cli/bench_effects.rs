@@ -133,6 +133,16 @@ fn print_costs(out: &mut impl Write, rows: &[EffectRow]) -> anyhow::Result<()> {
             per(t.shadow_rays),
         )?;
     }
+    let firsts: Vec<String> = rows
+        .iter()
+        .map(|r| format!("{} {:.0}", r.label, r.first.as_secs_f64() * 1e3))
+        .collect();
+    writeln!(
+        out,
+        "\nms: the faster of two frames in a row; the first (which makes the sky's bounds, \
+         kept for the terrain, as rays ask): {} ms",
+        firsts.join(", ")
+    )?;
     Ok(())
 }
 
@@ -164,10 +174,15 @@ fn versus_embree(
     {
         let renderer = renderer_with(scene, terrain, row.effects);
         let (w, h) = scene.camera.size();
-        let mut frame = Frame::new(w, h);
-        let start = std::time::Instant::now();
-        let cast = pool.install(|| embree.render_effects(&renderer, &mut frame));
-        let time = start.elapsed().as_secs_f64();
+        // (The faster of two frames, as heightray's.)
+        let timed = || {
+            let mut frame = Frame::new(w, h);
+            let start = std::time::Instant::now();
+            let cast = pool.install(|| embree.render_effects(&renderer, &mut frame));
+            (cast, start.elapsed().as_secs_f64())
+        };
+        let ((cast, first), (_, again)) = (timed(), timed());
+        let time = first.min(again);
         let t = &row.totals;
         let effect_rays: u64 = row.each_effect().iter().map(|e| e.rays).sum();
         let ours = t.shadow_rays + effect_rays;
@@ -204,7 +219,7 @@ fn versus_embree(
 
 fn row_json(row: &EffectRow) -> serde_json::Value {
     let mut json = json!({
-        "frame": row.label, "ms": row.time.as_secs_f64() * 1e3,
+        "frame": row.label, "ms": row.time.as_secs_f64() * 1e3, "first_ms": row.first.as_secs_f64() * 1e3,
         "stats": row.totals.to_json(),
     });
     for effect in row.each_effect() {
