@@ -37,7 +37,6 @@ mod runs;
 mod search;
 mod segment;
 mod short_walk;
-mod span_cells;
 mod surface;
 mod tracer;
 mod walks;
