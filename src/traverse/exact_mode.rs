@@ -33,10 +33,6 @@ pub(super) fn trace_certified<S: Scalar, C: CellLog, W: Walk>(
     near: F64Ray,
     options: &WalkOptions,
 ) -> Option<ScalarTrace<S>> {
-    // (Its `f64` walk knows no reach: the exact walk answers a ray with one.)
-    if options.reach.is_some() {
-        return None;
-    }
     let dir = near.2;
     let mut counters = Counters::default();
     let Some(mut frame) = clip_near(terrain, &near, dir) else {
@@ -44,6 +40,12 @@ pub(super) fn trace_certified<S: Scalar, C: CellLog, W: Walk>(
         return Some(ScalarTrace::missed(counters));
     };
     counters.bbox.record(true);
+    // The exact segment ends at the reach: the walk covers it, and a little past it.
+    if let Some(reach) = options.reach {
+        if !frame.keep(f64::NEG_INFINITY, reach + 4.0 * f64::EPSILON * reach.abs()) {
+            return None;
+        }
+    }
     if !mipmap::has_blocks(&frame) {
         return None;
     }
@@ -65,6 +67,15 @@ pub(super) fn trace_certified<S: Scalar, C: CellLog, W: Walk>(
     let _ = certified::certify(&near_ray, &mut search, W::certify)?;
     if search.tied && options.query == Query::FirstHit {
         return None;
+    }
+    // A hit past the reach counts where the exact walk reaches its cell before the reach,
+    // which only the exact walk knows: it answers such a ray. Every hit up to the reach it
+    // finds too, and no other: the cells whose triangles it tests are among this walk's.
+    if let (Some(reach), Some(found)) = (options.reach, &search.found) {
+        let (t, radius) = found.t.f64_enclosure()?;
+        if !((t + radius).next_up() <= reach) {
+            return None;
+        }
     }
     Some(ScalarTrace {
         hit: search.found,

@@ -20,6 +20,7 @@ mod crs_scale;
 mod deep_tiffs;
 mod drapes;
 mod exact_paths;
+mod exact_reach;
 mod exact_reference;
 mod far_bounds;
 mod far_rays;
