@@ -106,8 +106,9 @@ pub struct RowReport {
     pub shadow_mrays_per_s: Option<f64>,
     pub frame_ms: f64,
     pub frame_with_shadows_ms: f64,
-    /// Time per primary ray against the same method in `f64` at the same thread count.
-    pub time_x_f64: Option<f64>,
+    /// The frame with shadows' time against the same method's in `f64` at the same thread
+    /// count.
+    pub frame_x_f64: Option<f64>,
     /// Primary rays per second against the same tracer on one thread.
     pub threads_x_one: Option<f64>,
     /// Queries per primary ray (heightray's tracers only).
@@ -178,10 +179,10 @@ impl TerrainReport {
                     (r.name.clone(), "f32".into(), r.build, r.bytes)
                 }
             };
-            let time_x_f64 = match row.tracer {
+            let frame_x_f64 = match row.tracer {
                 Tracer::Heightray(method, _) => {
                     same(Tracer::Heightray(method, Arith::F64), row.threads)
-                        .map(|r| r.primary_per_second() / row.primary_per_second())
+                        .map(|r| row.total_time.as_secs_f64() / r.total_time.as_secs_f64())
                 }
                 Tracer::Reference(_) => None,
             };
@@ -211,7 +212,7 @@ impl TerrainReport {
                 shadow_mrays_per_s: row.shadow_per_second().map(|r| r / 1e6),
                 frame_ms: row.primary_time.as_secs_f64() * 1e3,
                 frame_with_shadows_ms: row.total_time.as_secs_f64() * 1e3,
-                time_x_f64,
+                frame_x_f64,
                 threads_x_one,
                 queries_per_primary_ray: queries,
             }
@@ -275,7 +276,7 @@ fn ratio(value: Option<f64>) -> String {
 pub fn print_table(out: &mut impl Write, terrain: &TerrainReport) -> io::Result<()> {
     let [w, h] = terrain.samples;
     writeln!(out, "\n{}: {w}x{h} samples", terrain.label)?;
-    writeln!(out, "| method | arith | threads | build ms | bytes/sample | primary Mrays/s | shadow Mrays/s | frame with shadows ms | time x f64 | 2 threads x 1 |")?;
+    writeln!(out, "| method | arith | threads | build ms | bytes/sample | primary Mrays/s | shadow Mrays/s | frame with shadows ms | frame x f64 | 2 threads x 1 |")?;
     writeln!(out, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")?;
     for row in &terrain.rows {
         writeln!(
@@ -290,7 +291,7 @@ pub fn print_table(out: &mut impl Write, terrain: &TerrainReport) -> io::Result<
             row.shadow_mrays_per_s
                 .map_or("-".into(), |r| format!("{r:.3}")),
             row.frame_with_shadows_ms,
-            ratio(row.time_x_f64),
+            ratio(row.frame_x_f64),
             ratio(row.threads_x_one),
         )?;
     }
@@ -431,7 +432,7 @@ mod tests {
             shadow_mrays_per_s: shadow,
             frame_ms: frame / 2.0,
             frame_with_shadows_ms: frame,
-            time_x_f64: None,
+            frame_x_f64: None,
             threads_x_one: None,
             queries_per_primary_ray: None,
         }
