@@ -73,7 +73,8 @@ pub(super) fn trace_certified<S: Scalar, C: CellLog, W: Walk>(
     // finds too, and no other: the cells whose triangles it tests are among this walk's.
     if let (Some(reach), Some(found)) = (options.reach, &search.found) {
         let (t, radius) = found.t.f64_enclosure()?;
-        if !((t + radius).next_up() <= reach) {
+        let within = (t + radius).next_up() <= reach;
+        if !within {
             return None;
         }
     }
