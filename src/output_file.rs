@@ -82,7 +82,7 @@ pub struct FileError {
     pub reason: io::Error,
 }
 
-/// Why [`write`] failed: the content's own error, or the file's.
+/// Why [`write()`] failed: the content's own error, or the file's.
 #[derive(Debug, Error)]
 pub enum WriteError<E> {
     /// The content could not be made or written; its error says so.

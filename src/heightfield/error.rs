@@ -66,7 +66,7 @@ pub enum HeightfieldError {
         /// The raster's maxval.
         maxval: u16,
     },
-    /// An offset mapping ([`Quantisation::Offset`]) whose heights are not finite (scaled or
+    /// An offset mapping ([`Quantisation::Offset`](super::Quantisation::Offset)) whose heights are not finite (scaled or
     /// not), or whose step is negative.
     #[error(
         "heights must be finite with a step >= 0, got lowest {} and step {}",

@@ -262,7 +262,7 @@ impl Georeferencing {
     }
 
     /// The same, ignored with the reason when a field of `width` x `height` samples would have
-    /// cells finer than [`FINEST_CELL_METRES`] or coarser than [`COARSEST_CELL_METRES`]: its
+    /// cells finer than `FINEST_CELL_METRES` or coarser than `COARSEST_CELL_METRES`: its
     /// true-scale relief would be out of all proportion (or its z scale not even finite).
     pub fn with_cells_checked(self, width: usize, height: usize) -> Georeferencing {
         let Georeferencing::Map(georef) = &self else {

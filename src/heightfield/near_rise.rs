@@ -62,7 +62,7 @@ const BLOCK: usize = 4;
 /// The rise kept for a block near a hole: no ray is settled there.
 const NO_RISE: i8 = i8::MAX;
 
-/// For each block of [`BLOCK`]x[`BLOCK`] cells, the steepest rise along a cone of azimuths
+/// For each block of 4x4 cells, the steepest rise along a cone of azimuths
 /// over the triangles within `reach` cells of the block, rounded up (a signed byte a block).
 #[derive(Clone, Debug)]
 pub struct ConeRises {

@@ -1,12 +1,12 @@
 //! Map products: rasters made straight down over a height field, one value per pixel of a
-//! north-up grid that lies on the map's own ([`OrthoGrid`]), written as GeoTIFFs a GIS lays on
-//! the DEM ([`tiff_out`]).
+//! north-up grid that lies on the map's own ([`OrthoGrid`](crate::products::OrthoGrid)), written as GeoTIFFs a GIS lays on
+//! the DEM ([`tiff_out`](crate::products::tiff_out)).
 //!
-//! - **shaded**: shaded relief with cast shadows, a colour picture ([`shaded`]);
-//! - **sky-view**: the sky-view factor, 0 to 1 ([`sky_view`]);
-//! - **sunlight-hours**: hours of direct sun over a day ([`sunlight`]).
+//! - **shaded**: shaded relief with cast shadows, a colour picture ([`shaded`](crate::products::shaded));
+//! - **sky-view**: the sky-view factor, 0 to 1 ([`sky_view`](crate::products::sky_view));
+//! - **sunlight-hours**: hours of direct sun over a day ([`sunlight`](crate::products::sunlight)).
 //!
-//! Contour lines with labelled index lines are drawn over the pictures ([`contour_map`]).
+//! Contour lines with labelled index lines are drawn over the pictures ([`contour_map`](crate::products::contour_map)).
 
 pub mod contour_labels;
 pub mod contour_map;

@@ -18,7 +18,7 @@ pub enum CameraError {
     /// The eye, target or up vector (named) has a NaN or infinite component.
     #[error("camera {0} must be finite")]
     NotFinite(&'static str),
-    /// A coordinate or distance (named) beyond [`MOST_COORDINATE`]: no view of a map needs
+    /// A coordinate or distance (named) beyond `MOST_COORDINATE`: no view of a map needs
     /// it, and the camera's vectors would overflow.
     #[error("camera {what} is out of range: {value:e} is beyond ±{MOST_COORDINATE:e}")]
     OutOfRange {

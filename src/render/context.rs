@@ -19,31 +19,31 @@ use std::sync::Arc;
 /// switching one off must not change the image, only the work).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Culling {
-    /// Leave out shadow rays of surfaces facing away from the sun ([`ShadowSkip::FacingAway`]).
+    /// Leave out shadow rays of surfaces facing away from the sun ([`ShadowSkip::FacingAway`](crate::render::ShadowSkip::FacingAway)).
     pub facing_away: bool,
     /// Leave out every shadow ray when the sun climbs steeper than any slope
-    /// ([`ShadowSkip::NoShadowPossible`]).
+    /// ([`ShadowSkip::NoShadowPossible`](crate::render::ShadowSkip::NoShadowPossible)).
     pub no_shadow_possible: bool,
     /// Leave out shadow rays that start above the terrain and rise
-    /// ([`ShadowSkip::AboveTerrain`]).
+    /// ([`ShadowSkip::AboveTerrain`](crate::render::ShadowSkip::AboveTerrain)).
     pub above_terrain: bool,
     /// Leave out soft-shadow and sky-light rays that climb more steeply than the terrain can
-    /// rise around their start ([`ShadowSkip::HorizonClear`], [`SkyRays::cast`]).
+    /// rise around their start ([`ShadowSkip::HorizonClear`](crate::render::ShadowSkip::HorizonClear), [`SkyRays::cast`](crate::render::SkyRays::cast)).
     pub horizon_clear: bool,
     /// Leave out the soft-shadow rays of a cone provably blocked whole
-    /// ([`SoftShadow::blocked`]).
+    /// ([`SoftShadow::blocked`](crate::render::effects::SoftShadow::blocked)).
     pub cone_blocked: bool,
     /// Walk only the first cells of a shadow or sky-light ray that bounds kept for the terrain
     /// ahead prove clear beyond them (the sun's [`StripBounds`], the sky's [`SkyBounds`]).
     pub far_bounds: bool,
     /// Settle the sky-light rays the kept bounds leave unsettled as blocked where a probe
-    /// finds them under the surface ([`SkyRays::probed`]).
+    /// finds them under the surface ([`SkyRays::probed`](crate::render::SkyRays::probed)).
     pub probes: bool,
     /// Settle the first cells of shadow, soft-shadow and sky-light rays that start on their
     /// own flat triangle and climb faster than the surface can rise near it ([`NearStart`]).
     pub near_slopes: bool,
     /// Start each camera ray's walk where its wedge's profile proves it clear of the surface,
-    /// and settle the rays above their wedge's whole profile with no walk ([`Wedges`]).
+    /// and settle the rays above their wedge's whole profile with no walk ([`Wedges`](crate::traverse::Wedges)).
     pub camera_clearance: bool,
     /// Walk the first cells of camera rays from their clearance one by one, not down the
     /// mipmap ([`Tracer::walking_near`]).

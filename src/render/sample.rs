@@ -6,7 +6,7 @@ use super::effects::{EffectTime, Outcomes, Shadow};
 use crate::geometry::Face;
 use crate::traverse::Counters;
 
-/// One traced sample, recorded on its own (see [`Tally`]).
+/// One traced sample, recorded on its own (see [`Tally`](crate::render::Tally)).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Sample {
     /// 0x00RRGGBB.

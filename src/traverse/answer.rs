@@ -13,7 +13,7 @@ pub struct ScalarTrace<S> {
     /// Cells covered, in order (when asked for).
     pub cells: Vec<[usize; 2]>,
     /// A triangle test intervals could not settle was decided exactly, from a start on the
-    /// surface given exactly (see [`Start::Hit`]).
+    /// surface given exactly (see [`Start::Hit`](crate::traverse::Start::Hit)).
     pub decided_exactly: bool,
 }
 

@@ -5,11 +5,11 @@
 //!
 //! The terrain goes to Embree as what it is, two triangles per cell with heightray's diagonal
 //! (the surface contract, [`crate::geometry`]), its corners the samples in `f32`
-//! ([`scene`]). A frame does what heightray's does: a ray per pixel through
+//! (`scene`). A frame does what heightray's does: a ray per pixel through
 //! [`Camera::ray`](crate::render::Camera::ray), the hit shaded by heightray's
 //! [`Shader`](crate::render::Shader) from the hit's cell and triangle, and a shadow ray
-//! where the surface faces the sun ([`pixel`]). Embree traces the rays one at a time
-//! (`rtcIntersect1`, `rtcOccluded1`: [`single`]) or in packets of 8 or 16 ([`packets`]). So
+//! where the surface faces the sun (`pixel`). Embree traces the rays one at a time
+//! (`rtcIntersect1`, `rtcOccluded1`: `single`) or in packets of 8 or 16 (`packets`). So
 //! the images can be compared pixel by pixel, and the times differ only in the tracing.
 
 mod effects;

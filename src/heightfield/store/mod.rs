@@ -28,7 +28,7 @@ use thiserror::Error;
 /// leaves its core to another, and the disk serves several reads at once.
 const THREADS_PER_CORE: usize = 4;
 
-/// The threads that trace a map from a store on this machine ([`THREADS_PER_CORE`] a core).
+/// The threads that trace a map from a store on this machine (`THREADS_PER_CORE` a core).
 pub fn threads() -> usize {
     std::thread::available_parallelism().map_or(1, |n| n.get()) * THREADS_PER_CORE
 }

@@ -1,5 +1,5 @@
 //! Camera paths (a scene file's `[animation]`): keyframes the camera passes through, smoothly
-//! ([`spline`]), an orbit turning around its target, or a track to follow ([`track`]). Frame `k` shows the path at time
+//! (`spline`), an orbit turning around its target, or a track to follow (`track`). Frame `k` shows the path at time
 //! `k / fps`; the eye never goes below the surface (it is lifted above it as the viewer keeps
 //! its own eye, by the same clearance).
 

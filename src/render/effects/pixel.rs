@@ -4,7 +4,7 @@
 //! first batch everywhere, then more batches where the two halves of a pixel's own samples
 //! disagree ([`Estimate`]) or where its neighbours say an edge is near
 //! ([`refines`]): a pixel whose first samples all missed an edge is found by the pixels
-//! beside it. The rounds are in [`Accumulation`](super::Accumulation).
+//! beside it. The rounds are in [`Accumulation`](crate::render::Accumulation).
 
 use super::sampling::{mix, point};
 use super::time::nanos_since;
@@ -33,7 +33,7 @@ const EDGE_STEP: i32 = 2;
 const LINES: [(isize, isize); 4] = [(1, 0), (0, 1), (1, 1), (1, -1)];
 
 /// Whether a pixel of mean `own` (0x00RRGGBB) takes more samples for its neighbours' sake:
-/// on some line through it, its mean strays by more than [`EDGE_STEP`] on a channel from the
+/// on some line through it, its mean strays by more than `EDGE_STEP` on a channel from the
 /// midpoint of the neighbours' means (`neighbour(dx, dy)`, `None` off the frame, which counts
 /// as `own`). A smooth ramp of shading passes; an edge that crosses the pixel, or one beside
 /// it the pixel's first samples missed, does not.
@@ -112,7 +112,7 @@ pub struct Estimate {
 impl Estimate {
     /// Adds a sample (0x00RRGGBB); at the end of a batch, whether the samples agree: the
     /// means of its two halves (the samples of even index, and of odd) lie within
-    /// [`TOLERANCE`] display bytes on every channel. The even samples fill one half of the
+    /// `TOLERANCE` display bytes on every channel. The even samples fill one half of the
     /// pixel (rotated with its positions) and the odd ones the other, each batch putting a
     /// sample in each, so the halves agree where both halves of the pixel show the same
     /// colour: a flat pixel passes at its first batch, an edge, a ramp or a texture the

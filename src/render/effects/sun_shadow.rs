@@ -74,7 +74,7 @@ pub enum Shadow {
 
 /// A pixel's shadow as cast: what became of it, the shadow ray's queries, and whether a
 /// decision on it was made exactly after intervals left it unsettled (see
-/// [`Sample::redone`]).
+/// [`Sample::redone`](crate::render::Sample::redone)).
 pub type Cast = (Shadow, Counters, bool);
 
 impl Shadow {

@@ -4,7 +4,7 @@
 use super::triple::three;
 use serde::{Deserialize, Serialize};
 
-/// A camera given as an orbit around a target (see [`Camera::orbit`]).
+/// A camera given as an orbit around a target (see [`Camera::orbit`](crate::render::Camera::orbit)).
 #[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Orbit {
