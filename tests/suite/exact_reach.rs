@@ -97,3 +97,28 @@ fn reach_limited_exact_shadow_rays_agree_across_methods_and_with_the_reference()
         "{blocked} blocked, {clear} clear, {past_reach} touched just past the reach"
     );
 }
+
+/// A hand-worked ray whose reach ends a hair short of the cell it would touch next: from
+/// `(1/3, 1/2, 0)` (no `f64`) on flat ground nearly along `+x`, climbing 0.1 a cell, towards a cell
+/// whose far side stands 10 high. The reach, 2/3 rounded down to an `f64`, ends the path
+/// 3.7e-17 before `x = 1`, within the `f64` walk's room for the start but outside that cell:
+/// the touch just past it (at `t` near 0.673) is not in the way, for every method.
+#[test]
+fn a_touch_in_the_cell_just_past_the_reach_is_not_in_the_way() {
+    let terrain =
+        crate::common::families::terrain(16, 16, 10, 10.0, |x, _| if x >= 2 { 10 } else { 0 });
+    let third = Q::new(1.into(), 3.into());
+    let start = [third, Q::new(1.into(), 2.into()), q(0.0)].map(Exact);
+    let dir = [1.0, 0.01, 0.1];
+    let reach = 2.0f64 / 3.0;
+    assert!(q(reach) < Q::new(2.into(), 3.into()));
+    for method in Method::ALL {
+        let tracer = Tracer::new(&terrain, method).within(reach);
+        let answer = tracer.occluded(&Start::Point(&start), dir, false).occluded;
+        assert_eq!(answer, Some(false), "{method}");
+        // Reaching on into the cell, the touch is in the way.
+        let further = Tracer::new(&terrain, method).within(0.7);
+        let answer = further.occluded(&Start::Point(&start), dir, false).occluded;
+        assert_eq!(answer, Some(true), "{method}");
+    }
+}
