@@ -99,10 +99,10 @@ fn reach_limited_exact_shadow_rays_agree_across_methods_and_with_the_reference()
 }
 
 /// A hand-worked ray whose reach ends a hair short of the cell it would touch next: from
-/// `(1/3, 1/2, 0)` (no `f64`) on flat ground nearly along `+x`, climbing 0.1 a cell, towards a cell
-/// whose far side stands 10 high. The reach, 2/3 rounded down to an `f64`, ends the path
-/// 3.7e-17 before `x = 1`, within the `f64` walk's room for the start but outside that cell:
-/// the touch just past it (at `t` near 0.673) is not in the way, for every method.
+/// `(1/3, 1/2, 0)` (no `f64`) on flat ground nearly along `+x`, climbing 0.1 a cell, towards
+/// a cell whose far side stands 10 high. The reach, 2/3 rounded down to an `f64`, ends the
+/// path 3.7e-17 before `x = 1`, within the `f64` walk's room for the start but outside that
+/// cell: the touch just past it (at `t` near 0.673) is not in the way, for every method.
 #[test]
 fn a_touch_in_the_cell_just_past_the_reach_is_not_in_the_way() {
     let terrain =
