@@ -34,6 +34,10 @@ pub const STRIP: usize = 2;
 /// Columns of `u` per stored bound.
 pub const BLOCK: usize = 3;
 
+/// How many column lines ahead a look-up asks before it leaves the ray to a full walk: a
+/// clear verdict further on leaves more to walk than the walk down the mipmap skips.
+const FARTHEST_COLUMNS: usize = 48;
+
 /// How far each strip is grown on either side (cells): far more than a path's `w` can be off
 /// by rounding, or by a start that lies a little off the computed one.
 const PAD: f64 = 1e-4;
@@ -285,29 +289,36 @@ impl StripBounds {
         };
         let w = v - self.slope * u;
         // The next column line more than one cell ahead: the start's own cells are walked.
-        let c = ((u + 1.0) * (1.0 / BLOCK as f64)) as usize + 1;
-        let u_c = (c * BLOCK) as f64;
+        let first = ((u + 1.0) * (1.0 / BLOCK as f64)) as usize + 1;
         let z = (start[2] - self.base) * self.per_step;
-        let rise = self.climb * (u_c - u);
-        let error = 1e-9 * (z.abs() + rise + self.climb_across + f64::from(u16::MAX))
-            + room * self.per_step * (1.0 + self.climb);
         let own = self.strip_of(w).filter(|&j| j < self.strips.len())?;
-        let bound = if slope == self.slope {
-            self.bound_at(own, c)
-        } else {
-            // Where the ray leaves the map or rises above every sample, and how far across
-            // it drifts until then.
-            let above = (self.top - z + error).max(0.0) / self.climb;
-            let u_end = (u + above).min(self.frame.nu as f64);
-            let drift = [u_c, u_end].map(|at| w + (slope - self.slope) * (at - u));
-            let (lo, hi) = (drift[0].min(drift[1]), drift[0].max(drift[1]));
-            let first = self.strip_of(lo - PAD).unwrap_or(0);
-            let last = self.strip_of(hi + PAD).unwrap_or(self.strips.len());
-            (first..=last.min(self.strips.len() - 1))
-                .map(|j| self.bound_at(j, c))
-                .fold(f64::NEG_INFINITY, f64::max)
-        };
-        (z + rise - error > bound).then_some((u_c - u + 1e-3) * per_du)
+        // Far more than the rounding of the ray's height and of the climb (with `1e-9` of
+        // the climb to the column added at each).
+        let error = 1e-9 * (z.abs() + self.climb_across + f64::from(u16::MAX))
+            + room * self.per_step * (1.0 + self.climb);
+        // Where the ray leaves the map or rises above every sample.
+        let above = (self.top - z + error + 1e-9 * self.climb_across).max(0.0) / self.climb;
+        let u_end = (u + above).min(self.frame.nu as f64);
+        // The first column line from which the ray stays above its bound; a ray unsettled at
+        // one column may be settled at a later one, leaving more (but not all) to walk.
+        (first..first + FARTHEST_COLUMNS).find_map(|c| {
+            let u_c = (c * BLOCK) as f64;
+            let rise = self.climb * (u_c - u);
+            let bound = if slope == self.slope {
+                self.bound_at(own, c)
+            } else {
+                // How far across the ray drifts from the column until it leaves the map
+                // or rises above every sample.
+                let drift = [u_c, u_end.max(u_c)].map(|at| w + (slope - self.slope) * (at - u));
+                let (lo, hi) = (drift[0].min(drift[1]), drift[0].max(drift[1]));
+                let first = self.strip_of(lo - PAD).unwrap_or(0);
+                let last = self.strip_of(hi + PAD).unwrap_or(self.strips.len());
+                (first..=last.min(self.strips.len() - 1))
+                    .map(|j| self.bound_at(j, c))
+                    .fold(f64::NEG_INFINITY, f64::max)
+            };
+            (z + rise - (error + 1e-9 * rise) > bound).then_some((u_c - u + 1e-3) * per_du)
+        })
     }
 
     /// The strip holding paths with `w`; `None` below the first one.
