@@ -37,6 +37,7 @@ mod runs;
 mod search;
 mod segment;
 mod short_walk;
+mod span_cells;
 mod surface;
 mod tracer;
 mod walks;

@@ -7,7 +7,7 @@ use super::cell_log::CellLog;
 use super::certified::Certifying;
 use super::frame::{Follower, Frame, Levels, Part, Span};
 use super::mipmap;
-use super::search::span_cells;
+use super::span_cells::span_cells;
 use super::{dda, runs, Method};
 use crate::arith::scalar::Scalar;
 use std::ops::ControlFlow;

@@ -14,7 +14,7 @@ use super::Certifying;
 use crate::arith::scalar::Scalar;
 use crate::traverse::cell_log::CellLog;
 use crate::traverse::frame::Frame;
-use crate::traverse::search::run_highest;
+use crate::traverse::span_cells::run_highest;
 use std::ops::ControlFlow;
 
 /// Walks the path run by run; breaks when the answer is known.
