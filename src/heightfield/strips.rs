@@ -296,26 +296,30 @@ impl StripBounds {
         // the climb to the column added at each).
         let error = 1e-9 * (z.abs() + self.climb_across + f64::from(u16::MAX))
             + room * self.per_step * (1.0 + self.climb);
-        // Where the ray leaves the map or rises above every sample.
-        let above = (self.top - z + error + 1e-9 * self.climb_across).max(0.0) / self.climb;
-        let u_end = (u + above).min(self.frame.nu as f64);
+        // Where a ray off the axis's slope leaves the map or rises above every sample: how
+        // far its drift across the strips is followed.
+        let u_end = (slope != self.slope).then(|| {
+            let above = (self.top - z + error + 1e-9 * self.climb_across).max(0.0) / self.climb;
+            (u + above).min(self.frame.nu as f64)
+        });
         // The first column line from which the ray stays above its bound; a ray unsettled at
         // one column may be settled at a later one, leaving more (but not all) to walk.
         (first..first + FARTHEST_COLUMNS).find_map(|c| {
             let u_c = (c * BLOCK) as f64;
             let rise = self.climb * (u_c - u);
-            let bound = if slope == self.slope {
-                self.bound_at(own, c)
-            } else {
-                // How far across the ray drifts from the column until it leaves the map
-                // or rises above every sample.
-                let drift = [u_c, u_end.max(u_c)].map(|at| w + (slope - self.slope) * (at - u));
-                let (lo, hi) = (drift[0].min(drift[1]), drift[0].max(drift[1]));
-                let first = self.strip_of(lo - PAD).unwrap_or(0);
-                let last = self.strip_of(hi + PAD).unwrap_or(self.strips.len());
-                (first..=last.min(self.strips.len() - 1))
-                    .map(|j| self.bound_at(j, c))
-                    .fold(f64::NEG_INFINITY, f64::max)
+            let bound = match u_end {
+                None => self.bound_at(own, c),
+                // How far across the ray drifts from the column until it leaves the map or
+                // rises above every sample.
+                Some(u_end) => {
+                    let drift = [u_c, u_end.max(u_c)].map(|at| w + (slope - self.slope) * (at - u));
+                    let (lo, hi) = (drift[0].min(drift[1]), drift[0].max(drift[1]));
+                    let first = self.strip_of(lo - PAD).unwrap_or(0);
+                    let last = self.strip_of(hi + PAD).unwrap_or(self.strips.len());
+                    (first..=last.min(self.strips.len() - 1))
+                        .map(|j| self.bound_at(j, c))
+                        .fold(f64::NEG_INFINITY, f64::max)
+                }
             };
             (z + rise - (error + 1e-9 * rise) > bound).then_some((u_c - u + 1e-3) * per_du)
         })

@@ -30,6 +30,12 @@ pub(super) fn trace_terrain<S: Scalar>(
     dir_f64: [f64; 3],
     walk_options: WalkOptions,
 ) -> ScalarTrace<S> {
+    // A certain miss of the terrain (a clearance over the whole ray): nothing to clip or walk,
+    // as the walk from the clearance would find.
+    let cleared = walk_options.clearance.is_some_and(|c| c.t == f64::INFINITY);
+    if cleared && walk_options.method.is_hierarchical() {
+        return ScalarTrace::missed(Counters::default());
+    }
     // (A shadow ray from a hit given exactly starts on the surface, never far off.)
     if walk_options.exact_start.is_none() {
         match far_start(terrain, o, d) {

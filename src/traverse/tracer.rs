@@ -107,11 +107,6 @@ impl<'a> Tracer<'a> {
     /// its `t`, and a hierarchical walk starts there, at its level.
     #[inline]
     pub fn trace<S: Scalar>(&self, ray: &Ray, clearance: Option<Clearance>) -> ScalarTrace<S> {
-        // A certain miss: nothing to clip or walk (as the walk would find, in every method
-        // that starts from a clearance).
-        if self.method.is_hierarchical() && clearance.is_some_and(|c| c.t == f64::INFINITY) {
-            return ScalarTrace::missed(Counters::default());
-        }
         let (o, d) = (ray.origin().map(S::from_f64), ray.dir().map(S::from_f64));
         let walk = WalkOptions {
             clearance,
