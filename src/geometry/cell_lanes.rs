@@ -67,18 +67,21 @@ impl<S: Scalar> RaySpace<S> {
             SimdPath::Avx2 => unsafe { x86::lanes_avx2(input) },
             _ => portable(input),
         };
-        Some([0u8, 1].map(|k| {
+        // (Each triangle in straight code: mapped over `[0, 1]`, the pair of answers goes
+        // through the stack in an out-of-line loop that costs more than the lanes.)
+        let triangle = |k: u8| {
             let at = 3 * usize::from(k);
             let [a, b, c] = triangle_corners(k);
-            let [u, v, w] = [0, 1, 2].map(|n| S::from_f64(e[at + n]));
-            let heights_in_space = [q[a], q[b], q[c]].map(S::from_f64);
+            let (u, v, w) = (e[at], e[at + 1], e[at + 2]);
             let coplanar = || {
                 let cell = CellTriangles::new(self, i, j, heights.map(S::from_f64));
                 cell.intersect(self, k)
             };
-            let [az, bz, cz] = &heights_in_space;
-            self.decide([u, v], || w, [az, bz, cz], coplanar)
-        }))
+            let (az, bz, cz) = (S::from_f64(q[a]), S::from_f64(q[b]), S::from_f64(q[c]));
+            let uv = [S::from_f64(u), S::from_f64(v)];
+            self.decide(uv, || S::from_f64(w), [&az, &bz, &cz], coplanar)
+        };
+        Some([triangle(0), triangle(1)])
     }
 }
 

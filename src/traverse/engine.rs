@@ -11,11 +11,16 @@ use super::far::{far_start, FarStart};
 use super::frame::{clip, Levels};
 use super::mipmap::near;
 use super::near_ray::f64_ray;
+use super::options::Query;
 use super::options::WalkOptions;
+use super::search::Found;
 use super::search::{new_search, slack};
 use super::segment::{after_clearance, clearance_start, first_level, within_reach};
+use super::short_walk::{first_hit, FirstHit};
 use super::walks::{choose, Walk, WithWalk};
+use super::wedges::Clearance;
 use crate::arith::{unsettled, Scalar};
+use crate::geometry::Face;
 use crate::heightfield::Terrain;
 use num_rational::BigRational;
 
@@ -58,7 +63,84 @@ pub(super) fn trace_terrain<S: Scalar>(
             }
         }
     }
+    if let Some(start) = short_start(o, d, &walk_options) {
+        let ray = (o, d, dir_f64);
+        // (The answer is made in place: moved whole, it is copied out of line.)
+        let mut answer = ScalarTrace::missed(Counters::default());
+        let answered = match walk_options.record_cells {
+            true => trace_short::<S, Recorded>(terrain, ray, start, walk_options, &mut answer),
+            false => trace_short::<S, Unrecorded>(terrain, ray, start, walk_options, &mut answer),
+        };
+        if answered {
+            return answer;
+        }
+    }
     trace_near(terrain, o, d, dir_f64, walk_options)
+}
+
+/// The ray `o + t*d` walked short from `start` (see [`short_start`]), its cells noted in a
+/// `C`: its answer in `answer` (a miss with no queries before), handed on to the full walk
+/// where the short walk stops; `false` where the full walk must answer it from the start.
+#[inline(always)]
+fn trace_short<S: Scalar, C: CellLog>(
+    terrain: &Terrain,
+    (o, d, dir_f64): (&[S; 3], &[S; 3], [f64; 3]),
+    (o64, d64, from): ([f64; 3], [f64; 3], f64),
+    walk_options: WalkOptions,
+    answer: &mut ScalarTrace<S>,
+) -> bool {
+    let mut log = C::default();
+    let Some(found) = first_hit(terrain, o64, d64, from, (&mut answer.counters, &mut log)) else {
+        return false;
+    };
+    answer.cells = log.into_cells();
+    match found {
+        FirstHit::Hit { t, cell, triangle } => {
+            answer.hit = Some(Found {
+                t: S::from_f64(t),
+                cell,
+                triangle,
+                face: Face::Terrain,
+            });
+        }
+        FirstHit::Missed => {}
+        FirstHit::From(t) => {
+            let clearance = Some(Clearance { t, level: 0 });
+            let walk_options = WalkOptions {
+                clearance,
+                ..walk_options
+            };
+            let rest = trace_near(terrain, o, d, dir_f64, walk_options);
+            answer.hit = rest.hit;
+            answer.counters += rest.counters;
+            answer.cells.extend(rest.cells);
+            answer.decided_exactly = rest.decided_exactly;
+        }
+    }
+    true
+}
+
+/// Where the short walk may answer a ray ([`first_hit`], with the near walk's switch: the
+/// same idea, cheaper to set up): a first-hit ray in `f64` from its clearance, its origin,
+/// direction and start `t`.
+#[inline(always)]
+fn short_start<S: Scalar>(
+    o: &[S; 3],
+    d: &[S; 3],
+    walk_options: &WalkOptions,
+) -> Option<([f64; 3], [f64; 3], f64)> {
+    let (o, d) = (S::as_f64s(o)?, S::as_f64s(d)?);
+    let plain = walk_options.query == Query::FirstHit
+        && walk_options.near
+        && walk_options.reach.is_none()
+        && walk_options.start_triangle.is_none()
+        && walk_options.exact_start.is_none()
+        // (A path along a grid line, or a vertical one, is the run walk's.)
+        && d[0] != 0.0
+        && d[1] != 0.0;
+    // (A clearance at a block level leaves the ray far from the surface: the block walk's.)
+    let (from, _) = clearance_start::<S>(walk_options).filter(|&(_, level)| plain && level == 0)?;
+    Some((*o, *d, from))
 }
 
 /// [`trace_terrain`] from the ray's own origin.

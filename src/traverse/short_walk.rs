@@ -1,6 +1,8 @@
-//! The short walk: an `f64` occlusion ray that needs looking at only up to a reach a few cells
-//! away (where the sun's strip bounds or the sky's bounds prove it clear beyond), walked cell
-//! by cell from its start, without the frame, search record and hierarchy a long walk sets up.
+//! The short walk: an `f64` ray that needs looking at only over a few cells, walked cell by
+//! cell without the frame, search record and hierarchy a long walk sets up. An occlusion ray
+//! is asked only up to a reach a few cells away (where the sun's strip bounds or the sky's
+//! bounds prove it clear beyond); a first-hit ray from its clearance, where it may first
+//! touch the surface ([`first_hit`]), is handed on to the full walk after its first cells.
 //!
 //! It asks each cell the block walk's own questions at level 0, in the same arithmetic and
 //! from the same numbers: the segment ends where [`clip`](super::frame::clip) and the reach
@@ -10,12 +12,16 @@
 //! (each crossing worked out from its grid line, as the near walk does), so it tests every
 //! triangle the block walk would: where the block walk skips a block, its cells fail their
 //! cell tests too. Where the walks could part (a start on a grid line, a crossing through a
-//! lattice point, an end on a grid line, a path leaving the grid or found under the surface,
-//! a long reach) it gives the ray back, and the full walk answers it.
+//! lattice point, an end on a grid line, a path found under the surface, a long reach) it
+//! gives the ray back, and the full walk answers it; a path that leaves the grid ends there,
+//! as the full walk's does.
 
+mod first_hit;
 mod path;
 
+pub(super) use self::first_hit::{first_hit, FirstHit};
 use self::path::{nearly, Path, SKIP_LEVEL};
+use super::cell_log::{CellLog, Unrecorded};
 use super::counters::HitMiss;
 use super::search::slack;
 use super::Counters;
@@ -48,33 +54,97 @@ pub(super) fn short_walk(
     let t_end = segment_end(terrain, o, d)?.min(reach);
     // (Where the clear part reaches the end, the walk still looks at its last cell.)
     let mut walk = Path::new(terrain, o, d, smaller(clear, t_end))?;
-    // The block walk's margins: heights along the ray moved down where compared with a
-    // highest sample, up where with a lowest.
-    let slack = slack(&o[2], &d[2], &t_end);
-    let (oz_low, oz_high) = if slack > 0.0 {
-        (o[2] - slack, o[2] + slack)
-    } else {
-        (o[2], o[2])
-    };
-    let segment = Segment {
-        oz_low,
-        oz_high,
-        dz: d[2],
-        t_end,
-        // Where a crossing comes too near the segment's end for its order to be trusted (as
-        // `nearly(t_exit, t_end)` has it, for no `t_exit` below this).
-        end_doubt: t_end - 5e-9 * larger(t_end, 1.0),
-    };
+    let segment = Segment::new(o, d, t_end);
     let mut counters = Counters::default();
     counters.bbox.record(true);
-    // (One loop for falling rays and one for the others: which end of a cell's part of the
-    // segment is its lowest point is then known outside the loop.)
-    let touches = if d[2] < 0.0 {
-        cells::<true>(terrain, &mut walk, &segment, start_triangle, &mut counters)
+    let occluding = Occluding { start_triangle };
+    let log = &mut Unrecorded;
+    match walk_cells(
+        terrain,
+        &mut walk,
+        &segment,
+        &occluding,
+        (&mut counters, log),
+    )? {
+        Walked::Touched(()) => Some((true, counters)),
+        Walked::Clear => Some((false, counters)),
+        Walked::From(_) => None,
+    }
+}
+
+/// Where a short walk ended.
+enum Walked<F> {
+    /// At a cell whose test found `F`.
+    Touched(F),
+    /// Clear of the surface to the segment's end, or to where it leaves the grid.
+    Clear,
+    /// Clear up to this `t` (where it entered its cell), after its most steps: the full walk
+    /// goes on from there.
+    From(f64),
+}
+
+/// What a short walk asks of a cell that may be touched.
+trait Touch {
+    /// What it finds there.
+    type Found;
+    /// The most cells and blocks the walk steps through before it hands on.
+    const MOST_STEPS: u32;
+    /// Whether the walk passes over blocks at once.
+    const SKIPS: bool;
+    /// Tests the path's cell (corner samples `four`, crossed from `t_lo` to `t_hi` in
+    /// `span`), counting its triangle tests: `Some(Some(found))` ends the walk, `Some(None)`
+    /// goes on, `None` where the full walk must answer.
+    fn cell(
+        &self,
+        terrain: &Terrain,
+        walk: &mut Path,
+        four: [u16; 4],
+        span: (f64, f64),
+        triangles: &mut HitMiss,
+    ) -> Option<Option<Self::Found>>;
+}
+
+/// An occlusion ray's cell test: any touch after its start, its own triangle left out.
+struct Occluding {
+    start_triangle: Option<((usize, usize), u8)>,
+}
+
+impl Touch for Occluding {
+    type Found = ();
+    // (Its reach bounds its walk: see `MOST_CELLS`.)
+    const MOST_STEPS: u32 = u32::MAX;
+    const SKIPS: bool = true;
+    #[inline(always)]
+    fn cell(
+        &self,
+        terrain: &Terrain,
+        walk: &mut Path,
+        four: [u16; 4],
+        span: (f64, f64),
+        triangles: &mut HitMiss,
+    ) -> Option<Option<()>> {
+        let touches = cell_hits(terrain, walk, four, span, self.start_triangle, triangles)?;
+        Some(touches.then_some(()))
+    }
+}
+
+/// The short walk's cells from `walk`'s on, in one loop for falling rays and one for the
+/// others: which end of a cell's part of the segment is its lowest point is then known
+/// outside the loop. `None` where the full walk must answer.
+/// The cells tested one by one are noted in `log`.
+#[inline(always)]
+fn walk_cells<T: Touch, C: CellLog>(
+    terrain: &Terrain,
+    walk: &mut Path,
+    segment: &Segment,
+    touch: &T,
+    (counters, log): (&mut Counters, &mut C),
+) -> Option<Walked<T::Found>> {
+    if segment.dz < 0.0 {
+        cells::<true, T, C>(terrain, walk, segment, touch, (counters, log))
     } else {
-        cells::<false>(terrain, &mut walk, &segment, start_triangle, &mut counters)
-    };
-    touches.map(|touches| (touches, counters))
+        cells::<false, T, C>(terrain, walk, segment, touch, (counters, log))
+    }
 }
 
 /// The ray's segment as the short walk compares it with the cells' samples.
@@ -87,16 +157,37 @@ struct Segment {
     end_doubt: f64,
 }
 
-/// The short walk's cells from `walk`'s on: whether the ray touches a triangle, or `None`
-/// where the full walk must answer it. `FALLING`: whether the ray goes down.
+impl Segment {
+    /// The segment of `o + t*d` up to `t_end`, with the block walk's margins: heights along
+    /// the ray moved down where compared with a highest sample, up where with a lowest.
+    fn new(o: [f64; 3], d: [f64; 3], t_end: f64) -> Self {
+        let slack = slack(&o[2], &d[2], &t_end);
+        let (oz_low, oz_high) = if slack > 0.0 {
+            (o[2] - slack, o[2] + slack)
+        } else {
+            (o[2], o[2])
+        };
+        Segment {
+            oz_low,
+            oz_high,
+            dz: d[2],
+            t_end,
+            // Where a crossing comes too near the segment's end for its order to be trusted
+            // (as `nearly(t_exit, t_end)` has it, for no `t_exit` below this).
+            end_doubt: t_end - 5e-9 * larger(t_end, 1.0),
+        }
+    }
+}
+
+/// [`walk_cells`] for a ray that falls (`FALLING`) or not.
 #[inline(always)]
-fn cells<const FALLING: bool>(
+fn cells<const FALLING: bool, T: Touch, C: CellLog>(
     terrain: &Terrain,
     walk: &mut Path,
     segment: &Segment,
-    start_triangle: Option<((usize, usize), u8)>,
-    counters: &mut Counters,
-) -> Option<bool> {
+    touch: &T,
+    (counters, log): (&mut Counters, &mut C),
+) -> Option<Walked<T::Found>> {
     let field = terrain.field();
     let (samples, w) = (field.samples(), field.width());
     // (Held here, not read through `field` after every write to the counters.)
@@ -113,14 +204,19 @@ fn cells<const FALLING: bool>(
     let mut triangles = HitMiss::default();
     let mut blocks = HitMiss::default();
     let top = terrain.mipmap().top();
-    let skipping = top >= SKIP_LEVEL;
+    let skipping = T::SKIPS && top >= SKIP_LEVEL;
     let coarsest = top.min(MOST_LEVEL);
     // The level of the next block to test: one up after a block passed over, one down
     // after one that may be touched, as the block walk climbs and descends.
     let mut level = SKIP_LEVEL;
     // Where the path leaves the block of the finest level it was last tested in.
     let mut block_until = f64::NEG_INFINITY;
-    let touches = loop {
+    let mut steps = 0;
+    let walked = loop {
+        if steps == T::MOST_STEPS {
+            break Walked::From(walk.t);
+        }
+        steps += 1;
         let t_lo = walk.t;
         if skipping && t_lo >= block_until {
             let (t_exit, through_u, line) = walk.block_exit(level);
@@ -134,7 +230,7 @@ fn cells<const FALLING: bool>(
                     if nearly(t_exit, t_end) {
                         return None;
                     }
-                    break false;
+                    break Walked::Clear;
                 }
                 walk.leave_block(t_exit, through_u, line)?;
                 level = coarsest.min(level + 1);
@@ -165,22 +261,23 @@ fn cells<const FALLING: bool>(
             return None;
         }
         let may_hit = oz_low + dz * t_low_point <= height_of(highest);
+        log.reached(walk.cell());
         // (The lanes test the whole cell, past the segment's end too.)
         let span = (t_lo, t_exit);
-        if cells.record(may_hit)
-            && cell_hits(terrain, walk, four, span, start_triangle, &mut triangles)?
-        {
-            break true;
+        if cells.record(may_hit) {
+            if let Some(found) = touch.cell(terrain, walk, four, span, &mut triangles)? {
+                break Walked::Touched(found);
+            }
         }
-        if ends_inside {
-            break false;
+        // (Off the grid the full walk ends as well, with nothing found.)
+        if ends_inside || walk.step().is_none() {
+            break Walked::Clear;
         }
-        walk.step()?;
     };
     counters.block += blocks;
     counters.cell += cells;
     counters.triangle += triangles;
-    Some(touches)
+    Some(walked)
 }
 
 /// Whether the ray touches a triangle of the path's cell (with corner samples `four`, crossed
@@ -196,18 +293,12 @@ fn cell_hits(
     start_triangle: Option<((usize, usize), u8)>,
     triangles: &mut HitMiss,
 ) -> Option<bool> {
-    let field = terrain.field();
-    let (i, j) = walk.cell();
-    if field.is_hole_cell(i, j) {
-        return Some(false);
-    }
-    let heights = four.map(|sample| field.height_of(sample));
     let own = start_triangle
-        .filter(|&(cell, _)| cell == (i, j))
+        .filter(|&(cell, _)| cell == walk.cell())
         .map(|(_, k)| k);
-    if passes_above(walk, (i, j), heights, span, own) {
+    let Some(((i, j), heights)) = cell_to_test(terrain, walk, four, span, own) else {
         return Some(false);
-    }
+    };
     let hits = walk
         .ray_space()
         .cell_in_lanes(SimdPath::active(), (i, j), heights)?;
@@ -223,6 +314,26 @@ fn cell_hits(
         }
     }
     Some(false)
+}
+
+/// The path's cell and its corner heights (samples `four`), unless it is a hole or the ray
+/// passes clearly above its triangles (leaving out triangle `own`) while it crosses it, in
+/// `span` ([`passes_above`]): then no triangle test can find a touch.
+#[inline(always)]
+fn cell_to_test(
+    terrain: &Terrain,
+    walk: &Path,
+    four: [u16; 4],
+    span: (f64, f64),
+    own: Option<u8>,
+) -> Option<((usize, usize), [f64; 4])> {
+    let field = terrain.field();
+    let cell = walk.cell();
+    if field.is_hole_cell(cell.0, cell.1) {
+        return None;
+    }
+    let heights = four.map(|sample| field.height_of(sample));
+    (!passes_above(walk, cell, heights, span, own)).then_some((cell, heights))
 }
 
 /// Whether the ray passes clearly above both triangles of cell `(i, j)` (corner heights

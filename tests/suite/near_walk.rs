@@ -1,7 +1,7 @@
-//! The near walk (the first cells of a ray walked one by one from its clearance,
-//! [`Tracer::walking_near`]) gives the block walk's answers: rays from random points and
-//! clearances, a ray through a lattice point in its first cell, camera rays from their wedge
-//! clearance, and occlusion rays from the surface with a short reach (the short walk), on
+//! The near walk (the first cells of a ray walked one by one from its clearance, by the
+//! short walk where it can, [`Tracer::walking_near`]) gives the block walk's answers: rays
+//! from random points and clearances, a ray through a lattice point in its first cell, camera
+//! rays from their wedge clearance, and occlusion rays from the surface with a short reach, on
 //! random terrains with holes, with both hierarchical methods; and whole
 //! frames with shadows, soft shadows and sky light are pixel-identical with it on and off in
 //! `f32`, `f64` and exact arithmetic.

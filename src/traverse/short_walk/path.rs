@@ -51,6 +51,24 @@ impl Path {
     /// more than rounding), else from `t = 0`; `None` where it starts on a grid line or
     /// outside the grid.
     pub(super) fn new(terrain: &Terrain, o: [f64; 3], d: [f64; 3], from: f64) -> Option<Self> {
+        Path::starting(terrain, o, d, from, true)
+    }
+
+    /// The path of `o + t*d` from `t = from > 0`, its point there off every grid line by far
+    /// more than rounding and inside the grid; `None` otherwise.
+    pub(super) fn from(terrain: &Terrain, o: [f64; 3], d: [f64; 3], from: f64) -> Option<Self> {
+        Path::starting(terrain, o, d, from, false)
+    }
+
+    /// [`Path::new`], or [`Path::from`] where `or_origin` is `false`.
+    #[inline(always)]
+    fn starting(
+        terrain: &Terrain,
+        o: [f64; 3],
+        d: [f64; 3],
+        from: f64,
+        or_origin: bool,
+    ) -> Option<Self> {
         let swap = d[1].abs() > d[0].abs();
         let (ku, kv) = if swap { (1, 0) } else { (0, 1) };
         let flip = [d[ku] < 0.0, d[kv] < 0.0];
@@ -68,7 +86,8 @@ impl Path {
         };
         let (point, t) = match from > 0.0 && off_lines(later) {
             true => (later, from),
-            false => (start, 0.0),
+            false if or_origin => (start, 0.0),
+            false => return None,
         };
         // (Casts, not `fract` and `floor`, which are library calls on the baseline target;
         // the point lies on the grid, far inside the range of `i64`.)
