@@ -69,19 +69,33 @@ impl<S: Scalar> RaySpace<S> {
         };
         // (Each triangle in straight code: mapped over `[0, 1]`, the pair of answers goes
         // through the stack in an out-of-line loop that costs more than the lanes.)
-        let triangle = |k: u8| {
-            let at = 3 * usize::from(k);
-            let [a, b, c] = triangle_corners(k);
-            let (u, v, w) = (e[at], e[at + 1], e[at + 2]);
-            let coplanar = || {
-                let cell = CellTriangles::new(self, i, j, heights.map(S::from_f64));
-                cell.intersect(self, k)
-            };
-            let (az, bz, cz) = (S::from_f64(q[a]), S::from_f64(q[b]), S::from_f64(q[c]));
-            let uv = [S::from_f64(u), S::from_f64(v)];
-            self.decide(uv, || S::from_f64(w), [&az, &bz, &cz], coplanar)
+        let lanes = (&q, &e);
+        Some([
+            self.lane_triangle(0, lanes, (i, j), heights),
+            self.lane_triangle(1, lanes, (i, j), heights),
+        ])
+    }
+
+    /// Triangle `k` of cell `(i, j)` from the lanes' heights and edge functions `(q, e)`, as
+    /// [`CellTriangles::intersect`] answers it.
+    #[inline(always)]
+    fn lane_triangle(
+        &self,
+        k: u8,
+        (q, e): (&Heights, &Edges),
+        (i, j): (usize, usize),
+        heights: [f64; 4],
+    ) -> Option<TriangleHit<S>> {
+        let at = 3 * usize::from(k);
+        let [a, b, c] = triangle_corners(k);
+        let (u, v, w) = (e[at], e[at + 1], e[at + 2]);
+        let coplanar = || {
+            let cell = CellTriangles::new(self, i, j, heights.map(S::from_f64));
+            cell.intersect(self, k)
         };
-        Some([triangle(0), triangle(1)])
+        let (az, bz, cz) = (S::from_f64(q[a]), S::from_f64(q[b]), S::from_f64(q[c]));
+        let uv = [S::from_f64(u), S::from_f64(v)];
+        self.decide(uv, || S::from_f64(w), [&az, &bz, &cz], coplanar)
     }
 }
 

@@ -284,6 +284,15 @@ fn highest_within(
         k += 1;
     }
     let mut highest = 0;
+    if k == 0 {
+        // The cells' corners: each sample read once, not once for every cell it corners.
+        let (samples, w) = (field.samples(), field.width());
+        for y in j0..=j1 + 1 {
+            let row = &samples[y * w + i0..=y * w + i1 + 1];
+            highest = row.iter().fold(highest, |a, &b| a.max(b));
+        }
+        return Some((field.height_of(highest), 0));
+    }
     for bj in (j0 >> k)..=(j1 >> k) {
         for bi in (i0 >> k)..=(i1 >> k) {
             highest = highest.max(terrain.block_max_sample(k, bi, bj));
