@@ -95,8 +95,10 @@ impl CertainMiss {
         let m = 2.0 * largest * (1.0 + 4.0 * f64::EPSILON);
         // (Widened for the rounding of the bound's own few operations.)
         let bound = (4.0 * e * m + 2.0 * e * e + 6.01 * f64::EPSILON * m * m) * (1.0 + 1e-9);
+        // (In straight code: an array's `map` goes out of line here, a call per corner.)
+        let image = |n: usize| self.space.vertex(corners[n]);
         CellImages {
-            images: corners.map(|p| self.space.vertex(p)),
+            images: [image(0), image(1), image(2), image(3)],
             bound: bound + 1e-300,
         }
     }

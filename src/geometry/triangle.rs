@@ -78,6 +78,7 @@ impl<S: Scalar> RaySpace<S> {
     }
 
     /// A vertex in ray space.
+    #[inline]
     pub fn vertex(&self, p: [S; 3]) -> [S; 3] {
         let [kx, ky, kz] = self.axes;
         let rel = |k: usize| p[k].clone() - self.origin[k].clone();

@@ -280,7 +280,7 @@ impl<S: Scalar, C: CellLog> Search<'_, S, C> {
         let certain: [Option<Option<S>>; 2] = match &self.certain_miss {
             Some(filter) if S::EXACT => {
                 let images = filter.cell(i, j, heights);
-                [0, 1].map(|k| {
+                let settles = |k: u8| {
                     if !tested(k) {
                         return None;
                     }
@@ -292,7 +292,10 @@ impl<S: Scalar, C: CellLog> Search<'_, S, C> {
                         }
                         Certain::Open => None,
                     }
-                })
+                };
+                // (In straight code: mapped over `[0, 1]`, the answers go through the stack
+                // out of line.)
+                [settles(0), settles(1)]
             }
             _ => [None, None],
         };
