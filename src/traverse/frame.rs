@@ -236,9 +236,11 @@ pub(super) fn clip_grown<S: Scalar>(
     grow: [f64; 3],
 ) -> Option<Frame<S>> {
     let (lo, hi) = terrain.bounds();
-    // Rounded outwards: the grown box contains every point within `grow` of the box.
-    let lo = [0, 1, 2].map(|k| S::from_f64((lo[k] - grow[k]).next_down()));
-    let hi = [0, 1, 2].map(|k| S::from_f64((hi[k] + grow[k]).next_up()));
+    // Rounded outwards: the grown box contains every point within `grow` of the box. (In
+    // straight code: an array's `map` goes out of line here.)
+    let low = |k: usize| S::from_f64((lo[k] - grow[k]).next_down());
+    let high = |k: usize| S::from_f64((hi[k] + grow[k]).next_up());
+    let (lo, hi) = ([low(0), low(1), low(2)], [high(0), high(1), high(2)]);
     clip_to(terrain, o, d, dir_f64, lo, hi)
 }
 

@@ -15,7 +15,9 @@ pub(super) fn f64_ray<S: Scalar>(o: &[S; 3], d: &[S; 3]) -> Option<F64Ray> {
     }
     let exact = |c: &S| c.f64_enclosure().filter(|&(_, r)| r == 0.0).map(|(x, _)| x);
     let dir = [exact(&d[0])?, exact(&d[1])?, exact(&d[2])?];
-    let [x, y, z] = [&o[0], &o[1], &o[2]].map(|c| c.f64_enclosure());
-    let [(x, rx), (y, ry), (z, rz)] = [x?, y?, z?];
+    // (Component by component: an array's `map` goes out of line here.)
+    let (x, rx) = o[0].f64_enclosure()?;
+    let (y, ry) = o[1].f64_enclosure()?;
+    let (z, rz) = o[2].f64_enclosure()?;
     Some(([x, y, z], [rx, ry, rz], dir))
 }
