@@ -213,10 +213,13 @@ fn cells<const FALLING: bool, T: Touch, C: CellLog>(
     let mut block_until = f64::NEG_INFINITY;
     let mut steps = 0;
     let walked = loop {
-        if steps == T::MOST_STEPS {
-            break Walked::From(walk.t);
+        // (A walk without a most steps counts none.)
+        if T::MOST_STEPS < u32::MAX {
+            if steps == T::MOST_STEPS {
+                break Walked::From(walk.t);
+            }
+            steps += 1;
         }
-        steps += 1;
         let t_lo = walk.t;
         if skipping && t_lo >= block_until {
             let (t_exit, through_u, line) = walk.block_exit(level);
