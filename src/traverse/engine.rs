@@ -16,7 +16,7 @@ use super::options::WalkOptions;
 use super::search::Found;
 use super::search::{new_search, slack};
 use super::segment::{after_clearance, clearance_start, first_level, within_reach};
-use super::short_walk::{first_hit, FirstHit};
+use super::short_walk::first_hit::{first_hit, FirstHit};
 use super::walks::{choose, Walk, WithWalk};
 use super::wedges::Clearance;
 use crate::arith::{unsettled, Scalar};

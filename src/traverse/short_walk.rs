@@ -16,10 +16,9 @@
 //! gives the ray back, and the full walk answers it; a path that leaves the grid ends there,
 //! as the full walk's does.
 
-mod first_hit;
+pub(super) mod first_hit;
 mod path;
 
-pub(super) use self::first_hit::{first_hit, FirstHit};
 use self::path::{nearly, Path, SKIP_LEVEL};
 use super::cell_log::{CellLog, Unrecorded};
 use super::counters::HitMiss;
@@ -59,13 +58,7 @@ pub(super) fn short_walk(
     counters.bbox.record(true);
     let occluding = Occluding { start_triangle };
     let log = &mut Unrecorded;
-    match walk_cells(
-        terrain,
-        &mut walk,
-        &segment,
-        &occluding,
-        (&mut counters, log),
-    )? {
+    match segment.walk((terrain, &mut walk), &occluding, (&mut counters, log))? {
         Walked::Touched(()) => Some((true, counters)),
         Walked::Clear => Some((false, counters)),
         Walked::From(_) => None,
@@ -91,17 +84,20 @@ trait Touch {
     const MOST_STEPS: u32;
     /// Whether the walk passes over blocks at once.
     const SKIPS: bool;
-    /// Tests the path's cell (corner samples `four`, crossed from `t_lo` to `t_hi` in
-    /// `span`), counting its triangle tests: `Some(Some(found))` ends the walk, `Some(None)`
-    /// goes on, `None` where the full walk must answer.
-    fn cell(
-        &self,
-        terrain: &Terrain,
-        walk: &mut Path,
-        four: [u16; 4],
-        span: (f64, f64),
-        triangles: &mut HitMiss,
-    ) -> Option<Option<Self::Found>>;
+    /// Tests the path's cell, counting its triangle tests: `Some(Some(found))` ends the
+    /// walk, `Some(None)` goes on, `None` where the full walk must answer.
+    fn cell(&self, at: Crossing<'_>, triangles: &mut HitMiss) -> Option<Option<Self::Found>>;
+}
+
+/// A cell a short walk crosses.
+struct Crossing<'a> {
+    terrain: &'a Terrain,
+    /// The path, at the cell.
+    walk: &'a mut Path,
+    /// The cell's corner samples.
+    four: [u16; 4],
+    /// The part of the ray across the cell, from `t_lo` to `t_hi`.
+    span: (f64, f64),
 }
 
 /// An occlusion ray's cell test: any touch after its start, its own triangle left out.
@@ -115,35 +111,10 @@ impl Touch for Occluding {
     const MOST_STEPS: u32 = u32::MAX;
     const SKIPS: bool = true;
     #[inline(always)]
-    fn cell(
-        &self,
-        terrain: &Terrain,
-        walk: &mut Path,
-        four: [u16; 4],
-        span: (f64, f64),
-        triangles: &mut HitMiss,
-    ) -> Option<Option<()>> {
-        let touches = cell_hits(terrain, walk, four, span, self.start_triangle, triangles)?;
+    fn cell(&self, at: Crossing<'_>, triangles: &mut HitMiss) -> Option<Option<()>> {
+        let own = self.start_triangle;
+        let touches = cell_hits(at.terrain, at.walk, at.four, at.span, own, triangles)?;
         Some(touches.then_some(()))
-    }
-}
-
-/// The short walk's cells from `walk`'s on, in one loop for falling rays and one for the
-/// others: which end of a cell's part of the segment is its lowest point is then known
-/// outside the loop. `None` where the full walk must answer.
-/// The cells tested one by one are noted in `log`.
-#[inline(always)]
-fn walk_cells<T: Touch, C: CellLog>(
-    terrain: &Terrain,
-    walk: &mut Path,
-    segment: &Segment,
-    touch: &T,
-    (counters, log): (&mut Counters, &mut C),
-) -> Option<Walked<T::Found>> {
-    if segment.dz < 0.0 {
-        cells::<true, T, C>(terrain, walk, segment, touch, (counters, log))
-    } else {
-        cells::<false, T, C>(terrain, walk, segment, touch, (counters, log))
     }
 }
 
@@ -177,9 +148,27 @@ impl Segment {
             end_doubt: t_end - 5e-9 * larger(t_end, 1.0),
         }
     }
+
+    /// The short walk's cells from `walk`'s on, in one loop for falling rays and one for the
+    /// others: which end of a cell's part of the segment is its lowest point is then known
+    /// outside the loop. `None` where the full walk must answer. Its queries are added to
+    /// the counters, and the cells tested one by one noted in the log.
+    #[inline(always)]
+    fn walk<T: Touch, C: CellLog>(
+        &self,
+        (terrain, walk): (&Terrain, &mut Path),
+        touch: &T,
+        noted: (&mut Counters, &mut C),
+    ) -> Option<Walked<T::Found>> {
+        if self.dz < 0.0 {
+            cells::<true, T, C>(terrain, walk, self, touch, noted)
+        } else {
+            cells::<false, T, C>(terrain, walk, self, touch, noted)
+        }
+    }
 }
 
-/// [`walk_cells`] for a ray that falls (`FALLING`) or not.
+/// [`Segment::walk`] for a ray that falls (`FALLING`) or not.
 #[inline(always)]
 fn cells<const FALLING: bool, T: Touch, C: CellLog>(
     terrain: &Terrain,
@@ -268,7 +257,13 @@ fn cells<const FALLING: bool, T: Touch, C: CellLog>(
         // (The lanes test the whole cell, past the segment's end too.)
         let span = (t_lo, t_exit);
         if cells.record(may_hit) {
-            if let Some(found) = touch.cell(terrain, walk, four, span, &mut triangles)? {
+            let at = Crossing {
+                terrain,
+                walk,
+                four,
+                span,
+            };
+            if let Some(found) = touch.cell(at, &mut triangles)? {
                 break Walked::Touched(found);
             }
         }

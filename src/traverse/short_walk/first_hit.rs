@@ -12,7 +12,7 @@
 //! (rounding), where the next cells would still be looked at.
 
 use super::path::Path;
-use super::{walk_cells, Segment, Touch, Walked};
+use super::{Crossing, Segment, Touch, Walked};
 use crate::arith::{Scalar, SimdPath};
 use crate::geometry::clip_to_box;
 use crate::heightfield::Terrain;
@@ -61,7 +61,7 @@ pub(in crate::traverse) fn first_hit(
     }
     let mut walk = Path::from(terrain, o, d, from)?;
     let segment = Segment::new(o, d, t_end);
-    let walked = walk_cells(terrain, &mut walk, &segment, &FirstHitting, (counters, log))?;
+    let walked = segment.walk((terrain, &mut walk), &FirstHitting, (counters, log))?;
     // (Where the full walk goes on, it clips the ray itself.)
     let answer = match walked {
         Walked::Touched((t, cell, triangle)) => FirstHit::Hit { t, cell, triangle },
@@ -80,16 +80,10 @@ impl Touch for FirstHitting {
     const MOST_STEPS: u32 = MOST_STEPS;
     const SKIPS: bool = false;
     #[inline(always)]
-    fn cell(
-        &self,
-        terrain: &Terrain,
-        walk: &mut Path,
-        four: [u16; 4],
-        span: (f64, f64),
-        triangles: &mut HitMiss,
-    ) -> Option<Option<Self::Found>> {
+    fn cell(&self, at: Crossing<'_>, triangles: &mut HitMiss) -> Option<Option<Self::Found>> {
+        let (walk, four, span) = (at.walk, at.four, at.span);
+        let field = at.terrain.field();
         let cell = walk.cell();
-        let field = terrain.field();
         if field.is_hole_cell(cell.0, cell.1) {
             return Some(None);
         }
