@@ -54,7 +54,7 @@ pub use options::{Hit, Method, Trace, TraceOptions, UnknownMethod};
 pub use packet::{clear_packet, clear_packet_on, PacketClearance, SimdPath, LANES, SIMD_VARIABLE};
 pub use search::Found;
 pub use tracer::{occluded_from_hit, Occlusion, Tracer};
-pub use wedges::{highest_under, Clearance, Profiles, Wedges, WEDGES};
+pub use wedges::{highest_under, Clearance, Profiles, Wedges};
 
 use crate::heightfield::Terrain;
 use std::time::Duration;

@@ -3,11 +3,11 @@
 //! 1997: the rays in one vertical plane through the eye meet the terrain in order of their
 //! elevation).
 //!
-//! Around the eye's ground point, [`WEDGES`] wedges of azimuth are cut into rings of
-//! distance `B[k]..B[k+1]` (growing by a constant ratio, so each piece keeps its shape:
-//! [`RING_DEPTH`] times as deep as it is wide). Each piece of a wedge gets an upper bound `σ` of `(height - eye height) /
-//! distance` over the cells under it, and each wedge keeps the running maximum of its pieces'
-//! bounds outwards (its profile).
+//! Around the eye's ground point, [`FEWEST_WEDGES`] or twice as many wedges of azimuth are
+//! cut into rings of distance `B[k]..B[k+1]` (growing by a constant ratio, so each piece keeps
+//! its shape: [`RING_DEPTH`] times as deep as it is wide). Each piece of a wedge gets an upper
+//! bound `σ` of `(height - eye height) / distance` over the cells under it, and each wedge
+//! keeps the running maximum of its pieces' bounds outwards (its profile).
 //!
 //! Why it is exact: every point of a ray `eye + t*d` lies in the vertical plane of its
 //! azimuth, at distance `ρ = t * |d_xy|` and height `eye_z + s * ρ` (`s = d_z / |d_xy|`, its
@@ -25,14 +25,18 @@ use crate::heightfield::Terrain;
 use std::sync::{Arc, OnceLock};
 
 /// Wedges of azimuth around the eye (a multiple of 4, so that no wedge holds an axis
-/// direction inside it and a piece's box is the box of its four corners).
-pub const WEDGES: usize = 1024;
+/// direction inside it and a piece's box is the box of its four corners), and as many again
+/// where pieces this many cells wide would reach the map's farthest point: far pieces as
+/// wide as that leave rays a long walk from their clearance, while over a smaller extent
+/// twice the pieces cost more to build than they save.
+const FEWEST_WEDGES: usize = 1024;
+const WIDEST_FAR_PIECE: f64 = 8.0;
 
 /// The first ring boundary beyond 0, in cells: the piece around the eye's ground point.
 const FIRST_RING: f64 = 1.0;
 
 /// How much deeper than wide a piece of a wedge is (its rings grow by `1 + RING_DEPTH * 2π /
-/// WEDGES`): shallower pieces bound the rays closer to where they may first touch.
+/// wedges`): shallower pieces bound the rays closer to where they may first touch.
 const RING_DEPTH: f64 = 0.5;
 
 /// The most blocks each way a piece's highest sample is read from (finer blocks where the
@@ -61,6 +65,8 @@ pub struct Wedges<'a> {
 pub struct Profiles {
     eye: [f64; 3],
     arith: Arith,
+    /// Wedges of azimuth.
+    count: usize,
     /// Ring boundaries `B[0] = 0 < B[1] < ...`, the last beyond every point of the map.
     rings: Vec<f64>,
     /// What heights are raised by and boxes grown by, for rounding.
@@ -107,7 +113,9 @@ impl<'a> Wedges<'a> {
         let far_x = ex.abs().max((ex - w).abs());
         let far_y = ey.abs().max((ey - h).abs());
         let farthest = far_x.hypot(far_y) + room;
-        let ratio = 1.0 + RING_DEPTH * std::f64::consts::TAU / WEDGES as f64;
+        let wide = farthest * std::f64::consts::TAU / FEWEST_WEDGES as f64 > WIDEST_FAR_PIECE;
+        let count = FEWEST_WEDGES << usize::from(wide);
+        let ratio = 1.0 + RING_DEPTH * std::f64::consts::TAU / count as f64;
         let mut rings = vec![0.0, FIRST_RING.max(nearest)];
         while rings[rings.len() - 1] < farthest {
             let last = rings[rings.len() - 1];
@@ -116,10 +124,11 @@ impl<'a> Wedges<'a> {
         let profiles = Profiles {
             eye,
             arith,
+            count,
             rings,
             room,
             nearest,
-            profiles: (0..WEDGES).map(|_| OnceLock::new()).collect(),
+            profiles: (0..count).map(|_| OnceLock::new()).collect(),
         };
         Some(Wedges::kept(terrain, Arc::new(profiles)))
     }
@@ -152,7 +161,7 @@ impl<'a> Wedges<'a> {
         if !(slope.is_finite() && across > 1e-100 && across.is_finite()) {
             return (None, asked);
         }
-        let profile = self.profile(wedge_of(dx, dy));
+        let profile = self.profile(wedge_of(dx, dy, self.profiles.count));
         let clear = profile.partition_point(|&bound| bound < slope);
         if !asked.record(clear < profile.len()) {
             let t = f64::INFINITY;
@@ -173,8 +182,8 @@ impl<'a> Wedges<'a> {
     /// Wedge `w`'s profile: per ring, the largest bound of its pieces up to that ring.
     fn build(&self, w: usize) -> Box<[f64]> {
         let (a0, a1) = (
-            4.0 * w as f64 / WEDGES as f64,
-            4.0 * (w + 1) as f64 / WEDGES as f64,
+            4.0 * w as f64 / self.profiles.count as f64,
+            4.0 * (w + 1) as f64 / self.profiles.count as f64,
         );
         let (u0, u1) = (ground_direction(a0), ground_direction(a1));
         let [ex, ey, ez] = self.profiles.eye;
@@ -225,11 +234,12 @@ fn slope_bound(rise: f64, r0: f64, r1: f64) -> f64 {
     bound + bound.abs() * 1e-15
 }
 
-/// The wedge of ground direction `(dx, dy)` (not both zero), by its pseudo-angle.
-fn wedge_of(dx: f64, dy: f64) -> usize {
-    let w = (pseudo_angle(dx, dy) * (WEDGES as f64 / 4.0)) as usize;
+/// The wedge of ground direction `(dx, dy)` (not both zero) among `count`, by its
+/// pseudo-angle.
+fn wedge_of(dx: f64, dy: f64, count: usize) -> usize {
+    let w = (pseudo_angle(dx, dy) * (count as f64 / 4.0)) as usize;
     // (An angle just below 4 may round up to it: that wedge borders angle 0.)
-    w.min(WEDGES - 1)
+    w.min(count - 1)
 }
 
 /// A monotone stand-in for the angle of `(x, y)` from the `x` axis, in `[0, 4]`: `y / (|x| +
@@ -316,9 +326,11 @@ mod tests {
             let [x, y] = ground_direction(a);
             assert!((x - angle.cos()).abs() < 1e-12 && (y - angle.sin()).abs() < 1e-12);
         }
-        assert_eq!(wedge_of(1.0, -1e-300), WEDGES - 1);
-        assert_eq!(wedge_of(1.0, 0.0), 0);
-        assert_eq!(wedge_of(0.0, 1.0), WEDGES / 4);
+        for n in [FEWEST_WEDGES, 2 * FEWEST_WEDGES] {
+            assert_eq!(wedge_of(1.0, -1e-300, n), n - 1);
+            assert_eq!(wedge_of(1.0, 0.0, n), 0);
+            assert_eq!(wedge_of(0.0, 1.0, n), n / 4);
+        }
     }
 
     #[test]
