@@ -68,6 +68,9 @@ pub struct StripBounds {
     per_du: f64,
     /// The highest sample: a ray above it is above all the terrain.
     top: f64,
+    /// The slopes `m` of the disc's outermost azimuths, lowest first (the axis's twice for
+    /// one direction); `None` where they do not both run towards higher `u`.
+    disc_slopes: Option<(f64, f64)>,
     /// How fast the surface rises along the disc's azimuths near each block, for the part a
     /// look-up leaves to walk (see [`StripBounds::clear_before`]); `None` where the disc
     /// spans nearly half a turn of azimuths.
@@ -176,6 +179,7 @@ impl StripBounds {
             climb_across: climb * nu as f64,
             per_du: 1.0 / du.abs(),
             top,
+            disc_slopes: disc_slopes(&frame, dir, half),
             rises: disc_azimuths(dir, half).map(|cone| ConeRises::build(field, cone, NEAR)),
         };
         let mut column = Vec::with_capacity(blocks);
@@ -230,12 +234,17 @@ impl StripBounds {
     /// from `t` on is clear before `t` too: it starts well inside its own flat triangle
     /// (`near`) and outclimbs the surface around it all the way to `t`.
     pub fn clear_before(&self, start: [f64; 3], dir: [f64; 3], t: f64, near: NearStart) -> bool {
-        let Some(rises) = &self.rises else {
-            return false;
-        };
         // (Not `hypot`: a direction cannot overflow.)
         let across = (dir[0] * dir[0] + dir[1] * dir[1]).sqrt();
-        rises.outclimbed(start, dir[2] / across, t * across, near)
+        self.outclimbed(start, dir[2] / across, t * across, near)
+    }
+
+    /// Whether every ray of the disc from `start` (which climbs at least `climb` per cell
+    /// horizontally) outclimbs the surface over its first `distance` cells, as `near` has it.
+    pub fn outclimbed(&self, start: [f64; 3], climb: f64, distance: f64, near: NearStart) -> bool {
+        self.rises
+            .as_ref()
+            .is_some_and(|rises| rises.outclimbed(start, climb, distance, near))
     }
 
     /// The highest `s - climb*(u - u_c)` over the vertices of the cells that the strip `j`'s
@@ -271,10 +280,8 @@ impl StripBounds {
     /// `room` is how far (in height) the ray's true start may lie below `start` or across.
     #[inline(always)]
     pub fn clear_beyond(&self, start: [f64; 3], dir: [f64; 3], room: f64) -> Option<f64> {
-        let (u, v) = self.frame.uv(start[0], start[1]);
         let (du, dv) = self.frame.along(dir);
-        // (Both non-negative here, so truncation is the floor: no call to `floor`.)
-        if !(u >= 0.0 && u < self.frame.nu as f64 && du > 0.0) {
+        if du.is_nan() || du <= 0.0 {
             return None;
         }
         let (slope, per_du) = if dir == self.dir {
@@ -287,6 +294,32 @@ impl StripBounds {
             }
             (dv * per_du, per_du)
         };
+        let ahead = self.clear_ahead(start, (slope, slope), room)?;
+        Some(ahead * per_du)
+    }
+
+    /// Whether every ray of the disc from `start` certainly touches no triangle beyond a few
+    /// cells ahead: `Some(r)` where each is clear from `r` cells away (horizontally) on. The
+    /// disc's rays climb at least as the bounds were built for; their slopes lie between its
+    /// outermost azimuths'.
+    pub fn disc_clear_beyond(&self, start: [f64; 3], room: f64) -> Option<f64> {
+        let (lo, hi) = self.disc_slopes?;
+        let ahead = self.clear_ahead(start, (lo, hi), room)?;
+        // (A path of slope `m` runs `sqrt(1 + m^2)` cells for each of `u`.)
+        let longest = (1.0 + lo * lo).max(1.0 + hi * hi).sqrt();
+        Some(ahead * longest * (1.0 + 1e-9))
+    }
+
+    /// How far along `u` past `start` (plus a little) the rays from `start` with slopes in
+    /// `[lo, hi]` across, climbing at least the bounds' own, are certainly clear; `None` where
+    /// no column line within reach proves it.
+    #[inline(always)]
+    fn clear_ahead(&self, start: [f64; 3], (lo, hi): (f64, f64), room: f64) -> Option<f64> {
+        let (u, v) = self.frame.uv(start[0], start[1]);
+        // (Non-negative here, so truncation is the floor: no call to `floor`.)
+        if !(u >= 0.0 && u < self.frame.nu as f64) {
+            return None;
+        }
         let w = v - self.slope * u;
         // The next column line more than one cell ahead: the start's own cells are walked.
         let first = ((u + 1.0) * (1.0 / BLOCK as f64)) as usize + 1;
@@ -298,30 +331,33 @@ impl StripBounds {
             + room * self.per_step * (1.0 + self.climb);
         // Where a ray off the axis's slope leaves the map or rises above every sample: how
         // far its drift across the strips is followed.
-        let u_end = (slope != self.slope).then(|| {
+        let u_end = (lo != self.slope || hi != self.slope).then(|| {
             let above = (self.top - z + error + 1e-9 * self.climb_across).max(0.0) / self.climb;
             (u + above).min(self.frame.nu as f64)
         });
-        // The first column line from which the ray stays above its bound; a ray unsettled at
+        // The first column line from which the rays stay above its bound; a ray unsettled at
         // one column may be settled at a later one, leaving more (but not all) to walk.
         (first..first + FARTHEST_COLUMNS).find_map(|c| {
             let u_c = (c * BLOCK) as f64;
             let rise = self.climb * (u_c - u);
             let bound = match u_end {
                 None => self.bound_at(own, c),
-                // How far across the ray drifts from the column until it leaves the map or
-                // rises above every sample.
+                // How far across the rays drift from the column until they leave the map or
+                // rise above every sample.
                 Some(u_end) => {
-                    let drift = [u_c, u_end.max(u_c)].map(|at| w + (slope - self.slope) * (at - u));
-                    let (lo, hi) = (drift[0].min(drift[1]), drift[0].max(drift[1]));
-                    let first = self.strip_of(lo - PAD).unwrap_or(0);
-                    let last = self.strip_of(hi + PAD).unwrap_or(self.strips.len());
+                    let (near, far) = (u_c - u, u_end.max(u_c) - u);
+                    let drift = [(lo, near), (lo, far), (hi, near), (hi, far)]
+                        .map(|(m, gap)| w + (m - self.slope) * gap);
+                    let low = drift.iter().fold(f64::INFINITY, |a, &b| a.min(b));
+                    let high = drift.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b));
+                    let first = self.strip_of(low - PAD).unwrap_or(0);
+                    let last = self.strip_of(high + PAD).unwrap_or(self.strips.len());
                     (first..=last.min(self.strips.len() - 1))
                         .map(|j| self.bound_at(j, c))
                         .fold(f64::NEG_INFINITY, f64::max)
                 }
             };
-            (z + rise - (error + 1e-9 * rise) > bound).then_some((u_c - u + 1e-3) * per_du)
+            (z + rise - (error + 1e-9 * rise) > bound).then_some(u_c - u + 1e-3)
         })
     }
 
@@ -368,6 +404,17 @@ fn disc_azimuths(dir: [f64; 3], half: f64) -> Option<([f64; 2], [f64; 2])> {
     let mid = dir[1].atan2(dir[0]);
     let unit = |angle: f64| [angle.cos(), angle.sin()];
     Some((unit(mid - spread), unit(mid + spread)))
+}
+
+/// The slopes across of the disc's outermost azimuths in `frame`, lowest first.
+fn disc_slopes(frame: &DirFrame, dir: [f64; 3], half: f64) -> Option<(f64, f64)> {
+    let (lo, hi) = disc_azimuths(dir, half)?;
+    let slope = |[x, y]: [f64; 2]| {
+        let (du, dv) = frame.along([x, y, 0.0]);
+        (du > 0.0).then(|| dv / du)
+    };
+    let (a, b) = (slope(lo)?, slope(hi)?);
+    Some((a.min(b), a.max(b)))
 }
 
 /// The lowest climb `dz / |du|` of any direction within `half` of `(du, dv, dz)` (`du` the

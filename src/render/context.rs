@@ -264,6 +264,27 @@ impl<'a> Context<'a> {
         occlusion
     }
 
+    /// Whether every ray of the sun's disc around `axis` from `start` (each climbing at least
+    /// `lowest_tan` per cell horizontally) is certainly clear, with no walk: the kept strip
+    /// bounds clear them all beyond their first cells, and the slopes around a start on its
+    /// own triangle those cells.
+    pub(super) fn disc_clear<S: Scalar>(
+        &self,
+        start: &OcclusionStart<'_, S>,
+        axis: [f64; 3],
+        lowest_tan: f64,
+    ) -> bool {
+        let strips = self.strips.as_ref().filter(|s| s.dir() == axis);
+        let (Some(strips), Some(near)) = (strips.filter(|_| self.culling.far_bounds), start.near)
+        else {
+            return false;
+        };
+        let point = start.point.to_array();
+        strips
+            .disc_clear_beyond(point, start.room)
+            .is_some_and(|distance| strips.outclimbed(point, lowest_tan, distance, near))
+    }
+
     /// Whether a ray from `start` towards `dir` touches the surface: the occlusion ray of
     /// shadows, soft shadows and sky light (not traced where it starts above the terrain and
     /// rises, and that rule is on), asking only up to `t_max` along the ray if given (see

@@ -55,7 +55,7 @@ pub(crate) fn field(rng: &mut Rng, n: usize) -> Heightfield {
 /// Whether the ray from `o` in `dir` touches any triangle of the field from `t` on (up to
 /// `t_end`), exactly; cells the ray passes far above (by more than a unit of height) or far
 /// beside are left out first.
-fn touches(
+pub(crate) fn touches(
     field: &Heightfield,
     exact: &ExactField,
     ray: ([f64; 3], [f64; 3]),
@@ -151,112 +151,8 @@ fn rays_called_clear_beyond_a_point_touch_nothing_from_there_on() {
     assert!(clear * 3 > asked, "{clear} of {asked} rays called clear");
 }
 
-/// A low flat field with a few tall single samples: rays of a disc that drift across the
-/// strips meet spikes that the strips along the axis never hold.
-fn spikes(rng: &mut Rng, n: usize) -> Heightfield {
-    let mut samples = vec![0u16; n * n];
-    for _ in 0..n / 3 {
-        samples[rng.below(n * n)] = 40 + rng.below(200) as u16;
-    }
-    Heightfield::new(n, n, samples, Quantisation::Maxval(255), 20.0, None).unwrap()
-}
-
-/// A direction at angle `atan(r)` from `axis`, turned `turn` about it.
-fn in_disc(axis: [f64; 3], r: f64, turn: f64) -> [f64; 3] {
-    let norm = |v: [f64; 3]| {
-        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-        v.map(|c| c / l)
-    };
-    let cross = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
-    let a = norm(axis);
-    let across = norm(cross(a, [0.0, 0.0, 1.0]));
-    let up = cross(across, a);
-    let (c, s) = (turn.cos() * r, turn.sin() * r);
-    norm([0, 1, 2].map(|k| a[k] + across[k] * c + up[k] * s))
-}
-
-#[test]
-fn rays_of_the_suns_disc_called_clear_beyond_a_point_touch_nothing_from_there_on() {
-    let mut rng = Rng(0x0d15_c0f5_a7e5);
-    let (mut asked, mut clear, mut built) = (0, 0, 0);
-    for round in 0..12 {
-        let field = match round {
-            0 => landscape(33, 3, 12.0).unwrap(),
-            _ if round % 2 == 0 => spikes(&mut rng, 24 + round),
-            _ => field(&mut rng, 8 + round),
-        };
-        let exact = ExactField::new(&field);
-        for sun in SUNS {
-            for half in [0.0046, 0.02, 0.1] {
-                let Some(bounds) = StripBounds::build(&field, sun, half) else {
-                    // Only a disc that dips to the horizon (or under it), or one near the
-                    // zenith that spans most azimuths, is refused.
-                    let elevation = sun[2].atan2(sun[0].hypot(sun[1]));
-                    let wide = half.sin() / elevation.cos() > 0.8;
-                    assert!(elevation - half < 0.01 || wide, "sun {sun:?}, half {half}");
-                    continue;
-                };
-                built += 1;
-                for _ in 0..12 {
-                    let start = start_on(&field, &mut rng);
-                    // Inside the disc, its rim included.
-                    let r = half.tan() * [1.0, rng.within(0.0, 1.0)][rng.below(2)];
-                    let dir = in_disc(sun, r, rng.within(0.0, std::f64::consts::TAU));
-                    asked += 1;
-                    let Some(t) = bounds.clear_beyond(start, dir, 0.0) else {
-                        continue;
-                    };
-                    clear += 1;
-                    assert!(
-                        !touches(&field, &exact, (start, dir), t, f64::INFINITY),
-                        "round {round}, sun {sun:?}, half {half}, dir {dir:?}, start {start:?}: touches the surface beyond t = {t}"
-                    );
-                }
-            }
-        }
-    }
-    assert!(built > 250, "{built} discs bounded");
-    // A good share of the rays is settled: the test is not vacuous.
-    assert!(clear * 3 > asked, "{clear} of {asked} rays called clear");
-}
-
-#[test]
-fn a_ray_of_the_disc_that_drifts_into_another_strip_meets_its_spike() {
-    // Flat but for one spike 3 rows across from the start; the sun along x.
-    let (w, h) = (48, 16);
-    let mut samples = vec![0u16; w * h];
-    samples[7 * w + 30] = 200;
-    let field = Heightfield::new(w, h, samples, Quantisation::Maxval(255), 25.5, None).unwrap();
-    let (axis, half) = ([1.0, 0.0, 0.3], 0.1);
-    let bounds = StripBounds::build(&field, axis, half).expect("the disc climbs");
-    // Worked by hand: at the rim, turned towards -y, the ray is 2.9 rows across and 8.5 high
-    // at x = 30, where the spike's triangles stand about 18 high.
-    let dir = in_disc(axis, half.tan() * 0.999, 0.0);
-    let start = [2.0, 10.0, 0.05];
-    let exact = ExactField::new(&field);
-    assert!(touches(&field, &exact, (start, dir), 0.0, f64::INFINITY));
-    // Called clear only from a column line past the spike (x = 33, the first whose blocks
-    // hold none of its vertices): the part left to walk holds the touch.
-    let t = bounds
-        .clear_beyond(start, dir, 0.0)
-        .expect("clear past the spike");
-    assert!(
-        start[0] + t * dir[0] > 31.0,
-        "called clear before the spike"
-    );
-    assert!(touches(&field, &exact, (start, dir), 0.0, t));
-    // The axis itself passes the spike by: its own strip is clear.
-    assert!(bounds.clear_beyond(start, axis, 0.0).is_some());
-}
-
 /// A random point on the surface of `field` (or a little or well above it).
-fn start_on(field: &Heightfield, rng: &mut Rng) -> [f64; 3] {
+pub(crate) fn start_on(field: &Heightfield, rng: &mut Rng) -> [f64; 3] {
     let (x, y) = (
         rng.within(0.0, (field.width() - 1) as f64),
         rng.within(0.0, (field.height() - 1) as f64),

@@ -18,6 +18,7 @@ mod cli_render;
 mod cli_trace;
 mod crs_scale;
 mod deep_tiffs;
+mod disc_bounds;
 mod drapes;
 mod exact_paths;
 mod exact_reach;

@@ -56,6 +56,10 @@ impl Effect for SoftShadows {
         if cx.culling.above_terrain && rises && start.z > z_max {
             return skip(ShadowSkip::AboveTerrain);
         }
+        // The kept bounds clear the whole disc with one look-up.
+        if rises && cx.disc_clear(shared, axis.into(), disc.lowest_tan) {
+            return skip(ShadowSkip::HorizonClear);
+        }
         let whole_cone = disc.cone.map(|cone| cone.moved_to(start));
         let rays = cx.lighting.effects.sun_rays;
         let bounded = cx.culling.horizon_clear && rays >= BOUNDED_FROM;
