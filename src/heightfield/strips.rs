@@ -165,6 +165,7 @@ impl StripBounds {
         let blocks = (nu - 1).div_ceil(BLOCK).max(1);
         let samples = field.samples();
         let top = samples.iter().copied().max().map_or(0.0, f64::from);
+        let azimuths = disc_azimuths(dir, half);
         let mut bounds = StripBounds {
             dir,
             half,
@@ -179,8 +180,8 @@ impl StripBounds {
             climb_across: climb * nu as f64,
             per_du: 1.0 / du.abs(),
             top,
-            disc_slopes: disc_slopes(&frame, dir, half),
-            rises: disc_azimuths(dir, half).map(|cone| ConeRises::build(field, cone, NEAR)),
+            disc_slopes: azimuths.and_then(|ends| disc_slopes(&frame, ends)),
+            rises: azimuths.map(|cone| ConeRises::build(field, cone, NEAR)),
         };
         let mut column = Vec::with_capacity(blocks);
         for j in 0..count {
@@ -406,9 +407,9 @@ fn disc_azimuths(dir: [f64; 3], half: f64) -> Option<([f64; 2], [f64; 2])> {
     Some((unit(mid - spread), unit(mid + spread)))
 }
 
-/// The slopes across of the disc's outermost azimuths in `frame`, lowest first.
-fn disc_slopes(frame: &DirFrame, dir: [f64; 3], half: f64) -> Option<(f64, f64)> {
-    let (lo, hi) = disc_azimuths(dir, half)?;
+/// The slopes across of the disc's outermost azimuths `(lo, hi)` (see [`disc_azimuths`]) in
+/// `frame`, lowest first.
+fn disc_slopes(frame: &DirFrame, (lo, hi): ([f64; 2], [f64; 2])) -> Option<(f64, f64)> {
     let slope = |[x, y]: [f64; 2]| {
         let (du, dv) = frame.along([x, y, 0.0]);
         (du > 0.0).then(|| dv / du)

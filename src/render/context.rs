@@ -236,8 +236,7 @@ impl<'a> Context<'a> {
         start: &OcclusionStart<'_, S>,
         (axis, dir): ([f64; 3], [f64; 3]),
     ) -> Occlusion {
-        let strips = self.strips.as_ref().filter(|s| s.dir() == axis);
-        let Some(strips) = strips.filter(|_| self.culling.far_bounds) else {
+        let Some(strips) = self.strips_along(axis) else {
             return self.occluded(start, dir, None);
         };
         let point = start.point.to_array();
@@ -264,6 +263,13 @@ impl<'a> Context<'a> {
         occlusion
     }
 
+    /// The kept strip bounds of the disc around `axis`, where the rules use them.
+    #[inline(always)]
+    fn strips_along(&self, axis: [f64; 3]) -> Option<&StripBounds> {
+        let strips = self.strips.as_deref().filter(|s| s.dir() == axis);
+        strips.filter(|_| self.culling.far_bounds)
+    }
+
     /// Whether every ray of the sun's disc around `axis` from `start` (each climbing at least
     /// `lowest_tan` per cell horizontally) is certainly clear, with no walk: the kept strip
     /// bounds clear them all beyond their first cells, and the slopes around a start on its
@@ -274,9 +280,7 @@ impl<'a> Context<'a> {
         axis: [f64; 3],
         lowest_tan: f64,
     ) -> bool {
-        let strips = self.strips.as_ref().filter(|s| s.dir() == axis);
-        let (Some(strips), Some(near)) = (strips.filter(|_| self.culling.far_bounds), start.near)
-        else {
+        let (Some(strips), Some(near)) = (self.strips_along(axis), start.near) else {
             return false;
         };
         let point = start.point.to_array();

@@ -26,10 +26,13 @@ use std::sync::{Arc, OnceLock};
 
 /// Wedges of azimuth around the eye (a multiple of 4, so that no wedge holds an axis
 /// direction inside it and a piece's box is the box of its four corners), and as many again
-/// where pieces this many cells wide would reach the map's farthest point: far pieces as
-/// wide as that leave rays a long walk from their clearance, while over a smaller extent
-/// twice the pieces cost more to build than they save.
+/// where wider pieces than [`WIDEST_FAR_PIECE`] would reach the map's farthest point: far
+/// pieces as wide as that leave rays a long walk from their clearance, while over a smaller
+/// extent twice the pieces cost more to build than they save.
 const FEWEST_WEDGES: usize = 1024;
+
+/// The widest (cells) the pieces of [`FEWEST_WEDGES`] may be at the map's farthest point
+/// before the wedges are doubled.
 const WIDEST_FAR_PIECE: f64 = 8.0;
 
 /// The first ring boundary beyond 0, in cells: the piece around the eye's ground point.
